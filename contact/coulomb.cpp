@@ -1,0 +1,1 @@
+#include "contact/coulomb.h"
