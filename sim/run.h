@@ -60,14 +60,21 @@ struct RunSink {
   // units (physical: SI; scaled: scaled variables). Full model only.
   virtual void trajectoryRow(const std::vector<double>& row) {}
   virtual void envelopeRow(const EnvelopeRow& row) {}
+  // Full model: one call per event, with the state just after it in the trajectory format.
+  // kind: "tick" (escapement), "stick", "slip" (platform mode after a switch).
+  virtual void eventRow(const char* kind, const std::vector<double>& row) {}
 };
 
 // A sink that keeps everything in memory: for tests and small comparisons.
 struct MemorySink : RunSink {
   std::vector<std::vector<double>> trajectory;
   std::vector<EnvelopeRow> envelope;
+  std::vector<std::pair<std::string, std::vector<double>>> events;
   void trajectoryRow(const std::vector<double>& row) override { trajectory.push_back(row); }
   void envelopeRow(const EnvelopeRow& row) override { envelope.push_back(row); }
+  void eventRow(const char* kind, const std::vector<double>& row) override {
+    events.emplace_back(kind, row);
+  }
 };
 
 // Fails a run: the engine stops, reports what it has, and the command exits with code 3.

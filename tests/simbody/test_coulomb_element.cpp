@@ -1,0 +1,148 @@
+// The Coulomb element on its own: a unit mass on a slider with unit Coulomb friction, driven by a
+// prescribed force B sin t (the paper's eq. c1). Its steady response must be the closed-form
+// periodic solution y_p of appendix "ac" (contact/averaged_response.h, independent code).
+#include <Simbody.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "contact/averaged_response.h"
+#include "contact/simbody/coulomb_element.h"
+
+namespace metrosync {
+namespace {
+
+using namespace SimTK;
+
+class Drive : public Force::Custom::Implementation {
+ public:
+  Drive(const MobilizedBody::Slider& slider, double B) : slider_(slider), B_(B) {}
+  void calcForce(const State& s, Vector_<SpatialVec>&, Vector_<Vec3>&,
+                 Vector& mobilityForces) const override {
+    slider_.applyOneMobilityForce(s, 0, B_ * std::sin(s.getTime()), mobilityForces);
+  }
+  Real calcPotentialEnergy(const State&) const override { return 0; }
+
+ private:
+  MobilizedBody::Slider slider_;
+  double B_;
+};
+
+// One witness, so the handler may act itself: the element's own switching rules.
+class Switch : public TriggeredEventHandler {
+ public:
+  Switch(const System& sys, const CoulombElement& c)
+      : TriggeredEventHandler(Stage::Acceleration), sys_(sys), c_(c) {
+    getTriggerInfo().setTriggerOnRisingSignTransition(false);
+  }
+  Real getValue(const State& s) const override { return c_.witness(s); }
+  void handleEvent(State& s, Real, bool&) const override {
+    c_.resolveSwitch(sys_, s);
+    ++switches;
+  }
+  mutable int switches = 0;
+
+ private:
+  const System& sys_;
+  const CoulombElement& c_;
+};
+
+struct Harness {
+  MultibodySystem system;
+  SimbodyMatterSubsystem matter{system};
+  GeneralForceSubsystem forces{system};
+  MobilizedBody::Slider slider;
+  CoulombElement* element = nullptr;
+  Switch* sw = nullptr;
+
+  explicit Harness(double B) {
+    Body::Rigid unit(MassProperties(1.0, Vec3(0), UnitInertia(1)));
+    slider = MobilizedBody::Slider(matter.Ground(), Transform(), unit, Transform());
+    element = new CoulombElement(forces, slider, CoulombLaw{1.0});
+    Force::Custom(forces, element);
+    Force::Custom(forces, new Drive(slider, B));
+    sw = new Switch(system, *element);
+    system.addEventHandler(sw);
+    system.realizeTopology();
+  }
+};
+
+// Runs from rest at t = 0 for `periods` drive periods, then samples the last period.
+void checkAgainstClosedForm(double B, int periods, double tol) {
+  Harness h(B);
+  State s = h.system.getDefaultState();
+  h.element->settleAtRest(h.system, s);
+  RungeKuttaMersonIntegrator integ(h.system);
+  integ.setAccuracy(1e-12);
+  // a stuck platform changes nothing the error control sees: cap the step so that the stick
+  // margin (which crosses zero twice per half period) cannot cross twice inside one step
+  integ.setMaximumStepSize(0.1);
+  TimeStepper ts(h.system, integ);
+  ts.initialize(s);
+  const double t_start = 2 * Pi * (periods - 1);
+  ts.stepTo(t_start);
+  const double y_ref = h.slider.getOneQ(ts.getState(), MobilizerQIndex(0));
+  const double yp_ref = coulombYp(t_start, B);
+  double worst_v = 0, worst_y = 0;
+  for (int k = 1; k <= 200; ++k) {
+    const double t = t_start + 2 * Pi * k / 200.0;
+    ts.stepTo(t);
+    const State& st = ts.getState();
+    const double v = h.slider.getOneU(st, MobilizerUIndex(0));
+    const double y = h.slider.getOneQ(st, MobilizerQIndex(0)) - y_ref;
+    worst_v = std::max(worst_v, std::abs(v - coulombYpDot(t, B)));
+    worst_y = std::max(worst_y, std::abs(y - (coulombYp(t, B) - yp_ref)));
+  }
+  EXPECT_LT(worst_v, tol) << "B = " << B;
+  EXPECT_LT(worst_y, tol) << "B = " << B;
+  EXPECT_GT(h.sw->switches, 2 * (periods - 1)) << "B = " << B << ": too few switches";
+}
+
+TEST(CoulombElement, HoldingForceIsMinusTheAppliedForce) {
+  // a constant push P on a stuck platform: friction must supply -P
+  for (double P : {0.3, -0.7}) {
+    Harness h(0.0);
+    Force::MobilityConstantForce(h.forces, h.slider, 0, P);
+    h.system.realizeTopology();
+    State s = h.system.getDefaultState();
+    EXPECT_EQ(h.element->settleAtRest(h.system, s), PlatformMode::Stuck);
+    EXPECT_NEAR(h.element->holdingForce(s), -P, 1e-12);
+    EXPECT_NEAR(h.slider.getOneUDot(s, MobilizerUIndex(0)), 0.0, 1e-12);
+  }
+  // beyond the bound it slips the way it is pushed
+  Harness h(0.0);
+  Force::MobilityConstantForce(h.forces, h.slider, 0, -1.5);
+  h.system.realizeTopology();
+  State s = h.system.getDefaultState();
+  EXPECT_EQ(h.element->settleAtRest(h.system, s), PlatformMode::SlipNegative);
+  EXPECT_NEAR(h.slider.getOneUDot(s, MobilizerUIndex(0)), -0.5, 1e-12);
+}
+
+// Tolerance 1e-8 (the bound): the integrator runs at 1e-12 and the switches are located
+// within a window of ~1e-13 in time, so the sampled velocity is good to ~1e-10.
+TEST(CoulombElement, StickSlipResponseMatchesClosedFormAtB14) {
+  checkAgainstClosedForm(1.4, 12, 1e-8);
+}
+
+TEST(CoulombElement, PureSlipResponseMatchesClosedFormAtB2) {
+  checkAgainstClosedForm(2.0, 40, 1e-8);
+}
+
+TEST(CoulombElement, StaysStillForWeakDrive) {
+  for (double B : {0.5, 0.999, 1.0}) {
+    Harness h(B);
+    State s = h.system.getDefaultState();
+    h.element->settleAtRest(h.system, s);
+    RungeKuttaMersonIntegrator integ(h.system);
+    integ.setAccuracy(1e-10);
+    TimeStepper ts(h.system, integ);
+    ts.initialize(s);
+    ts.stepTo(6 * Pi);
+    EXPECT_EQ(h.element->mode(ts.getState()), PlatformMode::Stuck) << "B = " << B;
+    EXPECT_EQ(h.slider.getOneQ(ts.getState(), MobilizerQIndex(0)), 0.0) << "B = " << B;
+    EXPECT_EQ(h.sw->switches, 0) << "B = " << B;
+  }
+}
+
+}  // namespace
+}  // namespace metrosync
