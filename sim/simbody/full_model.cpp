@@ -176,7 +176,7 @@ class FullModelRun {
     // re-check: outward through +-theta_c (the localization window ends just past the root)
     return std::abs(th) >= tc * (1 - 1e-9) && th * w > 0;
   }
-  void decideAtRest(State& s);
+  void decideAtRest(State& s, PlatformMode before);
   Stage resolve(State& s);
 
   // --- recording --------------------------------------------------------------------------
@@ -228,9 +228,8 @@ class FullModelRun {
   std::vector<double> scratch_th_, scratch_w_;
 };
 
-void FullModelRun::decideAtRest(State& s) {
+void FullModelRun::decideAtRest(State& s, PlatformMode before) {
   const CoulombElement& c = *ms_.coulomb();
-  const PlatformMode before = c.mode(s);
   const PlatformMode after = c.settleAtRest(ms_.system(), s);
   if (after != before) {
     ++report_.counts.stick_slip;
@@ -274,7 +273,7 @@ Stage FullModelRun::resolve(State& s) {
       const double v = ms_.xdot(s);
       if (std::abs(v) <= 1e-9 * dv_abs) {
         // the impulses cancel on the platform (e.g. identical metronomes in exact antiphase)
-        decideAtRest(s);
+        decideAtRest(s, was_stuck ? PlatformMode::Stuck : coulomb->mode(s));
       } else {
         const PlatformMode m = v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative;
         const PlatformMode before = was_stuck ? PlatformMode::Stuck : coulomb->mode(s);
@@ -407,7 +406,7 @@ RunReport FullModelRun::run() {
   if (const CoulombElement* c = ms_.coulomb()) {
     const double v = ms_.xdot(s0);
     if (v == 0)
-      decideAtRest(s0);
+      decideAtRest(s0, PlatformMode::Stuck);
     else
       c->slip(s0, v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative);
     report_.counts.stick_slip = 0;  // the start is not a switch
