@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# One-command set-up on a fresh Debian 12: installs what is missing (apt-get), builds Release,
+# then either runs the default rig (`run`, the main job, with its plots) or every test (`test`).
+#   bash tools/setup.sh run   [extra metrosync run arguments]
+#   bash tools/setup.sh test
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+mode="${1:-run}"
+shift || true
+
+packages=(cmake g++ make libsimbody-dev libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev
+          libcli11-dev libgtest-dev libbenchmark-dev gnuplot-nox)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  sudo_cmd=""
+  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+
+jobs=$(nproc 2>/dev/null || echo 2)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j"$jobs"
+
+case "$mode" in
+  run)
+    ./build/metrosync run "$@"
+    ;;
+  test)
+    ctest --test-dir build --output-on-failure -j"$jobs" --timeout 900
+    ;;
+  *)
+    echo "usage: bash tools/setup.sh run|test" >&2
+    exit 2
+    ;;
+esac
