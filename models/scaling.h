@@ -31,10 +31,10 @@ struct ScaledParams {
   std::vector<double> theta0, thetadot0;
   double x0 = 0.0, xdot0 = 0.0;
   // unit conversions: physical = scale * scaled
-  double time_scale_s = 1.0;   // seconds per unit of scaled time, 1/omega0
-  double angle_scale = 1.0;    // sqrt(eps)
-  double x_scale_m = 1.0;      // I1 eps^{3/2} / (m1 L1)
-  double tau_end = 0.0;        // slow time at the end of the run
+  double time_scale_s = 1.0;  // seconds per unit of scaled time, 1/omega0
+  double angle_scale = 1.0;   // sqrt(eps)
+  double x_scale_m = 1.0;     // I1 eps^{3/2} / (m1 L1)
+  double tau_end = 0.0;       // slow time at the end of the run
 };
 
 // Scaled parameters of a rig (physical or an equivalent system built from scaled input).
@@ -65,11 +65,14 @@ struct ScaledRigInput {
 // matrix would not be positive definite: eps * sum_i (1+eps zeta_i)(1+eps alpha_i) >= 1).
 Rig rigFromScaled(const ScaledRigInput& in);
 
-// eq. A_star: steady amplitude of one metronome on a still platform; nullopt if J < J_c.
+// eq. A_star: steady amplitude of one metronome on a still platform; nullopt if J < J_c, and also
+// if J = 0 (no escapement) or nu = 0 (no damping: the amplitude grows without bound).
 std::optional<double> steadyAmplitude(double nu, double J, double theta_c);
 // J_c = pi nu theta_c: below it the metronome stops.
 double criticalImpulse(double nu, double theta_c);
-// eq. J_estimate: the impulse that gives steady amplitude A_star (A_star > theta_c).
+// eq. J_estimate: the impulse that gives steady amplitude A_star. A_star is the stable root of
+// e5.1 only when A_star >= sqrt(2) theta_c (below it, it is the unstable one), so that is
+// required, with nu > 0; throws std::invalid_argument otherwise. Inverse of steadyAmplitude.
 double impulseForAmplitude(double nu, double A_star, double theta_c);
 
 }  // namespace metrosync
