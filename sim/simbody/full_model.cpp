@@ -592,11 +592,6 @@ RunReport FullModelRun::run() {
 
 }  // namespace
 
-double EnergyLedger::relativeResidual() const {
-  const double scale = std::max({std::abs(initial_J), std::abs(final_J), escapement_in_J,
-                                 damping_out_J, friction_out_J, 1e-300});
-  return residual_J() / scale;
-}
 
 RunReport runFullModel(const Rig& rig, RunSink& sink) {
   FullModelRun run(rig, sink);

@@ -1,0 +1,320 @@
+#include "tools/cli/commands.h"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "models/scaling.h"
+#include "models/slow_flow.h"
+#include "sim/compare.h"
+#include "sim/outputs.h"
+#include "sim/plot.h"
+#include "sim/regime.h"
+#include "sim/scale_report.h"
+#include "sim/simbody/full_model.h"
+#include "yaml/rig_loader.h"
+
+namespace metrosync::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::string rigDisplayName(const Options& opt) {
+  return opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
+}
+
+std::string joined(const std::vector<std::string>& v, const std::string& sep = ", ") {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
+  return s;
+}
+
+std::string fmt(double v, const char* f = "%.4g") {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string fmtList(const std::vector<double>& v, const char* f = "%.4g") {
+  std::string s;
+  for (double x : v) s += (s.empty() ? "" : " ") + fmt(x, f);
+  return s;
+}
+
+// A rig with everything a command needs, checked before anything is written (SPEC 5).
+struct LoadedRig {
+  Rig rig;
+  ScaledParams scaled;
+  nlohmann::json scaled_json;
+};
+
+LoadedRig loadAndCheck(const Options& opt) {
+  LoadedRig r;
+  r.rig = opt.rig_path.empty() ? defaultRig(opt.sets) : loadRigFile(opt.rig_path, opt.sets);
+
+  // the integrator is the engine's business, so the loader leaves its name to us
+  const auto& names = simbodyIntegratorNames();
+  if (!r.rig.sim.integrator.empty() &&
+      std::find(names.begin(), names.end(), r.rig.sim.integrator) == names.end())
+    throw RigError(rigDisplayName(opt) + ": simulation.integrator = " + r.rig.sim.integrator +
+                   ": unknown integrator; one of: " + joined(names));
+  const auto& engines = availableEngines();
+  if (std::find(engines.begin(), engines.end(), opt.engine) == engines.end())
+    throw UsageError("--engine " + opt.engine +
+                     ": not available in this build (available: " + joined(engines) + ")");
+
+  try {
+    r.scaled = computeScaled(r.rig);
+  } catch (const std::invalid_argument& e) {
+    throw RigError(rigDisplayName(opt) + ": " + e.what());
+  }
+  r.scaled_json = scaleJson(r.rig, r.scaled);
+  return r;
+}
+
+// The output directory, created only now that the rig is valid; stale outputs of an earlier
+// command there are removed so that every file in it belongs to this run.
+OutputDir openOutputDir(const Options& opt, const Rig& rig, const std::string& command) {
+  const std::string path = opt.out.empty() ? defaultOutputDir(rig.name, command) : opt.out;
+  try {
+    OutputDir dir(path);
+    dir.removeStaleOutputs();
+    return dir;
+  } catch (const std::runtime_error& e) {
+    throw UsageError(std::string("--out: ") + e.what());
+  }
+}
+
+RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::string& envelope) {
+  RunFilesOptions o;
+  o.n_metronomes = static_cast<int>(r.rig.metronomes.size());
+  o.tau_end = r.scaled.tau_end;
+  o.trajectory = trajectory;
+  o.envelope_name = envelope;
+  o.epsilon = r.scaled.epsilon;
+  o.time_unit = r.rig.units == Units::Physical ? r.scaled.time_scale_s : 1.0;
+  return o;
+}
+
+// Runs one model into `sink`. An engine that lets an interruption (or a SimulationFailure) through
+// still gives a report: incomplete, with what the sink saw.
+RunReport runModel(const std::string& model, const Options& opt, const LoadedRig& r,
+                   FileSink& sink) {
+  const Clock::time_point t0 = Clock::now();
+  auto incomplete = [&](double t, const std::string& why) {
+    RunReport rep;
+    rep.model = model;
+    rep.engine = model == "full" ? opt.engine : "slowflow";
+    rep.complete = false;
+    rep.failure = "stopped at t = " + fmt(t, "%.6g") +
+                  (r.rig.units == Units::Physical ? " s" : "") + ": " + why;
+    rep.wall_seconds = secondsSince(t0);
+    return rep;
+  };
+  try {
+    if (model == "full") return runFullModel(r.rig, sink);
+    SlowFlowOptions so;
+    so.tau_end = r.scaled.tau_end;
+    return runSlowFlow(r.scaled, so, sink);
+  } catch (const RunInterrupted& e) {
+    return incomplete(e.t, e.what());
+  } catch (const SimulationFailure& f) {
+    return incomplete(f.t, f.why);
+  }
+}
+
+// The regime of a finished run ("unknown" when it stopped early), and a final row for the
+// summary if the engine left it empty.
+RegimeVerdict judge(RunReport& report, const FileSink& sink, const LoadedRig& r) {
+  const RegimeWindow& w = sink.regimeWindow();
+  if (report.final_row.A.empty() && !w.empty()) report.final_row = w.last();
+  if (!report.complete) {
+    RegimeVerdict v;
+    v.window_tau_start = w.tauStart();
+    return v;
+  }
+  return classifyRegime(w, r.scaled.theta_c, r.scaled.locked);
+}
+
+std::string modelTitle(const std::string& model) {
+  return model == "full" ? "full model" : "slow flow";
+}
+
+void printRunSummary(const std::string& model, const LoadedRig& r, const RunReport& rep,
+                     const RegimeVerdict& v) {
+  std::cout << modelTitle(model) << " (" << rep.engine
+            << (rep.integrator.empty() ? "" : ", " + rep.integrator) << "): regime "
+            << toString(v.regime) << "\n";
+  std::cout << "  final tau = " << fmt(rep.final_row.tau) << ": A = " << fmtList(rep.final_row.A)
+            << " (theta_c = " << fmtList(r.scaled.theta_c) << ")";
+  if (!rep.final_row.psi.empty()) std::cout << ", psi = " << fmtList(rep.final_row.psi);
+  std::cout << "\n  " << rep.counts.steps << " steps";
+  if (!rep.counts.escapements.empty()) {
+    std::vector<double> e(rep.counts.escapements.begin(), rep.counts.escapements.end());
+    std::cout << ", escapements " << fmtList(e, "%.0f");
+  }
+  if (model == "full") std::cout << ", " << rep.counts.stick_slip << " stick-slip switches";
+  std::cout << ", wall time " << fmt(rep.wall_seconds, "%.3g") << " s\n";
+}
+
+void printFiles(const OutputDir& dir, const std::vector<std::string>& files) {
+  std::cout << "files: " << dir.path() << "/ (" << joined(files) << ")\n";
+}
+
+void reportFailure(const std::string& model, const RunReport& rep, const OutputDir& dir) {
+  std::cerr << "metrosync: error: " << modelTitle(model) << ": " << rep.failure
+            << "\nmetrosync: the files written so far are in " << dir.path()
+            << "/ (summary.json says complete: false)\n";
+}
+
+extern "C" void onStopSignal(int) {
+  FileSink::requestStop();
+  static const char msg[] =
+      "\nmetrosync: stopping, keeping the files written so far (again to kill)\n";
+  ssize_t ignored = ::write(2, msg, sizeof msg - 1);
+  (void)ignored;
+}
+
+}  // namespace
+
+const std::vector<std::string>& availableEngines() {
+  static const std::vector<std::string> engines = {"simbody"};
+  return engines;
+}
+
+void installStopHandlers() {
+  struct sigaction sa {};
+  sa.sa_handler = onStopSignal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESETHAND;  // a second signal takes the default action
+  ::sigaction(SIGINT, &sa, nullptr);
+  ::sigaction(SIGTERM, &sa, nullptr);
+}
+
+int runCommand(const Options& opt) {
+  if (opt.model != "full" && opt.model != "slow")
+    throw UsageError("--model " + opt.model + ": must be full or slow");
+  LoadedRig r = loadAndCheck(opt);
+  installStopHandlers();  // before any file exists, so that no signal can leave a bare .part
+  const OutputDir dir = openOutputDir(opt, r.rig, "run");
+  const bool full = opt.model == "full";
+
+  FileSink sink(dir, sinkOptions(r, full, "envelope.csv"));
+  RunReport report = runModel(opt.model, opt, r, sink);
+  sink.commit();
+  const RegimeVerdict verdict = judge(report, sink, r);
+
+  std::vector<std::string> files = sink.fileNames();
+  if (plotEnvelope(dir, "envelope.png", sink.plotRows(), r.scaled.theta_c,
+                   r.rig.name + " - " + modelTitle(opt.model) + " - " + toString(verdict.regime)))
+    files.push_back("envelope.png");
+  files.push_back("summary.json");
+
+  nlohmann::json summary = runSummaryJson(r.rig, r.scaled_json, report, verdict);
+  summary["files"] = files;
+  writeSummary(dir, summary);  // last: a summary.json means the run's files are all there
+
+  if (!opt.quiet) {
+    printRunSummary(opt.model, r, report, verdict);
+    printFiles(dir, files);
+  }
+  if (!report.complete) {
+    reportFailure(opt.model, report, dir);
+    return kSimulationFailed;
+  }
+  return kSuccess;
+}
+
+int compareCommand(const Options& opt) {
+  LoadedRig r = loadAndCheck(opt);
+  installStopHandlers();
+  const OutputDir dir = openOutputDir(opt, r.rig, "compare");
+  const Clock::time_point t0 = Clock::now();
+
+  FileSink full_sink(dir, sinkOptions(r, true, "envelope_full.csv"));
+  RunReport full = runModel("full", opt, r, full_sink);
+  full_sink.commit();
+
+  FileSink slow_sink(dir, sinkOptions(r, false, "envelope_slow.csv"));
+  RunReport slow;
+  if (FileSink::stopRequested()) {
+    slow.model = "slow";
+    slow.engine = "slowflow";
+    slow.complete = false;
+    slow.failure = "not run: interrupted by a signal";
+  } else {
+    slow = runModel("slow", opt, r, slow_sink);
+  }
+  slow_sink.commit();
+
+  const RegimeVerdict v_full = judge(full, full_sink, r);
+  const RegimeVerdict v_slow = judge(slow, slow_sink, r);
+  const ComparisonResult cmp =
+      compareEnvelopeFiles(dir.file("envelope_full.csv"), dir.file("envelope_slow.csv"),
+                           r.scaled.epsilon, dir.file("comparison.csv"));
+
+  std::vector<std::string> files = full_sink.fileNames();
+  for (const auto& f : slow_sink.fileNames()) files.push_back(f);
+  files.push_back("comparison.csv");
+  if (plotComparison(dir, "comparison.png", full_sink.plotRows(), slow_sink.plotRows(),
+                     r.scaled.theta_c,
+                     r.rig.name + " - full model (solid) " + toString(v_full.regime) +
+                         ", slow flow (dashed) " + toString(v_slow.regime)))
+    files.push_back("comparison.png");
+  files.push_back("summary.json");
+
+  // SPEC keys at the top level are the full model's (the reference); each model's own report is
+  // under models.full / models.slow
+  const nlohmann::json jf = reportJson(full, v_full), js = reportJson(slow, v_slow);
+  nlohmann::json summary = runSummaryJson(r.rig, r.scaled_json, full, v_full);
+  summary["command"] = "compare";
+  summary["model"] = "compare";
+  summary["models"] = {{"full", jf}, {"slow", js}};
+  summary["comparison"] = comparisonJson(cmp);
+  summary["complete"] = full.complete && slow.complete;
+  summary.erase("failure");
+  if (!full.complete || !slow.complete) {
+    std::string why;
+    if (!full.complete) why += "full: " + full.failure;
+    if (!slow.complete) why += std::string(why.empty() ? "" : "; ") + "slow: " + slow.failure;
+    summary["failure"] = why;
+  }
+  summary["wall_seconds"] = secondsSince(t0);
+  summary["files"] = files;
+  writeSummary(dir, summary);
+
+  if (!opt.quiet) {
+    printRunSummary("full", r, full, v_full);
+    printRunSummary("slow", r, slow, v_slow);
+    std::cout << "full - slow over " << cmp.rows << " rows: max |dA| = " << fmtList(cmp.max_abs_dA);
+    if (!cmp.max_abs_dpsi.empty())
+      std::cout << ", max |dpsi| (mod 2 pi) = " << fmtList(cmp.max_abs_dpsi);
+    std::cout << "\n";
+    printFiles(dir, files);
+  }
+  int code = kSuccess;
+  if (!full.complete) reportFailure("full", full, dir), code = kSimulationFailed;
+  if (!slow.complete) reportFailure("slow", slow, dir), code = kSimulationFailed;
+  return code;
+}
+
+int scaleCommand(const Options& opt) {
+  const LoadedRig r = loadAndCheck(opt);
+  if (opt.json)
+    std::cout << r.scaled_json.dump(2) << "\n";
+  else
+    std::cout << scaleText(r.rig, r.scaled);
+  return kSuccess;
+}
+
+}  // namespace metrosync::cli

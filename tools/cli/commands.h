@@ -1,0 +1,41 @@
+// The commands of `metrosync` (SPEC section 2) behind the command-line parser: each takes its
+// parsed options and returns the process exit code (SPEC section 5).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace metrosync::cli {
+
+enum ExitCode : int { kSuccess = 0, kOtherError = 1, kBadInput = 2, kSimulationFailed = 3 };
+
+// A bad command line found after parsing (exit 2); what() is printed after "metrosync: error: ".
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Options {
+  std::string rig_path;           // empty: the built-in default rig
+  std::vector<std::string> sets;  // --set KEY=VALUE, in order
+  std::string out;                // --out DIR; empty: runs/<rig name>-<command>
+  bool quiet = false;
+  std::string model = "full";      // run: full | slow
+  std::string engine = "simbody";  // run, compare: simbody (| direct, once it exists)
+  bool json = false;               // scale
+};
+
+// The engines `--engine` accepts in this build.
+const std::vector<std::string>& availableEngines();
+
+// Each returns the exit code; a bad rig or command line throws RigError or UsageError (exit 2),
+// before anything is written.
+int runCommand(const Options& opt);
+int compareCommand(const Options& opt);
+int scaleCommand(const Options& opt);
+
+// Installs SIGINT/SIGTERM handlers that ask the running simulation to stop (files are kept and
+// marked incomplete); a second signal kills the process as usual.
+void installStopHandlers();
+
+}  // namespace metrosync::cli
