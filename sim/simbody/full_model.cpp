@@ -208,7 +208,9 @@ class FullModelRun {
     if (report_.complete) {
       report_.complete = false;
       std::ostringstream os;
-      os << "simulation failed at t = " << t << " s (tau = " << sp_.epsilon * omega0_ * t
+      // t in the rig's own time unit (seconds, or scaled time for a scaled rig)
+      os << "simulation failed at t = " << (rig_.units == Units::Scaled ? t * omega0_ : t)
+         << (rig_.units == Units::Scaled ? "" : " s") << " (tau = " << sp_.epsilon * omega0_ * t
          << "): " << why;
       report_.failure = os.str();
     }

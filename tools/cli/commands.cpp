@@ -125,6 +125,9 @@ RunReport runModel(const std::string& model, const Options& opt, const LoadedRig
     if (model == "full") return runFullModel(r.rig, sink);
     SlowFlowOptions so;
     so.tau_end = r.scaled.tau_end;
+    // simulation.accuracy is the relative local error target of whichever integrator runs
+    so.rtol = r.rig.sim.accuracy;
+    so.atol = 1e-2 * r.rig.sim.accuracy;
     return runSlowFlow(r.scaled, so, sink);
   } catch (const RunInterrupted& e) {
     return incomplete(e.t, e.what());
