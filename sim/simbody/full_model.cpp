@@ -43,7 +43,8 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const System
   if (name == "rk-feldberg") return std::make_unique<RungeKuttaFeldbergIntegrator>(sys);
   if (name == "rk3") return std::make_unique<RungeKutta3Integrator>(sys);
   if (name == "rk2") return std::make_unique<RungeKutta2Integrator>(sys);
-  if (name == "cpodes") return std::make_unique<CPodesIntegrator>(sys, CPodes::BDF, CPodes::Newton);
+  if (name == "cpodes")
+    return std::make_unique<CPodesIntegrator>(sys, CPodes::Adams, CPodes::Functional);
   if (name == "verlet") return std::make_unique<VerletIntegrator>(sys);
   if (name == "semi-explicit-euler2") return std::make_unique<SemiExplicitEuler2Integrator>(sys);
   throw std::invalid_argument("unknown integrator '" + name + "'");
@@ -593,7 +594,6 @@ RunReport FullModelRun::run() {
 }
 
 }  // namespace
-
 
 RunReport runFullModel(const Rig& rig, RunSink& sink) {
   FullModelRun run(rig, sink);
