@@ -29,6 +29,14 @@ struct CoulombLaw {
     return holding_force > 0 ? PlatformMode::SlipNegative : PlatformMode::SlipPositive;
   }
 
+  // A stuck platform breaks free once the force needed to hold it reaches the bound (a tie breaks
+  // free: at a located stick -> slip event the margin is zero to rounding, and a platform left
+  // stuck at margin 0 would never see its witness cross again). Below the bound it stays: a slip
+  // could not start, the platform would accelerate against its own direction of slip.
+  bool breaksFree(double holding_force) const {
+    return !(holding_force < bound && holding_force > -bound);
+  }
+
   // Stick -> slip witness: positive while the platform can stay stuck, crosses zero when the
   // needed holding force reaches the bound in either direction.
   double stickMargin(double holding_force) const {

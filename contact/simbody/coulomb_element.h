@@ -38,14 +38,8 @@ class CoulombElement : public SimTK::Force::Custom::Implementation {
   // zero (or reversed) settles at rest. Returns the new mode (unchanged if no rule applies).
   PlatformMode resolveSwitch(const SimTK::System& system, SimTK::State& s) const;
 
-  // A stuck platform breaks free once the holding force is within kBreakFreeTol * bound of the
-  // bound. The witness is localized to a window of ~1e-10 of the time scale, so at the event the
-  // margin is zero to rounding; without the tolerance the platform would stay stuck at margin
-  // 0, and a witness that restarts at zero never triggers again.
-  static constexpr double kBreakFreeTol = 1e-9;
-  bool mustBreakFree(double holding_force) const {
-    return law_.stickMargin(holding_force) <= kBreakFreeTol * law_.bound;
-  }
+  // CoulombLaw::breaksFree: the holding force has reached the bound.
+  bool mustBreakFree(double holding_force) const { return law_.breaksFree(holding_force); }
 
   // Event witness (falls through zero at a switch; needs Acceleration stage):
   // slipping: mode * xdot (the platform stops); stuck: bound - |holding force| (it breaks free).
