@@ -311,6 +311,7 @@ class RowWriter {
     }
     for (int j = 1; j < f_.n; ++j)
       row.psi.push_back(unwrap_[j - 1](last_phase_[0] - last_phase_[j]));
+    row.r = orderParameter(row.A, row.psi);
     return row;
   }
 

@@ -120,11 +120,8 @@ EnvelopeCsvReader::EnvelopeCsvReader(const std::string& path) : path_(path), in_
   if (!in_) throw std::runtime_error(path + ": cannot open");
   std::string header;
   if (!std::getline(in_, header)) throw std::runtime_error(path + ": empty file");
-  int ncols = 1;
-  for (char c : header) ncols += (c == ',');
-  n_ = (ncols + 1) / 2;  // tau + N + (N-1) = 2N columns
-  if (ncols != 2 * n_ || header.compare(0, 3, "tau") != 0)
-    throw std::runtime_error(path + ": not an envelope file (header '" + header + "')");
+  layout_ = parseEnvelopeHeader(header, path);  // with or without the r column
+  n_ = layout_.n;
 }
 
 bool EnvelopeCsvReader::next(EnvelopeRow& row) {
@@ -133,7 +130,7 @@ bool EnvelopeCsvReader::next(EnvelopeRow& row) {
     ++lineno_;
     if (line.empty()) continue;
     std::vector<double> v;
-    v.reserve(2 * n_);
+    v.reserve(layout_.columns());
     size_t start = 0;
     while (start <= line.size()) {
       const size_t comma = line.find(',', start);
@@ -149,11 +146,9 @@ bool EnvelopeCsvReader::next(EnvelopeRow& row) {
       if (comma == std::string::npos) break;
       start = comma + 1;
     }
-    if (static_cast<int>(v.size()) != 2 * n_)
+    if (static_cast<int>(v.size()) != layout_.columns())
       throw std::runtime_error(path_ + ":" + std::to_string(lineno_) + ": wrong number of columns");
-    row.tau = v[0];
-    row.A.assign(v.begin() + 1, v.begin() + 1 + n_);
-    row.psi.assign(v.begin() + 1 + n_, v.end());
+    row = envelopeRowFromValues(v, layout_);
     return true;
   }
   return false;

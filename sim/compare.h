@@ -55,6 +55,7 @@ class EnvelopeCsvReader {
  private:
   std::string path_;
   std::ifstream in_;
+  EnvelopeLayout layout_;
   int n_ = 0;
   long lineno_ = 1;
 };

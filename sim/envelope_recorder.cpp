@@ -38,36 +38,45 @@ void EnvelopeRecorder::eval(double t, const double* theta, const double* thetado
 void EnvelopeRecorder::sample(double t, const double* theta, const double* thetadot) {
   eval(t, theta, thetadot, cur_);
   if (have_prev_) {
-    // integrate [t_prev_, t] period by period (linear interpolation at a boundary inside)
-    double ta = t_prev_;
-    Values a = prev_;
-    while (t > ta) {
-      const double boundary = nextBoundary();
-      const double tb = std::min(t, boundary);
-      Values b = cur_;
-      if (tb < t) {
-        const double w = (tb - ta) / (t - ta);
-        for (int i = 0; i < n_; ++i) {
-          b.A[i] = a.A[i] + w * (cur_.A[i] - a.A[i]);
-          b.e[i] = a.e[i] + w * (cur_.e[i] - a.e[i]);
+    if (t <= nextBoundary()) {
+      // the usual case: the whole interval lies in the current period
+      integrate(t - t_prev_, prev_, cur_);
+      if (t == nextBoundary()) closePeriod();
+    } else {
+      // integrate [t_prev_, t] period by period (linear interpolation at a boundary inside)
+      double ta = t_prev_;
+      Values a = prev_;
+      while (t > ta) {
+        const double boundary = nextBoundary();
+        const double tb = std::min(t, boundary);
+        Values b = cur_;
+        if (tb < t) {
+          const double w = (tb - ta) / (t - ta);
+          for (int i = 0; i < n_; ++i) {
+            b.A[i] = a.A[i] + w * (cur_.A[i] - a.A[i]);
+            b.e[i] = a.e[i] + w * (cur_.e[i] - a.e[i]);
+          }
         }
+        integrate(tb - ta, a, b);
+        ta = tb;
+        a = b;
+        if (tb >= boundary) closePeriod();
       }
-      const double h = tb - ta;
-      for (int i = 0; i < n_; ++i) {
-        sum_A_[i] += 0.5 * h * (a.A[i] + b.A[i]);
-        sum_e_[i] += 0.5 * h * (a.e[i] + b.e[i]);
-      }
-      covered_ += h;
-      ta = tb;
-      a = b;
-      if (tb >= boundary) closePeriod();
     }
   } else if (t >= nextBoundary()) {
     closePeriod();
   }
-  prev_ = cur_;
+  std::swap(prev_, cur_);
   t_prev_ = t;
   have_prev_ = true;
+}
+
+void EnvelopeRecorder::integrate(double h, const Values& a, const Values& b) {
+  for (int i = 0; i < n_; ++i) {
+    sum_A_[i] += 0.5 * h * (a.A[i] + b.A[i]);
+    sum_e_[i] += 0.5 * h * (a.e[i] + b.e[i]);
+  }
+  covered_ += h;
 }
 
 void EnvelopeRecorder::closePeriod() {
@@ -83,6 +92,7 @@ void EnvelopeRecorder::closePeriod() {
     sum_e_[i] = 0.0;
   }
   for (int j = 1; j < n_; ++j) row.psi.push_back(unwrap_[j - 1](phi[0] - phi[j]));
+  row.r = orderParameter(row.A, row.psi);  // of the period's averages
   covered_ = 0.0;
   ++period_;
   sink_.envelopeRow(row);

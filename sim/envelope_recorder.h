@@ -36,6 +36,7 @@ class EnvelopeRecorder {
   };
   void eval(double t, const double* theta, const double* thetadot, Values& out) const;
   void closePeriod();
+  void integrate(double h, const Values& a, const Values& b);
 
   double epsilon_;
   std::vector<bool> active_;

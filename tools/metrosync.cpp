@@ -9,6 +9,9 @@
 #include "sim/outputs.h"
 #include "sim/simbody/full_model.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/engines.h"
+#include "tools/cli/sweep.h"
+#include "tools/cli/validate.h"
 #include "yaml/rig_loader.h"
 
 namespace {
@@ -16,12 +19,12 @@ namespace {
 using metrosync::cli::Options;
 
 std::string integratorList() {
-  std::string s;
-  const auto& names = metrosync::simbodyIntegratorNames();
-  for (size_t k = 0; k < names.size(); ++k)
-    s += (k ? ", " : "") + names[k] + (k == 0 ? " (default)" : "");
-  return s;
+  return metrosync::cli::integratorHelp();
 }
+
+const char* kEngineHelp =
+    "engine of the full model: direct (minimal coordinates; the default) or simbody (the "
+    "default when simulation.integrator names a Simbody integrator)";
 
 // RIG, --set, --out, --quiet: shared by run and compare (scale has no --out).
 void addRigOptions(CLI::App* cmd, Options& opt, bool with_out) {
@@ -69,12 +72,10 @@ int main(int argc, char** argv) {
                   "events); slow: the slow flow")
       ->check(CLI::IsMember({"full", "slow"}))
       ->capture_default_str();
-  run->add_option("--engine", opt.engine, "engine of the full model")
-      ->check(CLI::IsMember({"simbody", "direct"}))
-      ->capture_default_str();
+  run->add_option("--engine", opt.engine, kEngineHelp)->check(CLI::IsMember({"simbody", "direct"}));
   run->footer(
       "Integrators of the full model (rig key simulation.integrator, e.g. --set "
-      "simulation.integrator=rk3): " +
+      "simulation.integrator=verner76): " +
       integratorList() +
       ". Accuracy: simulation.accuracy (relative local error target, default 1e-8).\n"
       "Files in --out DIR: trajectory.csv (full model), envelope.csv, envelope.png, "
@@ -84,9 +85,8 @@ int main(int argc, char** argv) {
   CLI::App* compare = app.add_subcommand(
       "compare", "run the full model and the slow flow on one rig and compare their envelopes");
   addRigOptions(compare, opt, true);
-  compare->add_option("--engine", opt.engine, "engine of the full model")
-      ->check(CLI::IsMember({"simbody", "direct"}))
-      ->capture_default_str();
+  compare->add_option("--engine", opt.engine, kEngineHelp)
+      ->check(CLI::IsMember({"simbody", "direct"}));
   compare->footer(
       "Files in --out DIR: trajectory.csv, envelope_full.csv, envelope_slow.csv, comparison.csv "
       "(tau, A_i full/slow, psi_j full/slow), comparison.png, summary.json (top-level keys: the "
@@ -100,6 +100,11 @@ int main(int argc, char** argv) {
                   "exactly one JSON object: epsilon, mu (or c), nu, J, theta_c, alpha, zeta, "
                   "A_star, time_scale");
   scale->footer(kExitCodes);
+
+  metrosync::cli::SweepOptions sweep_opt;  // sweep and merge (tools/cli/sweep.h)
+  const metrosync::cli::SweepCommands sweep = metrosync::cli::addSweepCommands(app, sweep_opt);
+  metrosync::cli::ValidateOptions validate_opt;  // tools/cli/validate.h
+  CLI::App* validate = metrosync::cli::addValidateCommand(app, validate_opt);
 
   try {
     app.parse(argc, argv);
@@ -115,6 +120,9 @@ int main(int argc, char** argv) {
     if (run->parsed()) return metrosync::cli::runCommand(opt);
     if (compare->parsed()) return metrosync::cli::compareCommand(opt);
     if (scale->parsed()) return metrosync::cli::scaleCommand(opt);
+    if (sweep.sweep->parsed()) return metrosync::cli::sweepCommand(sweep_opt);
+    if (sweep.merge->parsed()) return metrosync::cli::mergeCommand(sweep_opt);
+    if (validate->parsed()) return metrosync::cli::validateCommand(validate_opt);
     return metrosync::cli::kBadInput;
   } catch (const metrosync::RigError& e) {
     std::cerr << "metrosync: error: " << e.what() << "\n";

@@ -150,6 +150,7 @@ class FullModelRun {
     report_.accuracy = rig.sim.accuracy;
     report_.counts.escapements.assign(n_, 0);
     omega0_ = 1.0 / sp_.time_scale_s;
+    period_ = 2 * Pi / omega0_;
     // witnesses: only what the scene needs
     for (int i = 0; i < n_; ++i) {
       if (!ms_.swings(i) || !(rig.metronomes[i].impulse_Nms > 0)) continue;
@@ -178,6 +179,26 @@ class FullModelRun {
     return std::abs(th) >= tc * (1 - 1e-9) && th * w > 0;
   }
   void decideAtRest(State& s, PlatformMode before);
+  // (M^-1)_xx: the platform's velocity change per unit impulse on x (the platform unlocked)
+  double platformMobility(const State& s) const {
+    Vector f(s.getNU(), 0.0), du;
+    ms_.slider().applyOneMobilityForce(s, 0, 1.0, f);
+    ms_.matter().multiplyByMInv(s, f, du);
+    return ms_.slider().getOneFromUPartition(s, 0, du);
+  }
+  // would friction alone stop a platform slipping at v within a millionth of a period?
+  bool microSlip(const State& s, double v) const {
+    const double decel = ms_.coulomb()->law().bound * platformMobility(s);
+    return std::abs(v) < 1e-6 * period_ * decel;
+  }
+  void stopPlastically(State& s, double v) {
+    Vector f(s.getNU(), 0.0), du;
+    ms_.slider().applyOneMobilityForce(s, 0, -v / platformMobility(s), f);
+    ms_.matter().multiplyByMInv(s, f, du);
+    s.updU() += du;
+    ms_.setXDot(s, 0.0);
+    ms_.system().realize(s, Stage::Velocity);
+  }
   Stage resolve(State& s);
 
   // --- recording --------------------------------------------------------------------------
@@ -226,6 +247,7 @@ class FullModelRun {
   Pending pending_;
   RunReport report_;
   double omega0_ = 1;
+  double period_ = 1;  // fast period, seconds
   long rewinds_ = 0;
   bool debug_ = std::getenv("METROSYNC_DEBUG") != nullptr;
   std::vector<double> scratch_th_, scratch_w_;
@@ -272,10 +294,24 @@ Stage FullModelRun::resolve(State& s) {
     s.updU() += du_total;
     ms_.system().realize(s, Stage::Velocity);
     lowest = Stage::Velocity;
+    // the escapement's work: the kinetic energy jump of the impulses alone (what the platform
+    // does next is booked by its own rule)
+    report_.ledger.escapement_in_J += energy(s) - e0;
     if (coulomb) {
       const double v = ms_.xdot(s);
       if (std::abs(v) <= 1e-9 * dv_abs) {
-        // the impulses cancel on the platform (e.g. identical metronomes in exact antiphase)
+        // the impulses cancel on the platform (e.g. identical metronomes in exact antiphase);
+        // xdot (rounding-sized) is set to 0
+        const double e_before = energy(s);
+        decideAtRest(s, was_stuck ? PlatformMode::Stuck : coulomb->mode(s));
+        report_.ledger.friction_out_J += e_before - energy(s);
+      } else if (microSlip(s, v)) {
+        // friction stops the platform within a negligible time (a huge mu): the limit of that
+        // slip is a plastic stop, an impulse on x alone that brings xdot to zero; the kinetic
+        // energy it removes is friction's
+        const double e_before = energy(s);
+        stopPlastically(s, v);
+        report_.ledger.friction_out_J += e_before - energy(s);
         decideAtRest(s, was_stuck ? PlatformMode::Stuck : coulomb->mode(s));
       } else {
         const PlatformMode m = v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative;
@@ -288,7 +324,6 @@ Stage FullModelRun::resolve(State& s) {
       }
       lowest = Stage::Model;
     }
-    report_.ledger.escapement_in_J += energy(s) - e0;
     eventRow("tick", s);
   }
 
@@ -438,9 +473,23 @@ RunReport FullModelRun::run() {
   double guard_until = -1;  // while redoing a grazing step: time until which hmax is reduced
   int guard_depth = 0;
   double hmax = Infinity;
+  // event storm (Zeno): too many discontinuities (events, forced stops, redone steps) within a
+  // millionth of a fast period
   long events_in_burst = 0;
-  double burst_start = 0;
-  const long kMaxBurst = 20000;
+  double burst_start = -Infinity;
+  const long kMaxBurst = 1000;
+  auto stormCheck = [&](double t) {
+    if (t - burst_start > 1e-6 * period) {
+      burst_start = t;
+      events_in_burst = 0;
+    }
+    if (++events_in_burst > kMaxBurst) {
+      std::ostringstream os;
+      os << "event storm: more than " << kMaxBurst << " events within " << 1e-6 * period
+         << " s (a millionth of a fast period)";
+      fail(t, os.str());
+    }
+  };
 
   auto nextReport = [&]() {
     return std::min(
@@ -487,6 +536,8 @@ RunReport FullModelRun::run() {
           guard_until = cur.t;
           ++guard_depth;
           ++rewinds_;
+          stormCheck(cur.t);
+          if (!report_.complete) break;
           if (debug_)
             std::fprintf(stderr, "rewind %.9g..%.9g depth %d\n", prev.t, cur.t, guard_depth);
           integ->initialize(back);
@@ -499,6 +550,7 @@ RunReport FullModelRun::run() {
           // still inconsistent at the finest step: the slip ended inside this step; stop now
           if (debug_) std::fprintf(stderr, "forced stop at %.9g v %g\n", cur.t, cur.v);
           State& st = integ->updAdvancedState();
+          stormCheck(cur.t);
           pending_.platform = true;
           const Stage lowest = resolve(st);
           integ->reinitialize(lowest < Stage::Infinity ? lowest : Stage::Report, false);
@@ -546,15 +598,7 @@ RunReport FullModelRun::run() {
           recordEnvelope(integ->getAdvancedState(), integ->getAdvancedTime());
           captureStepEnd(integ->getAdvancedState(), prev);
           checked_until = integ->getAdvancedTime();
-          // event storm (Zeno): many events without time advancing
-          if (adv.getTime() - burst_start > 1e-6 * period) {
-            burst_start = adv.getTime();
-            events_in_burst = 0;
-          }
-          if (++events_in_burst > kMaxBurst) {
-            fail(adv.getTime(), "event storm: " + std::to_string(kMaxBurst) + " events within " +
-                                    std::to_string(1e-6 * period) + " s");
-          }
+          stormCheck(adv.getTime());
           break;
         }
         default:

@@ -43,7 +43,7 @@ TEST(EnvelopeCsv, RoundTripsRows) {
   ASSERT_EQ(rows[0].psi.size(), 2u);
   EXPECT_DOUBLE_EQ(rows[0].A[1], 2.25);
   EXPECT_DOUBLE_EQ(rows[0].psi[1], -0.5);
-  EXPECT_EQ(envelopeHeader(3), "tau,A_1,A_2,A_3,psi_2,psi_3");
+  EXPECT_EQ(envelopeHeader(3), "tau,A_1,A_2,A_3,psi_2,psi_3,r");
 }
 
 }  // namespace

@@ -165,7 +165,7 @@ TEST(FileSink, CommittedFilesHaveTheHeadersAndEveryRow) {
   const auto env = readEnvelopeCsv(dir.file("envelope.csv"));
   ASSERT_EQ(env.size(), static_cast<size_t>(n_env));
   EXPECT_DOUBLE_EQ(env.back().psi[0], 0.01 * (n_env - 1));
-  EXPECT_EQ(readLines(dir.file("envelope.csv"))[0], "tau,A_1,A_2,psi_2");
+  EXPECT_EQ(readLines(dir.file("envelope.csv"))[0], "tau,A_1,A_2,psi_2,r");
   EXPECT_EQ(sink.trajectoryRows(), n_traj);
   EXPECT_EQ(sink.envelopeRows(), n_env);
   // no temporary file left behind

@@ -17,6 +17,7 @@
 #include "sim/regime.h"
 #include "sim/scale_report.h"
 #include "sim/simbody/full_model.h"
+#include "tools/cli/engines.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
@@ -56,6 +57,7 @@ struct LoadedRig {
   Rig rig;
   ScaledParams scaled;
   nlohmann::json scaled_json;
+  std::string engine;  // of the full model (tools/cli/engines.h)
 };
 
 LoadedRig loadAndCheck(const Options& opt) {
@@ -63,15 +65,7 @@ LoadedRig loadAndCheck(const Options& opt) {
   r.rig = opt.rig_path.empty() ? defaultRig(opt.sets) : loadRigFile(opt.rig_path, opt.sets);
 
   // the integrator is the engine's business, so the loader leaves its name to us
-  const auto& names = simbodyIntegratorNames();
-  if (!r.rig.sim.integrator.empty() &&
-      std::find(names.begin(), names.end(), r.rig.sim.integrator) == names.end())
-    throw RigError(rigDisplayName(opt) + ": simulation.integrator = " + r.rig.sim.integrator +
-                   ": unknown integrator; one of: " + joined(names));
-  const auto& engines = availableEngines();
-  if (std::find(engines.begin(), engines.end(), opt.engine) == engines.end())
-    throw UsageError("--engine " + opt.engine +
-                     ": not available in this build (available: " + joined(engines) + ")");
+  r.engine = chooseEngine(opt.engine, r.rig, rigDisplayName(opt));
 
   try {
     r.scaled = computeScaled(r.rig);
@@ -114,7 +108,7 @@ RunReport runModel(const std::string& model, const Options& opt, const LoadedRig
   auto incomplete = [&](double t, const std::string& why) {
     RunReport rep;
     rep.model = model;
-    rep.engine = model == "full" ? opt.engine : "slowflow";
+    rep.engine = model == "full" ? r.engine : "slowflow";
     rep.complete = false;
     rep.failure = "stopped at t = " + fmt(t, "%.6g") +
                   (r.rig.units == Units::Physical ? " s" : "") + ": " + why;
@@ -122,7 +116,7 @@ RunReport runModel(const std::string& model, const Options& opt, const LoadedRig
     return rep;
   };
   try {
-    if (model == "full") return runFullModel(r.rig, sink);
+    if (model == "full") return runFullModelOn(r.engine, r.rig, sink);
     SlowFlowOptions so;
     so.tau_end = r.scaled.tau_end;
     // simulation.accuracy is the relative local error target of whichever integrator runs
@@ -157,7 +151,7 @@ void printRunSummary(const std::string& model, const LoadedRig& r, const RunRepo
                      const RegimeVerdict& v) {
   std::cout << modelTitle(model) << " (" << rep.engine
             << (rep.integrator.empty() ? "" : ", " + rep.integrator) << "): regime "
-            << toString(v.regime) << "\n";
+            << regimeName(v) << "\n";
   std::cout << "  final tau = " << fmt(rep.final_row.tau) << ": A = " << fmtList(rep.final_row.A)
             << " (theta_c = " << fmtList(r.scaled.theta_c) << ")";
   if (!rep.final_row.psi.empty()) std::cout << ", psi = " << fmtList(rep.final_row.psi);
@@ -191,7 +185,7 @@ extern "C" void onStopSignal(int) {
 }  // namespace
 
 const std::vector<std::string>& availableEngines() {
-  static const std::vector<std::string> engines = {"simbody"};
+  static const std::vector<std::string> engines = {"direct", "simbody"};
   return engines;
 }
 
@@ -219,7 +213,7 @@ int runCommand(const Options& opt) {
 
   std::vector<std::string> files = sink.fileNames();
   if (plotEnvelope(dir, "envelope.png", sink.plotRows(), r.scaled.theta_c,
-                   r.rig.name + " - " + modelTitle(opt.model) + " - " + toString(verdict.regime)))
+                   r.rig.name + " - " + modelTitle(opt.model) + " - " + regimeName(verdict)))
     files.push_back("envelope.png");
   files.push_back("summary.json");
 
@@ -271,8 +265,8 @@ int compareCommand(const Options& opt) {
   files.push_back("comparison.csv");
   if (plotComparison(dir, "comparison.png", full_sink.plotRows(), slow_sink.plotRows(),
                      r.scaled.theta_c,
-                     r.rig.name + " - full model (solid) " + toString(v_full.regime) +
-                         ", slow flow (dashed) " + toString(v_slow.regime)))
+                     r.rig.name + " - full model (solid) " + regimeName(v_full) +
+                         ", slow flow (dashed) " + regimeName(v_slow)))
     files.push_back("comparison.png");
   files.push_back("summary.json");
 

@@ -20,9 +20,9 @@ struct Options {
   std::vector<std::string> sets;  // --set KEY=VALUE, in order
   std::string out;                // --out DIR; empty: runs/<rig name>-<command>
   bool quiet = false;
-  std::string model = "full";      // run: full | slow
-  std::string engine = "simbody";  // run, compare: simbody (| direct, once it exists)
-  bool json = false;               // scale
+  std::string model = "full";  // run: full | slow
+  std::string engine;          // run, compare: simbody | direct; empty: chooseEngine()'s default
+  bool json = false;           // scale
 };
 
 // The engines `--engine` accepts in this build.

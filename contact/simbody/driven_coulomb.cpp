@@ -1,0 +1,236 @@
+#include "contact/simbody/driven_coulomb.h"
+
+#include <Simbody.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+#include "contact/simbody/coulomb_element.h"
+
+namespace metrosync {
+
+namespace {
+
+using namespace SimTK;
+
+constexpr double kTwoPi = 6.283185307179586;
+
+// the prescribed drive B sin t on the slider (eq. c1's right-hand side)
+class Drive : public Force::Custom::Implementation {
+ public:
+  Drive(const MobilizedBody::Slider& slider, double B) : slider_(slider), B_(B) {}
+  void calcForce(const State& s, Vector_<SpatialVec>&, Vector_<Vec3>&,
+                 Vector& mobilityForces) const override {
+    slider_.applyOneMobilityForce(s, 0, B_ * std::sin(s.getTime()), mobilityForces);
+  }
+  Real calcPotentialEnergy(const State&) const override { return 0; }
+
+ private:
+  MobilizedBody::Slider slider_;
+  double B_;
+};
+
+// The element's one witness; the handler applies the element's own switching rule and records
+// every change of mode.
+class Switch : public TriggeredEventHandler {
+ public:
+  Switch(const System& sys, const CoulombElement& c)
+      : TriggeredEventHandler(Stage::Acceleration), sys_(sys), c_(c) {
+    getTriggerInfo().setTriggerOnRisingSignTransition(false);
+  }
+  Real getValue(const State& s) const override { return c_.witness(s); }
+  void handleEvent(State& s, Real, bool&) const override {
+    const PlatformMode before = c_.mode(s);
+    const PlatformMode after = c_.resolveSwitch(sys_, s);
+    if (after != before) switches.push_back({s.getTime(), static_cast<int>(after)});
+  }
+  mutable std::vector<DrivenCoulombSwitch> switches;
+
+ private:
+  const System& sys_;
+  const CoulombElement& c_;
+};
+
+struct Harness {
+  MultibodySystem system;
+  SimbodyMatterSubsystem matter{system};
+  GeneralForceSubsystem forces{system};
+  MobilizedBody::Slider slider;
+  CoulombElement* element = nullptr;  // owned by `forces`
+  Switch* sw = nullptr;               // owned by `system`
+
+  explicit Harness(double B) {
+    Body::Rigid unit(MassProperties(1.0, Vec3(0), UnitInertia(1)));
+    slider = MobilizedBody::Slider(matter.Ground(), Transform(), unit, Transform());
+    element = new CoulombElement(forces, slider, CoulombLaw{1.0});
+    Force::Custom(forces, element);
+    Force::Custom(forces, new Drive(slider, B));
+    sw = new Switch(system, *element);
+    system.addEventHandler(sw);
+    system.realizeTopology();
+  }
+};
+
+// A stuck platform changes nothing the integrator's error control sees, so its steps grow; but
+// for B > 1 the stick margin 1 - |B sin t| is negative on windows of width pi - 2 asin(1/B)
+// (tiny as B -> 1+), and a step that straddles a whole window sees the same sign at both ends
+// and misses the slip. A quarter of the window keeps every window resolved.
+double maxStepFor(double B) {
+  double h = 0.1;
+  if (B > 1) h = std::min(h, 0.25 * (3.141592653589793 - 2 * std::asin(1 / B)));
+  return h;
+}
+
+// Gauss-Legendre nodes and weights on [-1, 1] (Newton on P_n from the Chebyshev guesses).
+void gaussLegendre(int n, std::vector<double>& x, std::vector<double>& w) {
+  x.assign(n, 0.0);
+  w.assign(n, 0.0);
+  for (int i = 0; i < (n + 1) / 2; ++i) {
+    double z = std::cos(3.141592653589793 * (i + 0.75) / (n + 0.5)), dp = 0.0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1.0, p1 = z;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = n * (z * p1 - p0) / (z * z - 1);
+      const double dz = p1 / dp;
+      z -= dz;
+      if (std::abs(dz) < 1e-16) break;
+    }
+    x[i] = -z;
+    x[n - 1 - i] = z;
+    w[i] = w[n - 1 - i] = 2 / ((1 - z * z) * dp * dp);
+  }
+}
+
+// Period m of the switch sequence (switches per drive period) if its last 2 m entries repeat
+// with a shift of 2 pi (same modes, instants to within tol); 0 otherwise. Also the mismatch.
+int periodicity(const std::vector<DrivenCoulombSwitch>& s, double tol, double& mismatch) {
+  const int n = static_cast<int>(s.size());
+  for (int m = 1; 2 * m <= n && m <= 8; ++m) {
+    double worst = 0.0;
+    bool same = true;
+    for (int j = n - m; j < n && same; ++j) {
+      same = s[j].mode == s[j - m].mode;
+      worst = std::max(worst, std::abs(s[j].t - s[j - m].t - kTwoPi));
+    }
+    if (same && worst <= tol) {
+      mismatch = worst;
+      return m;
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+DrivenCoulombMeasurement measureDrivenCoulomb(double B, const DrivenCoulombOptions& opt) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  if (!(B > 0) || !std::isfinite(B))
+    throw std::invalid_argument("measureDrivenCoulomb: B must be finite and > 0");
+  DrivenCoulombMeasurement r;
+  r.B = B;
+
+  auto start = [&](Harness& h, std::unique_ptr<RungeKuttaMersonIntegrator>& integ,
+                   std::unique_ptr<TimeStepper>& ts) {
+    State s = h.system.getDefaultState();
+    h.element->settleAtRest(h.system, s);  // at rest at t = 0: B sin 0 = 0, so stuck
+    integ = std::make_unique<RungeKuttaMersonIntegrator>(h.system);
+    integ->setAccuracy(opt.accuracy);
+    integ->setMaximumStepSize(maxStepFor(B));
+    ts = std::make_unique<TimeStepper>(h.system, *integ);
+    ts->initialize(s);
+  };
+
+  // pass 1: run from rest, one drive period at a time, until the switch instants repeat
+  std::vector<DrivenCoulombSwitch> pieces;  // start of each smooth piece of the measured period
+  double t_end = 0.0;
+  {
+    Harness h(B);
+    std::unique_ptr<RungeKuttaMersonIntegrator> integ;
+    std::unique_ptr<TimeStepper> ts;
+    start(h, integ, ts);
+    for (int k = 1; k <= opt.max_periods; ++k) {
+      ts->stepTo(kTwoPi * k);
+      const auto& sw = h.sw->switches;
+      if (sw.empty()) {
+        // never moved: periodic once a whole period has passed stuck
+        if (k >= 2) {
+          r.periodic = true;
+          r.periods = k - 1;
+          r.t_start = kTwoPi * (k - 1);
+          t_end = kTwoPi * k;
+          pieces.push_back({r.t_start, 0});
+          break;
+        }
+        continue;
+      }
+      // a whole period since the last switch without any other: the platform stopped for good
+      if (sw.back().mode == 0 && kTwoPi * k - sw.back().t > kTwoPi) {
+        r.periodic = true;
+        r.periods = k - 1;
+        r.t_start = kTwoPi * (k - 1);
+        t_end = kTwoPi * k;
+        pieces.push_back({r.t_start, 0});
+        break;
+      }
+      double mismatch = 0.0;
+      const int m = periodicity(sw, opt.periodic_tol, mismatch);
+      if (m > 0) {
+        const size_t first = sw.size() - m;  // the measured period starts at this switch
+        r.periodic = true;
+        r.period_mismatch = mismatch;
+        r.periods = k - 1;
+        r.t_start = sw[first].t;
+        t_end = r.t_start + kTwoPi;
+        pieces.assign(sw.begin() + first, sw.end());
+        r.switches = pieces;
+        break;
+      }
+    }
+  }
+  if (!r.periodic) {
+    r.beta1 = r.beta2 = std::nan("");
+    r.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    return r;
+  }
+
+  // pass 2: the same run again (deterministic), stopping at the Gauss nodes of every smooth piece
+  // of the measured period to read the element's acceleration y''
+  std::vector<double> gx, gw;
+  gaussLegendre(opt.gauss_nodes, gx, gw);
+  double s_sin = 0.0, s_cos = 0.0;
+  {
+    Harness h(B);
+    std::unique_ptr<RungeKuttaMersonIntegrator> integ;
+    std::unique_ptr<TimeStepper> ts;
+    start(h, integ, ts);
+    for (size_t j = 0; j < pieces.size(); ++j) {
+      const double lo = pieces[j].t, hi = j + 1 < pieces.size() ? pieces[j + 1].t : t_end;
+      const double half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
+      // a piece this short contributes at most (B + 1) 1e-13 / (2 pi B) to either beta
+      if (!(half > 5e-14)) continue;
+      for (int g = 0; g < opt.gauss_nodes; ++g) {
+        const double t = mid + half * gx[g];
+        ts->stepTo(t);
+        State st = ts->getState();
+        h.system.realize(st, Stage::Acceleration);
+        const double ydd = h.slider.getOneUDot(st, MobilizerUIndex(0));
+        s_sin += half * gw[g] * ydd * std::sin(t);
+        s_cos += half * gw[g] * ydd * std::cos(t);
+      }
+    }
+  }
+  r.beta1 = s_sin / (kTwoPi * B);
+  r.beta2 = s_cos / (kTwoPi * B);
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return r;
+}
+
+}  // namespace metrosync

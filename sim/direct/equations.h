@@ -1,0 +1,104 @@
+// The full model (e1.1a-c, generalised to N metronomes) in minimal coordinates, physical units:
+// the platform position x and one angle theta_j per swinging pendulum. Locked metronomes (paper
+// section 3A) have no coordinate: their whole mass rides with the platform.
+//
+//   kinetic energy T = 1/2 M xdot^2 + sum_j c_j xdot thetadot_j + 1/2 sum_j I_j thetadot_j^2,
+//   c_j = m_j L_j cos theta_j, M = the platform with everything on it (Rig::totalMass()),
+// so the mass matrix is [[M, c^T], [c, diag(I)]] and Lagrange's equations read
+//   M xddot + sum_j c_j thetaddot_j - sum_j m_j L_j sin theta_j thetadot_j^2 = F - k x   (e1.1c)
+//   I_j thetaddot_j + c_j xddot = r_j,  r_j = -m_j g L_j sin theta_j - nu-bar_j L_j^2 thetadot_j
+//                                                                                  (e1.1a, b)
+// Eliminating thetaddot_j (the Schur complement of diag(I)) gives the platform first, in O(N):
+//   Meff xddot = G + F,  Meff = M - sum_j c_j^2 / I_j,
+//   G = sum_j m_j L_j sin theta_j thetadot_j^2 - sum_j c_j r_j / I_j - k x  (- c-bar xdot viscous)
+// then thetaddot_j = (r_j - c_j xddot) / I_j. G is the push of everything but friction: a stuck
+// platform needs the holding force H = -G from friction (CoulombLaw's holding_force).
+//
+// State vector y, (dim x 1): x, xdot, theta_1..theta_n, thetadot_1..thetadot_n (n swinging
+// pendulums, in rig order), then two quadratures for the energy ledger: the work done by the
+// pivot dampers and by platform friction (J).
+#pragma once
+
+#include <vector>
+
+#include "contact/coulomb.h"
+#include "models/rig.h"
+
+namespace metrosync::direct {
+
+struct StateLayout {
+  int n = 0;  // swinging pendulums
+  static constexpr int kX = 0, kV = 1;
+  int theta(int j) const { return 2 + j; }
+  int omega(int j) const { return 2 + n + j; }
+  int dampingWork() const { return 2 + 2 * n; }
+  int frictionWork() const { return 3 + 2 * n; }
+  int dim() const { return 4 + 2 * n; }
+  int mechanical() const { return 2 + 2 * n; }  // x, xdot, angles and rates
+};
+
+// One pendulum's constants.
+struct PendulumConstants {
+  int rig_index = 0;     // index in Rig::metronomes
+  double mL = 0.0;       // m_j L_j (kg m)
+  double mgL = 0.0;      // m_j g L_j (N m)
+  double inertia = 0.0;  // I_j about the pivot (kg m^2)
+  double inv_inertia = 0.0;
+  double damping = 0.0;  // nu-bar_j L_j^2 (N m s)
+  double theta_c = 0.0;  // escapement angle (rad)
+  double impulse = 0.0;  // J-bar_j (N m s); 0 = no escapement
+};
+
+// The impulses of one event window on the platform: what the cancellation rule needs.
+struct TickImpulse {
+  double dv = 0.0;      // jump of xdot
+  double dv_abs = 0.0;  // sum of |jump of xdot| over the ticking pendulums
+  double dT = 0.0;      // jump of the kinetic energy (J): the work of the impulses
+};
+
+class MetronomeEquations {
+ public:
+  explicit MetronomeEquations(const Rig& rig);
+
+  const StateLayout& layout() const { return layout_; }
+  int numSwinging() const { return layout_.n; }
+  const PendulumConstants& pendulum(int j) const { return pend_[j]; }
+  bool hasPlatform() const { return has_platform_; }
+  FrictionLaw law() const { return law_; }
+  const CoulombLaw& coulomb() const { return coulomb_; }
+  double totalMass() const { return mass_; }
+
+  // dy/dt in the given platform mode (only Coulomb uses it: Stuck holds xdot = 0, a slip feels
+  // the kinetic force -bound * mode). dy also gets the damping and friction power.
+  void rhs(const double* y, PlatformMode mode, double* dy) const;
+
+  // H = -G: the force friction must supply to keep the platform still (with xdot = 0 in y).
+  double holdingForce(const double* y) const;
+  // dH/dt along the motion with the platform held still (xddot = 0).
+  double holdingForceRate(const double* y) const;
+
+  // Generalized impulses side_j * J-bar_j on the pendulums in `ticks` ((pendulum, side) pairs),
+  // all at once, through the full mass matrix with the platform free to move: dry friction,
+  // bounded, gives no impulse. A fixed platform takes none of it.
+  TickImpulse applyTicks(double* y, const std::vector<std::pair<int, int>>& ticks) const;
+
+  // Kinetic + potential energy (J), with Simbody's zero: gravity m g y of each pendulum's centre
+  // of mass, y = -L cos theta below its pivot; the platform spring 1/2 k x^2.
+  double energy(const double* y) const;
+  // The part of the kinetic energy that setting xdot to 0 removes: 1/2 M xdot^2 + xdot sum_j c_j
+  // thetadot_j (J).
+  double platformKineticEnergy(const double* y) const;
+
+ private:
+  StateLayout layout_;
+  std::vector<PendulumConstants> pend_;  // (n x 1)
+  bool has_platform_ = false;
+  FrictionLaw law_ = FrictionLaw::Coulomb;
+  CoulombLaw coulomb_;
+  double mass_ = 0.0;                  // M (kg)
+  double spring_ = 0.0;                // k (N/m)
+  double viscous_ = 0.0;               // c-bar (N s/m)
+  mutable std::vector<double> c_, r_;  // scratch of rhs(), (n x 1)
+};
+
+}  // namespace metrosync::direct

@@ -1,0 +1,38 @@
+// Shared by the validation tests: the shipped scenarios loaded from the source tree, and the
+// engines that sim/validation.h takes as functions (the Simbody full model, the Coulomb harness).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "contact/simbody/driven_coulomb.h"
+#include "sim/simbody/full_model.h"
+#include "sim/validation.h"
+#include "yaml/rig_loader.h"
+
+namespace metrosync::testval {
+
+inline std::string rigsDir() {
+  return std::string(METROSYNC_SOURCE_DIR) + "/yaml/rigs";
+}
+
+inline Scenario loadScenario(const std::string& name) {
+  for (const auto& spec : shippedScenarios())
+    if (spec.name == name) return {spec, computeScaled(loadRigFile(rigsDir() + "/" + spec.file))};
+  throw std::invalid_argument("no shipped scenario named " + name);
+}
+
+inline std::vector<Scenario> loadScenarios() {
+  std::vector<Scenario> all;
+  for (const auto& spec : shippedScenarios()) all.push_back(loadScenario(spec.name));
+  return all;
+}
+
+inline ValidationEngines engines() {
+  ValidationEngines e;
+  e.full_model = [](const Rig& rig, RunSink& sink) { return runFullModel(rig, sink); };
+  e.coulomb_probe = [](double s) { return measureDrivenCoulomb(s); };
+  return e;
+}
+
+}  // namespace metrosync::testval

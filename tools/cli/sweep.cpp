@@ -1,0 +1,680 @@
+#include "tools/cli/sweep.h"
+
+#include <signal.h>
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "models/scaling.h"
+#include "models/slow_flow.h"
+#include "sim/outputs.h"
+#include "sim/plot.h"
+#include "sim/regime.h"
+#include "sim/simbody/full_model.h"
+#include "sim/sweep.h"
+#include "sim/sweep_maps.h"
+#include "tools/cli/commands.h"
+#include "tools/cli/engines.h"
+#include "yaml/rig_loader.h"
+
+namespace metrosync::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::string fmt(double v, const char* f = "%.4g") {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string joined(const std::vector<std::string>& v, const std::string& sep = ", ") {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
+  return s;
+}
+
+const char* modelTitle(const std::string& model) {
+  return model == "full" ? "full model" : "slow flow";
+}
+
+// The files a sweep writes (besides the maps), for removing stale ones.
+const std::vector<std::string>& sweepFileNames() {
+  static const std::vector<std::string> names = {"regimes.csv", "sweep.json", "timings.csv"};
+  return names;
+}
+
+// Removes the sweep's own files left in `dir` by an earlier command, and the temporary files of
+// commands that are no longer running; run's files too (every file in DIR then belongs to this
+// command).
+void removeStaleSweepOutputs(const OutputDir& dir) {
+  dir.removeStaleOutputs();
+  std::vector<std::string> names = sweepFileNames();
+  for (const auto& m : sweepMapNames()) names.push_back(m);
+  std::error_code ec;
+  for (const auto& name : names) fs::remove(dir.file(name), ec);
+  for (const auto& entry : fs::directory_iterator(dir.path(), ec)) {
+    const std::string f = entry.path().filename().string();
+    for (const auto& name : names) {
+      const std::string prefix = "." + name + ".";
+      if (f.compare(0, prefix.size(), prefix) != 0 || f.size() < 6 ||
+          f.compare(f.size() - 5, 5, ".part") != 0)
+        continue;
+      // ".NAME.<pid>.part" or ".NAME.<suffix>.<pid>.part": the pid is the last number
+      const std::string core = f.substr(0, f.size() - 5);
+      const std::string pid_text = core.substr(core.rfind('.') + 1);
+      if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos)
+        continue;
+      const long pid = std::stol(pid_text);
+      if (pid != ::getpid() && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
+        fs::remove(entry.path(), ec);
+    }
+  }
+}
+
+// ---- the rig and the grid, checked before anything is written --------------------------------
+
+std::string readRigText(const SweepOptions& opt) {
+  if (opt.rig_path.empty()) return defaultRigYaml();
+  std::ifstream in(opt.rig_path, std::ios::binary);
+  if (!in) throw RigError(opt.rig_path + ": cannot open the rig file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw RigError(opt.rig_path + ": cannot read the rig file");
+  return text.str();
+}
+
+std::string displayName(const SweepOptions& opt) {
+  return opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
+}
+
+// One grid point, ready to run.
+struct PointInput {
+  Rig rig;
+  ScaledParams scaled;
+  std::string engine;  // of the full model (tools/cli/engines.h)
+};
+
+// The rig of one point: the base rig, --set, then the point's KEY=VALUE; checked like `run`
+// checks its rig. Throws RigError naming the point.
+PointInput loadPoint(const std::string& text, const SweepOptions& opt, const SweepGrid& grid,
+                     long g) {
+  std::vector<std::string> overrides = opt.sets;
+  const std::vector<std::string> point = grid.overrides(g);
+  overrides.insert(overrides.end(), point.begin(), point.end());
+  const std::string where = "grid point " + std::to_string(g) + " (" + joined(point) + ")";
+  PointInput in;
+  try {
+    in.rig = loadRigText(text, displayName(opt), overrides);
+  } catch (const RigError& e) {
+    // the loader calls every override --set; the point's own ones come from --vary
+    std::string what = e.what();
+    for (const auto& o : point)
+      for (size_t at = what.find("--set " + o); at != std::string::npos;
+           at = what.find("--set " + o, at))
+        what.replace(at, 6 + o.size(), "--vary point " + o);
+    throw RigError(what + "\n  at " + where + " of the sweep");
+  }
+  in.engine = chooseEngine(opt.engine, in.rig, displayName(opt));  // checks the integrator
+  try {
+    in.scaled = computeScaled(in.rig);
+  } catch (const std::invalid_argument& e) {
+    throw RigError(displayName(opt) + ": " + e.what() + "\n  at " + where + " of the sweep");
+  }
+  return in;
+}
+
+// ---- one point ---------------------------------------------------------------------------------
+
+// Keeps what the verdict needs; a stop request (SIGINT, SIGTERM) interrupts the run.
+struct PointSink : RunSink {
+  explicit PointSink(double tau_end) : window(tau_end) {}
+  void envelopeRow(const EnvelopeRow& row) override {
+    window.add(row);
+    if (FileSink::stopRequested()) throw RunInterrupted(row.tau, "interrupted by a signal");
+  }
+  RegimeWindow window;
+};
+
+// The test hook METROSYNC_SWEEP_FAIL_AT=g1,g2,...: those grid points fail as a simulation
+// failure would (no rig makes the engines fail on demand).
+bool failureInjected(long g) {
+  static const std::vector<long> points = [] {
+    std::vector<long> v;
+    const char* e = std::getenv("METROSYNC_SWEEP_FAIL_AT");
+    std::stringstream ss(e ? e : "");
+    std::string item;
+    while (std::getline(ss, item, ','))
+      if (!item.empty()) v.push_back(std::atol(item.c_str()));
+    return v;
+  }();
+  return std::find(points.begin(), points.end(), g) != points.end();
+}
+
+std::optional<SweepPoint> runPoint(const PointInput& in, const std::string& model, long g) {
+  const Clock::time_point t0 = Clock::now();
+  const ScaledParams& sp = in.scaled;
+  PointSink sink(sp.tau_end);
+  RunReport rep;
+  try {
+    if (failureInjected(g))
+      throw SimulationFailure{0.0, "failure injected by METROSYNC_SWEEP_FAIL_AT, a test hook"};
+    if (model == "full") {
+      rep = runFullModelOn(in.engine, in.rig, sink);
+    } else {
+      SlowFlowOptions so;
+      so.tau_end = sp.tau_end;
+      so.rtol = in.rig.sim.accuracy;  // as `run`: the relative local error target
+      so.atol = 1e-2 * in.rig.sim.accuracy;
+      rep = runSlowFlow(sp, so, sink);
+    }
+  } catch (const RunInterrupted&) {
+    return std::nullopt;
+  } catch (const SimulationFailure& f) {
+    rep.complete = false;
+    rep.failure = "stopped at t = " + fmt(f.t, "%.6g") +
+                  (in.rig.units == Units::Physical ? " s" : "") + ": " + f.why;
+  } catch (const std::exception& e) {
+    rep.complete = false;
+    rep.failure = e.what();
+  }
+  // an engine that turned the interruption into a failed report
+  if (!rep.complete && FileSink::stopRequested()) return std::nullopt;
+
+  const int n = static_cast<int>(sp.nu.size());
+  SweepPoint p;
+  p.index = g;
+  p.complete = rep.complete;
+  const EnvelopeRow last = sink.window.empty() ? rep.final_row : sink.window.last();
+  if (static_cast<int>(last.A.size()) == n && static_cast<int>(last.psi.size()) == n - 1) {
+    p.A = last.A;
+    for (double v : last.psi) p.psi.push_back(wrapToTwoPi(v));
+    p.r = std::isnan(last.r) ? orderParameter(last.A, last.psi) : last.r;
+    p.tau = last.tau;
+    if (sp.law == FrictionLaw::Coulomb) {  // |Z| = r sum_j A_j
+      double sum = 0.0;
+      for (double a : last.A) sum += a;
+      p.s = sp.mu > 0 ? p.r * sum / sp.mu : std::numeric_limits<double>::infinity();
+    }
+  } else {
+    p.A.assign(n, std::nan(""));
+    p.psi.assign(n - 1, std::nan(""));
+  }
+  if (rep.complete) {
+    const RegimeVerdict v = classifyRegime(sink.window, sp.theta_c, sp.locked);
+    p.regime = regimeName(v);
+    p.clusters = clusterText(v.cluster_sizes);
+  } else {
+    p.regime = "failed";
+    p.message = rep.failure.empty() ? "the run stopped early" : rep.failure;
+  }
+  p.wall_seconds = secondsSince(t0);
+  return p;
+}
+
+// ---- progress on a terminal --------------------------------------------------------------------
+
+class Progress {
+ public:
+  Progress(bool on, long total, long done_before)
+      : on_(on), total_(total), done_(done_before), start_done_(done_before) {}
+
+  void finished(bool failed) {
+    ++done_;
+    failed_ += failed;
+    if (!on_) return;
+    const Clock::time_point now = Clock::now();
+    if (done_ < total_ && now - last_ < std::chrono::milliseconds(200)) return;
+    last_ = now;
+    draw();
+  }
+
+  void done() {
+    if (on_ && drawn_) std::cerr << "\n";
+  }
+
+ private:
+  void draw() {
+    const double elapsed = secondsSince(t0_);
+    const long run = done_ - start_done_;
+    const double rate = elapsed > 0 && run > 0 ? run / elapsed : 0.0;
+    const double eta = rate > 0 ? (total_ - done_) / rate : -1.0;
+    winsize ws{};
+    const int width = ::ioctl(2, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 20 ? ws.ws_col - 1 : 79;
+    // back to the start of the line, the bar, and clear what a longer bar left behind
+    std::cerr << "\r" << progressText(done_, total_, failed_, rate, eta, width) << "\033[K"
+              << std::flush;
+    drawn_ = true;
+  }
+
+  bool on_;
+  long total_, done_, start_done_, failed_ = 0;
+  bool drawn_ = false;
+  Clock::time_point t0_ = Clock::now(), last_{};
+};
+
+// ---- summary
+// -------------------------------------------------------------------------------------
+
+std::map<std::string, long> regimeCounts(const std::map<long, SweepPoint>& points) {
+  std::map<std::string, long> c;
+  for (const auto& [g, p] : points) ++c[p.regime];
+  return c;
+}
+
+std::string countsText(const std::map<long, SweepPoint>& points) {
+  const auto counts = regimeCounts(points);
+  std::string s;
+  for (const auto& name : regimeLegendOrder(points))
+    s += (s.empty() ? "" : ", ") + name + " " + std::to_string(counts.at(name));
+  return s.empty() ? "none yet" : s;
+}
+
+// "100 x 100 = 10000 points", "40 points"
+std::string gridText(const SweepGrid& grid) {
+  std::string s;
+  for (const auto& a : grid.axes()) s += (s.empty() ? "" : " x ") + std::to_string(a.count);
+  if (grid.axes().size() > 1) s += " = " + std::to_string(grid.size());
+  return s + (grid.size() == 1 ? " point" : " points");
+}
+
+std::string mapTitle(const SweepManifest& m) {
+  return m.rig_name + " - " + modelTitle(m.model) +
+         (m.model == "full" ? " (" + m.engine + ")" : "") + ", N = " + std::to_string(m.metronomes);
+}
+
+void writeSweepJson(const OutputDir& dir, const nlohmann::json& j) {
+  writeFileAtomically(dir.file("sweep.json"), j.dump(2) + "\n");
+}
+
+std::string timingsPath(const OutputDir& dir) {
+  return dir.file("timings.csv");
+}
+
+// Length of `path` up to its last newline (0 when absent or without one).
+size_t wholeLinesBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return 0;
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  const size_t nl = text.rfind('\n');
+  return nl == std::string::npos ? 0 : nl + 1;
+}
+
+// The test hook: METROSYNC_SWEEP_STOP_AFTER=K ends the process like kill -9 right after the K-th
+// point of this invocation is written (no sorting, no maps, sweep.json still incomplete).
+long stopAfterHook() {
+  const char* v = std::getenv("METROSYNC_SWEEP_STOP_AFTER");
+  return v && *v ? std::atol(v) : -1;
+}
+
+nlohmann::json statusJson(const SweepManifest& m, long shard_points,
+                          const std::map<long, SweepPoint>& points, bool complete) {
+  nlohmann::json j = m.toJson();
+  long failed = 0;
+  for (const auto& [g, p] : points) failed += !p.complete;
+  j["complete"] = complete;
+  j["points"] = {{"grid", m.grid.size()},
+                 {"this_run", shard_points},
+                 {"done", static_cast<long>(points.size())},
+                 {"failed", failed},
+                 {"missing", shard_points - static_cast<long>(points.size())}};
+  nlohmann::json counts = nlohmann::json::object();
+  for (const auto& [name, k] : regimeCounts(points)) counts[name] = k;
+  j["regimes"] = counts;
+  return j;
+}
+
+}  // namespace
+
+// ---- sweep
+// ---------------------------------------------------------------------------------------
+
+namespace {
+
+int sweepImpl(const SweepOptions& opt) {
+  const Clock::time_point t_start = Clock::now();
+  if (opt.model != "slow" && opt.model != "full")
+    throw UsageError("--model " + opt.model + ": must be slow or full");
+  if (opt.jobs < 0) throw UsageError("--jobs " + std::to_string(opt.jobs) + ": must be >= 1");
+  std::vector<SweepAxis> axes;
+  for (const auto& v : opt.vary) axes.push_back(parseVary(v));
+  const SweepGrid grid(std::move(axes));
+  const SweepShard shard = opt.shard.empty() ? SweepShard{} : parseShard(opt.shard);
+
+  // the rig, and every grid point's rig: a bad key or value stops here, before any file
+  const std::string text = readRigText(opt);
+  const Rig base = loadRigText(text, displayName(opt), opt.sets);
+  const int n = static_cast<int>(base.metronomes.size());
+  const std::vector<long> mine = shardIndices(grid, shard);
+  std::map<long, PointInput> inputs;
+  std::string engine;  // of the full model: the same at every point (no --vary names one)
+  for (long g = 0; g < grid.size(); ++g) {
+    PointInput in = loadPoint(text, opt, grid, g);
+    if (static_cast<int>(in.rig.metronomes.size()) != n)
+      throw UsageError("--vary changes the number of metronomes at grid point " +
+                       std::to_string(g));
+    if (g == 0) engine = in.engine;
+    if (shard.contains(g)) inputs.emplace(g, std::move(in));
+  }
+
+  SweepManifest manifest;
+  manifest.model = opt.model;
+  manifest.engine = opt.model == "full" ? engine : "slowflow";
+  manifest.rig_path = opt.rig_path;
+  manifest.rig_name = base.name;
+  manifest.rig_text = text;
+  manifest.sets = opt.sets;
+  manifest.metronomes = n;
+  manifest.grid = grid;
+  manifest.shard = shard;
+
+  // --resume: the same sweep, and what it already has
+  const std::string path = opt.out.empty() ? defaultOutputDir(base.name, "sweep") : opt.out;
+  const std::string regimes_path = path + "/regimes.csv";
+  RegimesTable table;
+  bool resuming = false;
+  if (opt.resume) {
+    const bool have_manifest = fs::exists(path + "/sweep.json");
+    if (have_manifest) {
+      const SweepManifest old = SweepManifest::fromJson(readSweepJson(path + "/sweep.json"));
+      std::string diff = sweepDifference(old, manifest);
+      if (diff.empty() && (old.shard.k != shard.k || old.shard.n != shard.n))
+        diff = "it is shard " + old.shard.text() + ", not " + shard.text();
+      if (!diff.empty())
+        throw UsageError("--resume: " + path + " holds another sweep: " + diff +
+                         " (resume it with its own command line, or choose another --out)");
+      table = readRegimesCsv(regimes_path, grid, n);
+      resuming = true;
+    } else if (fs::exists(regimes_path)) {
+      throw UsageError("--resume: " + path +
+                       " has a regimes.csv but no sweep.json: cannot check "
+                       "that it is this sweep");
+    } else if (!opt.quiet) {
+      std::cerr << "metrosync: nothing to resume in " << path << "/: starting the sweep\n";
+    }
+  }
+  for (auto it = table.lines.begin(); it != table.lines.end();) {  // rows of other shards
+    if (!shard.contains(it->first)) {
+      table.points.erase(it->first);
+      it = table.lines.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  std::vector<long> todo;
+  for (long g : mine)
+    if (!table.lines.count(g)) todo.push_back(g);
+
+  // from here on files are written
+  installStopHandlers();
+  OutputDir dir = [&] {
+    try {
+      OutputDir d(path);
+      if (!resuming) removeStaleSweepOutputs(d);
+      return d;
+    } catch (const std::runtime_error& e) {
+      throw UsageError(std::string("--out: ") + e.what());
+    }
+  }();
+  for (const auto& w : table.warnings) std::cerr << "metrosync: warning: " << w << "\n";
+  std::map<long, std::string> lines = table.lines;
+  std::map<long, SweepPoint> points = table.points;
+  writeSweepJson(dir, statusJson(manifest, static_cast<long>(mine.size()), points, false));
+
+  const bool fresh = table.complete_bytes == 0;
+  RegimesAppender regimes(regimes_path, regimesHeader(grid, n), fresh, table.complete_bytes);
+  const size_t timing_bytes = resuming ? wholeLinesBytes(timingsPath(dir)) : 0;
+  RegimesAppender timings(timingsPath(dir), "index,wall_seconds", timing_bytes == 0, timing_bytes);
+
+  int jobs = opt.jobs > 0 ? opt.jobs : static_cast<int>(std::thread::hardware_concurrency());
+  jobs = std::max(1, jobs);
+  const bool show_progress = !opt.quiet && ::isatty(2);
+  Progress progress(show_progress, static_cast<long>(mine.size()),
+                    static_cast<long>(points.size()));
+  const long stop_after = stopAfterHook();
+  long finished_now = 0;
+
+  runSweepPoints(
+      todo, jobs, [&](long g) { return runPoint(inputs.at(g), opt.model, g); },
+      [&](const SweepPoint& p) {
+        const std::string line = formatRegimesRow(grid, p);
+        regimes.append(line);
+        timings.append(std::to_string(p.index) + "," + fmt(p.wall_seconds, "%.6g"));
+        lines[p.index] = line;
+        points[p.index] = p;
+        progress.finished(!p.complete);
+        if (++finished_now == stop_after) std::_Exit(137);
+      },
+      [] { return FileSink::stopRequested(); });
+  progress.done();
+  regimes.close();
+  timings.close();
+
+  const bool interrupted = FileSink::stopRequested();
+  const bool complete = points.size() == mine.size();
+  writeSortedRegimesCsv(regimes_path, grid, n, lines);
+  std::vector<std::string> files = {"regimes.csv", "timings.csv"};
+  for (const auto& f : plotSweepMaps(dir, grid, n, points, mapTitle(manifest))) files.push_back(f);
+  files.push_back("sweep.json");
+  nlohmann::json status = statusJson(manifest, static_cast<long>(mine.size()), points, complete);
+  status["jobs"] = jobs;
+  status["wall_seconds"] = secondsSince(t_start);
+  status["points"]["run_now"] = finished_now;
+  status["interrupted"] = interrupted;
+  status["files"] = files;
+  writeSweepJson(dir, status);
+
+  long failed = status["points"]["failed"].get<long>();
+  if (!opt.quiet) {
+    std::cout << "sweep of " << base.name << " (" << modelTitle(opt.model) << ", " << n
+              << (n == 1 ? " metronome" : " metronomes") << "): " << gridText(grid)
+              << (shard.n > 1
+                      ? ", shard " + shard.text() + ": " + std::to_string(mine.size()) + " of them"
+                      : "")
+              << "; " << points.size() << " done (" << finished_now << " now, "
+              << (mine.size() - todo.size()) << " before), " << failed << " failed\n"
+              << "  regimes: " << countsText(points) << "\n"
+              << "  wall time " << fmt(secondsSince(t_start), "%.3g") << " s on " << jobs
+              << (jobs == 1 ? " thread" : " threads") << "\n"
+              << "files: " << dir.path() << "/ (" << joined(files) << ")\n";
+  }
+  if (failed > 0)
+    std::cerr << "metrosync: warning: " << failed
+              << " grid points failed (regime 'failed', the reason in the message column of "
+              << regimes_path << ")\n";
+  if (interrupted) {
+    std::cerr << "metrosync: error: interrupted by a signal with " << points.size() << " of "
+              << mine.size() << " points done; continue with the same command and --resume\n";
+    return kSimulationFailed;
+  }
+  return kSuccess;
+}
+
+int mergeImpl(const SweepOptions& opt) {
+  if (opt.dirs.empty()) throw UsageError("merge: give the sweep output directories to join");
+  // every manifest and every row first: nothing is written unless they all belong together
+  std::optional<SweepManifest> ref;
+  std::string ref_dir;
+  std::map<long, std::string> lines;
+  std::map<long, SweepPoint> points;
+  std::map<long, std::string> source;
+  for (const auto& d : opt.dirs) {
+    const SweepManifest m = SweepManifest::fromJson(readSweepJson(d + "/sweep.json"));
+    if (!ref) {
+      ref = m;
+      ref_dir = d;
+    } else if (const std::string diff = sweepDifference(*ref, m); !diff.empty()) {
+      throw UsageError("merge: " + d + " is not the same sweep as " + ref_dir + ": " + diff);
+    }
+    const RegimesTable t = readRegimesCsv(d + "/regimes.csv", ref->grid, ref->metronomes);
+    for (const auto& w : t.warnings) std::cerr << "metrosync: warning: " << w << "\n";
+    for (const auto& [g, line] : t.lines) {
+      auto it = lines.find(g);
+      if (it != lines.end() && it->second != line)
+        throw UsageError("merge: " + source[g] + " and " + d + " disagree on grid point " +
+                         std::to_string(g));
+      lines[g] = line;
+      points[g] = t.points.at(g);
+      source.emplace(g, d);
+    }
+  }
+  SweepManifest merged = *ref;
+  merged.merged = true;
+  merged.shard = SweepShard{};
+  const SweepGrid& grid = merged.grid;
+  const int n = merged.metronomes;
+
+  const std::string path = opt.out.empty() ? defaultOutputDir(merged.rig_name, "merge") : opt.out;
+  OutputDir dir = [&] {
+    try {
+      OutputDir d(path);
+      removeStaleSweepOutputs(d);
+      return d;
+    } catch (const std::runtime_error& e) {
+      throw UsageError(std::string("--out: ") + e.what());
+    }
+  }();
+  writeSortedRegimesCsv(dir.file("regimes.csv"), grid, n, lines);
+  std::vector<std::string> files = {"regimes.csv"};
+  for (const auto& f : plotSweepMaps(dir, grid, n, points, mapTitle(merged))) files.push_back(f);
+  files.push_back("sweep.json");
+  const bool complete = static_cast<long>(points.size()) == grid.size();
+  nlohmann::json status = statusJson(merged, grid.size(), points, complete);
+  status["sources"] = opt.dirs;
+  status["files"] = files;
+  writeSweepJson(dir, status);
+
+  const long missing = grid.size() - static_cast<long>(points.size());
+  if (!opt.quiet)
+    std::cout << "merged " << opt.dirs.size() << " sweep directories of " << merged.rig_name << " ("
+              << modelTitle(merged.model) << "): " << points.size() << " of " << grid.size()
+              << " points\n  regimes: " << countsText(points) << "\nfiles: " << dir.path() << "/ ("
+              << joined(files) << ")\n";
+  if (missing > 0)
+    std::cerr << "metrosync: warning: " << missing
+              << " grid points are in none of the directories (white in the maps; sweep.json "
+                 "says complete: false)\n";
+  return kSuccess;
+}
+
+}  // namespace
+
+SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
+  SweepCommands c;
+  c.sweep = app.add_subcommand(
+      "sweep", "a grid of runs over one or two rig keys, in parallel and resumable: a regime map");
+  c.sweep->add_option("RIG", opt.rig_path,
+                      "rig file (YAML, SPEC section 1); default: the built-in rig (the paper's "
+                      "experiment)");
+  c.sweep
+      ->add_option("--vary", opt.vary,
+                   "a key and its values: COUNT values from FROM to TO, both included; ':open' "
+                   "leaves TO out ([FROM, TO), for angles). FROM, TO may use pi: "
+                   "--vary platform.friction.mu=0:0.8:41, --vary "
+                   "metronomes.0.start.phi=0:2pi:100:open. Once or twice (the first across the "
+                   "map, the second up)")
+      ->type_name("KEY=FROM:TO:COUNT[:open]")
+      ->required()
+      ->allow_extra_args(false);
+  c.sweep
+      ->add_option("--set", opt.sets,
+                   "override a rig key for every point, e.g. --set simulation.tau=100; repeatable")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  c.sweep->add_option("--model", opt.model, "slow: the slow flow; full: the full model")
+      ->check(CLI::IsMember({"slow", "full"}))
+      ->capture_default_str();
+  c.sweep
+      ->add_option("--engine", opt.engine,
+                   "engine of the full model: direct (minimal coordinates; the default) or "
+                   "simbody (the default when simulation.integrator names a Simbody integrator)")
+      ->check(CLI::IsMember({"simbody", "direct"}));
+  c.sweep
+      ->add_option("--jobs", opt.jobs,
+                   "worker threads (default: the number of cores); the results do not "
+                   "depend on it")
+      ->type_name("N")
+      ->check(CLI::Range(1, 4096));
+  c.sweep->add_flag("--resume", opt.resume,
+                    "continue the sweep in --out DIR: points already in its regimes.csv are "
+                    "kept, the others run (the command line must be the same)");
+  c.sweep
+      ->add_option("--shard", opt.shard,
+                   "run only the K-th of N slices of the grid (points with index mod N = "
+                   "K-1); join the slices with `metrosync merge`")
+      ->type_name("K/N");
+  c.sweep
+      ->add_option("--out", opt.out,
+                   "output directory (default: runs/<rig name>-sweep); metrosync's own output "
+                   "files already there are replaced (unless --resume)")
+      ->type_name("DIR");
+  c.sweep->add_flag("-q,--quiet", opt.quiet,
+                    "no progress bar and no summary (errors and warnings still go to stderr)");
+  c.sweep->footer(
+      "Files in --out DIR: regimes.csv (one row per grid point, appended as points finish, "
+      "sorted by grid index at the end: the varied keys, regime, A_1..A_N, psi_2..psi_N (final, "
+      "psi in [0, 2 pi)), r, s (= |Z|/mu: <= 1 a stuck platform), clusters, tau, complete, "
+      "index, message), sweep.json (what was "
+      "swept, how far it got), timings.csv (wall seconds per point), regimes.png, "
+      "amplitudes.png, phases.png, order.png (N >= 3), drive.png (Coulomb platforms).\n"
+      "A point whose run fails is recorded with regime 'failed' and the reason; the sweep goes "
+      "on. A progress bar with ETA goes to stderr when it is a terminal. SIGINT/SIGTERM stop the "
+      "sweep (the points in flight are not recorded; exit 3): --resume continues it, as it does "
+      "after kill -9.\n"
+      "Exit codes: 0 success; 2 bad command line or rig (nothing written); 3 interrupted; 1 "
+      "anything else.");
+
+  c.merge = app.add_subcommand("merge", "join the regimes.csv of sweep shards into one, with maps");
+  c.merge->add_option("DIR", opt.dirs, "output directories of `sweep --shard K/N` runs")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  c.merge->add_option("--out", opt.out, "output directory (default: runs/<rig name>-merge)")
+      ->type_name("DIR");
+  c.merge->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
+  c.merge->footer(
+      "The directories must hold the same sweep (rig, --set, model, grid: their sweep.json "
+      "says); points missing from all of them are reported and left white in the maps.\n"
+      "Exit codes: 0 success; 2 bad command line or directories that do not belong together "
+      "(nothing written); 1 anything else.");
+  return c;
+}
+
+int sweepCommand(const SweepOptions& opt) {
+  try {
+    return sweepImpl(opt);
+  } catch (const SweepInputError& e) {
+    throw UsageError(e.what());
+  }
+}
+
+int mergeCommand(const SweepOptions& opt) {
+  try {
+    return mergeImpl(opt);
+  } catch (const SweepInputError& e) {
+    throw UsageError(e.what());
+  }
+}
+
+}  // namespace metrosync::cli

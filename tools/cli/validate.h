@@ -1,0 +1,26 @@
+// `metrosync validate [--out DIR] [--quick]`: the full model against the asymptotics (the slow
+// flow and its closed forms), written up as DIR/report.md with its plots (sim/validation.h,
+// sim/validation_report.h). Registered in tools/metrosync.cpp.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+namespace metrosync::cli {
+
+struct ValidateOptions {
+  std::string out = "runs/validate";  // --out DIR
+  bool quick = false;                 // --quick: the reduced plan
+  std::string rigs;                   // --rigs DIR; empty: found (see validate.cpp)
+  int jobs = 0;                       // --jobs N; 0: one per hardware thread
+  bool quiet = false;
+};
+
+// Adds the `validate` subcommand to `app`, parsing into `opt`.
+CLI::App* addValidateCommand(CLI::App& app, ValidateOptions& opt);
+
+// Runs it: exit 0 when every check passes, 1 when a check fails (the report says which), 3 when a
+// simulation stopped early (the report is still written), 2 for a bad command line.
+int validateCommand(const ValidateOptions& opt);
+
+}  // namespace metrosync::cli
