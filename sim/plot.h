@@ -19,6 +19,10 @@ namespace metrosync {
 // Full path of `name` found on $PATH (executable), or "" when absent.
 std::string findExecutable(const std::string& name);
 
+// Runs `gnuplot script` (stdin and stdout to /dev/null, stderr to `log_path`); returns gnuplot's
+// exit status, or -1 if it could not be run.
+int runGnuplot(const std::string& gnuplot, const std::string& script, const std::string& log_path);
+
 // Returns true when DIR/png_name was written. theta_c: (N x 1) scaled critical angles.
 bool plotEnvelope(const OutputDir& dir, const std::string& png_name,
                   const std::vector<EnvelopeRow>& rows, const std::vector<double>& theta_c,
