@@ -15,57 +15,24 @@
 
 #include "sim/envelope.h"
 #include "sim/simbody/full_model.h"
+#include "tests/common/run_metrosync.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
+using Result = metrosync::testing_support::CommandResult;
+using metrosync::testing_support::slurp;
+const auto& quoted = metrosync::testing_support::shellQuote;
 
-std::string quoted(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// A fresh, empty scratch directory (not created) for one test.
 std::string scratch(const std::string& name) {
-  const std::string d =
-      ::testing::TempDir() + "/metrosync_cli_" + name + "_" + std::to_string(::getpid());
-  fs::remove_all(d);
-  return d;
+  return metrosync::testing_support::scratchDir("cli", name);
 }
 
 // Runs `metrosync ARGS` in directory `cwd` (created if needed); captures stdout and stderr.
 Result metrosync(const std::string& args, const std::string& cwd = ::testing::TempDir()) {
-  static int counter = 0;
-  fs::create_directories(cwd);
-  const std::string err_path = ::testing::TempDir() + "/metrosync_cli_stderr_" +
-                               std::to_string(::getpid()) + "_" + std::to_string(counter++);
-  const std::string cmd = "cd " + quoted(cwd) + " && " + quoted(METROSYNC_BINARY) + " " + args +
-                          " 2>" + quoted(err_path);
-  Result r;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = ::pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  r.err = slurp(err_path);
-  std::remove(err_path.c_str());
-  return r;
+  return metrosync::testing_support::runMetrosync(args, {cwd, ""});
 }
 
 std::string writeFile(const std::string& path, const std::string& text) {

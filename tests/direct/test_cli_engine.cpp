@@ -10,42 +10,21 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "tests/common/run_metrosync.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
+using Result = metrosync::testing_support::CommandResult;
 
 std::string scratch(const std::string& name) {
-  const std::string d =
-      ::testing::TempDir() + "/metrosync_engine_" + name + "_" + std::to_string(::getpid());
-  fs::remove_all(d);
-  return d;
+  return metrosync::testing_support::scratchDir("engine", name);
 }
 
 Result metrosync(const std::string& args) {
-  static int counter = 0;
-  const std::string err_path = ::testing::TempDir() + "/metrosync_engine_stderr_" +
-                               std::to_string(::getpid()) + "_" + std::to_string(counter++);
-  const std::string cmd = std::string(METROSYNC_BINARY) + " " + args + " 2>" + err_path;
-  Result r;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = ::pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(err_path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.err = ss.str();
-  fs::remove(err_path);
-  return r;
+  return metrosync::testing_support::runMetrosync(args);
 }
 
 json summary(const std::string& dir) {

@@ -17,56 +17,24 @@
 #include <thread>
 
 #include "sim/envelope.h"
+#include "tests/common/run_metrosync.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-std::string quoted(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using Result = metrosync::testing_support::CommandResult;
+using metrosync::testing_support::shellQuote;
+using metrosync::testing_support::slurp;
 
 std::string scratch(const std::string& name) {
-  const std::string d =
-      ::testing::TempDir() + "/metrosync_sweep_" + name + "_" + std::to_string(::getpid());
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return metrosync::testing_support::scratchDir("sweep", name, true);
 }
 
 // Runs `[ENV] metrosync ARGS`; captures stdout and stderr.
 Result metrosync(const std::string& args, const std::string& env = "") {
-  static int counter = 0;
-  const std::string err_path = ::testing::TempDir() + "/metrosync_sweep_stderr_" +
-                               std::to_string(::getpid()) + "_" + std::to_string(counter++);
-  const std::string cmd =
-      env + " " + quoted(METROSYNC_BINARY) + " " + args + " 2>" + quoted(err_path) + " </dev/null";
-  Result r;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = ::pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  r.err = slurp(err_path);
-  std::remove(err_path.c_str());
-  return r;
+  return metrosync::testing_support::runMetrosync(args, {"", env});
 }
 
 std::vector<std::string> lines(const std::string& path) {
@@ -105,9 +73,10 @@ const std::string kGrid =
 TEST(SweepCli, SameRegimesCsvForOneAndTwoJobs) {
   const std::string d = scratch("jobs");
   const std::string rig = pairRig(d);
-  const Result one = metrosync("sweep " + quoted(rig) + kGrid + " --jobs 1 --out " + d + "/j1");
+  const Result one = metrosync("sweep " + shellQuote(rig) + kGrid + " --jobs 1 --out " + d + "/j1");
   ASSERT_EQ(one.code, 0) << one.err;
-  const Result two = metrosync("sweep " + quoted(rig) + kGrid + " --jobs 2 -q --out " + d + "/j2");
+  const Result two =
+      metrosync("sweep " + shellQuote(rig) + kGrid + " --jobs 2 -q --out " + d + "/j2");
   ASSERT_EQ(two.code, 0) << two.err;
   EXPECT_EQ(two.out, "");  // --quiet
   EXPECT_NE(one.out.find("30 done"), std::string::npos) << one.out;
@@ -141,10 +110,11 @@ TEST(SweepCli, SameRegimesCsvForOneAndTwoJobs) {
 TEST(SweepCli, ResumeAfterAnInterruptionEqualsAnUninterruptedSweep) {
   const std::string d = scratch("resume");
   const std::string rig = pairRig(d);
-  ASSERT_EQ(metrosync("sweep " + quoted(rig) + kGrid + " -q --out " + d + "/whole").code, 0);
+  ASSERT_EQ(metrosync("sweep " + shellQuote(rig) + kGrid + " -q --out " + d + "/whole").code, 0);
   // the test hook ends the process like kill -9 after 7 points: whole lines only, unsorted
-  const Result cut = metrosync("sweep " + quoted(rig) + kGrid + " -q --jobs 2 --out " + d + "/cut",
-                               "METROSYNC_SWEEP_STOP_AFTER=7");
+  const Result cut =
+      metrosync("sweep " + shellQuote(rig) + kGrid + " -q --jobs 2 --out " + d + "/cut",
+                "METROSYNC_SWEEP_STOP_AFTER=7");
   EXPECT_EQ(cut.code, 137) << cut.err;
   auto l = lines(d + "/cut/regimes.csv");
   EXPECT_EQ(l.size(), 8u);
@@ -152,18 +122,19 @@ TEST(SweepCli, ResumeAfterAnInterruptionEqualsAnUninterruptedSweep) {
   // and a line cut in the middle of its write
   std::ofstream(d + "/cut/regimes.csv", std::ios::app) << "0.5,0.2,in-pha";
   const Result res =
-      metrosync("sweep " + quoted(rig) + kGrid + " --jobs 2 --resume --out " + d + "/cut");
+      metrosync("sweep " + shellQuote(rig) + kGrid + " --jobs 2 --resume --out " + d + "/cut");
   ASSERT_EQ(res.code, 0) << res.err;
   EXPECT_NE(res.out.find("23 now, 7 before"), std::string::npos) << res.out;
   EXPECT_NE(res.err.find("cut short"), std::string::npos) << res.err;
   EXPECT_EQ(slurp(d + "/cut/regimes.csv"), slurp(d + "/whole/regimes.csv"));
   // a finished sweep resumes to itself without running anything
-  const Result again = metrosync("sweep " + quoted(rig) + kGrid + " --resume --out " + d + "/cut");
+  const Result again =
+      metrosync("sweep " + shellQuote(rig) + kGrid + " --resume --out " + d + "/cut");
   ASSERT_EQ(again.code, 0) << again.err;
   EXPECT_NE(again.out.find("0 now, 30 before"), std::string::npos) << again.out;
   EXPECT_EQ(slurp(d + "/cut/regimes.csv"), slurp(d + "/whole/regimes.csv"));
   // without --resume the directory starts over
-  const Result over = metrosync("sweep " + quoted(rig) + kGrid + " --out " + d + "/cut");
+  const Result over = metrosync("sweep " + shellQuote(rig) + kGrid + " --out " + d + "/cut");
   EXPECT_NE(over.out.find("30 now, 0 before"), std::string::npos) << over.out;
 }
 
@@ -171,9 +142,9 @@ TEST(SweepCli, KillNineLosesOnlyThePointsInFlight) {
   const std::string d = scratch("kill");
   const std::string rig = pairRig(d, 5000);  // about 0.1 s a point
   const std::string args =
-      "sweep " + quoted(rig) + " --vary platform.friction.mu=0:1.5:16 -q --jobs 2 --out ";
+      "sweep " + shellQuote(rig) + " --vary platform.friction.mu=0:1.5:16 -q --jobs 2 --out ";
   ASSERT_EQ(metrosync(args + d + "/whole").code, 0);
-  const std::string cmd = "exec " + quoted(METROSYNC_BINARY) + " " + args + d + "/killed";
+  const std::string cmd = "exec " + shellQuote(METROSYNC_BINARY) + " " + args + d + "/killed";
   const pid_t pid = ::fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {
@@ -203,11 +174,11 @@ TEST(SweepCli, KillNineLosesOnlyThePointsInFlight) {
 TEST(SweepCli, ShardsMergedEqualTheWholeSweep) {
   const std::string d = scratch("shards");
   const std::string rig = pairRig(d);
-  ASSERT_EQ(metrosync("sweep " + quoted(rig) + kGrid + " -q --out " + d + "/whole").code, 0);
+  ASSERT_EQ(metrosync("sweep " + shellQuote(rig) + kGrid + " -q --out " + d + "/whole").code, 0);
   std::string dirs;
   for (int k = 1; k <= 3; ++k) {
     const std::string out = d + "/s" + std::to_string(k);
-    const Result r = metrosync("sweep " + quoted(rig) + kGrid + " -q --jobs 2 --shard " +
+    const Result r = metrosync("sweep " + shellQuote(rig) + kGrid + " -q --jobs 2 --shard " +
                                std::to_string(k) + "/3 --out " + out);
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(lines(out + "/regimes.csv").size(), 11u);  // 10 of the 30 points
@@ -224,7 +195,7 @@ TEST(SweepCli, ShardsMergedEqualTheWholeSweep) {
   EXPECT_NE(part.err.find("10 grid points are in none"), std::string::npos) << part.err;
   EXPECT_FALSE(json::parse(slurp(d + "/part/sweep.json"))["complete"].get<bool>());
   // another grid does not merge, and nothing is written
-  ASSERT_EQ(metrosync("sweep " + quoted(rig) +
+  ASSERT_EQ(metrosync("sweep " + shellQuote(rig) +
                       " --vary platform.friction.mu=0:0.8:4 -q --shard 2/3 --out " + d + "/other")
                 .code,
             0);
@@ -234,7 +205,7 @@ TEST(SweepCli, ShardsMergedEqualTheWholeSweep) {
   EXPECT_FALSE(fs::exists(d + "/nope"));
   // and a shard resumed as another shard is refused
   const Result wrong =
-      metrosync("sweep " + quoted(rig) + kGrid + " -q --shard 2/3 --resume --out " + d + "/s1");
+      metrosync("sweep " + shellQuote(rig) + kGrid + " -q --shard 2/3 --resume --out " + d + "/s1");
   EXPECT_EQ(wrong.code, 2) << wrong.err;
   EXPECT_NE(wrong.err.find("shard 1/3"), std::string::npos) << wrong.err;
 }
@@ -263,26 +234,27 @@ TEST(SweepCli, BadCommandLinesExitTwoAndWriteNothing) {
   };
   for (const auto& c : cases) {
     const std::string out = d + "/out";
-    const Result r = metrosync("sweep " + quoted(rig) + " " + c.args + " --out " + out);
+    const Result r = metrosync("sweep " + shellQuote(rig) + " " + c.args + " --out " + out);
     EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
     EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << "\n" << r.err;
     EXPECT_EQ(r.err.rfind("metrosync: error: ", 0), 0u) << r.err;
     EXPECT_FALSE(fs::exists(out)) << c.args;
   }
   // a bad value in the middle of the grid stops it before any point runs
-  const Result mid =
-      metrosync("sweep " + quoted(rig) + " --vary metronomes.1.start.A=1:-1:5 --out " + d + "/out");
+  const Result mid = metrosync("sweep " + shellQuote(rig) +
+                               " --vary metronomes.1.start.A=1:-1:5 --out " + d + "/out");
   EXPECT_EQ(mid.code, 2) << mid.err;
   EXPECT_NE(mid.err.find("metronomes.1.start.A=-0.5"), std::string::npos) << mid.err;
   EXPECT_FALSE(fs::exists(d + "/out"));
   // --resume of another sweep: refused, and the directory left as it was
-  ASSERT_EQ(metrosync("sweep " + quoted(rig) + " --vary platform.friction.mu=0:1:3 -q --out " + d +
-                      "/done")
+  ASSERT_EQ(metrosync("sweep " + shellQuote(rig) + " --vary platform.friction.mu=0:1:3 -q --out " +
+                      d + "/done")
                 .code,
             0);
   const std::string before = slurp(d + "/done/regimes.csv");
-  const Result other = metrosync(
-      "sweep " + quoted(rig) + " --vary platform.friction.mu=0:1:4 --resume --out " + d + "/done");
+  const Result other =
+      metrosync("sweep " + shellQuote(rig) + " --vary platform.friction.mu=0:1:4 --resume --out " +
+                d + "/done");
   EXPECT_EQ(other.code, 2) << other.err;
   EXPECT_NE(other.err.find("another sweep"), std::string::npos) << other.err;
   EXPECT_EQ(slurp(d + "/done/regimes.csv"), before);
@@ -292,7 +264,7 @@ TEST(SweepCli, FailedPointsAreRecordedAndTheSweepGoesOn) {
   const std::string d = scratch("failed");
   const std::string rig = pairRig(d);
   const Result r = metrosync(
-      "sweep " + quoted(rig) + " --vary platform.friction.mu=0:1:6 --jobs 2 --out " + d + "/o",
+      "sweep " + shellQuote(rig) + " --vary platform.friction.mu=0:1:6 --jobs 2 --out " + d + "/o",
       "METROSYNC_SWEEP_FAIL_AT=1,4");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("2 grid points failed"), std::string::npos) << r.err;
@@ -320,7 +292,7 @@ TEST(SweepCli, ThreeMetronomesAreNamedByClustersWithTheirOrderParameter) {
          "  - {nu: 0.7, J: 2.8, theta_c: 0.9, start: {A: 2.9, phi: 2.0943951023931957}}\n"
          "  - {nu: 0.7, J: 2.8, theta_c: 0.9, start: {A: 2.9, phi: 0}}\n"
          "simulation:\n  tau: 40\n";
-  const Result r = metrosync("sweep " + quoted(rig) +
+  const Result r = metrosync("sweep " + shellQuote(rig) +
                              " --vary metronomes.2.start.phi=0:2pi:3:open -q --out " + d + "/o");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto l = lines(d + "/o/regimes.csv");
@@ -356,7 +328,7 @@ TEST(SweepCli, BothModelsWriteTheOrderParameterInEnvelopeCsv) {
             " --set metronomes.1.start.phi=2.3943951023931958"
             " --set metronomes.2.start.phi=4.4887902047863905";
       const Result r =
-          metrosync("run " + quoted(rig) + " --model " + model + sets + " -q --out " + out);
+          metrosync("run " + shellQuote(rig) + " --model " + model + sets + " -q --out " + out);
       ASSERT_EQ(r.code, 0) << r.err;
       EXPECT_EQ(lines(out + "/envelope.csv")[0], "tau,A_1,A_2,A_3,psi_2,psi_3,r");
       const auto rows = metrosync::readEnvelopeCsv(out + "/envelope.csv");

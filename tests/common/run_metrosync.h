@@ -1,0 +1,76 @@
+// Running the built `metrosync` binary from a test (METROSYNC_BINARY, set by CMake): the one
+// helper every end-to-end test folder uses.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace metrosync::testing_support {
+
+struct CommandResult {
+  int code = -1;  // exit code, or 128 + signal
+  std::string out, err;
+};
+
+// Single-quoted for the shell.
+inline std::string shellQuote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// A fresh path for one test's scratch directory (removed if it existed; created if `create`).
+inline std::string scratchDir(const std::string& prefix, const std::string& name,
+                              bool create = false) {
+  const std::string d =
+      ::testing::TempDir() + "/metrosync_" + prefix + "_" + name + "_" + std::to_string(::getpid());
+  std::filesystem::remove_all(d);
+  if (create) std::filesystem::create_directories(d);
+  return d;
+}
+
+struct RunIn {
+  std::string cwd;  // run in this directory (created); empty: the current one
+  std::string env;  // prefix such as "VAR=value"
+};
+
+// Runs `[env] metrosync ARGS` with no standard input; captures stdout and stderr.
+inline CommandResult runMetrosync(const std::string& args, const RunIn& in = {}) {
+  static int counter = 0;
+  const std::string err_path = ::testing::TempDir() + "/metrosync_stderr_" +
+                               std::to_string(::getpid()) + "_" + std::to_string(counter++);
+  std::string cmd;
+  if (!in.cwd.empty()) {
+    std::filesystem::create_directories(in.cwd);
+    cmd = "cd " + shellQuote(in.cwd) + " && ";
+  }
+  cmd += in.env + " " + shellQuote(METROSYNC_BINARY) + " " + args + " 2>" + shellQuote(err_path) +
+         " </dev/null";
+  CommandResult r;
+  FILE* p = ::popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int status = ::pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.err = slurp(err_path);
+  std::remove(err_path.c_str());
+  return r;
+}
+
+}  // namespace metrosync::testing_support
