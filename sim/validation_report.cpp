@@ -1,13 +1,8 @@
 #include "sim/validation_report.h"
 
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -18,8 +13,6 @@
 #include "contact/averaged_response.h"
 #include "models/slow_flow.h"
 #include "sim/plot.h"
-
-extern char** environ;
 
 namespace metrosync {
 
@@ -116,24 +109,6 @@ void warn(const std::string& what) {
   std::cerr << "metrosync: warning: " << what << "\n";
 }
 
-int spawnGnuplot(const std::string& gnuplot, const std::string& script, const std::string& log) {
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  std::vector<char*> argv = {const_cast<char*>(gnuplot.c_str()), const_cast<char*>(script.c_str()),
-                             nullptr};
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, gnuplot.c_str(), &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) return -1;
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 // gnuplot single-quoted string
 std::string quote(const std::string& s) {
   std::string q = "'";
@@ -170,7 +145,7 @@ bool drawPng(const OutputDir& dir, const std::string& png_name, const std::strin
       return false;
     }
   }
-  const int rc = spawnGnuplot(gnuplot, script_path, log);
+  const int rc = runGnuplot(gnuplot, script_path, log);
   struct stat st {};
   if (rc != 0 || ::stat(png.c_str(), &st) != 0 || st.st_size == 0) {
     std::ifstream in(log);
@@ -258,15 +233,21 @@ bool plotConvergence(const OutputDir& dir, const ValidationResults& r) {
   return drawPng(
       dir, "convergence.png", d.str(), [&](const std::string& data, const std::string& png) {
         std::ostringstream s;
-        s << header(png, "720,480") << "set logscale xy\nset xlabel 'ε'\n"
+        s << header(png, "760,460") << "set logscale xy\nset xlabel 'ε'\n"
           << "set xrange [" << fmt("%g", eps_lo / 1.3) << ":" << fmt("%g", eps_hi * 1.3) << "]\n"
           << "set ylabel 'max envelope error over τ ∈ [0, " << fmt("%g", r.plan.convergence_tau)
-          << "]'\nset key outside right top font ',8'\nset format y '10^{%T}'\n"
-          << "set title 'full model against the slow flow'\nplot ";
+          << "]'\nset rmargin at screen 0.64\nset key at screen 0.66, 0.9 left Left reverse font "
+             "',8' spacing 0.9 samplen 2\n"
+          << "set format y '10^{%T}'\nset xtics (";
+        for (size_t k = 0; k < r.plan.convergence_eps.size(); ++k)
+          s << (k ? ", " : "") << fmt("%g", r.plan.convergence_eps[k]);
+        s << ")\nset title 'full model against the slow flow'\nplot ";
+        // eight colours, then the same colours dashed with open symbols
         for (size_t c = 0; c < names.size(); ++c)
           s << (c ? ", " : "") << quote(data) << " index " << c
-            << " using 1:2 with linespoints lw 1.5 pt 7 ps 0.7 lc rgb '" << kColours[c % 12]
-            << "' title " << quote(names[c]) << " noenhanced";
+            << " using 1:2 with linespoints lw 1.5" << (c < 8 ? " dt 1 pt 7" : " dt 2 pt 6")
+            << " ps 0.8 lc rgb '" << kColours[c % 8] << "' title " << quote(names[c])
+            << " noenhanced";
         s << ", " << fmt("%.10g", c1)
           << "*x with lines dt 2 lw 2 lc rgb '#555555' title 'slope 1'\n"
           << "set output\n";
