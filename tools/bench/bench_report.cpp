@@ -1,0 +1,314 @@
+#include "tools/bench/bench_report.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "sim/plot.h"
+
+namespace metrosync::bench {
+
+namespace {
+
+std::string num(double v, const char* f = "%.3g") {
+  if (!std::isfinite(v)) return "";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+// CSV field: quoted when it holds a comma or a quote
+std::string field(const std::string& s) {
+  if (s.find_first_of(",\"") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+// a gnuplot single-quoted string
+std::string gq(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
+  return q + "'";
+}
+
+bool runGnuplot(const std::string& png_path, const std::string& data, const std::string& script) {
+  const std::string gnuplot = findExecutable("gnuplot");
+  if (gnuplot.empty()) {
+    std::cerr << "metrosync_bench: warning: gnuplot not found, no " << png_path << "\n";
+    return false;
+  }
+  const std::string tag = "." + std::to_string(::getpid()) + ".part";
+  const std::string dat = png_path + ".dat" + tag, gp = png_path + ".gp" + tag,
+                    png = png_path + tag;
+  {
+    std::ofstream(dat) << data;
+    std::string s = script;
+    for (auto [key, val] :
+         {std::pair<std::string, std::string>{"@DATA@", gq(dat)}, {"@PNG@", gq(png)}}) {
+      for (size_t p; (p = s.find(key)) != std::string::npos;) s.replace(p, key.size(), val);
+    }
+    std::ofstream(gp) << s;
+  }
+  const int rc = std::system(("'" + gnuplot + "' '" + gp + "' 2>/dev/null").c_str());
+  bool ok = rc == 0 && std::filesystem::exists(png);
+  if (ok) std::filesystem::rename(png, png_path);
+  std::filesystem::remove(dat);
+  std::filesystem::remove(gp);
+  std::filesystem::remove(png);
+  if (!ok) std::cerr << "metrosync_bench: warning: gnuplot failed, no " << png_path << "\n";
+  return ok;
+}
+
+std::vector<std::string> labelsInOrder(const std::vector<Record>& records) {
+  std::vector<std::string> labels;
+  for (const Record& r : records)
+    if (std::find(labels.begin(), labels.end(), r.method.label()) == labels.end())
+      labels.push_back(r.method.label());
+  return labels;
+}
+
+}  // namespace
+
+std::string csvHeader() {
+  return "scene,n,periods,engine,integrator,setting,accuracy,steps_per_period,status,note,runs,"
+         "wall_median_s,wall_min_s,wall_max_s,cpu_median_s,load1_min,load1_max,err_envelope,"
+         "max_abs_dA,max_abs_dpsi,err_final_state,rows_compared,steps,rhs_evals,events,ticks,"
+         "stick_slip,regime";
+}
+
+std::string csvRow(const Record& r) {
+  std::ostringstream os;
+  const char* g = "%.6g";
+  os << field(r.scene) << ',' << r.n_metronomes << ',' << num(r.periods, g) << ','
+     << r.method.engine << ',' << r.method.integrator << ',' << r.method.setting() << ','
+     << num(r.method.accuracy > 0 ? r.method.accuracy : NAN, g) << ','
+     << num(r.method.steps_per_period > 0 ? r.method.steps_per_period : NAN, g) << ','
+     << field(r.status) << ',' << field(r.note) << ',' << r.runs << ',' << num(r.wall_median_s, g)
+     << ',' << num(r.wall_min_s, g) << ',' << num(r.wall_max_s, g) << ',' << num(r.cpu_median_s, g)
+     << ',' << num(r.load_min, "%.2f") << ',' << num(r.load_max, "%.2f") << ','
+     << num(r.error.envelope, g) << ',' << num(r.error.max_dA, g) << ',' << num(r.error.max_dpsi, g)
+     << ',' << num(r.error.final_state, g) << ',' << r.error.rows << ',' << r.steps << ','
+     << r.rhs_evals << ',' << r.events << ',' << r.ticks << ',' << r.stick_slip << ','
+     << field(r.regime);
+  return os.str();
+}
+
+std::string recordsCsv(const std::vector<Record>& records) {
+  std::string s = csvHeader() + "\n";
+  for (const Record& r : records) s += csvRow(r) + "\n";
+  return s;
+}
+
+std::string precisionTable(const std::vector<Record>& records) {
+  std::ostringstream os;
+  os << "| engine:integrator | setting | wall median s (runs) | cpu s | envelope error | max "
+        "abs dA | max abs dpsi | final-state error | steps | rhs evals | events | ticks | "
+        "stick-slip | regime | status |\n";
+  os << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  auto line = [&](const Record& r) {
+    const bool ran = r.status != "skipped (predicted over budget)";
+    os << "| " << r.method.label() << " | " << r.method.setting() << " | ";
+    if (r.timed())
+      os << num(r.wall_median_s) << " (" << r.runs << ")";
+    else if (r.status == "over budget")
+      os << "> " << num(r.wall_median_s, "%.0f");
+    os << " | " << (r.timed() ? num(r.cpu_median_s) : "") << " | ";
+    const bool has_error = r.status == "ok" || r.status == "cross-check" || r.status == "reference";
+    if (has_error && r.error.rows > 0)
+      os << (r.status == "reference" ? std::string("-") : num(r.error.envelope, "%.1e")) << " | "
+         << (r.status == "reference" ? std::string("-") : num(r.error.max_dA, "%.1e")) << " | "
+         << (r.status == "reference" ? std::string("-") : num(r.error.max_dpsi, "%.1e")) << " | "
+         << (r.status == "reference" ? std::string("-") : num(r.error.final_state, "%.1e"))
+         << " | ";
+    else
+      os << " |  |  |  | ";
+    if (ran && r.status != "over budget")
+      os << r.steps << " | " << r.rhs_evals << " | " << r.events << " | " << r.ticks << " | "
+         << r.stick_slip << " | " << r.regime << " | ";
+    else
+      os << " |  |  |  |  |  | ";
+    os << r.status << (r.note.empty() ? "" : ": " + r.note) << " |\n";
+  };
+  for (const Record& r : records)
+    if (r.status == "reference" || r.status == "cross-check") line(r);
+  for (const Record& r : records)
+    if (r.status != "reference" && r.status != "cross-check") line(r);
+  return os.str();
+}
+
+std::vector<WorkPoint> frontOf(const std::vector<Record>& records, const std::string& who) {
+  std::vector<WorkPoint> pts;
+  for (const Record& r : records) {
+    if (r.status != "ok" || !r.timed()) continue;
+    if (r.method.engine != who && r.method.label() != who) continue;
+    pts.push_back({r.error.envelope, r.wall_median_s});
+  }
+  return paretoFront(pts);
+}
+
+std::string ratiosMarkdown(const std::vector<Record>& records, std::string& csv_rows) {
+  std::vector<std::string> engines;
+  for (const char* e : {"direct", "simbody", "siconos"})
+    if (!frontOf(records, e).empty()) engines.push_back(e);
+  const std::string scene = records.empty() ? "" : records.front().scene;
+  std::ostringstream os;
+  for (size_t i = 0; i < engines.size(); ++i) {
+    for (size_t j = i + 1; j < engines.size(); ++j) {
+      const auto a = frontOf(records, engines[i]), b = frontOf(records, engines[j]);
+      const auto rs = ratiosAtEqualError(a, b);
+      os << "- **" << engines[i] << " / " << engines[j] << "** (best integrator of each at each "
+         << "error): ";
+      if (rs.empty()) {
+        // no common error: say where each front lies
+        os << "no common error range (" << engines[i] << " reaches " << num(a.front().error, "%.1e")
+           << " ... " << num(a.back().error, "%.1e") << " in " << num(a.front().time_s) << " ... "
+           << num(a.back().time_s) << " s; " << engines[j] << " " << num(b.front().error, "%.1e")
+           << " ... " << num(b.back().error, "%.1e") << " in " << num(b.front().time_s) << " ... "
+           << num(b.back().time_s) << " s)\n";
+        continue;
+      }
+      os << "geometric mean " << num(geometricMeanRatio(rs)) << " over errors "
+         << num(rs.front().error, "%.1e") << " ... " << num(rs.back().error, "%.1e") << "; ";
+      for (size_t k = 0; k < rs.size(); ++k) {
+        os << (k ? ", " : "") << num(rs[k].ratio()) << " at " << num(rs[k].error, "%.1e") << " ("
+           << num(rs[k].time_a_s) << " s / " << num(rs[k].time_b_s) << " s)";
+        csv_rows += field(scene) + "," + engines[i] + "," + engines[j] + "," +
+                    num(rs[k].error, "%.6g") + "," + num(rs[k].time_a_s, "%.6g") + "," +
+                    num(rs[k].time_b_s, "%.6g") + "," + num(rs[k].ratio(), "%.6g") + "\n";
+      }
+      os << "\n";
+    }
+  }
+  return os.str();
+}
+
+bool plotWorkPrecision(const std::string& png_path, const std::vector<Record>& records,
+                       const std::string& title) {
+  std::ostringstream data;
+  std::vector<std::string> titles;
+  for (const std::string& label : labelsInOrder(records)) {
+    std::ostringstream block;
+    int n = 0;
+    for (const Record& r : records) {
+      if (r.method.label() != label || r.status != "ok" || !r.timed()) continue;
+      if (!(r.error.envelope > 0)) continue;
+      block << r.error.envelope << ' ' << r.wall_median_s << ' ' << gq(r.method.setting()) << '\n';
+      ++n;
+    }
+    if (n == 0) continue;
+    data << "# " << label << "\n" << block.str() << "\n\n";
+    titles.push_back(label);
+  }
+  if (titles.empty()) return false;
+  std::ostringstream gp;
+  gp << "set terminal pngcairo size 1100,750 font 'Sans,11'\nset output @PNG@\n"
+     << "set title " << gq(title) << "\nset logscale xy\nset format x '10^{%L}'\n"
+     << "set format y '10^{%L}'\nset xlabel 'envelope error: max(max |dA_i|, max |dpsi_j|) "
+        "against the reference (scaled units)'\n"
+     << "set ylabel 'wall time, median (s)'\nset grid\nset key outside right top\n"
+     << "set xrange [*:*] reverse\n";
+  // the reference's own uncertainty: the cross-checks' distance from it
+  double floor_err = 0;
+  for (const Record& r : records)
+    if (r.status == "cross-check" && std::isfinite(r.error.envelope))
+      floor_err = std::max(floor_err, r.error.envelope);
+  if (floor_err > 0)
+    gp << "set arrow from " << floor_err << ", graph 0 to " << floor_err
+       << ", graph 1 nohead dt 3 lc 'gray'\nset label 'reference cross-check' at " << floor_err
+       << ", graph 0.97 right offset -0.5,0 textcolor 'gray'\n";
+  gp << "plot ";
+  for (size_t k = 0; k < titles.size(); ++k) {
+    const bool siconos = titles[k].rfind("siconos", 0) == 0;
+    const bool direct = titles[k].rfind("direct", 0) == 0;
+    gp << (k ? ", " : "") << "@DATA@ index " << k << " using 1:2 with linespoints lw 2 pt "
+       << (siconos  ? 9
+           : direct ? 7
+                    : 5)
+       << " dt "
+       << (siconos  ? 2
+           : direct ? 1
+                    : 4)
+       << " title " << gq(titles[k]);
+  }
+  gp << "\n";
+  return runGnuplot(png_path, data.str(), gp.str());
+}
+
+bool plotNScaling(const std::string& png_path, const std::vector<Record>& records,
+                  const std::string& title) {
+  std::ostringstream data;
+  std::vector<std::string> titles;
+  for (const std::string& label : labelsInOrder(records)) {
+    std::ostringstream block;
+    int n = 0;
+    std::string setting;
+    for (const Record& r : records) {
+      if (r.method.label() != label || !r.timed()) continue;
+      block << r.n_metronomes << ' ' << r.wall_median_s / r.periods << '\n';
+      setting = r.method.setting();
+      ++n;
+    }
+    if (n == 0) continue;
+    data << "# " << label << "\n" << block.str() << "\n\n";
+    titles.push_back(label + " " + setting);
+  }
+  if (titles.empty()) return false;
+  // a guide through the first curve's first point, proportional to N
+  for (const Record& r : records) {
+    if (!r.timed()) continue;
+    int n_max = 0;
+    for (const Record& q : records) n_max = std::max(n_max, q.n_metronomes);
+    const double c0 = r.wall_median_s / r.periods;
+    data << "# proportional to N\n"
+         << r.n_metronomes << ' ' << c0 << '\n'
+         << n_max << ' ' << c0 * n_max / r.n_metronomes << "\n\n\n";
+    break;
+  }
+  std::ostringstream gp;
+  gp << "set terminal pngcairo size 1000,700 font 'Sans,11'\nset output @PNG@\n"
+     << "set title " << gq(title) << "\nset logscale xy\nset format y '10^{%L}'\n"
+     << "set xlabel 'N (metronomes)'\nset ylabel 'wall time per fast period, median (s)'\n"
+     << "set grid\nset key left top\nplot ";
+  for (size_t k = 0; k < titles.size(); ++k)
+    gp << (k ? ", " : "") << "@DATA@ index " << k << " using 1:2 with linespoints lw 2 title "
+       << gq(titles[k]);
+  gp << ", @DATA@ index " << titles.size() << " using 1:2 with lines dt 2 lw 1.5 lc 'gray40' title "
+     << "'proportional to N'\n";
+  return runGnuplot(png_path, data.str(), gp.str());
+}
+
+std::string nscaleTable(const std::vector<Record>& records) {
+  std::ostringstream os;
+  const auto labels = labelsInOrder(records);
+  std::set<int> ns;
+  for (const Record& r : records) ns.insert(r.n_metronomes);
+  os << "| N |";
+  for (const auto& l : labels) os << " " << l << " ms/period |";
+  os << "\n|---|";
+  for (size_t k = 0; k < labels.size(); ++k) os << "---|";
+  os << "\n";
+  for (int n : ns) {
+    os << "| " << n << " |";
+    for (const auto& l : labels) {
+      std::string cell;
+      for (const Record& r : records)
+        if (r.n_metronomes == n && r.method.label() == l)
+          cell = r.timed() ? num(1e3 * r.wall_median_s / r.periods) : r.status;
+      os << " " << cell << " |";
+    }
+    os << "\n";
+  }
+  return os.str();
+}
+
+}  // namespace metrosync::bench

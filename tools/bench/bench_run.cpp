@@ -1,0 +1,234 @@
+#include "tools/bench/bench_run.h"
+
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+
+#include "sim/direct/direct_model.h"
+#include "sim/regime.h"
+#include "sim/simbody/full_model.h"
+#include "tools/bench/siconos_peer.h"
+#include "yaml/rig_loader.h"
+
+namespace metrosync::bench {
+
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+
+// Thrown by the sink to abandon a run that exceeds its budget. Not a std::exception, so that the
+// engines' own handlers (which turn std::exception into complete = false) let it through.
+struct OverBudget {};
+
+// Keeps the envelope rows only; stops the run when the wall-clock budget is spent.
+class BenchSink : public RunSink {
+ public:
+  explicit BenchSink(double budget_s)
+      : budget_s_(budget_s), start_(std::chrono::steady_clock::now()) {}
+  void envelopeRow(const EnvelopeRow& row) override {
+    rows.push_back(row);
+    if (budget_s_ > 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count() >
+            budget_s_)
+      throw OverBudget{};
+  }
+  std::vector<EnvelopeRow> rows;
+
+ private:
+  double budget_s_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+double cpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+bool contains(const std::vector<std::string>& v, const std::string& s) {
+  return std::find(v.begin(), v.end(), s) != v.end();
+}
+
+// The engines' final trajectory row (rig units: t, x, xdot, theta_i, thetadot_i, ..., platform)
+// as the scaled final state xdot, theta_1, thetadot_1, ...
+std::vector<double> scaledFinalState(const Scene& scene, const std::vector<double>& row) {
+  const int n = static_cast<int>(scene.rig.metronomes.size());
+  if (static_cast<int>(row.size()) < 3 + 2 * n) return {};
+  const ScaledParams& sp = scene.scaled;
+  const bool physical = scene.rig.units == Units::Physical;
+  const double omega0 = 1.0 / sp.time_scale_s;
+  const double vx = physical ? 1.0 / (sp.x_scale_m * omega0) : 1.0;
+  const double th = physical ? 1.0 / sp.angle_scale : 1.0;
+  const double w = physical ? 1.0 / (sp.angle_scale * omega0) : 1.0;
+  std::vector<double> s = {row[2] * vx};
+  for (int i = 0; i < n; ++i) {
+    s.push_back(row[3 + 2 * i] * th);
+    s.push_back(row[4 + 2 * i] * w);
+  }
+  return s;
+}
+
+}  // namespace
+
+Scene sceneFromRig(const std::string& name, const Rig& rig) {
+  Scene s;
+  s.name = name;
+  s.rig = rig;
+  s.scaled = computeScaled(rig);
+  s.periods = rig.sim.t_end_s / (kTwoPi * s.scaled.time_scale_s);
+  return s;
+}
+
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  Scene s = sceneFromRig(std::filesystem::path(path).stem().string(), loadRigFile(path, overrides));
+  s.path = path;
+  return s;
+}
+
+std::string Method::setting() const {
+  char buf[64];
+  if (engine == "siconos")
+    std::snprintf(buf, sizeof buf, "h=T/%g", steps_per_period);
+  else
+    std::snprintf(buf, sizeof buf, "%.0e", accuracy);
+  return buf;
+}
+
+bool engineAvailable(const std::string& engine) {
+  if (engine == "simbody" || engine == "direct") return true;
+  if (engine == "siconos") return siconosAvailable();
+  return false;
+}
+
+std::vector<std::string> integratorsOf(const std::string& engine) {
+  if (engine == "simbody") return simbodyIntegratorNames();
+  if (engine == "direct") return directIntegratorNames();
+  if (engine == "siconos") return {"moreau-jean"};
+  return {};
+}
+
+Method parseMethod(const std::string& spec) {
+  Method m;
+  const size_t a = spec.find(':');
+  m.engine = spec.substr(0, a);
+  if (!engineAvailable(m.engine))
+    throw std::invalid_argument("'" + spec + "': engine '" + m.engine +
+                                "' is not available (simbody, direct" +
+                                (siconosAvailable() ? ", siconos" : "; siconos: not built") + ")");
+  std::string rest = a == std::string::npos ? "" : spec.substr(a + 1);
+  const size_t b = rest.find(':');
+  m.integrator = rest.substr(0, b);
+  if (m.integrator.empty()) m.integrator = integratorsOf(m.engine).front();
+  if (!contains(integratorsOf(m.engine), m.integrator))
+    throw std::invalid_argument("'" + spec + "': '" + m.integrator + "' is not an integrator of " +
+                                m.engine);
+  if (b != std::string::npos) {
+    const double v = std::stod(rest.substr(b + 1));
+    if (!(v > 0)) throw std::invalid_argument("'" + spec + "': the setting must be > 0");
+    (m.engine == "siconos" ? m.steps_per_period : m.accuracy) = v;
+  }
+  return m;
+}
+
+RunResult runOnce(const Scene& scene, const Method& method, double budget_s) {
+  RunResult r;
+  r.method = method;
+  Rig rig = scene.rig;
+  rig.sim.integrator = method.engine == "siconos" ? "" : method.integrator;
+  if (method.accuracy > 0) rig.sim.accuracy = method.accuracy;
+
+  BenchSink sink(budget_s);
+  RunReport rep;
+  const double cpu0 = cpuSeconds();
+  const auto wall0 = std::chrono::steady_clock::now();
+  try {
+    if (method.engine == "simbody") {
+      rep = runFullModel(rig, sink);
+    } else if (method.engine == "direct") {
+      rep = runDirectModel(rig, sink);
+    } else if (method.engine == "siconos") {
+      const std::string why = siconosUnsupported(rig);
+      if (!why.empty()) throw std::invalid_argument("siconos peer: " + why);
+      SiconosOptions opt;
+      opt.step_s = kTwoPi * scene.scaled.time_scale_s / method.steps_per_period;
+      rep = runSiconosPeer(rig, sink, opt);
+    } else {
+      throw std::invalid_argument("unknown engine " + method.engine);
+    }
+  } catch (const OverBudget&) {
+    r.over_budget = true;
+    rep.complete = false;
+    rep.failure = "over the time budget";
+  } catch (const SimulationFailure& f) {
+    rep.complete = false;
+    rep.failure = f.why;
+  }
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  r.cpu_s = cpuSeconds() - cpu0;
+  r.complete = rep.complete;
+  r.failure = rep.failure;
+  r.counts = rep.counts;
+  for (long e : rep.counts.escapements) r.ticks += e;
+  r.envelope = std::move(sink.rows);
+  r.final_state = scaledFinalState(scene, rep.final_trajectory_row);
+  if (r.complete) {
+    std::vector<bool> locked;
+    for (const auto& m : rig.metronomes) locked.push_back(m.locked);
+    r.regime = classifyRegime(r.envelope, scene.scaled.tau_end, scene.scaled.theta_c, locked).name;
+  } else {
+    r.regime = "unknown";
+  }
+  return r;
+}
+
+ErrorVsRef compareRuns(const RunResult& run, const RunResult& ref) {
+  ErrorVsRef e;
+  const size_t n = std::min(run.envelope.size(), ref.envelope.size());
+  e.rows = static_cast<long>(n);
+  for (size_t k = 0; k < n; ++k) {
+    const EnvelopeRow& a = run.envelope[k];
+    const EnvelopeRow& b = ref.envelope[k];
+    for (size_t i = 0; i < a.A.size() && i < b.A.size(); ++i)
+      e.max_dA = std::max(e.max_dA, std::abs(a.A[i] - b.A[i]));
+    for (size_t j = 0; j < a.psi.size() && j < b.psi.size(); ++j)
+      e.max_dpsi = std::max(e.max_dpsi, std::abs(wrapToPi(a.psi[j] - b.psi[j])));
+  }
+  e.envelope = std::max(e.max_dA, e.max_dpsi);
+  if (run.final_state.size() == ref.final_state.size() && !run.final_state.empty()) {
+    for (size_t k = 0; k < run.final_state.size(); ++k)
+      e.final_state = std::max(e.final_state, std::abs(run.final_state[k] - ref.final_state[k]));
+  } else {
+    e.final_state = std::numeric_limits<double>::quiet_NaN();
+  }
+  if (!run.complete || !ref.complete) e.final_state = std::numeric_limits<double>::quiet_NaN();
+  return e;
+}
+
+double loadAverage1() {
+  std::ifstream f("/proc/loadavg");
+  double l = std::numeric_limits<double>::quiet_NaN();
+  if (f) f >> l;
+  return l;
+}
+
+#ifndef METROSYNC_HAVE_SICONOS
+// Built without Siconos: the peer is absent.
+bool siconosAvailable() {
+  return false;
+}
+std::string siconosUnsupported(const Rig&) {
+  return "this binary was built without Siconos";
+}
+RunReport runSiconosPeer(const Rig&, RunSink&, const SiconosOptions&) {
+  throw std::invalid_argument("this binary was built without Siconos");
+}
+#endif
+
+}  // namespace metrosync::bench

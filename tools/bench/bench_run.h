@@ -1,0 +1,80 @@
+// One timed run of the full model on any engine, and its error against a reference run.
+//   engines: "simbody" (sim/simbody/full_model.h), "direct" (sim/direct/direct_model.h),
+//            "siconos" (tools/bench/siconos_peer.h, when built with Siconos)
+//   error:   on the envelope (max over rows of |A_i - A_i,ref| and of |psi_j - psi_j,ref| mod 2 pi,
+//            scaled units) and on the final state (max of |dxdot|, |dtheta_i|, |dthetadot_i|,
+//            scaled units; the platform's position x is left out: it is a drift coordinate that
+//            no force depends on)
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "models/rig.h"
+#include "models/scaling.h"
+#include "sim/envelope.h"
+#include "sim/run.h"
+
+namespace metrosync::bench {
+
+// A scene: a rig and what the error measures need from it.
+struct Scene {
+  std::string name;  // short name for tables and file names (the rig file's stem)
+  std::string path;  // the rig file ("" for a rig built in code)
+  Rig rig;
+  ScaledParams scaled;
+  double periods = 0.0;  // fast periods (2 pi / omega0) in the run
+};
+
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides = {});
+Scene sceneFromRig(const std::string& name, const Rig& rig);
+
+// What runs: an engine, one of its integrators and its accuracy knob.
+struct Method {
+  std::string engine;             // simbody | direct | siconos
+  std::string integrator;         // the engine's integrator name (siconos: moreau-jean)
+  double accuracy = 0.0;          // relative local error target (simbody, direct)
+  double steps_per_period = 0.0;  // siconos: h = fast period / steps_per_period
+  std::string label() const { return engine + ":" + integrator; }
+  std::string setting() const;  // "1e-08" or "h=T/256"
+};
+
+// "engine:integrator" or "engine:integrator:setting" (setting: the accuracy, or for siconos the
+// steps per fast period). Throws std::invalid_argument for an unknown engine or integrator.
+Method parseMethod(const std::string& spec);
+// Every integrator of an engine that this binary can run, in its own order.
+std::vector<std::string> integratorsOf(const std::string& engine);
+bool engineAvailable(const std::string& engine);
+
+struct RunResult {
+  Method method;
+  bool complete = true;
+  std::string failure;
+  bool over_budget = false;  // stopped by the benchmark's time budget
+  double wall_s = 0.0;       // the whole call: building the system and running it
+  double cpu_s = 0.0;        // process CPU time over the same interval
+  RunCounts counts;
+  long ticks = 0;  // sum of counts.escapements
+  std::vector<EnvelopeRow> envelope;
+  std::vector<double> final_state;  // scaled: xdot, theta_1, thetadot_1, ..., theta_N, thetadot_N
+  std::string regime;
+};
+
+// Runs `scene` with `method`. The run is abandoned (over_budget) once it has taken more than
+// budget_s of wall time (checked once per fast period).
+RunResult runOnce(const Scene& scene, const Method& method, double budget_s);
+
+struct ErrorVsRef {
+  double max_dA = 0.0;    // max over rows and metronomes of |A_i - A_i,ref|
+  double max_dpsi = 0.0;  // max over rows and j of |psi_j - psi_j,ref| (mod 2 pi, in [0, pi])
+  double envelope = 0.0;  // max of the two: the benchmark's error
+  double final_state = 0.0;
+  long rows = 0;  // rows compared (the shorter of the two runs)
+};
+
+ErrorVsRef compareRuns(const RunResult& run, const RunResult& ref);
+
+// 1-minute load average (/proc/loadavg), NaN when unreadable.
+double loadAverage1();
+
+}  // namespace metrosync::bench

@@ -1,0 +1,408 @@
+// metrosync_bench: speed against error of the full model's engines (issue "Speed against error").
+//   precision  work-precision on rig files: every engine:integrator at every accuracy (Siconos's
+//              Moreau-Jean peer at every step size), against a reference run at the tightest
+//              tolerance that a second integrator cross-checks; CSV, Markdown, gnuplot PNG, and
+//              the time ratios of the engines at equal error
+//   nscale     cost per fast period against the number of metronomes N, per engine
+// Timings are medians of --repeat runs in this process (no process start-up in them); before
+// each timed run the tool waits until the 1-minute load average is below --max-load, because the
+// machine is shared, and it records the load it saw.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include "sim/outputs.h"
+#include "tools/bench/bench_report.h"
+#include "tools/bench/bench_run.h"
+#include "tools/bench/siconos_peer.h"
+
+namespace mb = metrosync::bench;
+
+namespace {
+
+struct Common {
+  std::string envelopes;  // directory for every first run's envelope.csv ("" = none)
+  int repeat = 5;
+  double budget_s = 60;
+  double max_load = 1.2;  // 0: do not wait
+  double max_wait_s = 3600;
+  std::string out = "docs/bench";
+  bool quiet = false;
+};
+
+// Waits (up to max_wait_s) until the 1-minute load average is below max_load; returns the load
+// seen last.
+double waitForLoad(const Common& c) {
+  double load = mb::loadAverage1();
+  if (!(c.max_load > 0)) return load;
+  const auto t0 = std::chrono::steady_clock::now();
+  bool told = false;
+  while (load >= c.max_load &&
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() <
+             c.max_wait_s) {
+    if (!told && !c.quiet)
+      std::cerr << "  (load " << load << " >= " << c.max_load << ": waiting)\n", told = true;
+    std::this_thread::sleep_for(std::chrono::seconds(10));
+    load = mb::loadAverage1();
+  }
+  return load;
+}
+
+std::string fmt(double v, const char* f = "%.3g") {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+// One record: a first run (errors, counts), then repeat - 1 more for the timing medians.
+mb::Record measure(const mb::Scene& scene, const mb::Method& m, const mb::RunResult* ref,
+                   const Common& c, double budget_s, int repeat, mb::RunResult* keep = nullptr) {
+  mb::Record rec;
+  rec.scene = scene.name;
+  rec.n_metronomes = static_cast<int>(scene.rig.metronomes.size());
+  rec.periods = scene.periods;
+  rec.method = m;
+  std::vector<double> walls, cpus, loads;
+  loads.push_back(waitForLoad(c));
+  mb::RunResult first = mb::runOnce(scene, m, budget_s);
+  rec.steps = first.counts.steps;
+  rec.rhs_evals = first.counts.rhs_evals;
+  rec.events = first.counts.events;
+  rec.ticks = first.ticks;
+  rec.stick_slip = first.counts.stick_slip;
+  rec.regime = first.regime;
+  if (ref) rec.error = mb::compareRuns(first, *ref);
+  if (first.over_budget) {
+    rec.status = "over budget";
+    rec.note = "stopped after " + fmt(first.wall_s, "%.0f") + " s at row " +
+               std::to_string(first.envelope.size()) + " of ~" + fmt(scene.periods, "%.0f");
+    rec.wall_median_s = first.wall_s;
+  } else if (!first.complete) {
+    rec.status = "failed";
+    rec.note = first.failure;
+  } else {
+    rec.status = "ok";
+    walls.push_back(first.wall_s);
+    cpus.push_back(first.cpu_s);
+    for (int k = 1; k < repeat; ++k) {
+      loads.push_back(waitForLoad(c));
+      const mb::RunResult again = mb::runOnce(scene, m, budget_s);
+      if (!again.complete) break;
+      walls.push_back(again.wall_s);
+      cpus.push_back(again.cpu_s);
+    }
+    rec.runs = static_cast<int>(walls.size());
+    rec.wall_median_s = mb::median(walls);
+    rec.wall_min_s = *std::min_element(walls.begin(), walls.end());
+    rec.wall_max_s = *std::max_element(walls.begin(), walls.end());
+    rec.cpu_median_s = mb::median(cpus);
+  }
+  rec.load_min = *std::min_element(loads.begin(), loads.end());
+  rec.load_max = *std::max_element(loads.begin(), loads.end());
+  if (!c.quiet)
+    std::cerr << "  " << scene.name << " " << m.label() << " " << m.setting() << ": " << rec.status
+              << (rec.runs ? ", wall " + fmt(rec.wall_median_s) + " s" : "")
+              << (ref ? ", error " + fmt(rec.error.envelope, "%.2e") : "") << ", load "
+              << fmt(rec.load_min, "%.2f") << "-" << fmt(rec.load_max, "%.2f") << "\n";
+  if (!c.envelopes.empty()) {
+    std::filesystem::create_directories(c.envelopes);
+    std::string text = metrosync::envelopeHeader(rec.n_metronomes) + "\n";
+    for (const auto& row : first.envelope) text += metrosync::formatEnvelopeRow(row) + "\n";
+    std::string name = scene.name + "-" + m.engine + "-" + m.integrator + "-" + m.setting();
+    std::replace(name.begin(), name.end(), '/', '_');
+    metrosync::writeFileAtomically(c.envelopes + "/" + name + ".csv", text);
+  }
+  if (keep) *keep = std::move(first);
+  return rec;
+}
+
+std::vector<double> parseList(const std::string& s) {
+  std::vector<double> v;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) v.push_back(std::stod(item));
+  return v;
+}
+
+std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> v;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) v.push_back(item);
+  return v;
+}
+
+std::string loadRange(const std::vector<mb::Record>& recs) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& r : recs)
+    if (r.runs > 0) lo = std::min(lo, r.load_min), hi = std::max(hi, r.load_max);
+  return std::isfinite(lo) ? fmt(lo, "%.2f") + " ... " + fmt(hi, "%.2f") : "n/a";
+}
+
+// ---------------------------------------------------------------------------------------------
+struct PrecisionOptions {
+  std::vector<std::string> scenes, sets;
+  std::string methods;  // "" = every integrator of every available engine
+  std::string accuracies = "1e-3,1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10";
+  std::string siconos_steps = "64,128,256,512,1024,2048,4096,8192,16384";
+  std::string reference = "direct:verner76:1e-12";
+  std::vector<std::string> cross_checks = {"simbody:rk-merson:1e-12"};
+  double ref_budget_s = 1800;
+};
+
+int precision(const PrecisionOptions& o, const Common& c) {
+  std::vector<mb::Method> methods;
+  if (o.methods.empty()) {
+    for (const char* e : {"direct", "simbody", "siconos"})
+      if (mb::engineAvailable(e))
+        for (const auto& i : mb::integratorsOf(e))
+          methods.push_back(mb::parseMethod(std::string(e) + ":" + i));
+  } else {
+    for (const auto& s : splitList(o.methods)) methods.push_back(mb::parseMethod(s));
+  }
+  const std::vector<double> accuracies = parseList(o.accuracies);
+  const std::vector<double> steps = parseList(o.siconos_steps);
+  const mb::Method ref_method = mb::parseMethod(o.reference);
+  std::vector<mb::Method> cross;
+  for (const auto& s : o.cross_checks) cross.push_back(mb::parseMethod(s));
+  std::filesystem::create_directories(c.out);
+
+  for (const std::string& path : o.scenes) {
+    const mb::Scene scene = mb::loadScene(path, o.sets);
+    if (!c.quiet)
+      std::cerr << scene.name << ": N = " << scene.rig.metronomes.size() << ", "
+                << fmt(scene.periods, "%.0f")
+                << " fast periods, tau_end = " << fmt(scene.scaled.tau_end, "%.4g")
+                << ", epsilon = " << fmt(scene.scaled.epsilon, "%.4g") << "\n";
+    std::vector<mb::Record> recs;
+    const std::string base = c.out + "/wp-" + scene.name;
+    auto save = [&]() { metrosync::writeFileAtomically(base + ".csv", mb::recordsCsv(recs)); };
+
+    // the reference (timed once: it is not on the curves) and its cross-checks
+    mb::RunResult ref;
+    mb::Record rr = measure(scene, ref_method, nullptr, c, o.ref_budget_s, 1, &ref);
+    if (rr.status != "ok") {
+      std::cerr << "metrosync_bench: " << scene.name << ": the reference run " << ref_method.label()
+                << " " << ref_method.setting() << " did not finish: " << rr.note << "\n";
+      return 3;
+    }
+    rr.status = "reference";
+    recs.push_back(rr);
+    for (const mb::Method& m : cross) {
+      mb::Record cr = measure(scene, m, &ref, c, o.ref_budget_s, 1);
+      if (cr.status == "ok") cr.status = "cross-check";
+      recs.push_back(cr);
+      save();
+    }
+
+    for (const mb::Method& base_m : methods) {
+      if (base_m.engine == "siconos" && !mb::siconosUnsupported(scene.rig).empty()) {
+        mb::Record r;
+        r.scene = scene.name;
+        r.method = base_m;
+        r.status = "not run";
+        r.note = mb::siconosUnsupported(scene.rig);
+        recs.push_back(r);
+        continue;
+      }
+      const std::vector<double>& settings = base_m.engine == "siconos" ? steps : accuracies;
+      double prev_wall = 0, last_wall = 0;
+      bool stop = false;
+      for (double s : settings) {
+        mb::Method m = base_m;
+        (m.engine == "siconos" ? m.steps_per_period : m.accuracy) = s;
+        if (stop) {
+          mb::Record r;
+          r.scene = scene.name;
+          r.n_metronomes = static_cast<int>(scene.rig.metronomes.size());
+          r.periods = scene.periods;
+          r.method = m;
+          r.status = "skipped (predicted over budget)";
+          recs.push_back(r);
+          continue;
+        }
+        mb::Record r = measure(scene, m, &ref, c, c.budget_s, c.repeat);
+        recs.push_back(r);
+        save();
+        if (r.status == "over budget") {
+          stop = true;
+          continue;
+        }
+        if (r.status != "ok") continue;
+        prev_wall = last_wall;
+        last_wall = r.wall_median_s;
+        // the next setting costs about as much more as this one did over the previous one
+        const double growth = prev_wall > 0 ? std::max(1.0, last_wall / prev_wall) : 1.0;
+        if (last_wall * growth > 3 * c.budget_s) stop = true;
+      }
+    }
+    save();
+
+    // tables, ratios, plot
+    std::string ratio_csv;
+    const std::string ratios = mb::ratiosMarkdown(recs, ratio_csv);
+    metrosync::writeFileAtomically(base + "-equal-error.csv",
+                                   "scene,a,b,error,time_a_s,time_b_s,ratio\n" + ratio_csv);
+    std::ostringstream md;
+    md << "### " << scene.name << "\n\n"
+       << "`" << (scene.path.empty() ? scene.name : scene.path)
+       << "`: N = " << scene.rig.metronomes.size()
+       << ", epsilon = " << fmt(scene.scaled.epsilon, "%.4g")
+       << ", tau_end = " << fmt(scene.scaled.tau_end, "%.4g") << " (" << fmt(scene.periods, "%.0f")
+       << " fast periods, " << fmt(scene.rig.sim.t_end_s, "%.4g") << " s). Reference "
+       << ref_method.label() << " at " << ref_method.setting() << "; 1-minute load during the "
+       << "timed runs " << loadRange(recs) << ".\n\n"
+       << mb::precisionTable(recs) << "\nTime ratios at equal envelope error (a / b; < 1: a is "
+       << "faster):\n\n"
+       << ratios << "\n![work-precision " << scene.name << "](wp-" << scene.name << ".png)\n";
+    metrosync::writeFileAtomically(base + ".md", md.str());
+    mb::plotWorkPrecision(base + ".png", recs,
+                          "work-precision: " + scene.name +
+                              " (N = " + std::to_string(scene.rig.metronomes.size()) + ", " +
+                              fmt(scene.periods, "%.0f") + " fast periods)");
+    if (!c.quiet) std::cout << md.str() << "\n";
+  }
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+struct NScaleOptions {
+  std::string ns = "1,2,4,8,16,32,64,100";
+  double periods = 20;
+  std::string methods = "direct:verner65:1e-8,simbody:rk-merson:1e-8,siconos:moreau-jean:256";
+  double mu_bar = 1e-4;
+  double board_kg = 0.8;
+  unsigned seed = 7;
+};
+
+// N Wittner metronomes as in yaml/rigs/experiment.yaml on a board of board_kg (epsilon N < 1 for
+// any N in physical units: epsilon N = N m / (M_board + N m_metronome) < m / m_metronome = 0.27),
+// started at 45 degrees with phases drawn from a fixed seed.
+metrosync::Rig nRig(int n, const NScaleOptions& o) {
+  metrosync::Rig rig;
+  rig.name = "n" + std::to_string(n);
+  rig.platform.mass_kg = o.board_kg;
+  rig.platform.law = metrosync::FrictionLaw::Coulomb;
+  rig.platform.mu_bar = o.mu_bar;
+  std::mt19937 gen(o.seed);
+  std::uniform_real_distribution<double> phase(0.0, 6.283185307179586);
+  for (int i = 0; i < n; ++i) {
+    metrosync::MetronomeSpec m;
+    m.name = "M" + std::to_string(i + 1);
+    m.box_mass_kg = 0.0602;
+    m.pendulum_mass_kg = 0.0226;
+    m.length_m = 0.0225;
+    m.inertia_kgm2 = m.pendulum_mass_kg * m.length_m * m.length_m;
+    m.damping_kg_s = 2 * 0.5 * m.inertia_kgm2 / (m.length_m * m.length_m);  // decay rate 0.5/s
+    m.theta_c_rad = 0.244;
+    m.impulse_Nms = 1.49e-5;  // steady amplitude ~0.785 rad alone on a still table
+    const double phi = phase(gen), w0 = std::sqrt(9.81 / m.length_m);
+    m.start_angle_rad = 0.785 * std::sin(phi);
+    m.start_rate_rad_s = 0.785 * w0 * std::cos(phi);
+    rig.metronomes.push_back(m);
+  }
+  const double omega0 = std::sqrt(9.81 / 0.0225);
+  rig.sim.t_end_s = o.periods * 6.283185307179586 / omega0;
+  return rig;
+}
+
+int nscale(const NScaleOptions& o, const Common& c) {
+  std::vector<mb::Method> methods;
+  for (const auto& s : splitList(o.methods)) methods.push_back(mb::parseMethod(s));
+  std::filesystem::create_directories(c.out);
+  std::vector<mb::Record> recs;
+  std::vector<bool> stopped(methods.size(), false);
+  for (double nd : parseList(o.ns)) {
+    const int n = static_cast<int>(nd);
+    const mb::Scene scene = mb::sceneFromRig("n" + std::to_string(n), nRig(n, o));
+    for (size_t k = 0; k < methods.size(); ++k) {
+      if (stopped[k]) continue;  // a larger N would only take longer
+      mb::Record r = measure(scene, methods[k], nullptr, c, c.budget_s, c.repeat);
+      recs.push_back(r);
+      if (r.status == "over budget") stopped[k] = true;
+      metrosync::writeFileAtomically(c.out + "/nscale.csv", mb::recordsCsv(recs));
+    }
+  }
+  std::ostringstream md;
+  md << "Cost per fast period (median wall time of the run / " << fmt(o.periods, "%g")
+     << " fast periods, milliseconds) against N; board " << o.board_kg << " kg, mu-bar " << o.mu_bar
+     << ", phases from seed " << o.seed << "; 1-minute load during the timed runs "
+     << loadRange(recs) << ".\n\n"
+     << mb::nscaleTable(recs);
+  metrosync::writeFileAtomically(c.out + "/nscale.md", md.str());
+  mb::plotNScaling(c.out + "/nscale.png", recs,
+                   "cost per fast period against N (" + fmt(o.periods, "%g") + " periods)");
+  if (!c.quiet) std::cout << md.str();
+  return 0;
+}
+
+void addCommon(CLI::App* cmd, Common& c) {
+  cmd->add_option("--repeat", c.repeat, "timed runs per point (median)")->capture_default_str();
+  cmd->add_option("--budget", c.budget_s,
+                  "seconds a run may take; longer runs are stopped and the tighter settings of "
+                  "that integrator skipped")
+      ->capture_default_str();
+  cmd->add_option("--max-load", c.max_load,
+                  "wait before each timed run until the 1-minute load average is below this "
+                  "(0: never wait)")
+      ->capture_default_str();
+  cmd->add_option("--max-wait", c.max_wait_s, "seconds to wait for the load at most, per run")
+      ->capture_default_str();
+  cmd->add_option("--out", c.out, "output directory")->capture_default_str();
+  cmd->add_flag("-q,--quiet", c.quiet, "no progress on stderr, no tables on stdout");
+  cmd->add_option("--envelopes", c.envelopes,
+                  "write the envelope of every measured point (its first run) to DIR/*.csv")
+      ->type_name("DIR");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"metrosync_bench: work-precision and N-scaling of the full model's engines"};
+  app.require_subcommand(1);
+  Common common;
+
+  PrecisionOptions po;
+  CLI::App* pc = app.add_subcommand("precision", "work-precision on rig files");
+  pc->add_option("--scene", po.scenes, "rig file (repeatable)")->required();
+  pc->add_option("--set", po.sets, "override a rig key of every scene (KEY=VALUE)");
+  pc->add_option("--methods", po.methods,
+                 "engine:integrator list (default: every integrator of every engine built in)");
+  pc->add_option("--accuracies", po.accuracies, "accuracies (simbody, direct)")
+      ->capture_default_str();
+  pc->add_option("--siconos-steps", po.siconos_steps,
+                 "Moreau-Jean steps per fast period (h = 2 pi / omega0 / this)")
+      ->capture_default_str();
+  pc->add_option("--reference", po.reference, "engine:integrator:accuracy of the reference")
+      ->capture_default_str();
+  pc->add_option("--cross-check", po.cross_checks,
+                 "engine:integrator:accuracy checked against the reference (repeatable)");
+  pc->add_option("--ref-budget", po.ref_budget_s, "seconds the reference runs may take")
+      ->capture_default_str();
+  addCommon(pc, common);
+
+  NScaleOptions no;
+  CLI::App* nc = app.add_subcommand("nscale", "cost per fast period against N");
+  nc->add_option("--n", no.ns, "numbers of metronomes")->capture_default_str();
+  nc->add_option("--periods", no.periods, "fast periods per run")->capture_default_str();
+  nc->add_option("--methods", no.methods, "engine:integrator:setting list")->capture_default_str();
+  nc->add_option("--mu", no.mu_bar, "platform mu-bar")->capture_default_str();
+  nc->add_option("--board", no.board_kg, "board mass, kg")->capture_default_str();
+  nc->add_option("--seed", no.seed, "seed of the start phases")->capture_default_str();
+  addCommon(nc, common);
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (pc->parsed()) return precision(po, common);
+    return nscale(no, common);
+  } catch (const std::exception& e) {
+    std::cerr << "metrosync_bench: error: " << e.what() << "\n";
+    return 2;
+  }
+}
