@@ -16,11 +16,11 @@ namespace metrosync {
 // Energy bookkeeping of a full-model run (physical units, joules): what the system has now
 // against what it had, what the escapement put in and what damping and friction took out.
 struct EnergyLedger {
-  double initial_J = 0.0;         // kinetic + potential at the start
-  double final_J = 0.0;           // kinetic + potential at the end
-  double escapement_in_J = 0.0;   // sum over ticks of the kinetic-energy jump
-  double damping_out_J = 0.0;     // integral of nu-bar L^2 thetadot^2 over all pivots
-  double friction_out_J = 0.0;    // integral of |F xdot| (Coulomb slip, viscous)
+  double initial_J = 0.0;        // kinetic + potential at the start
+  double final_J = 0.0;          // kinetic + potential at the end
+  double escapement_in_J = 0.0;  // sum over ticks of the kinetic-energy jump
+  double damping_out_J = 0.0;    // integral of nu-bar L^2 thetadot^2 over all pivots
+  double friction_out_J = 0.0;   // integral of |F xdot| (Coulomb slip, viscous)
   // (final - initial) - (in - out): zero up to integration error
   double residual_J() const {
     return (final_J - initial_J) - (escapement_in_J - damping_out_J - friction_out_J);
@@ -42,13 +42,13 @@ struct RunReport {
   std::string engine;      // "simbody", "direct", "slowflow"
   std::string integrator;  // the integrator used
   double accuracy = 0.0;
-  bool complete = true;    // false when the run stopped early
-  std::string failure;     // why it stopped, with the time (empty when complete)
+  bool complete = true;  // false when the run stopped early
+  std::string failure;   // why it stopped, with the time (empty when complete)
   double wall_seconds = 0.0;
   RunCounts counts;
   bool has_ledger = false;
   EnergyLedger ledger;
-  EnvelopeRow final_row;   // last envelope row (tau, A, psi)
+  EnvelopeRow final_row;  // last envelope row (tau, A, psi)
   // full model: state at the end, in the rig's units: t, x, xdot, theta_i, thetadot_i, platform
   std::vector<double> final_trajectory_row;
 };
