@@ -113,14 +113,16 @@ TEST(BenchTool, RunsEndToEndOnATinyScene) {
   std::string cmd = std::string("'") + METROSYNC_BENCH_BINARY + "' precision --scene '" + rig +
                     "' --set simulation.duration=2 --methods direct:verner65,simbody:rk-merson" +
                     (mb::siconosAvailable() ? ",siconos:moreau-jean" : "") +
-                    " --accuracies 1e-5,1e-7 --siconos-steps 64,128 --reference "
+                    " --accuracies 1e-5,1e-7 --simbody-accuracies 1e-5 --siconos-steps 64,128 "
+                    "--reference "
                     "direct:verner76:1e-11 --cross-check direct:dopri5:1e-11 --repeat 2 "
                     "--max-load 0 --quiet --out '" +
                     out.string() + "'";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   const std::string csv = readFile(out / "wp-experiment.csv");
-  // header, reference, cross-check, 2 + 2 (+ 2 siconos) points
-  EXPECT_EQ(countLines(csv), 1 + 2 + 4 + (mb::siconosAvailable() ? 2 : 0)) << csv;
+  // header, reference, cross-check, 2 direct + 1 simbody (+ 2 siconos) points
+  EXPECT_EQ(countLines(csv), 1 + 2 + 3 + (mb::siconosAvailable() ? 2 : 0)) << csv;
+  EXPECT_EQ(csv.find("simbody,rk-merson,1e-07"), std::string::npos) << csv;
   EXPECT_NE(csv.find(",reference,"), std::string::npos);
   EXPECT_NE(csv.find(",cross-check,"), std::string::npos);
   EXPECT_EQ(csv.find(",failed,"), std::string::npos) << csv;

@@ -246,6 +246,8 @@ bool plotWorkPrecision(const std::string& png_path, const std::vector<Record>& r
 
 bool plotNScaling(const std::string& png_path, const std::vector<Record>& records,
                   const std::string& title) {
+  // two panels: the cost per fast period against N (with guides proportional to N and to N^2
+  // through the first curve's first point), and the cost per step and metronome against N
   std::ostringstream data;
   std::vector<std::string> titles;
   for (const std::string& label : labelsInOrder(records)) {
@@ -253,8 +255,9 @@ bool plotNScaling(const std::string& png_path, const std::vector<Record>& record
     int n = 0;
     std::string setting;
     for (const Record& r : records) {
-      if (r.method.label() != label || !r.timed()) continue;
-      block << r.n_metronomes << ' ' << r.wall_median_s / r.periods << '\n';
+      if (r.method.label() != label || !r.timed() || r.steps <= 0) continue;
+      block << r.n_metronomes << ' ' << r.wall_median_s / r.periods << ' '
+            << 1e6 * r.wall_median_s / (static_cast<double>(r.steps) * r.n_metronomes) << '\n';
       setting = r.method.setting();
       ++n;
     }
@@ -263,27 +266,36 @@ bool plotNScaling(const std::string& png_path, const std::vector<Record>& record
     titles.push_back(label + " " + setting);
   }
   if (titles.empty()) return false;
-  // a guide through the first curve's first point, proportional to N
+  int n_max = 0;
+  for (const Record& q : records) n_max = std::max(n_max, q.n_metronomes);
   for (const Record& r : records) {
-    if (!r.timed()) continue;
-    int n_max = 0;
-    for (const Record& q : records) n_max = std::max(n_max, q.n_metronomes);
-    const double c0 = r.wall_median_s / r.periods;
+    if (!r.timed() || r.steps <= 0) continue;
+    const double c0 = r.wall_median_s / r.periods, n0 = r.n_metronomes;
     data << "# proportional to N\n"
-         << r.n_metronomes << ' ' << c0 << '\n'
-         << n_max << ' ' << c0 * n_max / r.n_metronomes << "\n\n\n";
+         << n0 << ' ' << c0 << "\n"
+         << n_max << ' ' << c0 * n_max / n0 << "\n\n\n"
+         << "# proportional to N^2\n"
+         << n0 << ' ' << c0 << "\n"
+         << n_max << ' ' << c0 * (n_max / n0) * (n_max / n0) << "\n\n\n";
     break;
   }
+  const size_t k_lin = titles.size(), k_sq = titles.size() + 1;
   std::ostringstream gp;
-  gp << "set terminal pngcairo size 1000,700 font 'Sans,11'\nset output @PNG@\n"
-     << "set title " << gq(title) << "\nset logscale xy\nset format y '10^{%L}'\n"
-     << "set xlabel 'N (metronomes)'\nset ylabel 'wall time per fast period, median (s)'\n"
-     << "set grid\nset key left top\nplot ";
+  gp << "set terminal pngcairo size 1400,600 font 'Sans,11'\nset output @PNG@\n"
+     << "set multiplot layout 1,2 title " << gq(title) << "\nset logscale xy\nset grid\n"
+     << "set xlabel 'N (metronomes)'\nset key left top\n"
+     << "set format y '10^{%L}'\nset ylabel 'wall time per fast period, median (s)'\nplot ";
   for (size_t k = 0; k < titles.size(); ++k)
     gp << (k ? ", " : "") << "@DATA@ index " << k << " using 1:2 with linespoints lw 2 title "
        << gq(titles[k]);
-  gp << ", @DATA@ index " << titles.size() << " using 1:2 with lines dt 2 lw 1.5 lc 'gray40' title "
-     << "'proportional to N'\n";
+  gp << ", @DATA@ index " << k_lin << " using 1:2 with lines dt 2 lw 1.5 lc 'gray40' title "
+     << "'proportional to N', @DATA@ index " << k_sq
+     << " using 1:2 with lines dt 3 lw 1.5 lc 'gray20' title 'proportional to N^2'\n"
+     << "set format y '%g'\nset ylabel 'wall time per step and metronome, median (us)'\nplot ";
+  for (size_t k = 0; k < titles.size(); ++k)
+    gp << (k ? ", " : "") << "@DATA@ index " << k << " using 1:3 with linespoints lw 2 title "
+       << gq(titles[k]);
+  gp << "\nunset multiplot\n";
   return runGnuplot(png_path, data.str(), gp.str());
 }
 
@@ -293,18 +305,24 @@ std::string nscaleTable(const std::vector<Record>& records) {
   std::set<int> ns;
   for (const Record& r : records) ns.insert(r.n_metronomes);
   os << "| N |";
-  for (const auto& l : labels) os << " " << l << " ms/period |";
+  for (const auto& l : labels) os << " " << l << " ms/period | steps/period | us/(step N) |";
   os << "\n|---|";
-  for (size_t k = 0; k < labels.size(); ++k) os << "---|";
+  for (size_t k = 0; k < labels.size(); ++k) os << "---|---|---|";
   os << "\n";
   for (int n : ns) {
     os << "| " << n << " |";
     for (const auto& l : labels) {
-      std::string cell;
+      std::string cell = " |  |  |";
       for (const Record& r : records)
-        if (r.n_metronomes == n && r.method.label() == l)
-          cell = r.timed() ? num(1e3 * r.wall_median_s / r.periods) : r.status;
-      os << " " << cell << " |";
+        if (r.n_metronomes == n && r.method.label() == l) {
+          if (r.timed() && r.steps > 0)
+            cell = num(1e3 * r.wall_median_s / r.periods) + " | " +
+                   num(static_cast<double>(r.steps) / r.periods) + " | " +
+                   num(1e6 * r.wall_median_s / (static_cast<double>(r.steps) * n)) + " |";
+          else
+            cell = r.status + " |  |  |";
+        }
+      os << " " << cell;
     }
     os << "\n";
   }

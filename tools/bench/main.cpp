@@ -150,6 +150,7 @@ struct PrecisionOptions {
   std::vector<std::string> scenes, sets;
   std::string methods;  // "" = every integrator of every available engine
   std::string accuracies = "1e-3,1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10";
+  std::string simbody_accuracies;  // "" = accuracies
   std::string siconos_steps = "64,128,256,512,1024,2048,4096,8192,16384";
   std::string reference = "direct:verner76:1e-12";
   std::vector<std::string> cross_checks = {"simbody:rk-merson:1e-12"};
@@ -167,6 +168,8 @@ int precision(const PrecisionOptions& o, const Common& c) {
     for (const auto& s : splitList(o.methods)) methods.push_back(mb::parseMethod(s));
   }
   const std::vector<double> accuracies = parseList(o.accuracies);
+  const std::vector<double> simbody_accuracies =
+      o.simbody_accuracies.empty() ? accuracies : parseList(o.simbody_accuracies);
   const std::vector<double> steps = parseList(o.siconos_steps);
   const mb::Method ref_method = mb::parseMethod(o.reference);
   std::vector<mb::Method> cross;
@@ -211,7 +214,9 @@ int precision(const PrecisionOptions& o, const Common& c) {
         recs.push_back(r);
         continue;
       }
-      const std::vector<double>& settings = base_m.engine == "siconos" ? steps : accuracies;
+      const std::vector<double>& settings = base_m.engine == "siconos"   ? steps
+                                            : base_m.engine == "simbody" ? simbody_accuracies
+                                                                         : accuracies;
       double prev_wall = 0, last_wall = 0;
       bool stop = false;
       for (double s : settings) {
@@ -374,6 +379,9 @@ int main(int argc, char** argv) {
   pc->add_option("--set", po.sets, "override a rig key of every scene (KEY=VALUE)");
   pc->add_option("--methods", po.methods,
                  "engine:integrator list (default: every integrator of every engine built in)");
+  pc->add_option("--simbody-accuracies", po.simbody_accuracies,
+                 "accuracies of the simbody engine (default: --accuracies); its runs cost "
+                 "seconds each, the direct engine's milliseconds");
   pc->add_option("--accuracies", po.accuracies, "accuracies (simbody, direct)")
       ->capture_default_str();
   pc->add_option("--siconos-steps", po.siconos_steps,
