@@ -308,11 +308,20 @@ Stage FullModelRun::resolve(State& s) {
       } else if (microSlip(s, v)) {
         // friction stops the platform within a negligible time (a huge mu): the limit of that
         // slip is a plastic stop, an impulse on x alone that brings xdot to zero; the kinetic
-        // energy it removes is friction's
+        // energy it removes is friction's. It is counted and recorded as the direct engine
+        // (which integrates that slip) counts it: a slip, unless one was under way in that
+        // direction, then its stop as an event of its own
+        const PlatformMode m = v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative;
+        const PlatformMode before = was_stuck ? PlatformMode::Stuck : coulomb->mode(s);
+        if (m != before) {
+          ++report_.counts.stick_slip;
+          eventRow("slip", s);
+        }
         const double e_before = energy(s);
         stopPlastically(s, v);
         report_.ledger.friction_out_J += e_before - energy(s);
-        decideAtRest(s, was_stuck ? PlatformMode::Stuck : coulomb->mode(s));
+        ++report_.counts.events;
+        decideAtRest(s, m);
       } else {
         const PlatformMode m = v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative;
         const PlatformMode before = was_stuck ? PlatformMode::Stuck : coulomb->mode(s);

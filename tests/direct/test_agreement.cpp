@@ -52,9 +52,6 @@ const std::map<std::string, std::string>& notComparable() {
   static const std::map<std::string, std::string> m = {
       {"hard/storm.yaml",
        "an event storm by design: both engines stop it with exit 3 (tests/hard, tests/direct)"},
-      {"hard/mu-huge.yaml",
-       "the Simbody engine treats a slip that friction ends within 1e-6 of a period as a plastic "
-       "stop (its integrator cannot step that short), an O(1e-6) difference by design"},
   };
   return m;
 }
