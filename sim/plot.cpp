@@ -73,10 +73,8 @@ void warn(const std::string& what) {
   std::cerr << "metrosync: warning: " << what << "\n";
 }
 
-bool writeData(const std::string& path,
-               const std::vector<const std::vector<EnvelopeRow>*>& blocks) {
-  std::ofstream out(path);
-  if (!out) return false;
+std::string envelopeData(const std::vector<const std::vector<EnvelopeRow>*>& blocks) {
+  std::ostringstream out;
   for (size_t b = 0; b < blocks.size(); ++b) {
     if (b) out << "\n\n";  // gnuplot: two blank lines separate data blocks (`index`)
     if (blocks[b]->empty()) {
@@ -91,7 +89,7 @@ bool writeData(const std::string& path,
       out << '\n';
     }
   }
-  return static_cast<bool>(out);
+  return out.str();
 }
 
 std::string firstLines(const std::string& path, int count) {
@@ -108,13 +106,6 @@ std::string firstLines(const std::string& path, int count) {
 bool drawPlot(const OutputDir& dir, const std::string& png_name,
               const std::vector<const std::vector<EnvelopeRow>*>& blocks,
               const std::vector<double>& theta_c, const std::string& title) {
-  static bool warned_missing = false;
-  const std::string gnuplot = findExecutable("gnuplot");
-  if (gnuplot.empty()) {
-    if (!warned_missing) warn("gnuplot not found on PATH: plots are skipped");
-    warned_missing = true;
-    return false;
-  }
   int n = 0;
   double psi_lo = 0.0, psi_hi = 2 * kPi, tau_max = 0.0;
   bool any = false;
@@ -127,32 +118,44 @@ bool drawPlot(const OutputDir& dir, const std::string& png_name,
         if (std::isfinite(p)) psi_lo = std::min(psi_lo, p), psi_hi = std::max(psi_hi, p);
     }
   if (!any) {
-    warn(png_name + " not written: no envelope row to plot");
+    if (!findExecutable("gnuplot").empty())
+      warn(png_name + " not written: no envelope row to plot");
     return false;
   }
+  return drawPng(dir, png_name, envelopeData(blocks),
+                 [&](const std::string& data_path, const std::string& png_path) {
+                   return gnuplotScript(data_path, png_path, n, static_cast<int>(blocks.size()),
+                                        theta_c, tau_max, psi_lo, psi_hi, title);
+                 });
+}
 
+}  // namespace
+
+bool drawPng(const OutputDir& dir, const std::string& png_name, const std::string& data,
+             const std::function<std::string(const std::string&, const std::string&)>& script) {
+  const std::string gnuplot = findExecutable("gnuplot");
+  if (gnuplot.empty()) {
+    static bool warned = false;
+    if (!warned) warn("gnuplot not found on PATH: plots are skipped");
+    warned = true;
+    return false;
+  }
   const std::string final_png = dir.file(png_name);
   const std::string png = temporaryPathFor(final_png);
-  const std::string data = temporaryPathFor(final_png + ".dat");
-  const std::string script = temporaryPathFor(final_png + ".gp");
+  const std::string data_path = temporaryPathFor(final_png + ".dat");
+  const std::string script_path = temporaryPathFor(final_png + ".gp");
   const std::string log = temporaryPathFor(final_png + ".log");
   auto cleanup = [&] {
-    for (const auto* p : {&data, &script, &log}) std::remove(p->c_str());
+    for (const auto* p : {&data_path, &script_path, &log}) std::remove(p->c_str());
   };
-
-  bool ok = writeData(data, blocks);
-  if (ok) {
-    std::ofstream s(script);
-    s << gnuplotScript(data, png, n, static_cast<int>(blocks.size()), theta_c, tau_max, psi_lo,
-                       psi_hi, title);
-    ok = static_cast<bool>(s);
-  }
+  bool ok = static_cast<bool>(std::ofstream(data_path) << data);
+  ok = ok && static_cast<bool>(std::ofstream(script_path) << script(data_path, png));
   if (!ok) {
     cleanup();
     warn(png_name + " not written: cannot write its data in " + dir.path());
     return false;
   }
-  const int rc = runGnuplot(gnuplot, script, log);
+  const int rc = runGnuplot(gnuplot, script_path, log);
   struct stat st {};
   if (rc != 0 || ::stat(png.c_str(), &st) != 0 || st.st_size == 0) {
     const std::string why = firstLines(log, 3);
@@ -169,8 +172,6 @@ bool drawPlot(const OutputDir& dir, const std::string& png_name,
   }
   return true;
 }
-
-}  // namespace
 
 int runGnuplot(const std::string& gnuplot, const std::string& script, const std::string& log_path) {
   posix_spawn_file_actions_t fa;

@@ -8,6 +8,7 @@
 // error: the run's results do not depend on its plots.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,12 @@ std::string findExecutable(const std::string& name);
 // Runs `gnuplot script` (stdin and stdout to /dev/null, stderr to `log_path`); returns gnuplot's
 // exit status, or -1 if it could not be run.
 int runGnuplot(const std::string& gnuplot, const std::string& script, const std::string& log_path);
+
+// Draws DIR/png_name: writes `data` to a temporary file next to it, runs the gnuplot script that
+// script(data_path, png_path) returns, renames the PNG into place. A missing gnuplot (said once
+// per process) or a failing one is a warning; returns true when the PNG was written.
+bool drawPng(const OutputDir& dir, const std::string& png_name, const std::string& data,
+             const std::function<std::string(const std::string&, const std::string&)>& script);
 
 // Returns true when DIR/png_name was written. theta_c: (N x 1) scaled critical angles.
 bool plotEnvelope(const OutputDir& dir, const std::string& png_name,

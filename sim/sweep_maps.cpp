@@ -1,23 +1,11 @@
 #include "sim/sweep_maps.h"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <functional>
-#include <iostream>
 #include <sstream>
 
 #include "sim/plot.h"
-
-extern char** environ;
 
 namespace metrosync {
 
@@ -55,57 +43,6 @@ std::string quote(const std::string& s) {
   std::string q = "'";
   for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
   return q + "'";
-}
-
-void warn(const std::string& what) {
-  std::cerr << "metrosync: warning: " << what << "\n";
-}
-
-std::string firstLine(const std::string& path) {
-  std::ifstream in(path);
-  std::string line, text;
-  while (std::getline(in, line) && text.size() < 300)
-    if (line.find_first_not_of(" \t^") != std::string::npos)
-      text += (text.empty() ? "" : " | ") + line;
-  return text;
-}
-
-// Writes `data`, runs `script` (built for the temporary png path) and renames the png.
-bool draw(const OutputDir& dir, const std::string& png_name, const std::string& data,
-          const std::function<std::string(const std::string&, const std::string&)>& script) {
-  const std::string gnuplot = findExecutable("gnuplot");
-  if (gnuplot.empty()) return false;  // sim/plot.h warns once for the whole command
-  const std::string final_png = dir.file(png_name);
-  const std::string png = temporaryPathFor(final_png);
-  const std::string data_path = temporaryPathFor(final_png + ".dat");
-  const std::string script_path = temporaryPathFor(final_png + ".gp");
-  const std::string log = temporaryPathFor(final_png + ".log");
-  auto cleanup = [&] {
-    for (const auto* p : {&data_path, &script_path, &log}) std::remove(p->c_str());
-  };
-  bool ok = static_cast<bool>(std::ofstream(data_path) << data);
-  ok = ok && static_cast<bool>(std::ofstream(script_path) << script(data_path, png));
-  if (!ok) {
-    cleanup();
-    warn(png_name + " not written: cannot write its data in " + dir.path());
-    return false;
-  }
-  const int rc = runGnuplot(gnuplot, script_path, log);
-  struct stat st {};
-  if (rc != 0 || ::stat(png.c_str(), &st) != 0 || st.st_size == 0) {
-    const std::string why = firstLine(log);
-    warn(png_name + " not written: gnuplot failed" + (why.empty() ? "" : ": " + why));
-    std::remove(png.c_str());
-    cleanup();
-    return false;
-  }
-  cleanup();
-  if (std::rename(png.c_str(), final_png.c_str()) != 0) {
-    std::remove(png.c_str());
-    warn(png_name + " not written: cannot rename its temporary file");
-    return false;
-  }
-  return true;
 }
 
 // The axes drawn: those with more than one value (a single point is drawn along axis 0).
@@ -325,7 +262,7 @@ std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& gr
       else
         d << " " << rgb << "\n";
     }
-    if (draw(dir, "regimes.png", d.str(), [&](const std::string& data, const std::string& png) {
+    if (drawPng(dir, "regimes.png", d.str(), [&](const std::string& data, const std::string& png) {
           return regimeMapScript(data, png, grid, legend, title + " - regimes");
         }))
       written.push_back("regimes.png");
@@ -394,7 +331,7 @@ std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& gr
       s << "set output\n";
       return s.str();
     };
-    if (draw(dir, name, values, script)) written.push_back(name);
+    if (drawPng(dir, name, values, script)) written.push_back(name);
   };
   std::vector<Quantity> amps, phases;
   for (int i = 0; i < std::min(n, kMaxPanels); ++i)

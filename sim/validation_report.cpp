@@ -1,13 +1,8 @@
 #include "sim/validation_report.h"
 
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <functional>
-#include <iostream>
 #include <sstream>
 
 #include "contact/averaged_response.h"
@@ -105,64 +100,11 @@ bool isAliveRegime(Regime r) {
 
 // ---- gnuplot --------------------------------------------------------------------------------
 
-void warn(const std::string& what) {
-  std::cerr << "metrosync: warning: " << what << "\n";
-}
-
 // gnuplot single-quoted string
 std::string quote(const std::string& s) {
   std::string q = "'";
   for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
   return q + "'";
-}
-
-// Writes `data` next to DIR/png_name, runs the script that `script(data_path, png_path)` returns,
-// renames the PNG into place. A missing or failing gnuplot is a warning.
-bool drawPng(const OutputDir& dir, const std::string& png_name, const std::string& data,
-             const std::function<std::string(const std::string&, const std::string&)>& script) {
-  const std::string gnuplot = findExecutable("gnuplot");
-  if (gnuplot.empty()) {
-    static bool warned = false;
-    if (!warned) warn("gnuplot not found on PATH: the report's plots are skipped");
-    warned = true;
-    return false;
-  }
-  const std::string final_png = dir.file(png_name);
-  const std::string png = temporaryPathFor(final_png);
-  const std::string data_path = temporaryPathFor(final_png + ".dat");
-  const std::string script_path = temporaryPathFor(final_png + ".gp");
-  const std::string log = temporaryPathFor(final_png + ".log");
-  auto cleanup = [&] {
-    for (const auto* p : {&data_path, &script_path, &log}) std::remove(p->c_str());
-  };
-  {
-    std::ofstream d(data_path), s(script_path);
-    d << data;
-    s << script(data_path, png);
-    if (!d || !s) {
-      cleanup();
-      warn(png_name + " not written: cannot write its data in " + dir.path());
-      return false;
-    }
-  }
-  const int rc = runGnuplot(gnuplot, script_path, log);
-  struct stat st {};
-  if (rc != 0 || ::stat(png.c_str(), &st) != 0 || st.st_size == 0) {
-    std::ifstream in(log);
-    std::string first;
-    std::getline(in, first);
-    warn(png_name + " not written: gnuplot failed" + (first.empty() ? "" : ": " + first));
-    std::remove(png.c_str());
-    cleanup();
-    return false;
-  }
-  cleanup();
-  if (std::rename(png.c_str(), final_png.c_str()) != 0) {
-    std::remove(png.c_str());
-    warn(png_name + " not written: cannot rename its temporary file");
-    return false;
-  }
-  return true;
 }
 
 const char* const kColours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9",
