@@ -8,7 +8,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "contact/simbody/coulomb_element.h"
+#include "contact/simbody/driven_coulomb_harness.h"
 
 namespace metrosync {
 
@@ -33,9 +33,11 @@ class Drive : public Force::Custom::Implementation {
   double B_;
 };
 
+}  // namespace
+
 // The element's one witness; the handler applies the element's own switching rule and records
 // every change of mode.
-class Switch : public TriggeredEventHandler {
+class DrivenCoulombHarness::Switch : public TriggeredEventHandler {
  public:
   Switch(const System& sys, const CoulombElement& c)
       : TriggeredEventHandler(Stage::Acceleration), sys_(sys), c_(c) {
@@ -54,25 +56,24 @@ class Switch : public TriggeredEventHandler {
   const CoulombElement& c_;
 };
 
-struct Harness {
-  MultibodySystem system;
-  SimbodyMatterSubsystem matter{system};
-  GeneralForceSubsystem forces{system};
-  MobilizedBody::Slider slider;
-  CoulombElement* element = nullptr;  // owned by `forces`
-  Switch* sw = nullptr;               // owned by `system`
+DrivenCoulombHarness::DrivenCoulombHarness(double B) {
+  Body::Rigid unit(MassProperties(1.0, Vec3(0), UnitInertia(1)));
+  slider = MobilizedBody::Slider(matter.Ground(), Transform(), unit, Transform());
+  element = new CoulombElement(forces, slider, CoulombLaw{1.0});
+  Force::Custom(forces, element);
+  Force::Custom(forces, new Drive(slider, B));
+  switch_ = new Switch(system, *element);
+  system.addEventHandler(switch_);
+  system.realizeTopology();
+}
 
-  explicit Harness(double B) {
-    Body::Rigid unit(MassProperties(1.0, Vec3(0), UnitInertia(1)));
-    slider = MobilizedBody::Slider(matter.Ground(), Transform(), unit, Transform());
-    element = new CoulombElement(forces, slider, CoulombLaw{1.0});
-    Force::Custom(forces, element);
-    Force::Custom(forces, new Drive(slider, B));
-    sw = new Switch(system, *element);
-    system.addEventHandler(sw);
-    system.realizeTopology();
-  }
-};
+const std::vector<DrivenCoulombSwitch>& DrivenCoulombHarness::switches() const {
+  return switch_->switches;
+}
+
+namespace {
+
+using Harness = DrivenCoulombHarness;
 
 // A stuck platform changes nothing the integrator's error control sees, so its steps grow; but
 // for B > 1 the stick margin 1 - |B sin t| is negative on windows of width pi - 2 asin(1/B)
@@ -157,7 +158,7 @@ DrivenCoulombMeasurement measureDrivenCoulomb(double B, const DrivenCoulombOptio
     start(h, integ, ts);
     for (int k = 1; k <= opt.max_periods; ++k) {
       ts->stepTo(kTwoPi * k);
-      const auto& sw = h.sw->switches;
+      const auto& sw = h.switches();
       if (sw.empty()) {
         // never moved: periodic once a whole period has passed stuck
         if (k >= 2) {

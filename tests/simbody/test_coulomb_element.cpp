@@ -7,65 +7,14 @@
 #include <cmath>
 
 #include "contact/averaged_response.h"
-#include "contact/simbody/coulomb_element.h"
+#include "contact/simbody/driven_coulomb_harness.h"
 
 namespace metrosync {
 namespace {
 
 using namespace SimTK;
 
-class Drive : public Force::Custom::Implementation {
- public:
-  Drive(const MobilizedBody::Slider& slider, double B) : slider_(slider), B_(B) {}
-  void calcForce(const State& s, Vector_<SpatialVec>&, Vector_<Vec3>&,
-                 Vector& mobilityForces) const override {
-    slider_.applyOneMobilityForce(s, 0, B_ * std::sin(s.getTime()), mobilityForces);
-  }
-  Real calcPotentialEnergy(const State&) const override { return 0; }
-
- private:
-  MobilizedBody::Slider slider_;
-  double B_;
-};
-
-// One witness, so the handler may act itself: the element's own switching rules.
-class Switch : public TriggeredEventHandler {
- public:
-  Switch(const System& sys, const CoulombElement& c)
-      : TriggeredEventHandler(Stage::Acceleration), sys_(sys), c_(c) {
-    getTriggerInfo().setTriggerOnRisingSignTransition(false);
-  }
-  Real getValue(const State& s) const override { return c_.witness(s); }
-  void handleEvent(State& s, Real, bool&) const override {
-    c_.resolveSwitch(sys_, s);
-    ++switches;
-  }
-  mutable int switches = 0;
-
- private:
-  const System& sys_;
-  const CoulombElement& c_;
-};
-
-struct Harness {
-  MultibodySystem system;
-  SimbodyMatterSubsystem matter{system};
-  GeneralForceSubsystem forces{system};
-  MobilizedBody::Slider slider;
-  CoulombElement* element = nullptr;
-  Switch* sw = nullptr;
-
-  explicit Harness(double B) {
-    Body::Rigid unit(MassProperties(1.0, Vec3(0), UnitInertia(1)));
-    slider = MobilizedBody::Slider(matter.Ground(), Transform(), unit, Transform());
-    element = new CoulombElement(forces, slider, CoulombLaw{1.0});
-    Force::Custom(forces, element);
-    Force::Custom(forces, new Drive(slider, B));
-    sw = new Switch(system, *element);
-    system.addEventHandler(sw);
-    system.realizeTopology();
-  }
-};
+using Harness = DrivenCoulombHarness;
 
 // Runs from rest at t = 0 for `periods` drive periods, then samples the last period.
 void checkAgainstClosedForm(double B, int periods, double tol) {
@@ -95,7 +44,7 @@ void checkAgainstClosedForm(double B, int periods, double tol) {
   }
   EXPECT_LT(worst_v, tol) << "B = " << B;
   EXPECT_LT(worst_y, tol) << "B = " << B;
-  EXPECT_GT(h.sw->switches, 2 * (periods - 1)) << "B = " << B << ": too few switches";
+  EXPECT_GT(h.switches().size(), 2u * (periods - 1)) << "B = " << B << ": too few switches";
 }
 
 TEST(CoulombElement, HoldingForceIsMinusTheAppliedForce) {
@@ -140,7 +89,7 @@ TEST(CoulombElement, StaysStillForWeakDrive) {
     ts.stepTo(6 * Pi);
     EXPECT_EQ(h.element->mode(ts.getState()), PlatformMode::Stuck) << "B = " << B;
     EXPECT_EQ(h.slider.getOneQ(ts.getState(), MobilizerQIndex(0)), 0.0) << "B = " << B;
-    EXPECT_EQ(h.sw->switches, 0) << "B = " << B;
+    EXPECT_TRUE(h.switches().empty()) << "B = " << B;
   }
 }
 
