@@ -26,7 +26,7 @@
 #pragma once
 
 #include "contact/coulomb.h"
-#include "models/rig.h"  // FrictionLaw (header only: no link dependency)
+#include "contact/friction_law.h"
 
 namespace metrosync {
 

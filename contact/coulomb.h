@@ -6,9 +6,9 @@
 // Units are the caller's: bound = mu-bar M g (newtons) or mu (scaled).
 #pragma once
 
-namespace metrosync {
+#include "contact/friction_law.h"
 
-enum class PlatformMode : int { SlipNegative = -1, Stuck = 0, SlipPositive = 1 };
+namespace metrosync {
 
 struct CoulombLaw {
   double bound = 0.0;  // maximum magnitude of the friction force, >= 0

@@ -4,16 +4,6 @@ namespace metrosync {
 
 const char* toString(Units u) { return u == Units::Physical ? "physical" : "scaled"; }
 
-const char* toString(FrictionLaw law) {
-  switch (law) {
-    case FrictionLaw::Coulomb: return "coulomb";
-    case FrictionLaw::Viscous: return "viscous";
-    case FrictionLaw::None: return "none";
-    case FrictionLaw::Fixed: return "fixed";
-  }
-  return "?";
-}
-
 double Rig::totalMass() const {
   double m = platform.mass_kg;
   for (const auto& mt : metronomes) m += mt.box_mass_kg + mt.pendulum_mass_kg;

@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "contact/friction_law.h"
+
 namespace metrosync {
 
 enum class Units { Physical, Scaled };
-enum class FrictionLaw { Coulomb, Viscous, None, Fixed };
 
 const char* toString(Units u);
-const char* toString(FrictionLaw law);
 
 struct MetronomeSpec {
   std::string name;
@@ -32,18 +32,18 @@ struct MetronomeSpec {
 struct PlatformSpec {
   double mass_kg = 0.0;  // the board alone (boxes and pendulums are added for M_total)
   FrictionLaw law = FrictionLaw::Coulomb;
-  double mu_bar = 0.0;           // Coulomb: |F| = mu-bar * M_total * g (eq. frictionlaw)
-  double c_Ns_m = 0.0;           // viscous: F = -c xdot
-  double spring_N_m = 0.0;       // optional spring to ground (section 3A); 0 = none
-  double start_x_m = 0.0;        // x-bar(0)
-  double start_v_m_s = 0.0;      // x-bar'(0)
+  double mu_bar = 0.0;       // Coulomb: |F| = mu-bar * M_total * g (eq. frictionlaw)
+  double c_Ns_m = 0.0;       // viscous: F = -c xdot
+  double spring_N_m = 0.0;   // optional spring to ground (section 3A); 0 = none
+  double start_x_m = 0.0;    // x-bar(0)
+  double start_v_m_s = 0.0;  // x-bar'(0)
 };
 
 struct SimulationSettings {
-  double t_end_s = 0.0;          // physical duration
-  double accuracy = 1e-8;        // relative local error target of the integrator
-  std::string integrator;        // empty = the default integrator
-  double sample_s = 0.0;         // trajectory output interval; 0 = default (>= 20 per period)
+  double t_end_s = 0.0;    // physical duration
+  double accuracy = 1e-8;  // relative local error target of the integrator
+  std::string integrator;  // empty = the default integrator
+  double sample_s = 0.0;   // trajectory output interval; 0 = default (>= 20 per period)
 };
 
 struct Rig {

@@ -17,8 +17,8 @@
 //
 // The right-hand side switches where A_i crosses theta_c,i (escapement on/off: dphi_i/dtau jumps
 // by J_i / (pi theta_c,i)) and has kinks where s crosses 1 and s_b = sqrt(1 + pi^2/4) (platform
-// regime). The integrator (Dormand-Prince 5(4) with dense output) holds these modes fixed over a
-// step, locates the crossings on the dense output and restarts there.
+// regime). The integrator (sim/engines/slow_flow/) holds these modes fixed over a step, locates the
+// crossings on the dense output and restarts there.
 #pragma once
 
 #include <complex>
@@ -26,20 +26,8 @@
 
 #include "contact/averaged_response.h"
 #include "models/scaling.h"
-#include "sim/run.h"
 
 namespace metrosync {
-
-struct SlowFlowOptions {
-  double tau_end = 0.0;       // integrate over [0, tau_end]
-  double rtol = 1e-10;        // relative local error target
-  double atol = 1e-12;        // absolute local error target
-  long max_steps = 20000000;  // accepted + rejected steps; beyond it the run fails
-  // event storm (chattering, Zeno): storm_events switches within a tau span of storm_window
-  // (times max(1, tau)) fail the run
-  int storm_events = 50;
-  double storm_window = 1e-6;
-};
 
 // Which side of each switching surface the flow is on; the integrator holds these fixed over a
 // step. The formulas are continued across the surface (see slowFlowRhs).
@@ -78,14 +66,5 @@ SlowFlowPolarRates slowFlowPolarRates(const ScaledParams& p, const std::vector<d
 // The start: z_i = thetadot0_i + i theta0_i (A_i = sqrt(theta0^2 + thetadot0^2),
 // phi_i = atan2(theta0, thetadot0)); 0 for locked metronomes.
 std::vector<std::complex<double>> slowFlowStart(const ScaledParams& p);
-
-// Integrates the slow flow from the scaled start and emits envelope rows on the grid
-// tau_k = envelopeTau(eps, k) <= opt.tau_end (interpolated from the dense output), with
-// psi_j = phi_1 - phi_j unwrapped. final_row is the last row emitted (the state at the end of the
-// run when no grid point was reached). A failure (non-finite state, step size underflow, event
-// storm, too many steps) ends the run with complete = false and the reason. Throws
-// std::invalid_argument on inconsistent parameters (sizes, epsilon <= 0, tau_end < 0, tolerances
-// <= 0, mu < 0, guard settings < 1). counts.escapements stays empty: the slow flow has no ticks.
-RunReport runSlowFlow(const ScaledParams& p, const SlowFlowOptions& opt, RunSink& sink);
 
 }  // namespace metrosync

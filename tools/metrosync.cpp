@@ -6,8 +6,8 @@
 #include <iostream>
 #include <string>
 
-#include "sim/outputs.h"
-#include "sim/simbody/full_model.h"
+#include "tools/report/outputs.h"
+#include "sim/engines/simbody/simbody_engine.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/sweep.h"

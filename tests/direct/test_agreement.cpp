@@ -27,8 +27,8 @@
 #include <map>
 
 #include "models/scaling.h"
-#include "sim/direct/direct_model.h"
-#include "sim/simbody/full_model.h"
+#include "sim/engines/direct/direct_engine.h"
+#include "sim/engines/simbody/simbody_engine.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync {

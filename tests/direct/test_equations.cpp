@@ -1,4 +1,4 @@
-// The direct engine's equations (sim/direct/equations.h) against an independent formulation: the
+// The direct engine's equations (models/minimal_equations.h) against an independent formulation: the
 // full mass matrix [[M, c^T], [c, diag(I)]] and Lagrange's equations written out densely and
 // solved by Eigen, on random rigs and states (property tests, Pinocchio style). The O(N) Schur
 // solves must give the same accelerations, holding force and tick impulses.
@@ -9,7 +9,7 @@
 #include <random>
 
 #include "contact/simbody/coulomb_element.h"
-#include "sim/direct/equations.h"
+#include "models/minimal_equations.h"
 
 namespace metrosync::direct {
 namespace {

@@ -7,10 +7,10 @@
 #include <cfloat>
 #include <cmath>
 
-#include "sim/direct/direct_model.h"
-#include "sim/direct/rk_stepper.h"
-#include "sim/direct/rk_tableau.h"
-#include "sim/direct/root_find.h"
+#include "sim/engines/direct/direct_engine.h"
+#include "sim/ode/rk_stepper.h"
+#include "sim/ode/rk_tableau.h"
+#include "sim/ode/root_find.h"
 
 namespace metrosync::direct {
 namespace {

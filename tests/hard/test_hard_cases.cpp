@@ -17,7 +17,7 @@
 #include <string>
 
 #include "models/scaling.h"
-#include "sim/direct/direct_model.h"
+#include "sim/engines/direct/direct_engine.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync {

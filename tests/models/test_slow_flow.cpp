@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "contact/averaged_response.h"
-#include "models/slow_flow.h"
+#include "sim/engines/slow_flow/slow_flow_engine.h"
 
 namespace metrosync {
 namespace {

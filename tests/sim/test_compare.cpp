@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "sim/compare.h"
-#include "sim/outputs.h"
+#include "sim/analysis/compare.h"
+#include "tools/report/outputs.h"
 
 namespace metrosync {
 namespace {

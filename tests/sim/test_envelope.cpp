@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <fstream>
 
-#include "sim/envelope.h"
+#include "sim/record/envelope.h"
 
 namespace metrosync {
 namespace {

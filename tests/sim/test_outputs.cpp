@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "sim/outputs.h"
+#include "tools/report/outputs.h"
 
 namespace metrosync {
 namespace {

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "sim/plot.h"
+#include "tools/report/plot.h"
 
 namespace metrosync {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <functional>
 
-#include "sim/regime.h"
+#include "sim/analysis/regime.h"
 
 namespace metrosync {
 namespace {

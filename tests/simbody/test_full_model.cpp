@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "rigs.h"
-#include "sim/simbody/full_model.h"
+#include "sim/engines/simbody/simbody_engine.h"
 
 namespace metrosync {
 namespace {

@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "rigs.h"
-#include "sim/simbody/full_model.h"
+#include "sim/engines/simbody/simbody_engine.h"
 
 namespace metrosync {
 namespace {

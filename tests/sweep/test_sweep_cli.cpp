@@ -16,7 +16,7 @@
 #include <sstream>
 #include <thread>
 
-#include "sim/envelope.h"
+#include "sim/record/envelope.h"
 #include "tests/common/run_metrosync.h"
 
 namespace {

@@ -1,6 +1,6 @@
 // The pieces of a sweep without the command line: --vary and --shard syntax, the grid, the
 // regimes.csv rows (and a file cut by kill -9), the order parameter r and the cluster names of
-// N >= 3 (sim/regime.h) on synthetic envelopes.
+// N >= 3 (sim/analysis/regime.h) on synthetic envelopes.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -14,11 +14,11 @@
 #include <sstream>
 
 #include "models/scaling.h"
-#include "models/slow_flow.h"
-#include "sim/envelope.h"
-#include "sim/regime.h"
-#include "sim/sweep.h"
-#include "sim/sweep_maps.h"
+#include "sim/engines/slow_flow/slow_flow_engine.h"
+#include "sim/record/envelope.h"
+#include "sim/analysis/regime.h"
+#include "sim/analysis/sweep.h"
+#include "tools/report/sweep_maps.h"
 
 namespace metrosync {
 namespace {

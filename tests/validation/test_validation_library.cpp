@@ -1,4 +1,4 @@
-// The validation library's own pieces (sim/validation.h, sim/validation_report.h) on inputs whose
+// The validation library's own pieces (sim/analysis/validation.h, tools/report/validation_report.h) on inputs whose
 // answers are known by construction: the order fit, the envelope distance and error, the rig at
 // another epsilon, the agreement rule, the regime sequence, and the report (its numbers are the
 // results' numbers).
@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "fixtures.h"
-#include "sim/validation_report.h"
+#include "tools/report/validation_report.h"
 
 namespace metrosync {
 namespace {

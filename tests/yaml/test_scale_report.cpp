@@ -6,7 +6,7 @@
 #include <string>
 
 #include "models/scaling.h"
-#include "sim/scale_report.h"
+#include "tools/report/scale_report.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync {

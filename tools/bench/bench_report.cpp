@@ -13,7 +13,7 @@
 #include <set>
 #include <sstream>
 
-#include "sim/plot.h"
+#include "tools/report/plot.h"
 
 namespace metrosync::bench {
 

@@ -11,9 +11,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "sim/direct/direct_model.h"
-#include "sim/regime.h"
-#include "sim/simbody/full_model.h"
+#include "sim/engines/direct/direct_engine.h"
+#include "sim/analysis/regime.h"
+#include "sim/engines/simbody/simbody_engine.h"
 #include "tools/bench/siconos_peer.h"
 #include "yaml/rig_loader.h"
 

@@ -17,7 +17,7 @@
 #include <sstream>
 #include <thread>
 
-#include "sim/outputs.h"
+#include "tools/report/outputs.h"
 #include "tools/bench/bench_report.h"
 #include "tools/bench/bench_run.h"
 #include "tools/bench/siconos_peer.h"

@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "models/scaling.h"
-#include "sim/envelope_recorder.h"
+#include "sim/record/envelope_recorder.h"
 
 namespace metrosync::bench {
 
@@ -117,7 +117,7 @@ class PeerRun {
     }
     env_.sample(t_scaled, th_.data(), w_.data());
   }
-  // the trajectory format of the engines, in the rig's units (sim/run.h)
+  // the trajectory format of the engines, in the rig's units (sim/record/run_report.h)
   std::vector<double> makeRow(double t, const double* q, const double* v, int mode) const {
     const bool scaled = rig_.units == Units::Scaled;
     const double xs = scaled ? 1.0 / sp_.x_scale_m : 1.0;

@@ -26,7 +26,7 @@
 #include <string>
 
 #include "models/rig.h"
-#include "sim/run.h"
+#include "sim/record/run_report.h"
 
 namespace metrosync::bench {
 

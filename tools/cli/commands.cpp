@@ -10,13 +10,13 @@
 #include <sstream>
 
 #include "models/scaling.h"
-#include "models/slow_flow.h"
-#include "sim/compare.h"
-#include "sim/outputs.h"
-#include "sim/plot.h"
-#include "sim/regime.h"
-#include "sim/scale_report.h"
-#include "sim/simbody/full_model.h"
+#include "sim/engines/slow_flow/slow_flow_engine.h"
+#include "sim/analysis/compare.h"
+#include "tools/report/outputs.h"
+#include "tools/report/plot.h"
+#include "sim/analysis/regime.h"
+#include "tools/report/scale_report.h"
+#include "sim/engines/simbody/simbody_engine.h"
 #include "tools/cli/engines.h"
 #include "yaml/rig_loader.h"
 

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "sim/direct/direct_model.h"
-#include "sim/simbody/full_model.h"
+#include "sim/engines/direct/direct_engine.h"
+#include "sim/engines/simbody/simbody_engine.h"
 #include "tools/cli/commands.h"
 #include "yaml/rig_loader.h"
 

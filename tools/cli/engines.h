@@ -1,5 +1,5 @@
 // The two engines of the full model behind `--engine` (SPEC section 2): "simbody"
-// (sim/simbody/full_model.h, a Simbody multibody system) and "direct" (sim/direct/direct_model.h,
+// (sim/engines/simbody/simbody_engine.h, a Simbody multibody system) and "direct" (sim/engines/direct/direct_engine.h,
 // minimal coordinates). Both run every rig and agree (tests/direct/test_agreement.cpp); the
 // direct one is two orders of magnitude faster, so it is the default, except when the rig's
 // simulation.integrator names one of Simbody's integrators.
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "models/rig.h"
-#include "sim/run.h"
+#include "sim/record/run_report.h"
 
 namespace metrosync::cli {
 

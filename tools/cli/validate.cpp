@@ -10,10 +10,10 @@
 #include <thread>
 
 #include "contact/simbody/driven_coulomb.h"
-#include "sim/outputs.h"
-#include "sim/simbody/full_model.h"
-#include "sim/validation.h"
-#include "sim/validation_report.h"
+#include "tools/report/outputs.h"
+#include "sim/engines/simbody/simbody_engine.h"
+#include "sim/analysis/validation.h"
+#include "tools/report/validation_report.h"
 #include "tools/cli/commands.h"
 #include "yaml/rig_loader.h"
 

@@ -1,6 +1,6 @@
 // `metrosync validate [--out DIR] [--quick]`: the full model against the asymptotics (the slow
-// flow and its closed forms), written up as DIR/report.md with its plots (sim/validation.h,
-// sim/validation_report.h). Registered in tools/metrosync.cpp.
+// flow and its closed forms), written up as DIR/report.md with its plots (sim/analysis/validation.h,
+// tools/report/validation_report.h). Registered in tools/metrosync.cpp.
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -1,0 +1,188 @@
+#include "models/minimal_equations.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace metrosync::direct {
+
+MetronomeEquations::MetronomeEquations(const Rig& rig)
+    : has_platform_(rig.platform.law != FrictionLaw::Fixed),
+      law_(rig.platform.law),
+      mass_(rig.totalMass()) {
+  const double g = rig.gravity_m_s2;
+  for (int i = 0; i < static_cast<int>(rig.metronomes.size()); ++i) {
+    const MetronomeSpec& m = rig.metronomes[i];
+    if (m.locked) continue;  // rides with the platform: already in M
+    PendulumConstants p;
+    p.rig_index = i;
+    p.mL = m.pendulum_mass_kg * m.length_m;
+    p.mgL = p.mL * g;
+    p.inertia = m.inertia_kgm2;
+    p.inv_inertia = 1.0 / m.inertia_kgm2;
+    p.damping = m.damping_kg_s * m.length_m * m.length_m;  // torque -nu-bar L^2 thetadot (e1.1a)
+    p.theta_c = m.theta_c_rad;
+    p.impulse = m.impulse_Nms;
+    pend_.push_back(p);
+  }
+  layout_.n = static_cast<int>(pend_.size());
+  if (has_platform_) {
+    if (!(mass_ > 0)) throw std::invalid_argument("the platform's total mass must be > 0");
+    spring_ = rig.platform.spring_N_m;
+    if (law_ == FrictionLaw::Viscous) viscous_ = rig.platform.c_Ns_m;
+    if (law_ == FrictionLaw::Coulomb)
+      coulomb_.bound = rig.platform.mu_bar * mass_ * g;  // eq. frictionlaw
+  }
+  c_.resize(layout_.n);
+  r_.resize(layout_.n);
+}
+
+void MetronomeEquations::rhs(const double* y, PlatformMode mode, double* dy) const {
+  const int n = layout_.n;
+  const double* th = y + 2;
+  const double* w = y + 2 + n;
+  double* dth = dy + 2;
+  double* dw = dy + 2 + n;
+  const double v = y[StateLayout::kV];
+  double damping_power = 0.0;
+  for (int j = 0; j < n; ++j) damping_power += pend_[j].damping * w[j] * w[j];
+
+  double a = 0.0;  // xddot
+  double friction_power = 0.0;
+  const bool platform_moves =
+      has_platform_ && !(law_ == FrictionLaw::Coulomb && mode == PlatformMode::Stuck);
+  if (platform_moves) {
+    // pass 1: c_j, r_j and the platform's Schur-reduced equation Meff xddot = G + F
+    double G = -spring_ * y[StateLayout::kX] - viscous_ * v, schur = 0.0;
+    for (int j = 0; j < n; ++j) {
+      const PendulumConstants& p = pend_[j];
+      const double s = std::sin(th[j]), co = std::cos(th[j]);
+      const double c = p.mL * co, r = -p.mgL * s - p.damping * w[j];
+      const double c_over_I = c * p.inv_inertia;
+      G += p.mL * s * w[j] * w[j] - c_over_I * r;
+      schur += c_over_I * c;
+      c_[j] = c;
+      r_[j] = r;
+    }
+    double F = 0.0;
+    if (law_ == FrictionLaw::Coulomb) {
+      F = coulomb_.slipForce(mode);
+      friction_power = -F * v;
+    } else if (law_ == FrictionLaw::Viscous) {
+      friction_power = viscous_ * v * v;
+    }
+    a = (G + F) / (mass_ - schur);
+    // pass 2: the pendulums
+    for (int j = 0; j < n; ++j) dw[j] = (r_[j] - c_[j] * a) * pend_[j].inv_inertia;
+  } else {
+    // platform still (fixed, or stuck): each pendulum on its own
+    for (int j = 0; j < n; ++j) {
+      const PendulumConstants& p = pend_[j];
+      dw[j] = (-p.mgL * std::sin(th[j]) - p.damping * w[j]) * p.inv_inertia;
+    }
+  }
+  for (int j = 0; j < n; ++j) dth[j] = w[j];
+  dy[StateLayout::kX] = platform_moves ? v : 0.0;
+  dy[StateLayout::kV] = a;
+  dy[layout_.dampingWork()] = damping_power;
+  dy[layout_.frictionWork()] = friction_power;
+}
+
+double MetronomeEquations::holdingForce(const double* y) const {
+  const int n = layout_.n;
+  const double* th = y + 2;
+  const double* w = y + 2 + n;
+  double G = -spring_ * y[StateLayout::kX];
+  for (int j = 0; j < n; ++j) {
+    const PendulumConstants& p = pend_[j];
+    const double s = std::sin(th[j]), co = std::cos(th[j]);
+    const double r = -p.mgL * s - p.damping * w[j];
+    G += p.mL * s * w[j] * w[j] - p.mL * co / p.inertia * r;
+  }
+  return -G;
+}
+
+double MetronomeEquations::holdingForceRate(const double* y) const {
+  // d/dt of G = sum_j [mL s w^2 - mL co r / I] - k x with xdot = xddot = 0,
+  // w' = r / I, r' = -mgL co w - b w'
+  const int n = layout_.n;
+  const double* th = y + 2;
+  const double* w = y + 2 + n;
+  double dG = 0.0;
+  for (int j = 0; j < n; ++j) {
+    const PendulumConstants& p = pend_[j];
+    const double s = std::sin(th[j]), co = std::cos(th[j]);
+    const double r = -p.mgL * s - p.damping * w[j];
+    const double dw = r / p.inertia;
+    const double dr = -p.mgL * co * w[j] - p.damping * dw;
+    dG += p.mL * (co * w[j] * w[j] * w[j] + 2 * s * w[j] * dw) -
+          p.mL / p.inertia * (-s * w[j] * r + co * dr);
+  }
+  return -dG;
+}
+
+TickImpulse MetronomeEquations::applyTicks(double* y,
+                                           const std::vector<std::pair<int, int>>& ticks) const {
+  TickImpulse out;
+  const int n = layout_.n;
+  std::vector<double> impulse(n, 0.0);  // generalized impulse on each pin (N m s)
+  for (const auto& [j, side] : ticks) impulse[j] += side * pend_[j].impulse;
+  // the kinetic energy jumps by p . (u + du / 2), p the generalized impulse: only the ticking
+  // pins' terms
+  auto work = [&](const std::vector<double>& w_before) {
+    double dT = 0.0;
+    for (const auto& [j, side] : ticks) {
+      (void)side;
+      dT += impulse[j] * 0.5 * (w_before[j] + y[layout_.omega(j)]);
+    }
+    return dT;
+  };
+  std::vector<double> w_before(n);
+  for (int j = 0; j < n; ++j) w_before[j] = y[layout_.omega(j)];
+  if (!has_platform_) {
+    for (int j = 0; j < n; ++j) y[layout_.omega(j)] += impulse[j] * pend_[j].inv_inertia;
+    out.dT = work(w_before);
+    return out;
+  }
+  // [[M, c^T], [c, diag(I)]] [dv; dw] = [0; impulse]: platform first (Schur complement)
+  double schur = 0.0;
+  for (int j = 0; j < n; ++j) {
+    c_[j] = pend_[j].mL * std::cos(y[layout_.theta(j)]);
+    schur += c_[j] * c_[j] * pend_[j].inv_inertia;
+  }
+  const double meff = mass_ - schur;
+  double sum = 0.0;
+  for (const auto& [j, side] : ticks) {
+    const double part = c_[j] * side * pend_[j].impulse * pend_[j].inv_inertia;
+    sum += part;
+    out.dv_abs += std::abs(part) / meff;
+  }
+  out.dv = -sum / meff;
+  y[StateLayout::kV] += out.dv;
+  for (int j = 0; j < n; ++j)
+    y[layout_.omega(j)] += (impulse[j] - c_[j] * out.dv) * pend_[j].inv_inertia;
+  out.dT = work(w_before);
+  return out;
+}
+
+double MetronomeEquations::energy(const double* y) const {
+  const double v = has_platform_ ? y[StateLayout::kV] : 0.0;
+  double e = 0.5 * mass_ * v * v + 0.5 * spring_ * y[StateLayout::kX] * y[StateLayout::kX];
+  for (int j = 0; j < layout_.n; ++j) {
+    const PendulumConstants& p = pend_[j];
+    const double co = std::cos(y[layout_.theta(j)]), w = y[layout_.omega(j)];
+    e += p.mL * co * v * w + 0.5 * p.inertia * w * w - p.mgL * co;
+  }
+  return e;
+}
+
+double MetronomeEquations::platformKineticEnergy(const double* y) const {
+  if (!has_platform_) return 0.0;
+  const double v = y[StateLayout::kV];
+  if (v == 0.0) return 0.0;
+  double sum = 0.0;
+  for (int j = 0; j < layout_.n; ++j)
+    sum += pend_[j].mL * std::cos(y[layout_.theta(j)]) * y[layout_.omega(j)];
+  return 0.5 * mass_ * v * v + v * sum;
+}
+
+}  // namespace metrosync::direct

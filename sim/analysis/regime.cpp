@@ -1,0 +1,263 @@
+#include "sim/analysis/regime.h"
+
+#include <algorithm>
+#include <functional>
+#include <numeric>
+#include <stdexcept>
+
+namespace metrosync {
+
+namespace {
+constexpr double kPi = 3.141592653589793;
+constexpr double kTwoPi = 6.283185307179586;
+}  // namespace
+
+const char* toString(Regime r) {
+  switch (r) {
+    case Regime::Death:
+      return "death";
+    case Regime::Suppression:
+      return "suppression";
+    case Regime::Drift:
+      return "drift";
+    case Regime::InPhase:
+      return "in-phase";
+    case Regime::Antiphase:
+      return "antiphase";
+    case Regime::PhaseLocked:
+      return "phase-locked";
+    case Regime::Unsettled:
+      return "unsettled";
+    case Regime::Alive:
+      return "alive";
+    case Regime::None:
+      return "none";
+    case Regime::Unknown:
+      return "unknown";
+  }
+  return "unknown";
+}
+
+double wrapToPi(double angle_rad) {
+  // remainder() gives [-pi, pi]; move -pi to +pi so the interval is (-pi, pi]
+  double w = std::remainder(angle_rad, kTwoPi);
+  if (w <= -kPi) w += kTwoPi;
+  return w;
+}
+
+RegimeWindow::RegimeWindow(double tau_end, RegimeRules rules)
+    : tau_start_((1.0 - rules.window_fraction) * tau_end), rules_(rules) {}
+
+namespace {
+// index of the pair (i, j), i < j < n, in row order
+size_t pairIndex(size_t i, size_t j, size_t n) {
+  return i * n - i * (i + 1) / 2 + (j - i - 1);
+}
+// phi_i - phi_j from a row's psi (psi_k = phi_1 - phi_k; psi_1 = 0)
+double pairDifference(const std::vector<double>& psi, size_t i, size_t j) {
+  const double pi_ = i == 0 ? 0.0 : psi[i - 1], pj = j == 0 ? 0.0 : psi[j - 1];
+  return pj - pi_;
+}
+}  // namespace
+
+void RegimeWindow::add(const EnvelopeRow& row) {
+  last_ = row;
+  have_last_ = true;
+  if (row.tau < tau_start_) return;
+  const size_t n = row.psi.size() + 1;
+  const bool pairs = n >= 3;
+  if (rows_in_window_ == 0) {
+    psi_min_ = row.psi;
+    psi_max_ = row.psi;
+    if (pairs) {
+      pair_min_.clear();
+      for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 1; j < n; ++j) pair_min_.push_back(pairDifference(row.psi, i, j));
+      pair_max_ = pair_min_;
+    }
+  } else {
+    const size_t m = std::min(row.psi.size(), psi_min_.size());
+    for (size_t j = 0; j < m; ++j) {
+      psi_min_[j] = std::min(psi_min_[j], row.psi[j]);
+      psi_max_[j] = std::max(psi_max_[j], row.psi[j]);
+    }
+    if (pairs && pair_min_.size() == n * (n - 1) / 2) {
+      size_t k = 0;
+      for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 1; j < n; ++j, ++k) {
+          const double d = pairDifference(row.psi, i, j);
+          pair_min_[k] = std::min(pair_min_[k], d);
+          pair_max_[k] = std::max(pair_max_[k], d);
+        }
+    }
+  }
+  ++rows_in_window_;
+}
+
+double RegimeWindow::pairRange(size_t i, size_t j) const {
+  if (i == j || rows_in_window_ == 0) return 0.0;
+  if (i > j) std::swap(i, j);
+  const size_t n = last_.psi.size() + 1;
+  if (n == 2) return psiRange()[0];
+  const size_t k = pairIndex(i, j, n);
+  return k < pair_min_.size() ? pair_max_[k] - pair_min_[k] : 0.0;
+}
+
+std::string regimeName(const RegimeVerdict& v) {
+  return v.name.empty() ? toString(v.regime) : v.name;
+}
+
+std::string clusterText(const std::vector<int>& sizes) {
+  std::string s;
+  for (size_t k = 0; k < sizes.size();) {
+    size_t run = 1;
+    while (k + run < sizes.size() && sizes[k + run] == sizes[k]) ++run;
+    const std::string size = std::to_string(sizes[k]);
+    if (run >= 3) {
+      s += (s.empty() ? "" : "+") + size + "x" + std::to_string(run);
+    } else {
+      for (size_t r = 0; r < run; ++r) s += (s.empty() ? "" : "+") + size;
+    }
+    k += run;
+  }
+  return s;
+}
+
+namespace {
+
+// Clusters of the alive metronomes (see the header): sizes, largest first. Also says whether
+// every alive pair is settled and whether some pair drifts.
+struct ClusterAnalysis {
+  std::vector<int> sizes;
+  bool all_settled = true, any_drift = false;
+};
+
+ClusterAnalysis findClusters(const RegimeWindow& w, const std::vector<size_t>& alive) {
+  ClusterAnalysis c;
+  const RegimeRules& r = w.rules();
+  const std::vector<double>& psi = w.last().psi;
+  std::vector<size_t> parent(alive.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  std::function<size_t(size_t)> root = [&](size_t a) {
+    return parent[a] == a ? a : parent[a] = root(parent[a]);
+  };
+  for (size_t a = 0; a < alive.size(); ++a)
+    for (size_t b = a + 1; b < alive.size(); ++b) {
+      const double range = w.pairRange(alive[a], alive[b]);
+      const bool settled = range < r.settled_rad;
+      c.all_settled = c.all_settled && settled;
+      c.any_drift = c.any_drift || range > r.drift_rad;
+      const double d = pairDifference(psi, alive[a], alive[b]);
+      if (settled && std::fabs(wrapToPi(d)) <= r.in_phase_rad) parent[root(a)] = root(b);
+    }
+  std::vector<int> count(alive.size(), 0);
+  for (size_t a = 0; a < alive.size(); ++a) ++count[root(a)];
+  for (int k : count)
+    if (k > 0) c.sizes.push_back(k);
+  std::sort(c.sizes.rbegin(), c.sizes.rend());
+  return c;
+}
+
+// The N >= 3 name of the alive metronomes' state (at least two alive).
+std::string aliveName(const ClusterAnalysis& c) {
+  if (c.sizes.size() == 1) return "in-phase";
+  if (c.sizes.front() >= 2) return "clusters:" + clusterText(c.sizes);
+  if (c.all_settled) return "phase-locked";
+  return c.any_drift ? "drift" : "unsettled";
+}
+
+}  // namespace
+
+std::vector<double> RegimeWindow::psiRange() const {
+  std::vector<double> range(last_.psi.size(), 0.0);
+  if (rows_in_window_ == 0) return range;  // judged on the last row alone
+  for (size_t j = 0; j < range.size() && j < psi_min_.size(); ++j)
+    range[j] = psi_max_[j] - psi_min_[j];
+  return range;
+}
+
+RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<double>& theta_c,
+                             const std::vector<bool>& locked) {
+  RegimeVerdict v;
+  if (window.empty()) return v;  // Unknown
+  const EnvelopeRow& last = window.last();
+  const size_t n = last.A.size();
+  if (theta_c.size() != n)
+    throw std::invalid_argument("classifyRegime: " + std::to_string(theta_c.size()) +
+                                " critical angles for " + std::to_string(n) + " metronomes");
+  if (!locked.empty() && locked.size() != n)
+    throw std::invalid_argument("classifyRegime: locked mask has the wrong size");
+  auto isLocked = [&](size_t i) { return !locked.empty() && locked[i]; };
+
+  v.window_rows = window.rowsInWindow();
+  v.window_tau_start = window.tauStart();
+  v.psi_range = window.psiRange();
+  for (double p : last.psi) v.psi_final.push_back(wrapToPi(p));
+
+  // a non-finite state has no regime (only a failed run ends like that)
+  for (double a : last.A)
+    if (!std::isfinite(a)) return v;
+  for (double p : last.psi)
+    if (!std::isfinite(p)) return v;
+
+  // death and suppression: final amplitude against the escapement's critical angle
+  int swinging = 0, dead = 0;
+  v.alive.assign(n, -1);
+  for (size_t i = 0; i < n; ++i) {
+    if (isLocked(i)) continue;
+    ++swinging;
+    v.alive[i] = last.A[i] >= theta_c[i] ? 1 : 0;
+    dead += v.alive[i] == 0;
+  }
+  const RegimeRules& r = window.rules();
+  v.dead = dead;
+  std::vector<size_t> alive_idx;
+  for (size_t i = 0; i < n; ++i)
+    if (v.alive[i] == 1) alive_idx.push_back(i);
+  const ClusterAnalysis clusters = findClusters(window, alive_idx);
+  v.cluster_sizes = clusters.sizes;
+  // the name: the enum's, or for three or more swinging metronomes the clusters'
+  auto named = [&](Regime regime) {
+    v.regime = regime;
+    v.name = toString(regime);
+    if (swinging < 3 || regime == Regime::Death) return v;
+    const std::string suppressed = dead > 0 ? "suppressed:" + std::to_string(dead) : "";
+    if (alive_idx.size() < 2)
+      v.name = suppressed;
+    else
+      v.name = suppressed + (suppressed.empty() ? "" : ";") + aliveName(clusters);
+    return v;
+  };
+  if (swinging == 0) return named(Regime::None);
+  if (dead == swinging) return named(Regime::Death);
+  if (dead > 0) return named(Regime::Suppression);
+
+  // phase rules on psi_j = phi_1 - phi_j, j = 2..N (index j-2), both pendulums swinging
+  std::vector<size_t> judged;
+  if (!isLocked(0))
+    for (size_t j = 1; j < n; ++j)
+      if (!isLocked(j) && j - 1 < last.psi.size()) judged.push_back(j - 1);
+  if (judged.empty()) return named(Regime::Alive);
+  bool drift = false, settled = true, in_phase = true, antiphase = true;
+  for (size_t k : judged) {
+    drift = drift || v.psi_range[k] > r.drift_rad;
+    settled = settled && v.psi_range[k] < r.settled_rad;
+    in_phase = in_phase && std::fabs(wrapToPi(last.psi[k])) <= r.in_phase_rad;
+    antiphase = antiphase && std::fabs(wrapToPi(last.psi[k] - kPi)) <= r.antiphase_rad;
+  }
+  if (drift) return named(Regime::Drift);
+  if (settled && in_phase) return named(Regime::InPhase);
+  if (settled && antiphase) return named(Regime::Antiphase);
+  if (settled) return named(Regime::PhaseLocked);
+  return named(Regime::Unsettled);
+}
+
+RegimeVerdict classifyRegime(const std::vector<EnvelopeRow>& rows, double tau_end,
+                             const std::vector<double>& theta_c, const std::vector<bool>& locked,
+                             RegimeRules rules) {
+  RegimeWindow w(tau_end, rules);
+  for (const auto& row : rows) w.add(row);
+  return classifyRegime(w, theta_c, locked);
+}
+
+}  // namespace metrosync

@@ -1,0 +1,135 @@
+// Regime classification (SPEC section 4), judged on the envelope rows of the last 10% of the run
+// (in tau), metronome 1 as the reference. A metronome is dead when its final A_i < theta_c,i.
+// Rules, in order:
+//   death         every metronome dead
+//   suppression   at least one dead and at least one alive
+//   drift         all alive and some psi_j moves by more than pi over the window
+//   in-phase      all alive, every psi_j varies by < 0.1 rad and ends within 0.2 rad of 0 mod 2 pi
+//   antiphase     as in-phase, but every psi_j ends within 0.5 rad of pi (mod 2 pi)
+//   phase-locked  every psi_j varies by < 0.1 rad, elsewhere
+//   unsettled     none of the above
+// "Moves by" and "varies by" both mean the range (max - min) of the unwrapped psi_j over the
+// window, so a phase slip is caught wherever it happens in the window.
+//
+// Extensions of the SPEC (it is silent on these cases):
+//   - N = 1 (no phase difference): `death` when the metronome is dead, `alive` otherwise.
+//   - locked metronomes (pendulum held in its box, SPEC 1a) are neither dead nor alive: they are
+//     left out of every rule, and so are the psi_j that involve them (all of them when metronome 1
+//     is locked). With one swinging metronome left the verdict is `death`/`alive` as for N = 1;
+//     with none, `none`.
+//   - a run that stopped early (complete: false) has no verdict: `unknown` (chosen by the caller).
+//   - a window with no row (a run shorter than one fast period per 10%) is judged on the last row.
+//
+// Names for N >= 3 swinging metronomes (RegimeVerdict::name; the enum keeps the rules above for
+// every N). Two alive metronomes i, j are in one cluster when phi_i - phi_j varies by < 0.1 rad
+// over the window and ends within 0.2 rad of 0 (mod 2 pi): the in-phase rule, pair by pair;
+// clusters are the connected groups (single linkage). With d dead and a alive metronomes:
+//   death                     every metronome dead
+//   in-phase                  one cluster of all alive
+//   clusters:S1+S2+...        several clusters, at least one of two or more (sizes descending,
+//                             single metronomes counted as 1: clusters:3+1+1; three or more of
+//                             one size as SIZExCOUNT: clusters:2+1x14)
+//   phase-locked              no two in one cluster, every pair's difference varies by < 0.1 rad
+//   drift                     no two in one cluster, some pair's difference moves by more than pi
+//   unsettled                 none of these
+// and with d > 0 dead among them, `suppressed:d` alone (one alive) or before the name of the alive
+// ones: suppressed:2;in-phase, suppressed:1;clusters:2+2. For N <= 2 the name is the enum's.
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "sim/record/envelope.h"
+
+namespace metrosync {
+
+enum class Regime {
+  Death,
+  Suppression,
+  Drift,
+  InPhase,
+  Antiphase,
+  PhaseLocked,
+  Unsettled,
+  Alive,    // N = 1 (or one swinging metronome), alive
+  None,     // no swinging metronome at all
+  Unknown,  // not judged (the run stopped early)
+};
+
+// The name written to summary.json and regimes.csv: "death", "in-phase", "phase-locked", ...
+const char* toString(Regime r);
+
+// SPEC 4 thresholds (radians) and window; named so that tests and sweeps can refer to them.
+struct RegimeRules {
+  double window_fraction = 0.1;          // judged on tau >= (1 - window_fraction) * tau_end
+  double drift_rad = 3.141592653589793;  // drift: range of some psi_j > this
+  double settled_rad = 0.1;              // settled: range of every psi_j < this
+  double in_phase_rad = 0.2;             // |final psi_j - 0| (mod 2 pi) <= this
+  double antiphase_rad = 0.5;            // |final psi_j - pi| (mod 2 pi) <= this
+};
+
+// An angle moved by a multiple of 2 pi into (-pi, pi].
+double wrapToPi(double angle_rad);
+
+// Streams envelope rows and keeps only what the rules need (memory independent of the run
+// length): per psi_j its min, max over the window, the same for every pair phi_i - phi_j (N >= 3),
+// and the last row.
+class RegimeWindow {
+ public:
+  RegimeWindow(double tau_end, RegimeRules rules = {});
+
+  void add(const EnvelopeRow& row);
+
+  double tauStart() const { return tau_start_; }
+  long rowsInWindow() const { return rows_in_window_; }
+  bool empty() const { return !have_last_; }
+  const EnvelopeRow& last() const { return last_; }
+  // (N-1 x 1) max - min of each unwrapped psi_j over the window (0 when judged on one row)
+  std::vector<double> psiRange() const;
+  // max - min of phi_i - phi_j over the window (0-based i != j; 0 when judged on one row)
+  double pairRange(size_t i, size_t j) const;
+  const RegimeRules& rules() const { return rules_; }
+
+ private:
+  double tau_start_ = 0.0;
+  RegimeRules rules_;
+  long rows_in_window_ = 0;
+  bool have_last_ = false;
+  EnvelopeRow last_;
+  std::vector<double> psi_min_, psi_max_;  // (N-1 x 1) over the window
+  // (N (N-1)/2 x 1) phi_i - phi_j = psi_j - psi_i (psi_1 = 0), pairs i < j in row order; N >= 3
+  std::vector<double> pair_min_, pair_max_;
+};
+
+struct RegimeVerdict {
+  Regime regime = Regime::Unknown;
+  std::vector<int> alive;         // (N x 1) 1 alive, 0 dead, -1 locked (not judged)
+  std::vector<double> psi_range;  // (N-1 x 1) max - min over the window, rad
+  std::vector<double> psi_final;  // (N-1 x 1) final psi_j wrapped to (-pi, pi]
+  long window_rows = 0;           // rows with tau in the window (0: judged on the last row)
+  double window_tau_start = 0.0;  // the window is tau >= this
+  // what regimes.csv and summary.json call it (set by classifyRegime): toString(regime), or for
+  // N >= 3 swinging metronomes the cluster name above; read it through regimeName()
+  std::string name;
+  std::vector<int> cluster_sizes;  // clusters of the alive metronomes, largest first
+  int dead = 0;                    // swinging metronomes that are dead
+};
+
+// The verdict's name: `name`, or toString(regime) for a verdict not made by classifyRegime.
+std::string regimeName(const RegimeVerdict& v);
+
+// "3+2+1", "2+1x14" (a size repeated three times or more); empty when none is alive.
+std::string clusterText(const std::vector<int>& sizes);
+
+// Applies the rules to what `window` saw. theta_c: (N x 1) scaled critical angles; locked:
+// (N x 1) or empty (none locked). An empty window (no row at all) gives Regime::Unknown.
+RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<double>& theta_c,
+                             const std::vector<bool>& locked = {});
+
+// Convenience for whole runs held in memory (tests, small comparisons).
+RegimeVerdict classifyRegime(const std::vector<EnvelopeRow>& rows, double tau_end,
+                             const std::vector<double>& theta_c,
+                             const std::vector<bool>& locked = {}, RegimeRules rules = {});
+
+}  // namespace metrosync

@@ -1,0 +1,213 @@
+#include "sim/ode/rk_stepper.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace metrosync::direct {
+
+namespace {
+
+using Weights = std::vector<std::pair<int, double>>;
+
+Weights nonzero(const std::vector<double>& w, int count) {
+  Weights out;
+  for (int l = 0; l < count; ++l)
+    if (w[l] != 0.0) out.emplace_back(l, w[l]);
+  return out;
+}
+
+}  // namespace
+
+RkStepper::RkStepper(const RkTableau& tableau, int dim, OdeRhs& rhs)
+    : tab_(tableau),
+      dim_(dim),
+      rhs_(rhs),
+      atol_(dim, 0.0),
+      y_(dim, 0.0),
+      y1_(dim, 0.0),
+      tmp_(dim, 0.0),
+      k_(static_cast<size_t>(tableau.dense_stages) * dim, 0.0),
+      w_() {
+  if (!tab_.fsal) throw std::invalid_argument("RkStepper: the method must be FSAL");
+  for (int j = 0; j < tab_.dense_stages; ++j) a_rows_.push_back(nonzero(tab_.a[j], j));
+  b_ = nonzero(tab_.b, tab_.stages);
+  e_ = nonzero(tab_.e, tab_.stages);
+  for (int j = 0; j < tab_.dense_stages; ++j) {
+    if (nonzero(tab_.p[j], tab_.dense_degree).empty()) continue;
+    dense_stage_.push_back(j);
+    dense_p_.insert(dense_p_.end(), tab_.p[j].begin(), tab_.p[j].end());
+  }
+  w_.assign(dense_stage_.size(), 0.0);
+}
+
+void RkStepper::setTolerances(double rtol, std::vector<double> atol) {
+  rtol_ = rtol;
+  atol_ = std::move(atol);
+}
+
+void RkStepper::combine(const Weights& w, double h, double* __restrict out) const {
+  const double* __restrict y = y_.data();
+  for (int k = 0; k < dim_; ++k) out[k] = y[k];
+  for (const auto& [l, wl] : w) {
+    const double hw = h * wl;
+    const double* __restrict kl = stage(l);
+    for (int k = 0; k < dim_; ++k) out[k] += hw * kl[k];
+  }
+}
+
+void RkStepper::restart(double t, const double* y) {
+  t_ = t;
+  h_ = 0.0;
+  std::copy(y, y + dim_, y_.begin());
+  rhs_.eval(y_.data(), stage(0));
+  ++evals_;
+}
+
+double RkStepper::attempt(double h) {
+  h_ = h;
+  extra_stages_ = false;
+  const int s = tab_.stages;
+  // stages 1 .. s-2; s-1 is the FSAL stage, f(y1)
+  for (int j = 1; j < s - 1; ++j) {
+    combine(a_rows_[j], h, tmp_.data());
+    rhs_.eval(tmp_.data(), stage(j));
+  }
+  combine(b_, h, y1_.data());
+  rhs_.eval(y1_.data(), stage(s - 1));
+  evals_ += s - 1;
+  // error norm: the worst component relative to its tolerance
+  double err = 0.0;
+  for (int k = 0; k < dim_; ++k) {
+    if (atol_[k] < 0) continue;
+    double e = 0.0;
+    for (const auto& [l, el] : e_) e += el * stage(l)[k];
+    const double sc = atol_[k] + rtol_ * std::max(std::abs(y_[k]), std::abs(y1_[k]));
+    const double r = std::abs(h * e) / sc;
+    if (!(r <= err)) err = r;  // a NaN wins: a step that produced one is never accepted
+  }
+  if (!std::isfinite(err)) err = std::numeric_limits<double>::infinity();
+  return err;
+}
+
+void RkStepper::advance() {
+  t_ += h_;
+  std::swap(y_, y1_);
+  std::copy(stage(tab_.stages - 1), stage(tab_.stages - 1) + dim_, stage(0));
+  h_ = 0.0;
+}
+
+double RkStepper::nextStepSize(double h, double err, bool accepted) {
+  // Hairer's DOPRI5 controller: safety 0.9, the step changes by a factor in [0.2, 10]
+  const double beta = tab_.pi_beta;
+  const double expo = 1.0 / (tab_.error_order + 1) - 0.75 * beta;
+  const double fac11 = std::pow(std::max(err, 1e-300), expo);
+  if (accepted) {
+    double fac = fac11 / std::pow(err_old_, beta) / 0.9;
+    fac = std::clamp(fac, 0.1, 5.0);
+    err_old_ = std::max(err, 1e-4);
+    return h / fac;
+  }
+  return h / std::min(5.0, fac11 / 0.9);
+}
+
+const double* RkStepper::f1() const {
+  return stage(tab_.stages - 1);
+}
+
+void RkStepper::ensureStages() {
+  if (extra_stages_) return;
+  for (int j = tab_.stages; j < tab_.dense_stages; ++j) {
+    combine(a_rows_[j], h_, tmp_.data());
+    rhs_.eval(tmp_.data(), stage(j));
+    ++evals_;
+  }
+  extra_stages_ = true;
+}
+
+// The interpolant's stage weights at th: h b_j(th) = h sum_q p_jq th^(q+1), and their time
+// derivatives b_j'(th) = sum_q (q + 1) p_jq th^q. A value is then y0 + sum_j w_j k_j, computed in
+// the same order for one component as for the whole state, so that a witness evaluated on one
+// component agrees to the last bit with the state the event starts from.
+namespace {
+
+// w_r = scale * sum_q p_rq th^(q+1) (value) or sum_q (q + 1) p_rq th^q (rate), by Horner's rule
+// with the degree known at compile time
+template <int D>
+void hornerRows(const double* __restrict p, int rows, double th, double scale, bool rate,
+                double* __restrict w) {
+  for (int r = 0; r < rows; ++r, p += D) {
+    double acc;
+    if (rate) {
+      acc = D * p[D - 1];
+      for (int q = D - 2; q >= 0; --q) acc = acc * th + (q + 1) * p[q];
+    } else {
+      acc = p[D - 1];
+      for (int q = D - 2; q >= 0; --q) acc = acc * th + p[q];
+      acc *= scale;
+    }
+    w[r] = acc;
+  }
+}
+
+}  // namespace
+
+void RkStepper::stageWeights(double th, bool rate) {
+  ensureStages();
+  const int rows = static_cast<int>(dense_stage_.size());
+  const double scale = h_ * th;
+  const double* p = dense_p_.data();
+  double* w = w_.data();
+  switch (tab_.dense_degree) {
+    case 4:
+      return hornerRows<4>(p, rows, th, scale, rate, w);
+    case 6:
+      return hornerRows<6>(p, rows, th, scale, rate, w);
+    case 7:
+      return hornerRows<7>(p, rows, th, scale, rate, w);
+  }
+  const int deg = tab_.dense_degree;
+  for (int r = 0; r < rows; ++r, p += deg) {
+    double acc = rate ? deg * p[deg - 1] : p[deg - 1];
+    for (int q = deg - 2; q >= 0; --q) acc = acc * th + (rate ? (q + 1) * p[q] : p[q]);
+    w[r] = rate ? acc : scale * acc;
+  }
+}
+
+double RkStepper::component(int k, double th) {
+  if (th == 0.0) return y_[k];
+  if (th == 1.0) return y1_[k];
+  stageWeights(th, false);
+  double acc = y_[k];
+  for (size_t r = 0; r < dense_stage_.size(); ++r) acc += w_[r] * stage(dense_stage_[r])[k];
+  return acc;
+}
+
+double RkStepper::componentRate(int k, double th) {
+  stageWeights(th, true);
+  double acc = 0.0;
+  for (size_t r = 0; r < dense_stage_.size(); ++r) acc += w_[r] * stage(dense_stage_[r])[k];
+  return acc;
+}
+
+void RkStepper::interpolate(double th, double* __restrict out) {
+  if (th == 0.0) {
+    std::copy(y_.begin(), y_.end(), out);
+    return;
+  }
+  if (th == 1.0) {
+    std::copy(y1_.begin(), y1_.end(), out);
+    return;
+  }
+  stageWeights(th, false);
+  const double* __restrict y = y_.data();
+  for (int k = 0; k < dim_; ++k) out[k] = y[k];
+  for (size_t r = 0; r < dense_stage_.size(); ++r) {
+    const double w = w_[r];
+    const double* __restrict kj = stage(dense_stage_[r]);
+    for (int k = 0; k < dim_; ++k) out[k] += w * kj[k];
+  }
+}
+
+}  // namespace metrosync::direct

@@ -1,0 +1,112 @@
+#include "sim/record/envelope.h"
+
+#include <cmath>
+#include <complex>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace metrosync {
+
+double orderParameter(const std::vector<double>& A, const std::vector<double>& psi) {
+  if (A.empty()) return 0.0;
+  std::complex<double> sum = A[0];  // phi_1 = 0 without loss
+  double total = A[0];
+  for (size_t j = 1; j < A.size(); ++j) {
+    const double p = j - 1 < psi.size() ? psi[j - 1] : 0.0;
+    sum += std::polar(A[j], -p);  // A_j e^{i (phi_1 - psi_j)}
+    total += A[j];
+  }
+  return total > 0.0 ? std::abs(sum) / total : 0.0;
+}
+
+std::string envelopeHeader(int n) {
+  std::string h = "tau";
+  for (int i = 1; i <= n; ++i) h += ",A_" + std::to_string(i);
+  for (int j = 2; j <= n; ++j) h += ",psi_" + std::to_string(j);
+  return h + ",r";
+}
+
+std::string formatEnvelopeRow(const EnvelopeRow& row) {
+  char buf[40];
+  std::string s;
+  std::snprintf(buf, sizeof buf, "%.10g", row.tau);
+  s += buf;
+  for (double a : row.A) {
+    std::snprintf(buf, sizeof buf, ",%.12g", a);
+    s += buf;
+  }
+  for (double p : row.psi) {
+    std::snprintf(buf, sizeof buf, ",%.12g", p);
+    s += buf;
+  }
+  const double r = std::isnan(row.r) ? orderParameter(row.A, row.psi) : row.r;
+  std::snprintf(buf, sizeof buf, ",%.12g", r);
+  return s + buf;
+}
+
+EnvelopeLayout parseEnvelopeHeader(const std::string& header, const std::string& path) {
+  std::vector<std::string> names;
+  std::stringstream ss(header);
+  std::string name;
+  while (std::getline(ss, name, ',')) names.push_back(name);
+  if (!header.empty() && header.back() == ',') names.emplace_back();
+  EnvelopeLayout layout;
+  layout.has_r = names.size() > 1 && names.back() == "r";
+  const size_t core = names.size() - (layout.has_r ? 1 : 0);  // tau + N + (N-1) = 2N columns
+  layout.n = static_cast<int>(core / 2);
+  bool ok = core >= 2 && core % 2 == 0 && names[0] == "tau";
+  for (int i = 1; ok && i <= layout.n; ++i) ok = names[i] == "A_" + std::to_string(i);
+  for (int j = 2; ok && j <= layout.n; ++j)
+    ok = names[layout.n + j - 1] == "psi_" + std::to_string(j);
+  if (!ok)
+    throw std::runtime_error(path + ": not an envelope file (header '" + header +
+                             "', expected tau,A_1..A_N,psi_2..psi_N[,r])");
+  return layout;
+}
+
+EnvelopeRow envelopeRowFromValues(const std::vector<double>& v, const EnvelopeLayout& layout) {
+  const int n = layout.n;
+  EnvelopeRow r;
+  r.tau = v[0];
+  r.A.assign(v.begin() + 1, v.begin() + 1 + n);
+  r.psi.assign(v.begin() + 1 + n, v.begin() + 2 * n);
+  r.r = layout.has_r ? v[2 * n] : orderParameter(r.A, r.psi);
+  return r;
+}
+
+std::vector<EnvelopeRow> readEnvelopeCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  std::string line;
+  if (!std::getline(in, line)) throw std::runtime_error(path + ": empty file");
+  const EnvelopeLayout layout = parseEnvelopeHeader(line, path);
+  const int ncols = layout.columns();
+  std::vector<EnvelopeRow> rows;
+  long lineno = 1;
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (line.empty()) continue;
+    std::stringstream ss(line);
+    std::string cell;
+    std::vector<double> v;
+    while (std::getline(ss, cell, ',')) v.push_back(std::stod(cell));
+    if (static_cast<int>(v.size()) != ncols)
+      throw std::runtime_error(path + ":" + std::to_string(lineno) + ": wrong number of columns");
+    rows.push_back(envelopeRowFromValues(v, layout));
+  }
+  return rows;
+}
+
+double PhaseUnwrapper::operator()(double raw) {
+  constexpr double kTwoPi = 6.283185307179586;
+  if (!started_) {
+    started_ = true;
+    last_ = raw - kTwoPi * std::floor(raw / kTwoPi);
+    return last_;
+  }
+  last_ = raw + kTwoPi * std::round((last_ - raw) / kTwoPi);
+  return last_;
+}
+
+}  // namespace metrosync

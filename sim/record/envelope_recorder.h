@@ -1,0 +1,56 @@
+// Turns a sampled full-model trajectory into envelope rows (SPEC section 3): for each fast period
+// [2 pi k, 2 pi (k+1)] of scaled time, the time average of A_i = sqrt(theta_i^2 + thetadot_i^2)
+// and of exp(i phi_i), phi_i = atan2(theta_i, thetadot_i) - t (phases averaged as unit complex
+// numbers), by the trapezoid rule over the samples. Samples come in non-decreasing t; two samples
+// at the same t (just before and just after an impulse) make the jump exact, and the caller puts
+// a sample on every period boundary (nextBoundary()) so no trapezoid straddles two periods.
+// Engine-independent: any full-model engine feeds it scaled samples.
+#pragma once
+
+#include <complex>
+#include <vector>
+
+#include "sim/record/envelope.h"
+#include "sim/record/run_report.h"
+
+namespace metrosync {
+
+class EnvelopeRecorder {
+ public:
+  // active[i] == false for a locked metronome (reported as A = 0, phi = 0).
+  EnvelopeRecorder(double epsilon, std::vector<bool> active, RunSink& sink);
+
+  // theta, thetadot: (N x 1) scaled.
+  void sample(double t, const double* theta, const double* thetadot);
+  // Scaled time of the next period boundary.
+  double nextBoundary() const { return kTwoPi * static_cast<double>(period_ + 1); }
+  long rowsWritten() const { return period_; }
+  const EnvelopeRow& lastRow() const { return last_row_; }
+
+  static constexpr double kTwoPi = 6.283185307179586;
+
+ private:
+  struct Values {
+    std::vector<double> A;
+    std::vector<std::complex<double>> e;
+  };
+  void eval(double t, const double* theta, const double* thetadot, Values& out) const;
+  void closePeriod();
+  void integrate(double h, const Values& a, const Values& b);
+
+  double epsilon_;
+  std::vector<bool> active_;
+  RunSink& sink_;
+  int n_;
+  long period_ = 0;  // index of the period being accumulated
+  bool have_prev_ = false;
+  double t_prev_ = 0.0;
+  Values prev_, cur_;
+  std::vector<double> sum_A_;                // integral of A_i over the period so far
+  std::vector<std::complex<double>> sum_e_;  // integral of exp(i phi_i)
+  double covered_ = 0.0;                     // length of the period integrated so far
+  std::vector<PhaseUnwrapper> unwrap_;
+  EnvelopeRow last_row_;
+};
+
+}  // namespace metrosync

@@ -1,0 +1,86 @@
+// What a run of either model returns, and the sink it streams its rows into. The engines
+// (sim/simbody/ for the full model, models/slow_flow for the slow flow) know nothing about files;
+// sim/outputs turns a sink into the SPEC section 3 files.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "models/rig.h"
+#include "models/scaling.h"
+#include "sim/record/envelope.h"
+
+namespace metrosync {
+
+// Energy bookkeeping of a full-model run (physical units, joules): what the system has now
+// against what it had, what the escapement put in and what damping and friction took out.
+struct EnergyLedger {
+  double initial_J = 0.0;        // kinetic + potential at the start
+  double final_J = 0.0;          // kinetic + potential at the end
+  double escapement_in_J = 0.0;  // sum over ticks of the kinetic-energy jump
+  double damping_out_J = 0.0;    // integral of nu-bar L^2 thetadot^2 over all pivots
+  double friction_out_J = 0.0;   // integral of |F xdot| (Coulomb slip, viscous)
+  // (final - initial) - (in - out): zero up to integration error
+  double residual_J() const {
+    return (final_J - initial_J) - (escapement_in_J - damping_out_J - friction_out_J);
+  }
+  // residual relative to the largest energy flow
+  double relativeResidual() const;
+};
+
+struct RunCounts {
+  long steps = 0;                 // integrator steps taken
+  long rhs_evals = 0;             // right-hand-side (realize Acceleration) evaluations
+  std::vector<long> escapements;  // (N x 1) ticks per metronome
+  long stick_slip = 0;            // platform mode switches (stick<->slip, slip reversals)
+  long events = 0;                // event localizations of any kind
+};
+
+struct RunReport {
+  std::string model;       // "full" or "slow"
+  std::string engine;      // "simbody", "direct", "slowflow"
+  std::string integrator;  // the integrator used
+  double accuracy = 0.0;
+  bool complete = true;  // false when the run stopped early
+  std::string failure;   // why it stopped, with the time (empty when complete)
+  double wall_seconds = 0.0;
+  RunCounts counts;
+  bool has_ledger = false;
+  EnergyLedger ledger;
+  EnvelopeRow final_row;  // last envelope row (tau, A, psi)
+  // full model: state at the end, in the rig's units: t, x, xdot, theta_i, thetadot_i, platform
+  std::vector<double> final_trajectory_row;
+};
+
+// Receives rows as the run produces them; implementations must not keep the whole run in memory.
+struct RunSink {
+  virtual ~RunSink() = default;
+  // t, x, xdot, theta_1, thetadot_1, ..., theta_N, thetadot_N, platform (0, 1, -1) in the rig's
+  // units (physical: SI; scaled: scaled variables). Full model only.
+  virtual void trajectoryRow(const std::vector<double>& row) {}
+  virtual void envelopeRow(const EnvelopeRow& row) {}
+  // Full model: one call per event, with the state just after it in the trajectory format.
+  // kind: "tick" (escapement), "stick", "slip" (platform mode after a switch).
+  virtual void eventRow(const char* kind, const std::vector<double>& row) {}
+};
+
+// A sink that keeps everything in memory: for tests and small comparisons.
+struct MemorySink : RunSink {
+  std::vector<std::vector<double>> trajectory;
+  std::vector<EnvelopeRow> envelope;
+  std::vector<std::pair<std::string, std::vector<double>>> events;
+  void trajectoryRow(const std::vector<double>& row) override { trajectory.push_back(row); }
+  void envelopeRow(const EnvelopeRow& row) override { envelope.push_back(row); }
+  void eventRow(const char* kind, const std::vector<double>& row) override {
+    events.emplace_back(kind, row);
+  }
+};
+
+// Fails a run: the engine stops, reports what it has, and the command exits with code 3.
+struct SimulationFailure {
+  double t = 0.0;
+  std::string why;
+};
+
+}  // namespace metrosync

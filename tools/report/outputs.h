@@ -1,0 +1,135 @@
+// The output files of a command (SPEC section 3), written whole or not at all: every file goes to
+// a hidden temporary name in the output directory (".NAME.<pid>.part") and is renamed to NAME when
+// complete, so an interrupted run never leaves a truncated file that looks complete. Long runs
+// stream their rows to the temporary file as they go (flushed about once a second): memory does
+// not grow with the length of a run.
+#pragma once
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "models/rig.h"
+#include "sim/analysis/regime.h"
+#include "sim/record/atomic_file.h"
+#include "sim/record/envelope.h"
+#include "sim/record/run_report.h"
+
+namespace metrosync {
+
+// `runs/<rig name>-<command>`, the rig name reduced to characters safe in a file name.
+std::string defaultOutputDir(const std::string& rig_name, const std::string& command);
+
+// The --out directory. The constructor creates it (with its parents): construct it only once the
+// rig and the command line have been validated (SPEC 5: a bad rig writes nothing).
+class OutputDir {
+ public:
+  explicit OutputDir(std::string path);  // throws std::runtime_error when it cannot
+  const std::string& path() const { return path_; }
+  std::string file(const std::string& name) const { return path_ + "/" + name; }
+  // Removes metrosync's own output files (the names below) left by an earlier command in this
+  // directory, so that a stale trajectory.csv never sits next to a new summary.json. Other files
+  // are left alone.
+  void removeStaleOutputs() const;
+  static const std::vector<std::string>& outputNames();
+
+ private:
+  std::string path_;
+};
+
+// Keeps at most about `max_rows` of a stream of envelope rows for plotting: when the buffer holds
+// 2 max_rows rows every other one is dropped and the stride doubles. The last row is always kept.
+class EnvelopeDecimator {
+ public:
+  explicit EnvelopeDecimator(size_t max_rows = 4000) : max_rows_(max_rows < 2 ? 2 : max_rows) {}
+  void add(const EnvelopeRow& row);
+  // the kept rows in tau order, ending with the last row seen
+  std::vector<EnvelopeRow> rows() const;
+  size_t stride() const { return stride_; }
+
+ private:
+  size_t max_rows_;
+  size_t stride_ = 1;
+  long seen_ = 0;
+  std::vector<EnvelopeRow> kept_;
+  bool have_last_ = false;
+  EnvelopeRow last_;
+};
+
+// Where and what a model's sink writes.
+struct RunFilesOptions {
+  int n_metronomes = 0;
+  double tau_end = 0.0;    // end of the run in slow time: the regime window is its last 10%
+  bool trajectory = true;  // trajectory.csv (full model only)
+  std::string trajectory_name = "trajectory.csv";
+  std::string envelope_name = "envelope.csv";
+  size_t max_plot_rows = 4000;
+  // to report an interruption "at t = ..." in the rig's time unit: t = tau / epsilon * time_unit
+  double epsilon = 1.0;
+  double time_unit = 1.0;  // physical rigs: seconds per unit of scaled time; scaled rigs: 1
+};
+
+// Thrown by FileSink at the first row after a stop request. A std::runtime_error, so that an
+// engine that turns exceptions into a failed report (complete = false) stops cleanly; the caller
+// catches it too, for engines that let it through.
+struct RunInterrupted : std::runtime_error {
+  RunInterrupted(double t_, const std::string& why) : std::runtime_error(why), t(t_) {}
+  double t;  // when, in the rig's time unit
+};
+
+// The RunSink of a command: streams trajectory.csv and envelope.csv into `dir`, and keeps what the
+// summary and plots need (the regime window, a decimated copy of the envelope) in O(N) memory.
+// A stop request (requestStop(), e.g. from a SIGINT handler) makes the next row throw
+// RunInterrupted (once), so that the engine stops and reports what it has.
+class FileSink : public RunSink {
+ public:
+  FileSink(const OutputDir& dir, const RunFilesOptions& opt);
+
+  void trajectoryRow(const std::vector<double>& row) override;
+  void envelopeRow(const EnvelopeRow& row) override;
+
+  // Renames every file written to its final name. Called after the run whether it completed or
+  // not (a failed run keeps its rows, marked incomplete in summary.json).
+  void commit();
+
+  long trajectoryRows() const { return trajectory_rows_; }
+  long envelopeRows() const { return envelope_rows_; }
+  const RegimeWindow& regimeWindow() const { return window_; }
+  std::vector<EnvelopeRow> plotRows() const { return plot_.rows(); }
+  // final names of the files this sink writes
+  std::vector<std::string> fileNames() const;
+
+  // async-signal-safe; process-wide
+  static void requestStop();
+  static bool stopRequested();
+  static void clearStopRequest();
+
+ private:
+  void checkStop(double t);
+
+  RunFilesOptions opt_;
+  std::unique_ptr<AtomicFile> trajectory_, envelope_;
+  long trajectory_rows_ = 0, envelope_rows_ = 0;
+  bool stop_thrown_ = false;
+  RegimeWindow window_;
+  EnvelopeDecimator plot_;
+};
+
+// The per-model part of summary.json: model, engine, integrator, accuracy, regime, final
+// {tau, A[], psi[]}, counts {steps, escapements[], stick_slip, rhs_evals, events}, wall_seconds,
+// complete, failure (when incomplete), energy {...} (when the report has a ledger).
+nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict);
+
+// summary.json of `run`: reportJson plus units, rig, version, command and `scaled` (the object
+// `scale --json` prints).
+nlohmann::json runSummaryJson(const Rig& rig, const nlohmann::json& scaled, const RunReport& report,
+                              const RegimeVerdict& verdict);
+
+// Writes `j` (pretty-printed, newline-terminated) to DIR/summary.json atomically.
+void writeSummary(const OutputDir& dir, const nlohmann::json& j);
+
+}  // namespace metrosync

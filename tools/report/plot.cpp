@@ -1,0 +1,284 @@
+#include "tools/report/plot.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+extern char** environ;
+
+namespace metrosync {
+
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+
+// one colour per metronome (colour-blind friendly order), cycled beyond eight
+const char* const kColours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7",
+                                "#e69f00", "#56b4e9", "#000000", "#f0e442"};
+
+const char* colour(int i) {
+  return kColours[i % 8];
+}
+
+// a gnuplot single-quoted string: a quote inside is written twice
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
+  return q + "'";
+}
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+// "0", "π/2", "π", "3π/2", "2π", "-π", ... for k halves of pi
+std::string halfPiLabel(long k) {
+  if (k == 0) return "0";
+  const std::string sign = k < 0 ? "-" : "";
+  const long a = std::labs(k);
+  if (a % 2 == 1) return sign + (a == 1 ? "" : std::to_string(a)) + "π/2";
+  return sign + (a == 2 ? "" : std::to_string(a / 2)) + "π";
+}
+
+// ytics at multiples of pi (or pi/2) so that phase plots read in units of pi
+std::string piTics(double lo, double hi) {
+  const double span_halves = (hi - lo) / (kPi / 2);
+  long step = 1;  // in halves of pi
+  for (long s : {1L, 2L, 4L, 10L, 20L, 40L, 100L, 200L, 400L, 1000L}) {
+    step = s;
+    if (span_halves / s <= 10) break;
+  }
+  std::string tics;
+  const long k0 = static_cast<long>(std::ceil(lo / (kPi / 2) / step)) * step;
+  for (long k = k0; k * (kPi / 2) <= hi + 1e-12 && tics.size() < 4000; k += step)
+    tics +=
+        (tics.empty() ? "" : ", ") + std::string("\"") + halfPiLabel(k) + "\" " + num(k * kPi / 2);
+  return "set ytics (" + tics + ")\n";
+}
+
+void warn(const std::string& what) {
+  std::cerr << "metrosync: warning: " << what << "\n";
+}
+
+std::string envelopeData(const std::vector<const std::vector<EnvelopeRow>*>& blocks) {
+  std::ostringstream out;
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    if (b) out << "\n\n";  // gnuplot: two blank lines separate data blocks (`index`)
+    if (blocks[b]->empty()) {
+      // an empty block keeps its `index`: one undefined point (a model that wrote no row)
+      out << "nan\n";
+      continue;
+    }
+    for (const auto& r : *blocks[b]) {
+      out << num(r.tau);
+      for (double a : r.A) out << ' ' << num(a);
+      for (double p : r.psi) out << ' ' << num(p);
+      out << '\n';
+    }
+  }
+  return out.str();
+}
+
+std::string firstLines(const std::string& path, int count) {
+  std::ifstream in(path);
+  std::string line, text;
+  for (int k = 0; k < count && std::getline(in, line);) {
+    if (line.find_first_not_of(" \t^") == std::string::npos) continue;
+    text += (text.empty() ? "" : " | ") + line;
+    ++k;
+  }
+  return text;
+}
+
+bool drawPlot(const OutputDir& dir, const std::string& png_name,
+              const std::vector<const std::vector<EnvelopeRow>*>& blocks,
+              const std::vector<double>& theta_c, const std::string& title) {
+  int n = 0;
+  double psi_lo = 0.0, psi_hi = 2 * kPi, tau_max = 0.0;
+  bool any = false;
+  for (const auto* b : blocks)
+    for (const auto& r : *b) {
+      n = static_cast<int>(r.A.size());
+      any = true;
+      if (std::isfinite(r.tau)) tau_max = std::max(tau_max, r.tau);
+      for (double p : r.psi)
+        if (std::isfinite(p)) psi_lo = std::min(psi_lo, p), psi_hi = std::max(psi_hi, p);
+    }
+  if (!any) {
+    if (!findExecutable("gnuplot").empty())
+      warn(png_name + " not written: no envelope row to plot");
+    return false;
+  }
+  return drawPng(dir, png_name, envelopeData(blocks),
+                 [&](const std::string& data_path, const std::string& png_path) {
+                   return gnuplotScript(data_path, png_path, n, static_cast<int>(blocks.size()),
+                                        theta_c, tau_max, psi_lo, psi_hi, title);
+                 });
+}
+
+}  // namespace
+
+bool drawPng(const OutputDir& dir, const std::string& png_name, const std::string& data,
+             const std::function<std::string(const std::string&, const std::string&)>& script) {
+  const std::string gnuplot = findExecutable("gnuplot");
+  if (gnuplot.empty()) {
+    static bool warned = false;
+    if (!warned) warn("gnuplot not found on PATH: plots are skipped");
+    warned = true;
+    return false;
+  }
+  const std::string final_png = dir.file(png_name);
+  const std::string png = temporaryPathFor(final_png);
+  const std::string data_path = temporaryPathFor(final_png + ".dat");
+  const std::string script_path = temporaryPathFor(final_png + ".gp");
+  const std::string log = temporaryPathFor(final_png + ".log");
+  auto cleanup = [&] {
+    for (const auto* p : {&data_path, &script_path, &log}) std::remove(p->c_str());
+  };
+  bool ok = static_cast<bool>(std::ofstream(data_path) << data);
+  ok = ok && static_cast<bool>(std::ofstream(script_path) << script(data_path, png));
+  if (!ok) {
+    cleanup();
+    warn(png_name + " not written: cannot write its data in " + dir.path());
+    return false;
+  }
+  const int rc = runGnuplot(gnuplot, script_path, log);
+  struct stat st {};
+  if (rc != 0 || ::stat(png.c_str(), &st) != 0 || st.st_size == 0) {
+    const std::string why = firstLines(log, 3);
+    warn(png_name + " not written: gnuplot failed" + (why.empty() ? "" : ": " + why));
+    std::remove(png.c_str());
+    cleanup();
+    return false;
+  }
+  cleanup();
+  if (std::rename(png.c_str(), final_png.c_str()) != 0) {
+    std::remove(png.c_str());
+    warn(png_name + " not written: cannot rename its temporary file");
+    return false;
+  }
+  return true;
+}
+
+int runGnuplot(const std::string& gnuplot, const std::string& script, const std::string& log_path) {
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 2, log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<char*> argv = {const_cast<char*>(gnuplot.c_str()), const_cast<char*>(script.c_str()),
+                             nullptr};
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, gnuplot.c_str(), &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string findExecutable(const std::string& name) {
+  if (name.find('/') != std::string::npos) return ::access(name.c_str(), X_OK) == 0 ? name : "";
+  const char* path = std::getenv("PATH");
+  std::stringstream ss(path ? path : "");
+  std::string dir;
+  while (std::getline(ss, dir, ':')) {
+    const std::string candidate = (dir.empty() ? "." : dir) + "/" + name;
+    struct stat st {};
+    if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
+        ::access(candidate.c_str(), X_OK) == 0)
+      return candidate;
+  }
+  return "";
+}
+
+std::string gnuplotScript(const std::string& data_path, const std::string& png_path, int n,
+                          int blocks, const std::vector<double>& theta_c, double tau_max,
+                          double psi_lo, double psi_hi, const std::string& title) {
+  const bool compare = blocks == 2;
+  const char* const model_name[] = {"full", "slow"};
+  std::ostringstream s;
+  const int panels = n > 1 ? 2 : 1;
+  s << "set terminal pngcairo size 1100," << (panels == 2 ? 850 : 480)
+    << " enhanced font 'sans,11' linewidth 1.2\n"
+    << "set output " << quote(png_path) << "\n"
+    << "set datafile missing 'nan'\n"
+    << "set grid back lt 1 lw 0.8 lc rgb '#e4e4e4'\n"
+    << "set key outside right top samplen 3\n"
+    // fixed margins, so that the panels' tau axes line up whatever their keys
+    << "set lmargin at screen 0.09\nset rmargin at screen 0.84\n"
+    << "set xrange [0:" << num(tau_max > 0 ? tau_max : 1) << "]\n"
+    << "set multiplot layout " << panels << ",1 title " << quote(title)
+    << " noenhanced font 'sans,13'\n"
+    << "set xlabel 'slow time τ'\n";
+
+  // amplitudes, with the escapement threshold: below theta_c a metronome is dead (SPEC 4)
+  s << "set ylabel 'amplitude A_i (scaled)'\nset yrange [0:*]\n";
+  std::string plot;
+  auto add = [&](const std::string& item) {
+    plot += (plot.empty() ? "plot " : ", \\\n     ") + item;
+  };
+  for (int b = 0; b < blocks; ++b)
+    for (int i = 0; i < n; ++i)
+      add(quote(data_path) + " index " + std::to_string(b) + " using 1:" + std::to_string(2 + i) +
+          " with lines lw " + (b == 0 ? "2" : "1.5") + " dt " + (b == 0 ? "1" : "2") + " lc rgb '" +
+          colour(i) + "' title '" + "A_" + std::to_string(i + 1) +
+          (compare ? std::string(" ") + model_name[b] : "") + "'");
+  std::vector<double> levels;
+  for (double tc : theta_c)
+    if (std::none_of(levels.begin(), levels.end(),
+                     [&](double l) { return std::fabs(l - tc) < 1e-9; }))
+      levels.push_back(tc);
+  for (size_t k = 0; k < levels.size(); ++k)
+    add(num(levels[k]) + " with lines dt 3 lw 1.5 lc rgb '#555555' " +
+        (k == 0 ? "title 'θ_c'" : "notitle"));
+  s << plot << "\n";
+
+  // phase differences, in units of pi, with guides at pi (antiphase) and 2 pi (in-phase)
+  if (panels == 2) {
+    const double pad = 0.04 * (psi_hi - psi_lo);
+    s << "set ylabel 'phase difference ψ_j = φ_1 - φ_j (rad)'\n"
+      << "set yrange [" << num(psi_lo - pad) << ":" << num(psi_hi + pad) << "]\n"
+      << piTics(psi_lo - pad, psi_hi + pad);
+    plot.clear();
+    for (int b = 0; b < blocks; ++b)
+      for (int j = 2; j <= n; ++j)
+        add(quote(data_path) + " index " + std::to_string(b) + " using 1:" +
+            std::to_string(1 + n + j - 1) + " with lines lw " + (b == 0 ? "2" : "1.5") + " dt " +
+            (b == 0 ? "1" : "2") + " lc rgb '" + colour(j - 1) + "' title 'ψ_" + std::to_string(j) +
+            (compare ? std::string(" ") + model_name[b] : "") + "'");
+    add("pi with lines dt 3 lw 1.5 lc rgb '#555555' title 'π, 2π'");
+    add("2*pi with lines dt 3 lw 1.5 lc rgb '#555555' notitle");
+    s << plot << "\n";
+  }
+  s << "unset multiplot\nset output\n";
+  return s.str();
+}
+
+bool plotEnvelope(const OutputDir& dir, const std::string& png_name,
+                  const std::vector<EnvelopeRow>& rows, const std::vector<double>& theta_c,
+                  const std::string& title) {
+  return drawPlot(dir, png_name, {&rows}, theta_c, title);
+}
+
+bool plotComparison(const OutputDir& dir, const std::string& png_name,
+                    const std::vector<EnvelopeRow>& full, const std::vector<EnvelopeRow>& slow,
+                    const std::vector<double>& theta_c, const std::string& title) {
+  return drawPlot(dir, png_name, {&full, &slow}, theta_c, title);
+}
+
+}  // namespace metrosync

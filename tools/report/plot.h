@@ -1,0 +1,48 @@
+// PNG plots through gnuplot (pngcairo terminal): what a reader of the paper wants to see.
+//   envelope plot:   amplitudes A_i against tau with the escapement threshold theta_c (top) and
+//                    the phase differences psi_j against tau with guides at pi and 2 pi (bottom;
+//                    absent for N = 1), as in the paper's simulation figures
+//   comparison plot: the same panels, full model (solid) over the slow flow (dashed)
+// The data go to a temporary file in the output directory, gnuplot draws into a temporary PNG
+// that is renamed when complete. A missing or failing gnuplot is a warning on stderr, never an
+// error: the run's results do not depend on its plots.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sim/record/envelope.h"
+#include "tools/report/outputs.h"
+
+namespace metrosync {
+
+// Full path of `name` found on $PATH (executable), or "" when absent.
+std::string findExecutable(const std::string& name);
+
+// Runs `gnuplot script` (stdin and stdout to /dev/null, stderr to `log_path`); returns gnuplot's
+// exit status, or -1 if it could not be run.
+int runGnuplot(const std::string& gnuplot, const std::string& script, const std::string& log_path);
+
+// Draws DIR/png_name: writes `data` to a temporary file next to it, runs the gnuplot script that
+// script(data_path, png_path) returns, renames the PNG into place. A missing gnuplot (said once
+// per process) or a failing one is a warning; returns true when the PNG was written.
+bool drawPng(const OutputDir& dir, const std::string& png_name, const std::string& data,
+             const std::function<std::string(const std::string&, const std::string&)>& script);
+
+// Returns true when DIR/png_name was written. theta_c: (N x 1) scaled critical angles.
+bool plotEnvelope(const OutputDir& dir, const std::string& png_name,
+                  const std::vector<EnvelopeRow>& rows, const std::vector<double>& theta_c,
+                  const std::string& title);
+
+bool plotComparison(const OutputDir& dir, const std::string& png_name,
+                    const std::vector<EnvelopeRow>& full, const std::vector<EnvelopeRow>& slow,
+                    const std::vector<double>& theta_c, const std::string& title);
+
+// The gnuplot script of a plot (exposed for tests): reads `data_path` (blocks of rows
+// "tau A_1..A_N psi_2..psi_N", one block per model), writes `png_path`.
+std::string gnuplotScript(const std::string& data_path, const std::string& png_path, int n,
+                          int blocks, const std::vector<double>& theta_c, double tau_max,
+                          double psi_lo, double psi_hi, const std::string& title);
+
+}  // namespace metrosync

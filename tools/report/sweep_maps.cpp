@@ -1,0 +1,360 @@
+#include "tools/report/sweep_maps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "tools/report/plot.h"
+
+namespace metrosync {
+
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+constexpr int kMaxPanels = 4;  // metronomes shown in amplitudes.png and phases.png
+
+// SPEC names first, in the order of SPEC 4, then the extensions; fixed colours (colour-blind
+// friendly where it matters: in-phase, antiphase, suppression, death)
+const std::vector<std::pair<std::string, std::string>>& fixedColours() {
+  static const std::vector<std::pair<std::string, std::string>> c = {
+      {"in-phase", "#0072b2"},  {"antiphase", "#d55e00"},   {"phase-locked", "#009e73"},
+      {"drift", "#cc79a7"},     {"suppression", "#e69f00"}, {"death", "#000000"},
+      {"unsettled", "#999999"}, {"alive", "#56b4e9"},       {"none", "#f0f0f0"},
+      {"unknown", "#dddddd"},   {"failed", "#ff0000"},
+  };
+  return c;
+}
+
+// for the names of N >= 3 (clusters:..., suppressed:...), in legend order
+const char* const kPalette[] = {"#f0e442", "#6a3d9a", "#8c564b", "#17becf", "#bcbd22",
+                                "#9467bd", "#aec7e8", "#ffbb78", "#98df8a", "#ff9896",
+                                "#c5b0d5", "#c49c94", "#f7b6d2", "#dbdb8d", "#9edae5",
+                                "#393b79", "#637939", "#8c6d31", "#843c39", "#7b4173"};
+
+std::string num(double v) {
+  if (std::isnan(v)) return "NaN";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
+  return q + "'";
+}
+
+// The axes drawn: those with more than one value (a single point is drawn along axis 0).
+std::vector<size_t> drawnAxes(const SweepGrid& grid) {
+  std::vector<size_t> a;
+  for (size_t k = 0; k < grid.axes().size(); ++k)
+    if (grid.axes()[k].count > 1) a.push_back(k);
+  if (a.empty()) a.push_back(0);
+  return a;
+}
+
+bool isAngleKey(const std::string& key) {
+  const size_t dot = key.rfind('.');
+  const std::string last = dot == std::string::npos ? key : key.substr(dot + 1);
+  return last == "phi" || last == "psi" || last == "angle" || last == "theta";
+}
+
+// tics in multiples of pi/2 (or coarser) for an angle axis
+std::string piTics(const char* axis, double lo, double hi) {
+  const double halves = (hi - lo) / (kPi / 2);
+  long step = 1;
+  for (long s : {1L, 2L, 4L, 8L, 20L, 40L}) {
+    step = s;
+    if (halves / s <= 8) break;
+  }
+  std::string tics;
+  for (long k = static_cast<long>(std::ceil(lo / (kPi / 2) / step)) * step;
+       k * (kPi / 2) <= hi + 1e-9 && tics.size() < 2000; k += step) {
+    std::string label;
+    const long a = std::labs(k);
+    const std::string sign = k < 0 ? "-" : "";
+    if (k == 0)
+      label = "0";
+    else if (a % 2 == 1)
+      label = sign + (a == 1 ? "" : std::to_string(a)) + "π/2";
+    else
+      label = sign + (a == 2 ? "" : std::to_string(a / 2)) + "π";
+    tics += (tics.empty() ? "" : ", ") + std::string("\"") + label + "\" " + num(k * kPi / 2);
+  }
+  return std::string("set ") + axis + "tics (" + tics + ")\n";
+}
+
+// range of an axis with half a cell on each side
+struct AxisRange {
+  double lo, hi, cell;
+};
+AxisRange axisRange(const SweepAxis& a) {
+  const double lo = std::min(a.values.front(), a.values.back());
+  const double hi = std::max(a.values.front(), a.values.back());
+  double cell = a.count > 1 ? (hi - lo) / (a.count - 1) : 0.0;
+  if (!(cell > 0)) cell = std::max(1e-3, std::fabs(lo) * 0.1);
+  return {lo - cell / 2, hi + cell / 2, cell};
+}
+
+std::string axisSettings(const SweepGrid& grid, const std::vector<size_t>& axes) {
+  std::ostringstream s;
+  const char* names[] = {"x", "y"};
+  for (size_t k = 0; k < axes.size() && k < 2; ++k) {
+    const SweepAxis& a = grid.axes()[axes[k]];
+    const AxisRange r = axisRange(a);
+    s << "set " << names[k] << "label " << quote(a.key + (isAngleKey(a.key) ? " (rad)" : ""))
+      << " noenhanced\n"
+      << "set " << names[k] << "range [" << num(r.lo) << ":" << num(r.hi) << "]\n";
+    if (isAngleKey(a.key) && r.hi - r.lo > 1.0) s << piTics(names[k], r.lo, r.hi);
+  }
+  return s.str();
+}
+
+const SweepPoint* pointAt(const std::map<long, SweepPoint>& points, long g) {
+  auto it = points.find(g);
+  return it == points.end() ? nullptr : &it->second;
+}
+
+long indexOf(const SweepGrid& grid, const std::vector<long>& c) {
+  long g = 0;
+  for (size_t a = 0; a < grid.axes().size(); ++a) g = g * grid.axes()[a].count + c[a];
+  return g;
+}
+
+// The cells drawn, in scan order: y outer, x inner (2-D), with the grid index of each; a blank
+// line (g = -1) between scan lines. Axes not drawn sit at their first value.
+std::vector<long> scanOrder(const SweepGrid& grid, const std::vector<size_t>& axes) {
+  std::vector<long> order;
+  std::vector<long> c(grid.axes().size(), 0);
+  const long nx = grid.axes()[axes[0]].count;
+  const long ny = axes.size() > 1 ? grid.axes()[axes[1]].count : 1;
+  for (long iy = 0; iy < ny; ++iy) {
+    for (long ix = 0; ix < nx; ++ix) {
+      c[axes[0]] = ix;
+      if (axes.size() > 1) c[axes[1]] = iy;
+      order.push_back(indexOf(grid, c));
+    }
+    if (axes.size() > 1) order.push_back(-1);
+  }
+  return order;
+}
+
+std::string cellPosition(const SweepGrid& grid, const std::vector<size_t>& axes, long g) {
+  const std::vector<long> c = grid.coordinates(g);
+  std::string s = num(grid.axes()[axes[0]].values[c[axes[0]]]);
+  if (axes.size() > 1) s += " " + num(grid.axes()[axes[1]].values[c[axes[1]]]);
+  return s;
+}
+
+long rgbOf(const std::string& hex) {
+  return std::stol(hex.substr(1), nullptr, 16);
+}
+
+// a value shown in the maps: none for failed or missing points
+double shown(const SweepPoint* p, double v) {
+  return p && p->complete ? v : std::nan("");
+}
+
+std::string panelLayout(int panels) {
+  const int cols = panels == 1 ? 1 : 2;
+  const int rows = (panels + cols - 1) / cols;
+  return std::to_string(rows) + "," + std::to_string(cols);
+}
+
+std::string header(const std::string& png, int width, int height) {
+  std::ostringstream s;
+  s << "set terminal pngcairo size " << width << "," << height
+    << " enhanced font 'sans,11' linewidth 1.2\n"
+    << "set output " << quote(png) << "\n"
+    << "set tics out\n";
+  return s.str();
+}
+
+}  // namespace
+
+const std::vector<std::string>& sweepMapNames() {
+  static const std::vector<std::string> names = {"regimes.png", "amplitudes.png", "phases.png",
+                                                 "order.png", "drive.png"};
+  return names;
+}
+
+std::vector<std::string> regimeLegendOrder(const std::map<long, SweepPoint>& points) {
+  std::map<std::string, long> count;
+  for (const auto& [g, p] : points) ++count[p.regime];
+  std::vector<std::string> legend;
+  for (const auto& [name, colour] : fixedColours())
+    if (count.count(name)) legend.push_back(name);
+  std::vector<std::pair<long, std::string>> others;
+  for (const auto& [name, k] : count)
+    if (std::none_of(fixedColours().begin(), fixedColours().end(),
+                     [&](const auto& f) { return f.first == name; }))
+      others.emplace_back(-k, name);
+  std::sort(others.begin(), others.end());  // most frequent first, then by name
+  for (const auto& o : others) legend.push_back(o.second);
+  return legend;
+}
+
+std::string regimeColour(const std::string& name, const std::vector<std::string>& legend) {
+  for (const auto& [n, colour] : fixedColours())
+    if (n == name) return colour;
+  long k = 0;
+  for (const auto& l : legend) {
+    if (l == name) return kPalette[k % (sizeof kPalette / sizeof kPalette[0])];
+    if (std::none_of(fixedColours().begin(), fixedColours().end(),
+                     [&](const auto& f) { return f.first == l; }))
+      ++k;
+  }
+  return "#808080";
+}
+
+std::string regimeMapScript(const std::string& data_path, const std::string& png_path,
+                            const SweepGrid& grid, const std::vector<std::string>& legend,
+                            const std::string& title) {
+  const std::vector<size_t> axes = drawnAxes(grid);
+  const bool map2d = axes.size() > 1;
+  std::ostringstream s;
+  s << header(png_path, 1100, map2d ? 850 : 420) << "set title " << quote(title)
+    << " noenhanced font 'sans,13'\n"
+    << "set key at screen 0.75, graph 1 left top Left reverse noenhanced title 'regime' "
+       "samplen 1.5\n"
+    << "set rmargin at screen 0.72\n"
+    << axisSettings(grid, axes);
+  std::string plot;
+  if (map2d) {
+    plot = "plot " + quote(data_path) + " using 1:2:3:4:5 with rgbimage notitle";
+  } else {
+    const AxisRange r = axisRange(grid.axes()[axes[0]]);
+    s << "set yrange [0:1]\nunset ytics\n";
+    plot = "plot " + quote(data_path) + " using 1:($2 < 0 ? NaN : 1):(" + num(r.cell) +
+           "):($2 < 0 ? 0 : $2) with boxes fill solid 1.0 noborder lc rgb variable notitle";
+  }
+  for (const auto& name : legend)
+    plot += ", \\\n     keyentry with boxes fill solid 1.0 border lc rgb '#606060' fc rgb '" +
+            regimeColour(name, legend) + "' title " + quote(name);
+  s << plot << "\nset output\n";
+  return s.str();
+}
+
+std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& grid, int n,
+                                       const std::map<long, SweepPoint>& points,
+                                       const std::string& title) {
+  std::vector<std::string> written;
+  if (grid.size() == 0 || n < 1 || points.empty()) return written;  // nothing to draw
+  const std::vector<size_t> axes = drawnAxes(grid);
+  const bool map2d = axes.size() > 1;
+  const std::vector<long> order = scanOrder(grid, axes);
+  const std::vector<std::string> legend = regimeLegendOrder(points);
+
+  // regimes.png: "x y R G B" cells (2-D; white where not run), or "x rgb" (1-D; -1 not run)
+  {
+    std::ostringstream d;
+    for (long g : order) {
+      if (g < 0) {
+        d << "\n";
+        continue;
+      }
+      const SweepPoint* p = pointAt(points, g);
+      const long rgb = p ? rgbOf(regimeColour(p->regime, legend)) : (map2d ? 0xffffff : -1);
+      d << cellPosition(grid, axes, g);
+      if (map2d)
+        d << " " << ((rgb >> 16) & 255) << " " << ((rgb >> 8) & 255) << " " << (rgb & 255) << "\n";
+      else
+        d << " " << rgb << "\n";
+    }
+    if (drawPng(dir, "regimes.png", d.str(), [&](const std::string& data, const std::string& png) {
+          return regimeMapScript(data, png, grid, legend, title + " - regimes");
+        }))
+      written.push_back("regimes.png");
+  }
+
+  // the values: "x [y] A_1..A_N psi_2..psi_N r log10(s)" (NaN where not run or failed)
+  std::ostringstream d;
+  bool any_drive = false;
+  for (long g : order) {
+    if (g < 0) {
+      d << "\n";
+      continue;
+    }
+    const SweepPoint* p = pointAt(points, g);
+    d << cellPosition(grid, axes, g);
+    for (int i = 0; i < n; ++i)
+      d << " " << num(shown(p, p && i < static_cast<int>(p->A.size()) ? p->A[i] : NAN));
+    for (int j = 0; j + 1 < n; ++j)
+      d << " " << num(shown(p, p && j < static_cast<int>(p->psi.size()) ? p->psi[j] : NAN));
+    d << " " << num(shown(p, p ? p->r : NAN));
+    // log10 s, clamped to [-2, 2] (s = inf: a free platform, drawn as slipping)
+    const double s = p ? p->s : NAN;
+    d << " " << num(shown(p, std::isnan(s) ? NAN : std::max(-2.0, std::min(2.0, std::log10(s)))))
+      << "\n";
+    any_drive = any_drive || (p && !std::isnan(p->s));
+  }
+  const std::string values = d.str();
+  const int first_value = map2d ? 3 : 2;  // gnuplot column of A_1
+
+  // one picture of up to four quantities: maps (2-D) or lines against the key (1-D)
+  struct Quantity {
+    std::string label;
+    int column;
+  };
+  const bool any_complete =
+      std::any_of(points.begin(), points.end(), [](const auto& kv) { return kv.second.complete; });
+  auto picture = [&](const std::string& name, const std::vector<Quantity>& qs,
+                     const std::string& palette, const std::string& range, bool angle) {
+    if (qs.empty() || !any_complete) return;  // every point failed: no value to draw
+    auto script = [&](const std::string& data, const std::string& png) {
+      std::ostringstream s;
+      const int panels = map2d ? static_cast<int>(qs.size()) : 1;
+      s << header(png, 1100, map2d ? (panels > 2 ? 950 : 520) : 480) << axisSettings(grid, axes);
+      if (map2d) {
+        s << "set multiplot layout " << panelLayout(panels) << " title "
+          << quote(title + " - " + name.substr(0, name.size() - 4)) << " noenhanced\n"
+          << palette << "set cbrange " << range << "\n";
+        if (angle) s << piTics("cb", 0.0, 2 * kPi);
+        for (const auto& q : qs)
+          s << "set title " << quote(q.label) << "\nplot " << quote(data)
+            << " using 1:2:" << q.column << " with image notitle\n";
+        s << "unset multiplot\n";
+      } else {
+        s << "set title " << quote(title + " - " + name.substr(0, name.size() - 4))
+          << " noenhanced\nset key outside right top\nset grid\nset yrange " << range << "\n";
+        if (angle) s << piTics("y", 0.0, 2 * kPi);
+        std::string plot;
+        const char* const colours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7"};
+        for (size_t k = 0; k < qs.size(); ++k)
+          plot += (plot.empty() ? "plot " : ", \\\n     ") + quote(data) +
+                  " using 1:" + std::to_string(qs[k].column) +
+                  (angle ? " with points pt 7 ps 0.6" : " with linespoints pt 7 ps 0.5") +
+                  " lc rgb '" + colours[k % 4] + "' title " + quote(qs[k].label);
+        s << plot << "\n";
+      }
+      s << "set output\n";
+      return s.str();
+    };
+    if (drawPng(dir, name, values, script)) written.push_back(name);
+  };
+  std::vector<Quantity> amps, phases;
+  for (int i = 0; i < std::min(n, kMaxPanels); ++i)
+    amps.push_back({"A_" + std::to_string(i + 1), first_value + i});
+  for (int j = 0; j < std::min(n - 1, kMaxPanels); ++j)
+    phases.push_back({"ψ_" + std::to_string(j + 2), first_value + n + j});
+  const std::string viridis =
+      "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', 4 '#fde725')\n";
+  // hue around the circle: psi = 0 and 2 pi get the same colour
+  const std::string cyclic = "set palette model HSV defined (0 0 0.75 0.95, 1 1 0.75 0.95)\n";
+  picture("amplitudes.png", amps, viridis, "[0:*]", false);
+  picture("phases.png", phases, cyclic, "[0:2*pi]", true);
+  if (n >= 3)
+    picture("order.png", {{"r = |Σ A_j e^{iφ_j}| / Σ A_j", first_value + 2 * n - 1}}, viridis,
+            "[0:1]", false);
+  // where the platform sticks (s < 1: blue) and the metronomes are uncoupled
+  const std::string diverging = "set palette defined (-2 '#2166ac', 0 '#f7f7f7', 2 '#b2182b')\n";
+  if (any_drive)
+    picture("drive.png",
+            {{"log_{10} s,  s = |Σ A_j e^{iφ_j}| / μ  (s < 1: the platform sticks)",
+              first_value + 2 * n}},
+            diverging, "[-2:2]", false);
+  return written;
+}
+
+}  // namespace metrosync

@@ -1,0 +1,43 @@
+// The pictures of a sweep (PNG through gnuplot, as tools/report/plot.h): what a reader of the paper's
+// figure exp1 wants to see, computed.
+//   regimes.png     the regime of every grid point, one colour per regime, with a legend: a map
+//                   over the two varied keys (first --vary across, second up), or for one key a
+//                   strip of coloured cells along it
+//   amplitudes.png  final A_i (the first four metronomes): maps, or lines against the key
+//   phases.png      final psi_j in [0, 2 pi) (the first four): maps with a cyclic palette, or
+//                   points against the key
+//   order.png       final order parameter r (N >= 3 only)
+//   drive.png       log10 of the final drive strength s = |Z| / mu of a Coulomb platform: below 0
+//                   the platform sticks and the metronomes are uncoupled (the paper's exp1)
+// Grid points not run (an incomplete sweep or merge) are left white; failed points are drawn in
+// the regime map only. A missing or failing gnuplot is a warning, never an error.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "tools/report/outputs.h"
+#include "sim/analysis/sweep.h"
+
+namespace metrosync {
+
+// The file names the maps may have (for removing stale ones).
+const std::vector<std::string>& sweepMapNames();
+
+// Draws the maps into `dir`; returns the names of the files written.
+std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& grid, int n,
+                                       const std::map<long, SweepPoint>& points,
+                                       const std::string& title);
+
+// The colour of a regime name (#rrggbb): fixed for the SPEC names and `failed`, from a palette in
+// the order given for the others. `names` are the regimes present, in legend order.
+std::vector<std::string> regimeLegendOrder(const std::map<long, SweepPoint>& points);
+std::string regimeColour(const std::string& name, const std::vector<std::string>& legend);
+
+// The gnuplot script of the regime map (exposed for tests).
+std::string regimeMapScript(const std::string& data_path, const std::string& png_path,
+                            const SweepGrid& grid, const std::vector<std::string>& legend,
+                            const std::string& title);
+
+}  // namespace metrosync
