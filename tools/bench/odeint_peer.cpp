@@ -189,6 +189,7 @@ struct System {
 // One accepted step [s0, s1] at a time, the states at its ends, and the solution inside it.
 class Driver {
  public:
+  Driver(Equations& eq, double max_dt) : sys_{&eq}, dt_(max_dt) {}
   virtual ~Driver() = default;
   virtual void restart(const State& z, double s) = 0;
   // One accepted step from s1 to at most s_limit.
@@ -199,14 +200,17 @@ class Driver {
   double s0 = 0, s1 = 0;
   State y0, y1;
   long steps = 0;
+
+ protected:
+  System sys_;
+  double dt_;  // the step size the controller proposes next
 };
 
 class Dopri5Driver : public Driver {
  public:
   Dopri5Driver(Equations& eq, double tol, double max_dt)
-      : sys_{&eq},
-        dense_(ode::make_dense_output(tol, tol, max_dt, ode::runge_kutta_dopri5<State>())),
-        dt_(max_dt) {}
+      : Driver(eq, max_dt),
+        dense_(ode::make_dense_output(tol, tol, max_dt, ode::runge_kutta_dopri5<State>())) {}
   void restart(const State& z, double s) override {
     if (steps > 0) dt_ = dense_.current_time_step();
     dense_.initialize(z, s, dt_);
@@ -237,17 +241,14 @@ class Dopri5Driver : public Driver {
   bool endsOnSamples() const override { return false; }
 
  private:
-  System sys_;
   decltype(ode::make_dense_output(1.0, 1.0, 1.0, ode::runge_kutta_dopri5<State>())) dense_;
-  double dt_;
 };
 
 class Rkf78Driver : public Driver {
  public:
   Rkf78Driver(Equations& eq, double tol, double max_dt)
-      : sys_{&eq},
-        ctrl_(ode::make_controlled(tol, tol, max_dt, ode::runge_kutta_fehlberg78<State>())),
-        dt_(max_dt) {}
+      : Driver(eq, max_dt),
+        ctrl_(ode::make_controlled(tol, tol, max_dt, ode::runge_kutta_fehlberg78<State>())) {}
   void restart(const State& z, double s) override {
     y1 = z;
     s1 = s;
@@ -284,10 +285,8 @@ class Rkf78Driver : public Driver {
   bool endsOnSamples() const override { return true; }
 
  private:
-  System sys_;
   decltype(ode::make_controlled(1.0, 1.0, 1.0, ode::runge_kutta_fehlberg78<State>())) ctrl_;
   ode::runge_kutta_fehlberg78<State> rk_;
-  double dt_;
 };
 
 // --- 3. the run --------------------------------------------------------------------------------
