@@ -6,9 +6,11 @@
 #include "tools/bench/odeint_peer.h"
 
 #include <algorithm>
+#include <boost/math/tools/toms748_solve.hpp>
 #include <boost/numeric/odeint.hpp>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -194,16 +196,38 @@ class Driver {
   virtual void restart(const State& z, double s) = 0;
   // One accepted step from s1 to at most s_limit.
   virtual void advance(double s_limit) = 0;
-  virtual void stateAt(double s, State& out) = 0;  // s in [s0, s1]
   // True when steps must end on the envelope samples (no interpolant to sample from).
   virtual bool endsOnSamples() const = 0;
+  // The solution at s in [s0, s1]. The last one computed is kept until the next call: the event
+  // search asks for the same time again (each candidate is tried at the earliest event so far).
+  const State& at(double s) {
+    if (s == s1) return y1;
+    if (s == s0) return y0;
+    if (s != cached_s_) {
+      cache_.resize(y1.size());
+      solve(s, cache_);
+      cached_s_ = s;
+    }
+    return cache_;
+  }
   double s0 = 0, s1 = 0;
   State y0, y1;
   long steps = 0;
 
  protected:
+  virtual void solve(double s, State& out) = 0;  // s inside (s0, s1)
+  // a new step begins at the old one's end; the cache belongs to the old one
+  void beginStep() {
+    y0 = y1;
+    s0 = s1;
+    cached_s_ = std::numeric_limits<double>::quiet_NaN();
+  }
   System sys_;
   double dt_;  // the step size the controller proposes next
+
+ private:
+  State cache_;
+  double cached_s_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 class Dopri5Driver : public Driver {
@@ -216,10 +240,10 @@ class Dopri5Driver : public Driver {
     dense_.initialize(z, s, dt_);
     y1 = z;
     s1 = s;
+    beginStep();
   }
   void advance(double s_limit) override {
-    y0 = y1;
-    s0 = s1;
+    beginStep();
     const auto span = dense_.do_step(sys_);
     ++steps;
     if (span.second <= s_limit) {
@@ -230,17 +254,10 @@ class Dopri5Driver : public Driver {
       dense_.calc_state(s_limit, y1);
     }
   }
-  void stateAt(double s, State& out) override {
-    if (s == s1) {
-      out = y1;
-    } else {
-      out.resize(y1.size());
-      dense_.calc_state(s, out);
-    }
-  }
   bool endsOnSamples() const override { return false; }
 
  private:
+  void solve(double s, State& out) override { dense_.calc_state(s, out); }
   decltype(ode::make_dense_output(1.0, 1.0, 1.0, ode::runge_kutta_dopri5<State>())) dense_;
 };
 
@@ -252,10 +269,10 @@ class Rkf78Driver : public Driver {
   void restart(const State& z, double s) override {
     y1 = z;
     s1 = s;
+    beginStep();
   }
   void advance(double s_limit) override {
-    y0 = y1;
-    s0 = s1;
+    beginStep();
     constexpr int kMaxTries = 500;
     for (int k = 0; k < kMaxTries; ++k) {
       const bool clipped = dt_ >= s_limit - s0;
@@ -272,48 +289,27 @@ class Rkf78Driver : public Driver {
     throw std::runtime_error("rkf78: no acceptable step in " + std::to_string(kMaxTries) +
                              " tries");
   }
-  void stateAt(double s, State& out) override {
-    if (s == s1) {
-      out = y1;
-    } else if (s == s0) {
-      out = y0;
-    } else {
-      out.resize(y0.size());
-      rk_.do_step(sys_, y0, s0, out, s - s0);  // an exact step from the step's start
-    }
-  }
   bool endsOnSamples() const override { return true; }
 
  private:
+  // an exact step from the step's start
+  void solve(double s, State& out) override { rk_.do_step(sys_, y0, s0, out, s - s0); }
   decltype(ode::make_controlled(1.0, 1.0, 1.0, ode::runge_kutta_fehlberg78<State>())) ctrl_;
   ode::runge_kutta_fehlberg78<State> rk_;
 };
 
 // --- 3. the run --------------------------------------------------------------------------------
 
-// Root of g on [lo, hi], g(lo) < 0 <= g(hi): Illinois (regula falsi with halving of the retained
-// end), bisecting when a secant step stalls. Returns the upper end: there g >= 0, the event has
-// happened.
+// Root of g on [lo, hi], g(lo) < 0 <= g(hi), by Boost.Math's TOMS 748 (Alefeld, Potra and Shi:
+// the bracketing method a Boost user reaches for) to a few ulps. Returns the bracket's upper end:
+// there g >= 0, the event has happened.
 template <class G>
 double locate(G&& g, double lo, double g_lo, double hi, double g_hi) {
-  int side = 0;
-  for (int it = 0; it < 200; ++it) {
-    if (hi - lo <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(hi))) break;
-    double x = lo - g_lo * (hi - lo) / (g_hi - g_lo);
-    if (!(x > lo && x < hi) || it % 4 == 3) x = 0.5 * (lo + hi);
-    if (!(x > lo && x < hi)) break;
-    const double gx = g(x);
-    if (gx >= 0) {
-      hi = x, g_hi = gx;
-      if (side == 1) g_lo *= 0.5;
-      side = 1;
-    } else {
-      lo = x, g_lo = gx;
-      if (side == -1) g_hi *= 0.5;
-      side = -1;
-    }
-  }
-  return hi;
+  constexpr std::uintmax_t kMaxIterations = 100;  // far more than a few ulps need
+  std::uintmax_t iterations = kMaxIterations;
+  return boost::math::tools::toms748_solve(g, lo, hi, g_lo, g_hi,
+                                           boost::math::tools::eps_tolerance<double>(), iterations)
+      .second;
 }
 
 // A witness rises through zero at its event: tick (j, side): side theta_j - theta_c,j; the
@@ -365,7 +361,6 @@ class PeerRun {
   std::vector<Witness> witnesses_;
   std::vector<double> g0_, g1_;  // witnesses at the step's ends
   std::vector<Candidate> found_;
-  State za_;
   double s_end_ = 0;
   long k_sample_ = 1;
   long burst_ = 0;
@@ -482,13 +477,9 @@ void PeerRun::addGraze(int index) {
   const double theta_c = eq_.pendulum(w.pendulum).theta_c;
   if (top < theta_c * (1 - kGrazeMargin)) return;
   // close: find the turning point on the solution itself
-  auto falling = [&](double s) {
-    drv_->stateAt(s, za_);
-    return -w.side * za_[iom];
-  };
+  auto falling = [&](double s) { return -w.side * drv_->at(s)[iom]; };
   const double s_top = locate(falling, drv_->s0, -d0, drv_->s1, -d1);
-  drv_->stateAt(s_top, za_);
-  if (witness(w, za_) >= 0) found_.push_back({index, drv_->s0, s_top});
+  if (witness(w, drv_->at(s_top)) >= 0) found_.push_back({index, drv_->s0, s_top});
 }
 
 // A slip starting from rest (xdot = 0 exactly) that ends the step going the wrong way: if it got
@@ -500,8 +491,7 @@ void PeerRun::addSlipFromRest(int index) {
   bool dipped = false;
   for (int k = 1; k < kProbe; ++k) {
     const double s = drv_->s0 + h * k / kProbe;
-    drv_->stateAt(s, za_);
-    const double g = witness(witnesses_[index], za_);
+    const double g = witness(witnesses_[index], drv_->at(s));
     if (g < 0) dipped = true, prev = s;
     if (dipped && g >= 0) {
       found_.push_back({index, prev, s});
@@ -523,10 +513,7 @@ double PeerRun::locateEarliest() {
   for (Candidate& c : found_) {
     if (c.forced || c.lo >= best) continue;
     const Witness& w = witnesses_[c.witness];
-    auto g = [&](double s) {
-      drv_->stateAt(s, za_);
-      return witness(w, za_);
-    };
+    auto g = [&](double s) { return witness(w, drv_->at(s)); };
     const double g_hi = g(std::min(best, c.hi));
     if (g_hi < 0) continue;  // crosses after the earliest so far
     const double g_lo = c.lo == drv_->s0 ? g0_[c.witness] : g(c.lo);
@@ -571,8 +558,7 @@ void PeerRun::emitSamples(double s_limit, bool inclusive) {
   for (;; ++k_sample_) {
     const double s = sampleTime(k_sample_);
     if (!(s < s_end_ && (s < s_limit || (inclusive && s == s_limit)))) break;
-    drv_->stateAt(s, za_);
-    sample(s, za_);
+    sample(s, drv_->at(s));
   }
 }
 
@@ -583,8 +569,7 @@ bool PeerRun::handleEvents() {
   if (found_.empty()) return false;
   const double s_e = locateEarliest();
   emitSamples(s_e, false);
-  State z;
-  drv_->stateAt(s_e, z);
+  State z = drv_->at(s_e);
   std::vector<std::pair<int, int>> ticks;
   bool platform = false;
   for (const Candidate& c : found_) {
@@ -627,7 +612,6 @@ RunReport PeerRun::run() {
   }
   g0_.resize(witnesses_.size());
   g1_.resize(witnesses_.size());
-  za_.resize(eq_.dim());
   sample(0.0, z);
   sink_.trajectoryRow(makeRow(0.0, z));
   drv_->restart(z, 0.0);
