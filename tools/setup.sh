@@ -10,7 +10,8 @@ mode="${1:-run}"
 shift || true
 
 packages=(cmake g++ make libsimbody-dev libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev
-          libcli11-dev libgtest-dev libbenchmark-dev gnuplot-nox)
+          libcli11-dev libgtest-dev libbenchmark-dev gnuplot-nox
+          libboost-dev)  # libboost-dev: bench-only (tools/bench's Boost.Odeint peer, header-only)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

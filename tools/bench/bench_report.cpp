@@ -158,7 +158,7 @@ std::vector<WorkPoint> frontOf(const std::vector<Record>& records, const std::st
 
 std::string ratiosMarkdown(const std::vector<Record>& records, std::string& csv_rows) {
   std::vector<std::string> engines;
-  for (const char* e : {"direct", "simbody", "siconos"})
+  for (const char* e : {"direct", "simbody", "siconos", "odeint"})
     if (!frontOf(records, e).empty()) engines.push_back(e);
   const std::string scene = records.empty() ? "" : records.front().scene;
   std::ostringstream os;

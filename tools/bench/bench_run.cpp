@@ -11,9 +11,10 @@
 #include <limits>
 #include <stdexcept>
 
-#include "sim/engines/direct/direct_engine.h"
 #include "sim/analysis/regime.h"
+#include "sim/engines/direct/direct_engine.h"
 #include "sim/engines/simbody/simbody_engine.h"
+#include "tools/bench/odeint_peer.h"
 #include "tools/bench/siconos_peer.h"
 #include "yaml/rig_loader.h"
 
@@ -104,6 +105,7 @@ std::string Method::setting() const {
 bool engineAvailable(const std::string& engine) {
   if (engine == "simbody" || engine == "direct") return true;
   if (engine == "siconos") return siconosAvailable();
+  if (engine == "odeint") return odeintAvailable();
   return false;
 }
 
@@ -111,6 +113,7 @@ std::vector<std::string> integratorsOf(const std::string& engine) {
   if (engine == "simbody") return simbodyIntegratorNames();
   if (engine == "direct") return directIntegratorNames();
   if (engine == "siconos") return {"moreau-jean"};
+  if (engine == "odeint") return odeintIntegratorNames();
   return {};
 }
 
@@ -121,7 +124,8 @@ Method parseMethod(const std::string& spec) {
   if (!engineAvailable(m.engine))
     throw std::invalid_argument("'" + spec + "': engine '" + m.engine +
                                 "' is not available (simbody, direct" +
-                                (siconosAvailable() ? ", siconos" : "; siconos: not built") + ")");
+                                (siconosAvailable() ? ", siconos" : "; siconos: not built") +
+                                (odeintAvailable() ? ", odeint" : "; odeint: not built") + ")");
   std::string rest = a == std::string::npos ? "" : spec.substr(a + 1);
   const size_t b = rest.find(':');
   m.integrator = rest.substr(0, b);
@@ -159,6 +163,8 @@ RunResult runOnce(const Scene& scene, const Method& method, double budget_s) {
       SiconosOptions opt;
       opt.step_s = kTwoPi * scene.scaled.time_scale_s / method.steps_per_period;
       rep = runSiconosPeer(rig, sink, opt);
+    } else if (method.engine == "odeint") {
+      rep = runOdeintPeer(rig, sink, {method.integrator, rig.sim.accuracy});
     } else {
       throw std::invalid_argument("unknown engine " + method.engine);
     }
@@ -228,6 +234,19 @@ std::string siconosUnsupported(const Rig&) {
 }
 RunReport runSiconosPeer(const Rig&, RunSink&, const SiconosOptions&) {
   throw std::invalid_argument("this binary was built without Siconos");
+}
+#endif
+
+#ifndef METROSYNC_HAVE_ODEINT
+// Built without Boost: the peer is absent.
+bool odeintAvailable() {
+  return false;
+}
+std::vector<std::string> odeintIntegratorNames() {
+  return {};
+}
+RunReport runOdeintPeer(const Rig&, RunSink&, const OdeintOptions&) {
+  throw std::invalid_argument("this binary was built without Boost.Odeint");
 }
 #endif
 

@@ -17,10 +17,10 @@
 #include <sstream>
 #include <thread>
 
-#include "tools/report/outputs.h"
 #include "tools/bench/bench_report.h"
 #include "tools/bench/bench_run.h"
 #include "tools/bench/siconos_peer.h"
+#include "tools/report/outputs.h"
 
 namespace mb = metrosync::bench;
 
@@ -160,7 +160,7 @@ struct PrecisionOptions {
 int precision(const PrecisionOptions& o, const Common& c) {
   std::vector<mb::Method> methods;
   if (o.methods.empty()) {
-    for (const char* e : {"direct", "simbody", "siconos"})
+    for (const char* e : {"direct", "simbody", "siconos", "odeint"})
       if (mb::engineAvailable(e))
         for (const auto& i : mb::integratorsOf(e))
           methods.push_back(mb::parseMethod(std::string(e) + ":" + i));

@@ -1,0 +1,152 @@
+// The Boost.Odeint peer (tools/bench/odeint_peer.h) against metrosync's direct engine: written
+// independently (its own equations, steppers, root finding and event rules), at tight tolerance
+// it must reproduce the direct engine's envelope and final state and count the same ticks and
+// stick-slip switches - on the bench scenes, for N = 2, 8, 32, and under every friction law.
+// Built only when Boost.Odeint is (tools/bench/CMakeLists.txt defines METROSYNC_HAVE_ODEINT).
+#ifdef METROSYNC_HAVE_ODEINT
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "tools/bench/bench_run.h"
+#include "tools/bench/odeint_peer.h"
+
+namespace mb = metrosync::bench;
+
+namespace {
+
+// The agreement the brief asks for at tolerance 1e-12: both solutions carry a global error of a
+// few hundred times the local tolerance over ~1e5 steps, far below it.
+constexpr double kAgree = 1e-8;
+// Where the scene itself is ill-conditioned (suppression: the phase of a dying metronome), the
+// direct engine at 1e-12 differs from itself at 1e-13 by more than kAgree; the peer is then held
+// to this multiple of that self-difference, the reference's own uncertainty.
+constexpr double kSelfFactor = 3.0;
+constexpr double kTight = 1e-12;
+
+std::string benchRig(const std::string& name) {
+  return std::string(METROSYNC_SOURCE_DIR) + "/yaml/rigs/bench/" + name + ".yaml";
+}
+
+mb::RunResult run(const mb::Scene& scene, const std::string& spec) {
+  mb::RunResult r = mb::runOnce(scene, mb::parseMethod(spec), 0);
+  EXPECT_TRUE(r.complete) << scene.name << " " << spec << ": " << r.failure;
+  return r;
+}
+
+// Same events; envelope (amplitudes and phases) and final state within `bound`.
+void expectAgreement(const mb::Scene& scene, const mb::RunResult& peer, const mb::RunResult& ref,
+                     double bound) {
+  const std::string what = scene.name + " " + peer.method.label();
+  ASSERT_TRUE(peer.complete) << what;
+  EXPECT_EQ(peer.counts.escapements, ref.counts.escapements) << what;
+  EXPECT_EQ(peer.counts.stick_slip, ref.counts.stick_slip) << what;
+  EXPECT_EQ(peer.envelope.size(), ref.envelope.size()) << what;
+  const mb::ErrorVsRef e = mb::compareRuns(peer, ref);
+  EXPECT_GT(e.rows, 0) << what;
+  EXPECT_LT(e.envelope, bound) << what;
+  EXPECT_LT(e.final_state, bound) << what;
+}
+
+// N Wittner metronomes (yaml/rigs/experiment.yaml's) on a light board with a little dry friction,
+// phases drawn from a fixed seed: ticks and stick-slip in every period.
+metrosync::Rig wittnerRig(int n, double periods) {
+  metrosync::Rig rig;
+  rig.name = "n" + std::to_string(n);
+  rig.platform.mass_kg = 0.8;
+  rig.platform.law = metrosync::FrictionLaw::Coulomb;
+  rig.platform.mu_bar = 1e-4;
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> phase(0.0, 6.283185307179586);
+  const double w0 = std::sqrt(9.81 / 0.0225);
+  for (int i = 0; i < n; ++i) {
+    metrosync::MetronomeSpec m;
+    m.name = "M" + std::to_string(i + 1);
+    m.box_mass_kg = 0.0602;
+    m.pendulum_mass_kg = 0.0226;
+    m.length_m = 0.0225 * (1 + 0.002 * i);  // slightly detuned
+    m.inertia_kgm2 = m.pendulum_mass_kg * m.length_m * m.length_m;
+    m.damping_kg_s = m.pendulum_mass_kg;  // decay rate 0.5 / s
+    m.theta_c_rad = 0.244;
+    m.impulse_Nms = 1.49e-5;
+    const double phi = phase(gen);
+    m.start_angle_rad = 0.785 * std::sin(phi);
+    m.start_rate_rad_s = 0.785 * w0 * std::cos(phi);
+    rig.metronomes.push_back(m);
+  }
+  rig.sim.t_end_s = periods * 6.283185307179586 / w0;
+  return rig;
+}
+
+class OdeintBenchScene : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(OdeintBenchScene, AgreesWithTheDirectEngineAtTightTolerance) {
+  const mb::Scene scene = mb::loadScene(benchRig(GetParam()));
+  const mb::RunResult ref = run(scene, "direct:verner76:1e-12");
+  const mb::RunResult ref13 = run(scene, "direct:verner76:1e-13");
+  const double self = mb::compareRuns(ref, ref13).envelope;
+  const double self_final = mb::compareRuns(ref, ref13).final_state;
+  const double bound = std::max(kAgree, kSelfFactor * std::max(self, self_final));
+  expectAgreement(scene, run(scene, "odeint:rkf78:1e-12"), ref, bound);
+  // dopri5's global error at 1e-12 over a long scene (suppression: 1e6 steps) exceeds the bound;
+  // the direct engine's own dopri5 shows the same, so the peer is held to that
+  const mb::RunResult own = run(scene, "direct:dopri5:1e-12");
+  const mb::ErrorVsRef own_err = mb::compareRuns(own, ref);
+  const double dopri_bound =
+      std::max(bound, kSelfFactor * std::max(own_err.envelope, own_err.final_state));
+  const mb::RunResult peer = run(scene, "odeint:dopri5:1e-12");
+  expectAgreement(scene, peer, ref, dopri_bound);
+  EXPECT_LT(std::max(own_err.envelope, own_err.final_state), 1e-5) << "direct:dopri5 itself";
+}
+
+INSTANTIATE_TEST_SUITE_P(BenchScenes, OdeintBenchScene,
+                         ::testing::Values("experiment-short", "suppression", "n8"));
+
+TEST(OdeintPeer, AgreesWithTheDirectEngineForAnyNumberOfMetronomes) {
+  for (int n : {2, 8, 32}) {
+    const mb::Scene scene = mb::sceneFromRig("n" + std::to_string(n), wittnerRig(n, 20));
+    const mb::RunResult ref = run(scene, "direct:verner76:1e-12");
+    long ticks = 0;
+    for (long e : ref.counts.escapements) ticks += e;
+    EXPECT_GE(ticks, 20L * n) << "every metronome ticks: the events are exercised";
+    EXPECT_GT(ref.counts.stick_slip, 0);
+    for (const char* spec : {"odeint:rkf78:1e-12", "odeint:dopri5:1e-12"})
+      expectAgreement(scene, run(scene, spec), ref, kAgree);
+  }
+}
+
+TEST(OdeintPeer, AgreesUnderEveryFrictionLaw) {
+  for (const char* law : {"{law: viscous, c: 0.05}", "{law: none}", "{law: fixed}"}) {
+    const mb::Scene scene =
+        mb::loadScene(benchRig("experiment-short"), {std::string("platform.friction=") + law});
+    const mb::RunResult ref = run(scene, "direct:verner76:1e-12");
+    for (const char* spec : {"odeint:rkf78:1e-12", "odeint:dopri5:1e-12"})
+      expectAgreement(scene, run(scene, spec), ref, kAgree);
+  }
+}
+
+TEST(OdeintPeer, LooserToleranceGivesLargerErrorAndFewerEvaluations) {
+  // convergence: dopri5's error against the reference shrinks with its tolerance, its cost grows
+  const mb::Scene scene = mb::loadScene(benchRig("experiment-short"));
+  const mb::RunResult ref = run(scene, "direct:verner76:1e-12");
+  const mb::RunResult loose = run(scene, "odeint:dopri5:1e-6");
+  const mb::RunResult tight = run(scene, "odeint:dopri5:1e-9");
+  EXPECT_LT(mb::compareRuns(tight, ref).envelope, 0.01 * mb::compareRuns(loose, ref).envelope);
+  EXPECT_LT(loose.counts.rhs_evals, tight.counts.rhs_evals);
+  EXPECT_LT(loose.counts.steps, tight.counts.steps);
+}
+
+TEST(OdeintPeer, UnknownStepperIsRejected) {
+  const mb::Scene scene = mb::loadScene(benchRig("experiment-short"));
+  metrosync::MemorySink sink;
+  EXPECT_THROW(mb::runOdeintPeer(scene.rig, sink, {"euler", kTight}), std::invalid_argument);
+  EXPECT_THROW(mb::parseMethod("odeint:euler"), std::invalid_argument);
+}
+
+}  // namespace
+
+#endif  // METROSYNC_HAVE_ODEINT
