@@ -7,13 +7,14 @@
 //   interpolate  anywhere inside the attempted step, from its continuous extension
 //   advance()    move to the end of the step (the FSAL stage becomes the next k_0)
 //   restart(y)   move anywhere else (after an event): costs one f evaluation
+// Used by the direct engine (sim/engines/direct) and the slow flow (sim/engines/slow_flow).
 #pragma once
 
 #include <vector>
 
 #include "sim/ode/rk_tableau.h"
 
-namespace metrosync::direct {
+namespace metrosync::ode {
 
 struct OdeRhs {
   virtual ~OdeRhs() = default;
@@ -36,6 +37,9 @@ class RkStepper {
 
   // The step size to try next after an attempt with error norm `err` (Hairer's PI control).
   double nextStepSize(double h, double err, bool accepted);
+  // A first step size for the current point (Hairer's starting-step heuristic, "Solving ODEs I"
+  // II.4; hinit in DOPRI5), at most h_max: costs one f evaluation.
+  double initialStepSize(double h_max);
 
   // the current point, and the attempted step (valid after attempt())
   double t() const { return t_; }
@@ -84,4 +88,9 @@ class RkStepper {
   long evals_ = 0;
 };
 
+}  // namespace metrosync::ode
+
+namespace metrosync::direct {  // the direct engine's names from before the toolkit was shared
+using ode::OdeRhs;
+using ode::RkStepper;
 }  // namespace metrosync::direct
