@@ -32,8 +32,24 @@ void appendNumber(std::string& s, double v) {
 // Merge-join of two row streams on the grid index; `next` returns false at the end.
 using RowSource = std::function<bool(EnvelopeRow&)>;
 
-ComparisonResult joinAndWrite(int n, RowSource next_full, RowSource next_slow, double epsilon,
-                              const std::string& out_csv) {
+// Only the grid rows are compared: the start's row (tau = 0) and the final row (tau_end: the
+// full model's last period, the slow flow's state at the end) are not on the grid; a grid row's tau
+// is envelopeTau(k) to the 10 digits envelope.csv keeps (2e-9 |tau|), plus 1e-6 of a period: far
+// below the spacing of the rows
+RowSource gridRowsOf(RowSource next, double epsilon) {
+  return [next, epsilon](EnvelopeRow& row) {
+    while (next(row)) {
+      const double off = row.tau - envelopeTau(epsilon, envelopeIndex(epsilon, row.tau));
+      if (std::fabs(off) <= 1e-6 * epsilon * kTwoPi + 2e-9 * std::fabs(row.tau)) return true;
+    }
+    return false;
+  };
+}
+
+ComparisonResult joinAndWrite(int n, RowSource next_full_all, RowSource next_slow_all,
+                              double epsilon, const std::string& out_csv) {
+  RowSource next_full = gridRowsOf(std::move(next_full_all), epsilon);
+  RowSource next_slow = gridRowsOf(std::move(next_slow_all), epsilon);
   EnvelopeComparator cmp(n);
   AtomicFile out(out_csv);
   out.writeLine(cmp.header());

@@ -507,6 +507,31 @@ TEST(SlowFlowScenarios, F44DetuningLocksThenSuppressesThenKills) {
   }
 }
 
+TEST(SlowFlowRun, FinalStateIsTheStateAtTauEnd) {
+  // f4.3 (mu = 0.3: escapement and platform switches on the way) stopped at a tau_end that is not
+  // on the row grid: the final row is at tau_end exactly and equals an independent integration to
+  // tau_end at a 1000x tighter tolerance (their difference ~ the coarse run's global error,
+  // measured ~1e-10 before the unstable escape at tau ~ 110); 1e-8
+  ScaledParams p = paperPair(0.7, 0.3, 2.8, 0.03);
+  const double tau_end = 37.3;
+  SlowRun coarse = run(p, tau_end, 1e-10, 1e-12), fine = run(p, tau_end, 1e-13, 1e-15);
+  ASSERT_TRUE(coarse.report.complete && fine.report.complete);
+  const EnvelopeRow &c = coarse.report.final_row, &f = fine.report.final_row;
+  EXPECT_EQ(c.tau, tau_end);
+  EXPECT_EQ(coarse.sink.envelope.back().tau, tau_end);
+  EXPECT_EQ(coarse.sink.envelope.front().tau, 0.0);
+  EXPECT_NEAR(coarse.sink.envelope.front().A[0], 1.9, 1e-15);
+  EXPECT_NEAR(coarse.sink.envelope.front().psi[0], 0.03, 1e-15);
+  for (int i = 0; i < 2; ++i) EXPECT_NEAR(c.A[i], f.A[i], 1e-8);
+  EXPECT_NEAR(c.psi[0], f.psi[0], 1e-8);
+  // the last grid row is an earlier state, measurably different: the check can fail
+  const EnvelopeRow& grid = coarse.sink.envelope[coarse.sink.envelope.size() - 2];
+  EXPECT_LT(grid.tau, tau_end);
+  EXPECT_GT(std::fabs(grid.A[0] - c.A[0]) + std::fabs(grid.psi[0] - c.psi[0]), 1e-6);
+  RecordProperty("final_vs_tight_tolerance",
+                 sci(std::max(std::fabs(c.A[0] - f.A[0]), std::fabs(c.psi[0] - f.psi[0]))));
+}
+
 // ---- guards ------------------------------------------------------------------------------------
 
 TEST(SlowFlowRun, StopsWithAReasonInsteadOfRunningForever) {

@@ -163,6 +163,32 @@ TEST(RkStepper, InterpolantHasItsOrder) {
   }
 }
 
+TEST(RkStepper, InitialStepSizeIsAcceptedAndScalesWithTheTolerance) {
+  // Hairer's starting step aims at a local error ~ 0.01 of the target: the first attempt must be
+  // accepted, and a 1e5 times tighter tolerance must shrink it by about 1e5^(1/(order+1)) ..
+  // 1e5^(1/order) (the estimate uses the order; 3x slack either way)
+  for (const std::string& name : kMethods) {
+    const RkTableau& t = rkTableau(name);
+    Pendulum f;
+    RkStepper st(t, 2, f);
+    const double y0[2] = {1.2, 0.3};
+    double h[2];
+    const double rtol[2] = {1e-6, 1e-11};
+    for (int k = 0; k < 2; ++k) {
+      st.setTolerances(rtol[k], {rtol[k], rtol[k]});
+      st.restart(0.0, y0);
+      h[k] = st.initialStepSize(10.0);
+      EXPECT_GT(h[k], 0.0) << name;
+      EXPECT_LE(st.attempt(h[k]), 1.0) << name << " rtol " << rtol[k];
+    }
+    const double ratio = h[0] / h[1];
+    EXPECT_GT(ratio, std::pow(1e5, 1.0 / (t.order + 1)) / 3) << name;
+    EXPECT_LT(ratio, std::pow(1e5, 1.0 / t.order) * 3) << name;
+    st.restart(0.0, y0);
+    EXPECT_LE(st.initialStepSize(1e-3), 1e-3) << name;  // never beyond h_max
+  }
+}
+
 TEST(RootFind, BracketsToAFewUlpsWithTheRootBelowTheUpperEnd) {
   // a cubic with a root at an irrational point, and a root at the very end of the interval
   auto f = [](double x) { return (x - M_SQRT1_2) * (1 + x * x) * 3.0; };
