@@ -77,8 +77,9 @@ double RkStepper::attempt(double h) {
   combine(b_, h, y1_.data());
   rhs_.eval(y1_.data(), stage(s - 1));
   evals_ += s - 1;
-  // error norm: the worst component relative to its tolerance
-  double err = 0.0;
+  // error norm: the worst component relative to its tolerance, or the root mean square
+  double err = 0.0, sum = 0.0;
+  int counted = 0;
   for (int k = 0; k < dim_; ++k) {
     if (atol_[k] < 0) continue;
     double e = 0.0;
@@ -86,7 +87,10 @@ double RkStepper::attempt(double h) {
     const double sc = atol_[k] + rtol_ * std::max(std::abs(y_[k]), std::abs(y1_[k]));
     const double r = std::abs(h * e) / sc;
     if (!(r <= err)) err = r;  // a NaN wins: a step that produced one is never accepted
+    sum += r * r;
+    ++counted;
   }
+  if (norm_ == Norm::Rms && std::isfinite(err)) err = counted > 0 ? std::sqrt(sum / counted) : 0.0;
   if (!std::isfinite(err)) err = std::numeric_limits<double>::infinity();
   return err;
 }

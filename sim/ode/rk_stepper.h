@@ -28,9 +28,14 @@ class RkStepper {
   // Local error target per component: |err_k| <= atol_k + rtol * max(|y0_k|, |y1_k|); components
   // with atol_k < 0 are not controlled (quadratures that nothing depends on).
   void setTolerances(double rtol, std::vector<double> atol);
+  // How the components' scaled errors combine into the error norm: the worst one (the default:
+  // every component is held to its target; the direct engine) or their root mean square (Hairer's
+  // DOPRI5 norm: the slow flow, whose 2N components are the Re/Im parts of N amplitudes).
+  enum class Norm { Max, Rms };
+  void setNorm(Norm norm) { norm_ = norm; }
 
   void restart(double t, const double* y);
-  // One step of size h from the current point; returns the error norm (max over components).
+  // One step of size h from the current point; returns the error norm (see setNorm).
   double attempt(double h);
   // Moves to the end of the attempted step.
   void advance();
@@ -74,6 +79,7 @@ class RkStepper {
   int dim_;
   OdeRhs& rhs_;
   double rtol_ = 1e-8;
+  Norm norm_ = Norm::Max;
   std::vector<double> atol_;
   std::vector<Weights> a_rows_;   // (dense_stages): nonzero a_jl of each stage
   Weights b_, e_;                 // nonzero b_l, e_l

@@ -188,6 +188,7 @@ SlowFlowRun::SlowFlowRun(const ScaledParams& p, const SlowFlowOptions& opt, RunS
   switches_ = flow_.switches(z_.data());
   rhs_.modes = flow_.modesOf(switches_);
   stepper_.setTolerances(opt.rtol, std::vector<double>(y_.size(), opt.atol));
+  stepper_.setNorm(ode::RkStepper::Norm::Rms);  // as DOPRI5 and the slow flow always did
 }
 
 // Grid rows tau_k <= min(tau_hi, tau_end), from the attempted step's dense output when h > 0.
