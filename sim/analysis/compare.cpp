@@ -33,14 +33,19 @@ void appendNumber(std::string& s, double v) {
 using RowSource = std::function<bool(EnvelopeRow&)>;
 
 // Only the grid rows are compared: the start's row (tau = 0) and the final row (tau_end: the
-// full model's last period, the slow flow's state at the end) are not on the grid; a grid row's tau
-// is envelopeTau(k) to the 10 digits envelope.csv keeps (2e-9 |tau|), plus 1e-6 of a period: far
-// below the spacing of the rows
+// full model's last period, the slow flow's state at the end) are not on the grid. A grid row's
+// tau is envelopeTau(k) to the 10 significant digits envelope.csv keeps (kCsvTauRelative |tau|),
+// plus kGridSlackPeriods of a period for rounding: both far below the rows' spacing of a period.
+constexpr double kCsvTauRelative = 2e-9;
+constexpr double kGridSlackPeriods = 1e-6;
+
 RowSource gridRowsOf(RowSource next, double epsilon) {
   return [next, epsilon](EnvelopeRow& row) {
     while (next(row)) {
       const double off = row.tau - envelopeTau(epsilon, envelopeIndex(epsilon, row.tau));
-      if (std::fabs(off) <= 1e-6 * epsilon * kTwoPi + 2e-9 * std::fabs(row.tau)) return true;
+      const double slack =
+          kGridSlackPeriods * epsilon * kTwoPi + kCsvTauRelative * std::fabs(row.tau);
+      if (std::fabs(off) <= slack) return true;
     }
     return false;
   };
