@@ -18,7 +18,9 @@
 // The right-hand side switches where A_i crosses theta_c,i (escapement on/off: dphi_i/dtau jumps
 // by J_i / (pi theta_c,i)) and has kinks where s crosses 1 and s_b = sqrt(1 + pi^2/4) (platform
 // regime). The integrator (sim/engines/slow_flow/) holds these modes fixed over a step, locates the
-// crossings on the dense output and restarts there.
+// crossings of the switching functions (SlowFlowSwitch) on the dense output and restarts there.
+// Everything that says what the equations are lives here (models/slow_flow.cpp); the engine only
+// steps, locates switches and writes rows.
 #pragma once
 
 #include <complex>
@@ -66,5 +68,49 @@ SlowFlowPolarRates slowFlowPolarRates(const ScaledParams& p, const std::vector<d
 // The start: z_i = thetadot0_i + i theta0_i (A_i = sqrt(theta0^2 + thetadot0^2),
 // phi_i = atan2(theta0, thetadot0)); 0 for locked metronomes.
 std::vector<std::complex<double>> slowFlowStart(const ScaledParams& p);
+
+// A switching function: value(z) changes sign where a mode changes.
+//   Escapement i        A_i^2 - theta_c,i^2         (> 0: escapement engaged)
+//   PlatformSlip        |Z|^2 - mu^2                 (> 0: s > 1, the platform slips part time)
+//   PlatformFullSlip    |Z|^2 - (mu s_b)^2           (> 0: s > s_b, it slips all the time)
+// `positive` is the side the flow is on; the integrator flips it where the function crosses 0.
+struct SlowFlowSwitch {
+  enum Kind { Escapement, PlatformSlip, PlatformFullSlip } kind = Escapement;
+  int i = -1;  // metronome, for Escapement
+  bool positive = true;
+};
+
+// The slow flow's parameters, checked once (throws std::invalid_argument on inconsistent sizes,
+// non-finite values, theta_c < 0 or mu < 0). The free functions above are thin wrappers; an
+// integrator keeps one for the whole run. z, dz: (N x 1), locked entries ignored / set to 0.
+class SlowFlow {
+ public:
+  using cplx = std::complex<double>;
+  explicit SlowFlow(const ScaledParams& p);
+
+  int size() const { return n_; }
+  const std::vector<int>& active() const { return active_; }  // the unlocked metronomes
+
+  cplx drive(const cplx* z) const;  // Z = sum of the unlocked z_i
+  SlowFlowModes modesAt(const cplx* z) const;
+  AveragedResponse betas(CoulombRegime regime, cplx Z) const;
+  void rhs(const SlowFlowModes& modes, const cplx* z, cplx* dz) const;
+  SlowFlowPolarRates polarRates(const std::vector<double>& A, const std::vector<double>& phi) const;
+
+  // The switching functions (one per escapement with J_i != 0, two for Coulomb with mu > 0), on
+  // the sides the state z is on.
+  std::vector<SlowFlowSwitch> switches(const cplx* z) const;
+  double switchValue(const SlowFlowSwitch& sw, const cplx* z) const;
+  // The modes the switches' sides say (metronomes without a switch: not engaged, no term).
+  SlowFlowModes modesOf(const std::vector<SlowFlowSwitch>& switches) const;
+
+ private:
+  int n_ = 0;
+  std::vector<int> active_;
+  std::vector<double> nu_, J_, theta_c_, alpha_;  // (N x 1)
+  bool coulomb_regimes_ = false;  // Coulomb with mu > 0: beta depends on s = |Z| / mu
+  double mu_ = 0.0;
+  AveragedResponse constant_beta_;  // the response of every other law
+};
 
 }  // namespace metrosync

@@ -32,8 +32,29 @@ void appendNumber(std::string& s, double v) {
 // Merge-join of two row streams on the grid index; `next` returns false at the end.
 using RowSource = std::function<bool(EnvelopeRow&)>;
 
-ComparisonResult joinAndWrite(int n, RowSource next_full, RowSource next_slow, double epsilon,
-                              const std::string& out_csv) {
+// Only the grid rows are compared: the start's row (tau = 0) and the final row (tau_end: the
+// full model's last period, the slow flow's state at the end) are not on the grid. A grid row's
+// tau is envelopeTau(k) to the 10 significant digits envelope.csv keeps (kCsvTauRelative |tau|),
+// plus kGridSlackPeriods of a period for rounding: both far below the rows' spacing of a period.
+constexpr double kCsvTauRelative = 2e-9;
+constexpr double kGridSlackPeriods = 1e-6;
+
+RowSource gridRowsOf(RowSource next, double epsilon) {
+  return [next, epsilon](EnvelopeRow& row) {
+    while (next(row)) {
+      const double off = row.tau - envelopeTau(epsilon, envelopeIndex(epsilon, row.tau));
+      const double slack =
+          kGridSlackPeriods * epsilon * kTwoPi + kCsvTauRelative * std::fabs(row.tau);
+      if (std::fabs(off) <= slack) return true;
+    }
+    return false;
+  };
+}
+
+ComparisonResult joinAndWrite(int n, RowSource next_full_all, RowSource next_slow_all,
+                              double epsilon, const std::string& out_csv) {
+  RowSource next_full = gridRowsOf(std::move(next_full_all), epsilon);
+  RowSource next_slow = gridRowsOf(std::move(next_slow_all), epsilon);
   EnvelopeComparator cmp(n);
   AtomicFile out(out_csv);
   out.writeLine(cmp.header());

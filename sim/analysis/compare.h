@@ -2,7 +2,8 @@
 // on the grid tau_k = envelopeTau(eps, k), so rows are matched by their grid index k. Amplitudes
 // are compared directly; phase differences modulo 2 pi (the difference wrapped to (-pi, pi]),
 // because after a long drift the two unwrapped psi_j may sit on branches a multiple of 2 pi
-// apart. comparison.csv keeps each model's psi_j as it wrote it.
+// apart. comparison.csv keeps each model's psi_j as it wrote it. Rows off the grid -- the start's
+// row at tau = 0 and the final row at tau_end (docs/outputs.md) -- are not compared.
 #pragma once
 
 #include <cstdio>

@@ -1,6 +1,7 @@
 #include "sim/analysis/regime.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <functional>
 #include <numeric>
 #include <stdexcept>
@@ -10,6 +11,12 @@ namespace metrosync {
 namespace {
 constexpr double kPi = 3.141592653589793;
 constexpr double kTwoPi = 6.283185307179586;
+
+std::string fmtNumber(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
 }  // namespace
 
 const char* toString(Regime r) {
@@ -45,8 +52,13 @@ double wrapToPi(double angle_rad) {
   return w;
 }
 
-RegimeWindow::RegimeWindow(double tau_end, RegimeRules rules)
-    : tau_start_((1.0 - rules.window_fraction) * tau_end), rules_(rules) {}
+RegimeWindow::RegimeWindow(double tau_end, double epsilon, RegimeRules rules)
+    : tau_end_(tau_end), min_tau_(rules.min_periods * kTwoPi * epsilon), rules_(rules) {
+  if (!(epsilon > 0.0) || !std::isfinite(epsilon))
+    throw std::invalid_argument("RegimeWindow: epsilon must be > 0");
+  too_short_ = tau_end < min_tau_;
+  tau_start_ = std::max(0.0, std::min((1.0 - rules.window_fraction) * tau_end, tau_end - min_tau_));
+}
 
 namespace {
 // index of the pair (i, j), i < j < n, in row order
@@ -176,6 +188,15 @@ std::vector<double> RegimeWindow::psiRange() const {
   return range;
 }
 
+namespace {
+std::string tooShortReason(const RegimeWindow& w) {
+  return "the run is shorter than " + fmtNumber(w.rules().min_periods) +
+         " fast periods (tau_end = " + fmtNumber(w.tauEnd()) + " < " +
+         fmtNumber(w.rules().min_periods) + " * 2 pi epsilon = " + fmtNumber(w.minimumTau()) +
+         "): too short to judge";
+}
+}  // namespace
+
 RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<double>& theta_c,
                              const std::vector<bool>& locked) {
   RegimeVerdict v;
@@ -229,6 +250,12 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
     return v;
   };
   if (swinging == 0) return named(Regime::None);
+  if (window.tooShort()) {
+    v.reason = tooShortReason(window);
+    v.regime = Regime::Unsettled;
+    v.name = toString(Regime::Unsettled);
+    return v;
+  }
   if (dead == swinging) return named(Regime::Death);
   if (dead > 0) return named(Regime::Suppression);
 
@@ -249,13 +276,17 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
   if (settled && in_phase) return named(Regime::InPhase);
   if (settled && antiphase) return named(Regime::Antiphase);
   if (settled) return named(Regime::PhaseLocked);
+  v.reason = "the phase differences still move over the window (range up to " +
+             fmtNumber(*std::max_element(v.psi_range.begin(), v.psi_range.end())) +
+             " rad; settled needs < " + fmtNumber(r.settled_rad) + ", drift > " +
+             fmtNumber(r.drift_rad) + ")";
   return named(Regime::Unsettled);
 }
 
-RegimeVerdict classifyRegime(const std::vector<EnvelopeRow>& rows, double tau_end,
+RegimeVerdict classifyRegime(const std::vector<EnvelopeRow>& rows, double tau_end, double epsilon,
                              const std::vector<double>& theta_c, const std::vector<bool>& locked,
                              RegimeRules rules) {
-  RegimeWindow w(tau_end, rules);
+  RegimeWindow w(tau_end, epsilon, rules);
   for (const auto& row : rows) w.add(row);
   return classifyRegime(w, theta_c, locked);
 }

@@ -1,6 +1,9 @@
 // Regime classification (SPEC section 4), judged on the envelope rows of the last 10% of the run
-// (in tau), metronome 1 as the reference. A metronome is dead when its final A_i < theta_c,i.
-// Rules, in order:
+// (in tau) but never fewer than 5 fast periods: the window is
+//   tau >= max(0, min(0.9 tau_end, tau_end - 5 * 2 pi epsilon)),
+// and a run shorter than 5 fast periods (tau_end < 5 * 2 pi epsilon) is `unsettled`, with the
+// reason in RegimeVerdict::reason. Metronome 1 is the reference. A metronome is dead when its final
+// A_i < theta_c,i. Rules, in order:
 //   death         every metronome dead
 //   suppression   at least one dead and at least one alive
 //   drift         all alive and some psi_j moves by more than pi over the window
@@ -18,7 +21,7 @@
 //     is locked). With one swinging metronome left the verdict is `death`/`alive` as for N = 1;
 //     with none, `none`.
 //   - a run that stopped early (complete: false) has no verdict: `unknown` (chosen by the caller).
-//   - a window with no row (a run shorter than one fast period per 10%) is judged on the last row.
+//   - a window with no row (rows that stop before it: a run cut short) is judged on the last row.
 //
 // Names for N >= 3 swinging metronomes (RegimeVerdict::name; the enum keeps the rules above for
 // every N). Two alive metronomes i, j are in one cluster when phi_i - phi_j varies by < 0.1 rad
@@ -62,7 +65,11 @@ const char* toString(Regime r);
 
 // SPEC 4 thresholds (radians) and window; named so that tests and sweeps can refer to them.
 struct RegimeRules {
-  double window_fraction = 0.1;          // judged on tau >= (1 - window_fraction) * tau_end
+  double window_fraction = 0.1;  // judged on tau >= (1 - window_fraction) * tau_end ...
+  // ... but on at least this many fast periods (2 pi epsilon each in tau): a phase settled to
+  // 0.1 rad must show it over several periods, and the full model's period averages need a few
+  // rows to vary at all
+  double min_periods = 5.0;
   double drift_rad = 3.141592653589793;  // drift: range of some psi_j > this
   double settled_rad = 0.1;              // settled: range of every psi_j < this
   double in_phase_rad = 0.2;             // |final psi_j - 0| (mod 2 pi) <= this
@@ -77,11 +84,16 @@ double wrapToPi(double angle_rad);
 // and the last row.
 class RegimeWindow {
  public:
-  RegimeWindow(double tau_end, RegimeRules rules = {});
+  // epsilon: the rig's scaled epsilon (a fast period is 2 pi epsilon in tau)
+  RegimeWindow(double tau_end, double epsilon, RegimeRules rules = {});
 
   void add(const EnvelopeRow& row);
 
   double tauStart() const { return tau_start_; }
+  double tauEnd() const { return tau_end_; }
+  // the run spans fewer than rules().min_periods fast periods: too short to judge
+  bool tooShort() const { return too_short_; }
+  double minimumTau() const { return min_tau_; }  // min_periods * 2 pi epsilon
   long rowsInWindow() const { return rows_in_window_; }
   bool empty() const { return !have_last_; }
   const EnvelopeRow& last() const { return last_; }
@@ -92,7 +104,8 @@ class RegimeWindow {
   const RegimeRules& rules() const { return rules_; }
 
  private:
-  double tau_start_ = 0.0;
+  double tau_start_ = 0.0, tau_end_ = 0.0, min_tau_ = 0.0;
+  bool too_short_ = false;
   RegimeRules rules_;
   long rows_in_window_ = 0;
   bool have_last_ = false;
@@ -114,6 +127,8 @@ struct RegimeVerdict {
   std::string name;
   std::vector<int> cluster_sizes;  // clusters of the alive metronomes, largest first
   int dead = 0;                    // swinging metronomes that are dead
+  // why the verdict is `unsettled` or `unknown` (empty otherwise), in words for summary.json
+  std::string reason;
 };
 
 // The verdict's name: `name`, or toString(regime) for a verdict not made by classifyRegime.
@@ -128,7 +143,7 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
                              const std::vector<bool>& locked = {});
 
 // Convenience for whole runs held in memory (tests, small comparisons).
-RegimeVerdict classifyRegime(const std::vector<EnvelopeRow>& rows, double tau_end,
+RegimeVerdict classifyRegime(const std::vector<EnvelopeRow>& rows, double tau_end, double epsilon,
                              const std::vector<double>& theta_c,
                              const std::vector<bool>& locked = {}, RegimeRules rules = {});
 

@@ -55,8 +55,8 @@ class KeepingSink : public RunSink {
   double epsilon_, tau_window_start_;
 };
 
-double windowStart(double tau_end) {
-  return (1.0 - RegimeRules{}.window_fraction) * tau_end;
+double windowStart(double tau_end, double epsilon) {
+  return RegimeWindow(tau_end, epsilon).tauStart();  // the regime's window (sim/analysis/regime.h)
 }
 
 std::string platformName(CoulombRegime r) {
@@ -165,12 +165,13 @@ ModelRun runSlowModel(const ScaledParams& p, double epsilon, double tau_end) {
   ScaledParams q = p;
   q.epsilon = epsilon;
   q.tau_end = tau_end;
-  KeepingSink sink(epsilon, windowStart(tau_end));
+  KeepingSink sink(epsilon, windowStart(tau_end, epsilon));
   SlowFlowOptions opt;
   opt.tau_end = tau_end;
   run.report = runSlowFlow(q, opt, sink);
   run.envelope = std::move(sink.rows);
-  if (run.report.complete) run.verdict = classifyRegime(run.envelope, tau_end, q.theta_c, q.locked);
+  if (run.report.complete)
+    run.verdict = classifyRegime(run.envelope, tau_end, epsilon, q.theta_c, q.locked);
   // the platform at the end: the Coulomb regime of the final drive s = |Z| / mu
   const EnvelopeRow& f = run.report.final_row;
   if (p.law == FrictionLaw::Coulomb && !f.A.empty()) {
@@ -191,7 +192,7 @@ ModelRun runFullModelAt(const ValidationEngines& engines, const ScaledParams& p,
   run.mu = p.mu;
   run.theta_c = p.theta_c;
   const Rig rig = rigAtEpsilon(p, name, epsilon, tau_end);
-  KeepingSink sink(epsilon, windowStart(tau_end));
+  KeepingSink sink(epsilon, windowStart(tau_end, epsilon));
   const Clock::time_point t0 = Clock::now();
   try {
     run.report = engines.full_model(rig, sink);
@@ -206,7 +207,8 @@ ModelRun runFullModelAt(const ValidationEngines& engines, const ScaledParams& p,
   run.envelope = std::move(sink.rows);
   if (run.report.final_row.A.empty() && !run.envelope.empty())
     run.report.final_row = run.envelope.back();
-  if (run.report.complete) run.verdict = classifyRegime(run.envelope, tau_end, p.theta_c, p.locked);
+  if (run.report.complete)
+    run.verdict = classifyRegime(run.envelope, tau_end, epsilon, p.theta_c, p.locked);
   if (p.law == FrictionLaw::Coulomb && sink.window_rows > 0) {
     run.platform_stuck_fraction =
         static_cast<double>(sink.stuck_rows) / static_cast<double>(sink.window_rows);

@@ -5,7 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
-namespace metrosync::direct {
+namespace metrosync::ode {
 
 namespace {
 
@@ -77,8 +77,9 @@ double RkStepper::attempt(double h) {
   combine(b_, h, y1_.data());
   rhs_.eval(y1_.data(), stage(s - 1));
   evals_ += s - 1;
-  // error norm: the worst component relative to its tolerance
-  double err = 0.0;
+  // error norm: the worst component relative to its tolerance, or the root mean square
+  double err = 0.0, sum = 0.0;
+  int counted = 0;
   for (int k = 0; k < dim_; ++k) {
     if (atol_[k] < 0) continue;
     double e = 0.0;
@@ -86,7 +87,10 @@ double RkStepper::attempt(double h) {
     const double sc = atol_[k] + rtol_ * std::max(std::abs(y_[k]), std::abs(y1_[k]));
     const double r = std::abs(h * e) / sc;
     if (!(r <= err)) err = r;  // a NaN wins: a step that produced one is never accepted
+    sum += r * r;
+    ++counted;
   }
+  if (norm_ == Norm::Rms && std::isfinite(err)) err = counted > 0 ? std::sqrt(sum / counted) : 0.0;
   if (!std::isfinite(err)) err = std::numeric_limits<double>::infinity();
   return err;
 }
@@ -110,6 +114,36 @@ double RkStepper::nextStepSize(double h, double err, bool accepted) {
     return h / fac;
   }
   return h / std::min(5.0, fac11 / 0.9);
+}
+
+double RkStepper::initialStepSize(double h_max) {
+  // d0 = ||y0||, d1 = ||f(y0)||, d2 = ||f'|| estimated by a trial Euler step; RMS norms in the
+  // units of the error target
+  auto norm = [&](auto&& value) {
+    double sum = 0.0;
+    int counted = 0;
+    for (int k = 0; k < dim_; ++k) {
+      if (atol_[k] < 0) continue;
+      const double r = value(k) / (atol_[k] + rtol_ * std::abs(y_[k]));
+      sum += r * r;
+      ++counted;
+    }
+    return counted > 0 ? std::sqrt(sum / counted) : 0.0;
+  };
+  const double* f0 = stage(0);
+  const double d0 = norm([&](int k) { return y_[k]; });
+  const double d1 = norm([&](int k) { return f0[k]; });
+  // too small to estimate from (Hairer's thresholds): a tiny first step, the controller grows it
+  double h0 = (d0 < 1e-10 || d1 < 1e-10) ? 1e-6 : 0.01 * d0 / d1;
+  h0 = std::min(h0, h_max);
+  for (int k = 0; k < dim_; ++k) tmp_[k] = y_[k] + h0 * f0[k];
+  double* f_trial = stage(1);  // scratch: stage 1 is rewritten by the next attempt()
+  rhs_.eval(tmp_.data(), f_trial);
+  ++evals_;
+  const double d2 = norm([&](int k) { return f_trial[k] - f0[k]; }) / h0;
+  const double dm = std::max(d1, d2);
+  const double h1 = dm <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / dm, 1.0 / tab_.order);
+  return std::min({100.0 * h0, h1, h_max});
 }
 
 const double* RkStepper::f1() const {
@@ -210,4 +244,4 @@ void RkStepper::interpolate(double th, double* __restrict out) {
   }
 }
 
-}  // namespace metrosync::direct
+}  // namespace metrosync::ode

@@ -7,13 +7,14 @@
 //   interpolate  anywhere inside the attempted step, from its continuous extension
 //   advance()    move to the end of the step (the FSAL stage becomes the next k_0)
 //   restart(y)   move anywhere else (after an event): costs one f evaluation
+// Used by the direct engine (sim/engines/direct) and the slow flow (sim/engines/slow_flow).
 #pragma once
 
 #include <vector>
 
 #include "sim/ode/rk_tableau.h"
 
-namespace metrosync::direct {
+namespace metrosync::ode {
 
 struct OdeRhs {
   virtual ~OdeRhs() = default;
@@ -27,15 +28,23 @@ class RkStepper {
   // Local error target per component: |err_k| <= atol_k + rtol * max(|y0_k|, |y1_k|); components
   // with atol_k < 0 are not controlled (quadratures that nothing depends on).
   void setTolerances(double rtol, std::vector<double> atol);
+  // How the components' scaled errors combine into the error norm: the worst one (the default:
+  // every component is held to its target; the direct engine) or their root mean square (Hairer's
+  // DOPRI5 norm: the slow flow, whose 2N components are the Re/Im parts of N amplitudes).
+  enum class Norm { Max, Rms };
+  void setNorm(Norm norm) { norm_ = norm; }
 
   void restart(double t, const double* y);
-  // One step of size h from the current point; returns the error norm (max over components).
+  // One step of size h from the current point; returns the error norm (see setNorm).
   double attempt(double h);
   // Moves to the end of the attempted step.
   void advance();
 
   // The step size to try next after an attempt with error norm `err` (Hairer's PI control).
   double nextStepSize(double h, double err, bool accepted);
+  // A first step size for the current point (Hairer's starting-step heuristic, "Solving ODEs I"
+  // II.4; hinit in DOPRI5), at most h_max: costs one f evaluation.
+  double initialStepSize(double h_max);
 
   // the current point, and the attempted step (valid after attempt())
   double t() const { return t_; }
@@ -70,6 +79,7 @@ class RkStepper {
   int dim_;
   OdeRhs& rhs_;
   double rtol_ = 1e-8;
+  Norm norm_ = Norm::Max;
   std::vector<double> atol_;
   std::vector<Weights> a_rows_;   // (dense_stages): nonzero a_jl of each stage
   Weights b_, e_;                 // nonzero b_l, e_l
@@ -84,4 +94,9 @@ class RkStepper {
   long evals_ = 0;
 };
 
+}  // namespace metrosync::ode
+
+namespace metrosync::direct {  // the direct engine's names from before the toolkit was shared
+using ode::OdeRhs;
+using ode::RkStepper;
 }  // namespace metrosync::direct

@@ -1,4 +1,4 @@
-// Coefficients of the direct engine's Runge-Kutta pairs.
+// Coefficients of the ODE toolkit's Runge-Kutta pairs (the direct engine's and the slow flow's).
 //   dopri5:   J. R. Dormand, P. J. Prince, "A family of embedded Runge-Kutta formulae",
 //             J. Comput. Appl. Math. 6 (1980) 19-26; dense output of L. F. Shampine, "Some
 //             practical Runge-Kutta formulas", Math. Comp. 46 (1986) 135-150 (as in Hairer,
@@ -7,12 +7,12 @@
 //             Verner's published tables ("Numerically optimal Runge-Kutta pairs with
 //             interpolants", Numer. Algorithms 53 (2010) 383-396).
 // The order conditions and the orders of the solution, the error estimate and the interpolant
-// are checked in tests/direct/test_rk.cpp.
+// are checked in tests/ode/test_rk.cpp.
 #include "sim/ode/rk_tableau.h"
 
 #include <stdexcept>
 
-namespace metrosync::direct {
+namespace metrosync::ode {
 
 namespace {
 
@@ -433,4 +433,4 @@ const RkTableau& rkTableau(const std::string& name) {
   throw std::invalid_argument("unknown Runge-Kutta method '" + name + "'");
 }
 
-}  // namespace metrosync::direct
+}  // namespace metrosync::ode

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace metrosync::direct {
+namespace metrosync::ode {
 
 struct RkTableau {
   std::string name;
@@ -32,11 +32,17 @@ struct RkTableau {
   std::vector<std::vector<double>> p;  // (dense_stages x dense_degree)
 };
 
-// The methods of the direct engine, by the names simulation.integrator accepts:
+// The methods, by the names simulation.integrator accepts (the slow flow uses dopri5):
 //   dopri5    Dormand-Prince 5(4), 7 stages (FSAL), 4th-order interpolant without extra stages
 //   verner65  Verner's "efficient" 6(5), 9 stages (FSAL), 6th-order interpolant (+3 stages)
 //   verner76  Verner's "efficient" 7(6), 10 stages + FSAL, 7th-order interpolant (+5 stages)
 // Throws std::invalid_argument for any other name.
 const RkTableau& rkTableau(const std::string& name);
 
+}  // namespace metrosync::ode
+
+// The direct engine's names from before the toolkit was shared with the slow flow.
+namespace metrosync::direct {
+using ode::RkTableau;
+using ode::rkTableau;
 }  // namespace metrosync::direct

@@ -7,7 +7,7 @@
 #include <cfloat>
 #include <cmath>
 
-namespace metrosync::direct {
+namespace metrosync::ode {
 
 struct Bracket {
   double lo = 0.0, hi = 0.0;
@@ -41,4 +41,9 @@ Bracket illinois(F&& f, double lo, double f_lo, double hi, double f_hi) {
   return {lo, hi};
 }
 
+}  // namespace metrosync::ode
+
+namespace metrosync::direct {  // the direct engine's names from before the toolkit was shared
+using ode::Bracket;
+using ode::illinois;
 }  // namespace metrosync::direct

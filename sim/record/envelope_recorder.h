@@ -5,9 +5,19 @@
 // at the same t (just before and just after an impulse) make the jump exact, and the caller puts
 // a sample on every period boundary (nextBoundary()) so no trapezoid straddles two periods.
 // Engine-independent: any full-model engine feeds it scaled samples.
+//
+// Besides the period rows (tau at the middle of each period, the grid the slow flow shares):
+//   - the first sample emits the start's row: tau of that sample (0), A_i = sqrt(theta_i^2 +
+//     thetadot_i^2) and the phases of that instant;
+//   - finish(), after the last sample (at t_end), emits the final row at tau_end: the average over
+//     the last fast period ENDING at t_end, [t_end - 2 pi, t_end] (SPEC 3 "final"), from the
+//     samples of the trailing period, which the recorder keeps (O(samples per period) memory). A
+//     run shorter than one period is averaged over what there is (finalSpan() < 2 pi says so).
 #pragma once
 
 #include <complex>
+#include <deque>
+#include <utility>
 #include <vector>
 
 #include "sim/record/envelope.h"
@@ -22,6 +32,11 @@ class EnvelopeRecorder {
 
   // theta, thetadot: (N x 1) scaled.
   void sample(double t, const double* theta, const double* thetadot);
+  // Emits and returns the final row (see above); call once, after the sample at the end of the
+  // run. Without any sample: an empty row.
+  EnvelopeRow finish();
+  // Scaled time the final row averages over: 2 pi, or less for a run shorter than one period.
+  double finalSpan() const { return final_span_; }
   // Scaled time of the next period boundary.
   double nextBoundary() const { return kTwoPi * static_cast<double>(period_ + 1); }
   long rowsWritten() const { return period_; }
@@ -37,6 +52,8 @@ class EnvelopeRecorder {
   void eval(double t, const double* theta, const double* thetadot, Values& out) const;
   void closePeriod();
   void integrate(double h, const Values& a, const Values& b);
+  void emit(EnvelopeRow row, const std::vector<std::complex<double>>& phase_sum);
+  void keepTrailing(double t);
 
   double epsilon_;
   std::vector<bool> active_;
@@ -51,6 +68,8 @@ class EnvelopeRecorder {
   double covered_ = 0.0;                     // length of the period integrated so far
   std::vector<PhaseUnwrapper> unwrap_;
   EnvelopeRow last_row_;
+  std::deque<std::pair<double, Values>> trailing_;  // samples of the last period (and one before)
+  double final_span_ = 0.0;
 };
 
 }  // namespace metrosync

@@ -133,6 +133,7 @@ RunFilesOptions twoMetronomes(double tau_end) {
   RunFilesOptions o;
   o.n_metronomes = 2;
   o.tau_end = tau_end;
+  o.epsilon = 0.02;  // 5 fast periods = 0.63 in tau: the window is the last 10%
   o.max_plot_rows = 50;
   return o;
 }

@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "sim/analysis/regime.h"
 
@@ -31,7 +33,7 @@ std::vector<EnvelopeRow> envelope(int n, std::function<double(int, double)> A,
 Regime pair(std::function<double(double)> psi, double A2 = 1.9) {
   auto rows = envelope(
       2, [&](int i, double) { return i == 0 ? 1.9 : A2; }, [&](int, double t) { return psi(t); });
-  return classifyRegime(rows, kTauEnd, {0.9, 0.9}).regime;
+  return classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9}).regime;
 }
 
 Regime constantPsi(double value) {
@@ -65,9 +67,9 @@ TEST(Regime, DeathWhenEveryMetronomeEndsBelowItsThreshold) {
   // amplitudes decaying from 1.9 to 0.5, each below its own theta_c at the end
   auto rows = envelope(
       2, [](int, double t) { return 1.9 - 1.4 * t / kTauEnd; }, [](int, double) { return 0.0; });
-  EXPECT_EQ(classifyRegime(rows, kTauEnd, {0.9, 0.6}).regime, Regime::Death);
+  EXPECT_EQ(classifyRegime(rows, kTauEnd, kEps, {0.9, 0.6}).regime, Regime::Death);
   // the same run with a lower threshold for metronome 2: it is alive, 1 is dead
-  EXPECT_EQ(classifyRegime(rows, kTauEnd, {0.9, 0.4}).regime, Regime::Suppression);
+  EXPECT_EQ(classifyRegime(rows, kTauEnd, kEps, {0.9, 0.4}).regime, Regime::Suppression);
 }
 
 TEST(Regime, DeadMeansStrictlyBelowThetaC) {
@@ -80,7 +82,7 @@ TEST(Regime, DeathAndSuppressionComeBeforeThePhaseRules) {
   EXPECT_EQ(pair([](double t) { return 0.5 * t; }, 0.3), Regime::Suppression);
   auto rows = envelope(
       2, [](int, double) { return 0.2; }, [](int, double t) { return 0.5 * t; });
-  EXPECT_EQ(classifyRegime(rows, kTauEnd, {0.9, 0.9}).regime, Regime::Death);
+  EXPECT_EQ(classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9}).regime, Regime::Death);
 }
 
 TEST(Regime, DriftWhenPsiMovesMoreThanPiInTheWindow) {
@@ -148,7 +150,7 @@ TEST(Regime, EveryPhaseDifferenceMustAgreeWithThreeMetronomes) {
   auto three = [](double p2, double p3) {
     auto rows = envelope(
         3, [](int, double) { return 1.5; }, [=](int j, double) { return j == 0 ? p2 : p3; });
-    return classifyRegime(rows, kTauEnd, {0.9, 0.9, 0.9}).regime;
+    return classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9, 0.9}).regime;
   };
   EXPECT_EQ(three(0.1, 2 * kPi - 0.1), Regime::InPhase);
   EXPECT_EQ(three(kPi, kPi + 0.2), Regime::Antiphase);
@@ -156,7 +158,7 @@ TEST(Regime, EveryPhaseDifferenceMustAgreeWithThreeMetronomes) {
   // drift of psi_3 alone
   auto rows = envelope(
       3, [](int, double) { return 1.5; }, [](int j, double t) { return j == 0 ? 0.0 : 0.4 * t; });
-  const RegimeVerdict v = classifyRegime(rows, kTauEnd, {0.9, 0.9, 0.9});
+  const RegimeVerdict v = classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9, 0.9});
   EXPECT_EQ(v.regime, Regime::Drift);
   ASSERT_EQ(v.psi_range.size(), 2u);
   EXPECT_NEAR(v.psi_range[0], 0.0, 1e-12);
@@ -167,7 +169,7 @@ TEST(Regime, OneMetronomeIsAliveOrDead) {
   auto one = [](double A) {
     auto rows = envelope(
         1, [=](int, double) { return A; }, [](int, double) { return 0.0; });
-    return classifyRegime(rows, kTauEnd, {0.9}).regime;
+    return classifyRegime(rows, kTauEnd, kEps, {0.9}).regime;
   };
   EXPECT_EQ(one(1.9), Regime::Alive);
   EXPECT_EQ(one(0.5), Regime::Death);
@@ -178,14 +180,15 @@ TEST(Regime, LockedMetronomesAreLeftOut) {
   // metronome 2 locked (A = 0, psi meaningless and wild), metronome 1 ticking
   auto rows = envelope(
       2, [](int i, double) { return i == 0 ? 1.9 : 0.0; }, [](int, double t) { return t; });
-  EXPECT_EQ(classifyRegime(rows, kTauEnd, {0.9, 0.9}, {false, true}).regime, Regime::Alive);
-  EXPECT_EQ(classifyRegime(rows, kTauEnd, {0.9, 0.9}, {true, true}).regime, Regime::None);
-  EXPECT_EQ(classifyRegime(rows, kTauEnd, {0.9, 0.9}).regime, Regime::Suppression);
+  EXPECT_EQ(classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9}, {false, true}).regime, Regime::Alive);
+  EXPECT_EQ(classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9}, {true, true}).regime, Regime::None);
+  EXPECT_EQ(classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9}).regime, Regime::Suppression);
   // three metronomes, 3 locked: judged on psi_2 alone
   auto rows3 = envelope(
       3, [](int i, double) { return i == 2 ? 0.0 : 1.9; },
       [](int j, double t) { return j == 0 ? kPi : t; });
-  const RegimeVerdict v = classifyRegime(rows3, kTauEnd, {0.9, 0.9, 0.9}, {false, false, true});
+  const RegimeVerdict v =
+      classifyRegime(rows3, kTauEnd, kEps, {0.9, 0.9, 0.9}, {false, false, true});
   EXPECT_EQ(v.regime, Regime::Antiphase);
   EXPECT_EQ(v.alive, (std::vector<int>{1, 1, -1}));
 }
@@ -197,10 +200,10 @@ TEST(Regime, ShortRunIsJudgedOnItsLastRow) {
   std::vector<EnvelopeRow> early;
   for (const auto& r : rows)
     if (r.tau < 50) early.push_back(r);
-  const RegimeVerdict v = classifyRegime(early, kTauEnd, {0.9, 0.9});
+  const RegimeVerdict v = classifyRegime(early, kTauEnd, kEps, {0.9, 0.9});
   EXPECT_EQ(v.window_rows, 0);
   EXPECT_EQ(v.regime, Regime::Antiphase);
-  EXPECT_EQ(classifyRegime(std::vector<EnvelopeRow>{}, kTauEnd, {0.9, 0.9}).regime,
+  EXPECT_EQ(classifyRegime(std::vector<EnvelopeRow>{}, kTauEnd, kEps, {0.9, 0.9}).regime,
             Regime::Unknown);
 }
 
@@ -208,20 +211,77 @@ TEST(Regime, NonFiniteStateIsUnknown) {
   auto rows = envelope(
       2, [](int i, double t) { return t > 99 && i == 1 ? NAN : 1.9; },
       [](int, double) { return kPi; });
-  EXPECT_EQ(classifyRegime(rows, kTauEnd, {0.9, 0.9}).regime, Regime::Unknown);
+  EXPECT_EQ(classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9}).regime, Regime::Unknown);
 }
 
 TEST(Regime, WindowCountsOnlyItsRowsAndReportsTheFinalPhase) {
   auto rows = envelope(
       2, [](int, double) { return 1.9; }, [](int, double) { return 4 * kPi + 3.0; });
-  const RegimeVerdict v = classifyRegime(rows, kTauEnd, {0.9, 0.9});
+  const RegimeVerdict v = classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9});
   long expected = 0;
   for (const auto& r : rows) expected += r.tau >= kWindow;
   EXPECT_EQ(v.window_rows, expected);
   EXPECT_GT(expected, 10);
   ASSERT_EQ(v.psi_final.size(), 1u);
   EXPECT_NEAR(v.psi_final[0], 3.0, 1e-12);
-  EXPECT_THROW(classifyRegime(rows, kTauEnd, {0.9}), std::invalid_argument);
+  EXPECT_THROW(classifyRegime(rows, kTauEnd, kEps, {0.9}), std::invalid_argument);
+}
+
+TEST(Regime, WindowReachesBackTenPercentButNeverFewerThanFivePeriods) {
+  // tau_end = 100: 10% is 10 in tau; with epsilon = 0.5 five fast periods are 5 * 2 pi * 0.5 =
+  // 15.7, so the window starts at 84.3, not 90; with epsilon = 0.073 (2.3) it starts at 90
+  const double eps_long = 0.5;
+  const double start = kTauEnd - 5 * 2 * kPi * eps_long;
+  // antiphase but for a bump of 0.5 rad between tau = 85 and 88: inside the long window only
+  auto psi = [](double t) { return t > 85 && t < 88 ? kPi + 0.5 : kPi; };
+  auto rowsAt = [&](double eps) {
+    std::vector<EnvelopeRow> rows;
+    for (long k = 0; envelopeTau(eps, k) <= kTauEnd; ++k) {
+      EnvelopeRow r;
+      r.tau = envelopeTau(eps, k);
+      r.A = {1.9, 1.9};
+      r.psi = {psi(r.tau)};
+      rows.push_back(r);
+    }
+    return rows;
+  };
+  const RegimeVerdict long_window = classifyRegime(rowsAt(eps_long), kTauEnd, eps_long, {0.9, 0.9});
+  EXPECT_DOUBLE_EQ(long_window.window_tau_start, start);
+  EXPECT_EQ(long_window.regime, Regime::Unsettled);
+  EXPECT_NE(long_window.reason.find("still move"), std::string::npos) << long_window.reason;
+  long in_window = 0;
+  for (const auto& r : rowsAt(eps_long)) in_window += r.tau >= start;
+  EXPECT_EQ(long_window.window_rows, in_window);
+  EXPECT_GE(in_window, 5);
+  const RegimeVerdict short_window = classifyRegime(rowsAt(kEps), kTauEnd, kEps, {0.9, 0.9});
+  EXPECT_DOUBLE_EQ(short_window.window_tau_start, kWindow);
+  EXPECT_EQ(short_window.regime, Regime::Antiphase);
+  EXPECT_TRUE(short_window.reason.empty());
+}
+
+TEST(Regime, ARunShorterThanFivePeriodsIsUnsettledWithItsReason) {
+  // settled antiphase rows throughout: only the length of the run can make it unsettled
+  const double eps = 0.1, period = 2 * kPi * eps;
+  auto judge = [&](double tau_end) {
+    std::vector<EnvelopeRow> rows;
+    rows.push_back({0.0, {1.9, 1.9}, {kPi}});  // the start's row
+    for (long k = 0; envelopeTau(eps, k) <= tau_end; ++k)
+      rows.push_back({envelopeTau(eps, k), {1.9, 1.9}, {kPi}});
+    rows.push_back({tau_end, {1.9, 1.9}, {kPi}});  // the final row
+    return classifyRegime(rows, tau_end, eps, {0.9, 0.9});
+  };
+  const RegimeVerdict short_run = judge(4.9 * period);
+  EXPECT_EQ(short_run.regime, Regime::Unsettled);
+  EXPECT_EQ(regimeName(short_run), "unsettled");
+  EXPECT_NE(short_run.reason.find("shorter than 5 fast periods"), std::string::npos)
+      << short_run.reason;
+  EXPECT_EQ(short_run.window_tau_start, 0.0);
+  const RegimeVerdict five = judge(5.0 * period * (1 + 1e-12));
+  EXPECT_EQ(five.regime, Regime::Antiphase);
+  EXPECT_TRUE(five.reason.empty());
+  // dead metronomes in a short run are still `unsettled`: too short to judge anything
+  std::vector<EnvelopeRow> dead = {{0.0, {0.1, 0.1}, {kPi}}, {0.3, {0.1, 0.1}, {kPi}}};
+  EXPECT_EQ(classifyRegime(dead, 0.3, eps, {0.9, 0.9}).regime, Regime::Unsettled);
 }
 
 }  // namespace

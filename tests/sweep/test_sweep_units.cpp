@@ -365,7 +365,7 @@ RegimeVerdict judge(
     for (int j = 1; j < n; ++j) r.psi.push_back(phase(0, r.tau) - phase(j, r.tau));
     rows.push_back(r);
   }
-  return classifyRegime(rows, kTauEnd, std::vector<double>(n, 0.9));
+  return classifyRegime(rows, kTauEnd, 0.073, std::vector<double>(n, 0.9));
 }
 
 TEST(ClusterNames, GroupsWithinTwoTenthsOfARadianAreClusters) {

@@ -187,7 +187,9 @@ RunResult runOnce(const Scene& scene, const Method& method, double budget_s) {
   if (r.complete) {
     std::vector<bool> locked;
     for (const auto& m : rig.metronomes) locked.push_back(m.locked);
-    r.regime = classifyRegime(r.envelope, scene.scaled.tau_end, scene.scaled.theta_c, locked).name;
+    r.regime = classifyRegime(r.envelope, scene.scaled.tau_end, scene.scaled.epsilon,
+                              scene.scaled.theta_c, locked)
+                   .name;
   } else {
     r.regime = "unknown";
   }

@@ -148,7 +148,7 @@ PointInput loadPoint(const std::string& text, const SweepOptions& opt, const Swe
 
 // Keeps what the verdict needs; a stop request (SIGINT, SIGTERM) interrupts the run.
 struct PointSink : RunSink {
-  explicit PointSink(double tau_end) : window(tau_end) {}
+  PointSink(double tau_end, double epsilon) : window(tau_end, epsilon) {}
   void envelopeRow(const EnvelopeRow& row) override {
     window.add(row);
     if (FileSink::stopRequested()) throw RunInterrupted(row.tau, "interrupted by a signal");
@@ -174,7 +174,7 @@ bool failureInjected(long g) {
 std::optional<SweepPoint> runPoint(const PointInput& in, const std::string& model, long g) {
   const Clock::time_point t0 = Clock::now();
   const ScaledParams& sp = in.scaled;
-  PointSink sink(sp.tau_end);
+  PointSink sink(sp.tau_end, sp.epsilon);
   RunReport rep;
   try {
     if (failureInjected(g))

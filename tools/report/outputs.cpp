@@ -125,7 +125,7 @@ void FileSink::clearStopRequest() {
 }
 
 FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt)
-    : opt_(opt), window_(opt.tau_end), plot_(opt.max_plot_rows) {
+    : opt_(opt), window_(opt.tau_end, opt.epsilon), plot_(opt.max_plot_rows) {
   if (opt_.n_metronomes < 1) throw std::invalid_argument("FileSink: no metronome");
   if (opt_.trajectory) {
     trajectory_ = std::make_unique<AtomicFile>(dir.file(opt_.trajectory_name));

@@ -1,5 +1,6 @@
-// The slow flow's engine: integrates models/slow_flow.h from the rig's scaled start and streams
-// envelope rows into a RunSink, like the full-model engines.
+// The slow flow's engine: integrates models/slow_flow.h (the equations, modes and switching
+// functions) from the rig's scaled start and streams envelope rows into a RunSink, like the
+// full-model engines. Only the integration loop lives here.
 #pragma once
 
 #include "models/slow_flow.h"
@@ -18,13 +19,15 @@ struct SlowFlowOptions {
   double storm_window = 1e-6;
 };
 
-// Integrates the slow flow from the scaled start and emits envelope rows on the grid
-// tau_k = envelopeTau(eps, k) <= opt.tau_end (interpolated from the dense output), with
-// psi_j = phi_1 - phi_j unwrapped. final_row is the last row emitted (the state at the end of the
-// run when no grid point was reached). A failure (non-finite state, step size underflow, event
-// storm, too many steps) ends the run with complete = false and the reason. Throws
-// std::invalid_argument on inconsistent parameters (sizes, epsilon <= 0, tau_end < 0, tolerances
-// <= 0, mu < 0, guard settings < 1). counts.escapements stays empty: the slow flow has no ticks.
+// Integrates the slow flow from the scaled start with sim/ode's dopri5 stepper and emits envelope
+// rows (psi_j = phi_1 - phi_j unwrapped): first the start's at tau = 0, then the grid
+// tau_k = envelopeTau(eps, k) <= opt.tau_end (interpolated from the dense output), last the state
+// where the run ended -- tau_end when it is complete -- which is also final_row (SPEC 3: final is
+// the state at the requested end; when tau_end falls exactly on the grid that row appears twice).
+// A failure (non-finite state, step size underflow, event storm, too many steps) ends the run with
+// complete = false, the reason, and final_row at the tau reached. Throws std::invalid_argument on
+// inconsistent parameters (sizes, epsilon <= 0, tau_end < 0, tolerances <= 0, mu < 0, guard
+// settings < 1). counts.escapements stays empty: the slow flow has no ticks.
 RunReport runSlowFlow(const ScaledParams& p, const SlowFlowOptions& opt, RunSink& sink);
 
 }  // namespace metrosync

@@ -1,26 +1,38 @@
-// The direct engine's Runge-Kutta pairs against the theory they come from: the order conditions of
-// the tables (a typo in one of the ~400 coefficients breaks one of them), the observed order of
-// the solution, of the error estimate and of the interpolant on a nonlinear problem with a known
-// solution, and the root bracketing the events rely on.
+// The ODE toolkit's Runge-Kutta pairs (sim/ode, used by the direct engine and the slow flow)
+// against the theory they come from: the order conditions of the tables (a typo in one of the ~400
+// coefficients breaks one of them), the observed order of the solution, of the error estimate and
+// of the interpolant on a nonlinear problem with a known solution, and the root bracketing the
+// events rely on.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "sim/engines/direct/direct_engine.h"
 #include "sim/ode/rk_stepper.h"
 #include "sim/ode/rk_tableau.h"
 #include "sim/ode/root_find.h"
 
-namespace metrosync::direct {
+namespace metrosync::ode {
 namespace {
+
+// every tableau sim/ode provides
+const std::vector<std::string> kMethods = {"dopri5", "verner65", "verner76"};
+
+TEST(RkTableau, EveryDirectEngineIntegratorIsATestedTableau) {
+  for (const std::string& name : metrosync::directIntegratorNames())
+    EXPECT_NE(std::find(kMethods.begin(), kMethods.end(), name), kMethods.end()) << name;
+}
 
 // Row sums of a, the quadrature conditions sum_j b_j c_j^k = 1/(k+1) for k < order (and for the
 // embedded weights b - e up to error_order), the interpolant's end value (p at th = 1 is b) and
 // the first bushy-tree condition sum_j b_j a_jl c_l = 1/6. These are necessary conditions only,
 // but each coefficient enters several of them.
 TEST(RkTableau, SatisfiesItsOrderConditions) {
-  for (const std::string& name : directIntegratorNames()) {
+  for (const std::string& name : kMethods) {
     const RkTableau& t = rkTableau(name);
     ASSERT_EQ(t.name, name);
     ASSERT_GE(t.dense_stages, t.stages);
@@ -94,7 +106,7 @@ StepResult runFixedSteps(const RkTableau& tab, int n_steps) {
 
 TEST(RkStepper, ConvergesAtTheMethodsOrder) {
   const StepResult ref = runFixedSteps(rkTableau("verner76"), 20000);
-  for (const std::string& name : directIntegratorNames()) {
+  for (const std::string& name : kMethods) {
     const RkTableau& t = rkTableau(name);
     const StepResult coarse = runFixedSteps(t, 20), fine = runFixedSteps(t, 40);
     const double e_coarse = std::hypot(coarse.y[0] - ref.y[0], coarse.y[1] - ref.y[1]);
@@ -115,7 +127,7 @@ TEST(RkStepper, ConvergesAtTheMethodsOrder) {
 // run that lands on it); its local error is O(h^(degree+1)) for these interpolants, so halving h
 // divides it by ~2^(degree+1) (dopri5: 2^5, verner65: 2^7, verner76: 2^8).
 TEST(RkStepper, InterpolantHasItsOrder) {
-  for (const std::string& name : directIntegratorNames()) {
+  for (const std::string& name : kMethods) {
     const RkTableau& t = rkTableau(name);
     Pendulum f;
     double errs[2];
@@ -151,6 +163,32 @@ TEST(RkStepper, InterpolantHasItsOrder) {
   }
 }
 
+TEST(RkStepper, InitialStepSizeIsAcceptedAndScalesWithTheTolerance) {
+  // Hairer's starting step aims at a local error ~ 0.01 of the target: the first attempt must be
+  // accepted, and a 1e5 times tighter tolerance must shrink it by about 1e5^(1/(order+1)) ..
+  // 1e5^(1/order) (the estimate uses the order; 3x slack either way)
+  for (const std::string& name : kMethods) {
+    const RkTableau& t = rkTableau(name);
+    Pendulum f;
+    RkStepper st(t, 2, f);
+    const double y0[2] = {1.2, 0.3};
+    double h[2];
+    const double rtol[2] = {1e-6, 1e-11};
+    for (int k = 0; k < 2; ++k) {
+      st.setTolerances(rtol[k], {rtol[k], rtol[k]});
+      st.restart(0.0, y0);
+      h[k] = st.initialStepSize(10.0);
+      EXPECT_GT(h[k], 0.0) << name;
+      EXPECT_LE(st.attempt(h[k]), 1.0) << name << " rtol " << rtol[k];
+    }
+    const double ratio = h[0] / h[1];
+    EXPECT_GT(ratio, std::pow(1e5, 1.0 / (t.order + 1)) / 3) << name;
+    EXPECT_LT(ratio, std::pow(1e5, 1.0 / t.order) * 3) << name;
+    st.restart(0.0, y0);
+    EXPECT_LE(st.initialStepSize(1e-3), 1e-3) << name;  // never beyond h_max
+  }
+}
+
 TEST(RootFind, BracketsToAFewUlpsWithTheRootBelowTheUpperEnd) {
   // a cubic with a root at an irrational point, and a root at the very end of the interval
   auto f = [](double x) { return (x - M_SQRT1_2) * (1 + x * x) * 3.0; };
@@ -169,4 +207,4 @@ TEST(RootFind, BracketsToAFewUlpsWithTheRootBelowTheUpperEnd) {
 }
 
 }  // namespace
-}  // namespace metrosync::direct
+}  // namespace metrosync::ode
