@@ -631,7 +631,7 @@ RunReport PeerRun::run() {
   report_.final_trajectory_row = makeRow(drv_->s1, drv_->y1);
   sink_.trajectoryRow(report_.final_trajectory_row);
   sample(drv_->s1, drv_->y1);
-  report_.final_row = env_.lastRow();
+  report_.final_row = env_.finish();
   report_.counts.steps = drv_->steps;
   report_.counts.rhs_evals = eq_.evals;
   report_.wall_seconds =

@@ -276,7 +276,7 @@ RunReport PeerRun::run() {
   }
   report_.final_trajectory_row = makeRow(t_prev, q_prev.data(), v_prev.data(), mode);
   sink_.trajectoryRow(report_.final_trajectory_row);
-  report_.final_row = env_.lastRow();
+  report_.final_row = env_.finish();
   report_.counts.steps = steps;
   report_.counts.rhs_evals = g_fint_evals;
   report_.wall_seconds =

@@ -201,6 +201,7 @@ nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict)
                         {"psi_range", verdict.psi_range},
                         {"alive", verdict.alive},
                         {"clusters", clusterText(verdict.cluster_sizes)}};
+  if (!verdict.reason.empty()) j["regime_reason"] = verdict.reason;
   j["final"] = {
       {"tau", report.final_row.tau}, {"A", report.final_row.A}, {"psi", report.final_row.psi}};
   j["counts"] = {{"steps", report.counts.steps},
