@@ -35,6 +35,8 @@
 #include <utility>
 
 #include "models/scaling.h"
+#include "yaml/utf8.h"
+#include "yaml/yaml_screen.h"
 
 namespace metrosync {
 
@@ -105,8 +107,8 @@ std::string shown(const Node& n) {
       return "(nothing)";
     case Node::Kind::Scalar: {
       if (n.scalar.empty()) return "''";
-      if (n.scalar.size() > 40) return n.scalar.substr(0, 37) + "...";
-      return n.scalar;
+      if (n.scalar.size() > 40) return printable(n.scalar.substr(0, 37)) + "...";
+      return printable(n.scalar);
     }
     case Node::Kind::Map:
       return "(a map)";
@@ -138,9 +140,9 @@ class Source {
 
   [[noreturn]] void fail(const Where& at, const std::string& what) const {
     std::ostringstream os;
-    os << name_;
+    os << printable(name_);
     if (at.origin > 0)
-      os << ": --set " << overrides_[at.origin - 1];
+      os << ": --set " << printable(overrides_[at.origin - 1]);
     else if (at.line > 0)
       os << ':' << at.line << ':' << at.col;
     os << ": " << what;
@@ -169,6 +171,9 @@ Node toNode(const YAML::Node& y, const Where& fallback, int origin, const Source
     case YAML::NodeType::Scalar:
       n.kind = Node::Kind::Scalar;
       n.scalar = y.Scalar();
+      // the text was UTF-8 (screenYaml), but an escape such as "\ud800" may not be
+      if (firstBadUtf8(n.scalar))
+        src.fail(n.at, "'" + shown(n) + "' is not UTF-8 text after its escapes");
       break;
     case YAML::NodeType::Sequence:
       n.kind = Node::Kind::Seq;
@@ -459,6 +464,18 @@ std::optional<Units> unitsOf(const Node& root) {
   return std::nullopt;
 }
 
+// The rig's other keys are written in its units: a --set cannot reinterpret them, and the errors
+// that would follow would blame the file's keys rather than the --set.
+void refuseUnitsSwitch(const Node& old_units, const Node& value, const Where& here,
+                       const Source& src) {
+  if (old_units.at.origin != 0 || old_units.kind != Node::Kind::Scalar) return;
+  if (value.kind == Node::Kind::Scalar && value.scalar == old_units.scalar) return;
+  src.fail(here, "the rig is written in units: " + shown(old_units) + " (line " +
+                     std::to_string(old_units.at.line) +
+                     "); a --set cannot change the units of its other keys (convert the rig: "
+                     "'metrosync scale' prints its scaled parameters)");
+}
+
 void applyOverride(Node& root, int origin, const Source& src) {
   const std::string& text = src.overrides()[origin - 1];
   const Where here{0, 0, origin};
@@ -467,6 +484,12 @@ void applyOverride(Node& root, int origin, const Source& src) {
     src.fail(here, "expected KEY=VALUE (e.g. --set platform.friction.mu=0.3)");
   const std::string path = text.substr(0, eq), value_text = text.substr(eq + 1);
   const std::vector<std::string> segs = splitPath(path);
+
+  if (auto bad = firstBadUtf8(text))
+    src.fail(here, "not UTF-8 text (byte " + std::to_string(*bad + 1) + " of the --set)");
+  if (auto p = screenYaml(value_text))
+    src.fail(here, path + (p->syntax ? ": the value is not valid YAML (" + p->what + ")"
+                                     : ": the value: " + p->what));
 
   // the value, parsed as YAML so that numbers, names, maps and lists all work
   Node value;
@@ -524,6 +547,7 @@ void applyOverride(Node& root, int origin, const Source& src) {
       next = &cur->seq[idx];
     }
     if (last) {
+      if (at == "units") refuseUnitsSwitch(*next, value, here, src);
       *next = value;
       return;
     }
@@ -630,10 +654,22 @@ double nonNegative(const Reader& r, const std::string& key, double v) {
   return v;
 }
 
+// A name goes into files (summary.json, CSV headers) and, for the rig, an output folder.
+std::optional<std::string> optName(const Reader& r) {
+  const std::optional<std::string> name = r.optText("name");
+  if (!name) return name;
+  if (name->empty()) r.bad("name", "must not be empty");
+  if (name->size() > kMaxNameBytes)
+    r.bad("name", "is " + std::to_string(name->size()) + " bytes long (at most " +
+                      std::to_string(kMaxNameBytes) + ")");
+  for (unsigned char ch : *name)
+    if (ch < 0x20 || ch == 0x7F) r.bad("name", "must not contain control characters");
+  return name;
+}
+
 std::string readName(const Reader& top, const std::string& fallback) {
-  const std::optional<std::string> name = top.optText("name");
+  const std::optional<std::string> name = optName(top);
   if (!name) return fallback;
-  if (name->empty()) top.bad("name", "must not be empty");
   if (name->find_first_of("/\\") != std::string::npos)
     top.bad("name", "must not contain '/' or '\\' (it names the output folder)");
   return *name;
@@ -693,6 +729,10 @@ void readSimulation(const Reader& top, const char* duration_key, const std::stri
   duration = positive(s, duration_key, what);
   if (auto a = s.optNumber("accuracy")) {
     if (!(*a > 0 && *a < 1)) s.bad("accuracy", "must be in (0, 1)");
+    if (*a < kMinAccuracy)
+      s.bad("accuracy",
+            "must be >= " + fmt(kMinAccuracy) +
+                ": no integrator can meet a smaller relative error in double precision");
     accuracy = *a;
   }
   if (auto name = s.optText("integrator")) integrator = *name;  // the engine checks the name
@@ -706,6 +746,9 @@ const Node& readMetronomeList(const Reader& top, const std::string& what) {
   if (!top.has("metronomes")) top.missing("metronomes", what);
   const Node& list = *top.find("metronomes");
   if (list.seq.empty()) top.bad("metronomes", "must hold at least one metronome");
+  if (list.seq.size() > kMaxMetronomes)
+    top.bad("metronomes", "holds " + std::to_string(list.seq.size()) + " metronomes (at most " +
+                              std::to_string(kMaxMetronomes) + ", see docs/rig-limits.md)");
   return list;
 }
 
@@ -736,7 +779,7 @@ Rig buildPhysical(const Node& root, const Source& src, const std::string& fallba
   for (std::size_t i = 0; i < list.seq.size(); ++i) {
     const Reader m(list.seq[i], "metronomes." + std::to_string(i), src);
     MetronomeSpec mt;
-    mt.name = m.optText("name").value_or(std::to_string(i + 1));
+    mt.name = optName(m).value_or(std::to_string(i + 1));
     mt.box_mass_kg =
         nonNegative(m, "box_mass", m.number("box_mass", "kg, the metronome without its pendulum"));
 
@@ -840,7 +883,7 @@ Rig buildScaled(const Node& root, const Source& src, const std::string& fallback
   for (std::size_t i = 0; i < list.seq.size(); ++i) {
     const Reader m(list.seq[i], "metronomes." + std::to_string(i), src);
     ScaledMetronomeInput mt;
-    mt.name = m.optText("name").value_or(std::to_string(i + 1));
+    mt.name = optName(m).value_or(std::to_string(i + 1));
     mt.nu = nonNegative(m, "nu", m.number("nu", "scaled pendulum damping, >= 0"));
     mt.J = nonNegative(m, "J", m.number("J", "scaled escapement impulse, >= 0"));
     mt.theta_c = m.number("theta_c", "scaled critical angle of the escapement");
@@ -886,6 +929,60 @@ Rig buildScaled(const Node& root, const Source& src, const std::string& fallback
   }
 }
 
+// What a run of the rig would write, against the caller's limit (yaml/rig_limits.h); blamed on
+// simulation.sample if given, else on the run's length.
+void checkOutput(const Reader& sim, const char* duration_key, const Rig& rig,
+                 const LoadOptions& opt) {
+  const char* culprit = sim.has("sample") ? "sample" : duration_key;
+  if (!std::isfinite(rig.sim.t_end_s))
+    sim.bad(duration_key, "the run would end at t = " + fmt(rig.sim.t_end_s) +
+                              " s: it must end at a finite time");
+  if (rig.sim.sample_s > 0 && rig.sim.sample_s < rig.sim.t_end_s * kSampleResolution)
+    sim.bad("sample", "below the time resolution of the run (" + fmt(kSampleResolution) +
+                          " * its length, " + fmt(rig.sim.t_end_s * kSampleResolution) +
+                          " s here): consecutive rows would have the same time");
+  const OutputEstimate e = estimateOutput(rig);
+  if (!(e.bytes > opt.max_output_bytes)) return;
+  sim.bad(culprit, "the run would write about " + fmt(e.trajectory_rows) +
+                       " trajectory rows (every " + fmt(e.sample_s) + " s) and " +
+                       fmt(e.envelope_rows) + " envelope rows, about " + fmt(e.bytes) +
+                       " bytes, above the output limit of " + fmt(opt.max_output_bytes) +
+                       " bytes: raise simulation.sample, shorten the run, or lift the limit with "
+                       "--max-output BYTES");
+}
+
+// Where a start is blamed: the --set that changed one of its values if any, else the start map.
+Where startCulprit(const Reader& metronome) {
+  const Node* start = metronome.find("start");
+  if (!start) return metronome.at();
+  for (const Entry& e : start->map)
+    if (e.value.at.origin > 0) return e.value.at;
+  return start->at;
+}
+
+// Checks that need the built rig's derived values, each blamed on the key that asked for them.
+void checkPlan(const Node& root, const Rig& rig, const Source& src, const LoadOptions& opt) {
+  const Reader top(root, "", src);
+  const Reader sim = top.map("simulation", "");
+  const char* duration_key = rig.units == Units::Physical ? "duration" : "tau";
+  if (auto name = sim.optText("integrator"); name && !opt.integrators.empty()) {
+    const auto& names = opt.integrators;
+    if (std::find(names.begin(), names.end(), *name) == names.end()) {
+      std::string why = "unknown integrator";
+      if (auto c = closest(*name, names)) why += " (did you mean '" + *c + "'?)";
+      sim.bad("integrator", why + "; " + opt.integrator_help);
+    }
+  }
+  checkOutput(sim, duration_key, rig, opt);
+  const Node& list = *top.find("metronomes");
+  for (std::size_t i = 0; i < rig.metronomes.size() && i < list.seq.size(); ++i) {
+    const std::optional<std::string> why = overTheTop(rig.metronomes[i], rig.gravity_m_s2);
+    if (!why) continue;
+    const Reader m(list.seq[i], "metronomes." + std::to_string(i), src);
+    src.fail(startCulprit(m), m.path("start") + ": " + *why);
+  }
+}
+
 std::string stemOf(const std::string& display_name) {
   std::string stem = std::filesystem::path(display_name).stem().string();
   return stem.empty() ? std::string("rig") : stem;
@@ -894,19 +991,18 @@ std::string stemOf(const std::string& display_name) {
 }  // namespace
 
 Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
-                const std::vector<std::string>& overrides) {
+                const std::vector<std::string>& overrides, const LoadOptions& options) {
   const Source src(display_name, overrides);
 
-  // parse: exactly one YAML document
-  std::vector<YAML::Node> docs;
+  // parse: text, one YAML document, bounded size and depth, no aliases (yaml/yaml_screen.h)
+  if (auto p = screenYaml(yaml_text))
+    src.fail(Where{p->line, p->col, 0}, (p->syntax ? "YAML syntax error: " : "") + p->what);
+  Node root;
   try {
-    docs = YAML::LoadAll(yaml_text);
+    root = toNode(YAML::Load(yaml_text), Where{1, 1, 0}, 0, src);
   } catch (const YAML::Exception& e) {
     src.fail(whereOf(e.mark, Where{}, 0), "YAML syntax error: " + e.msg);
   }
-  if (docs.size() > 1)
-    src.fail(Where{}, "holds " + std::to_string(docs.size()) + " YAML documents; a rig is one");
-  Node root = docs.empty() ? Node{} : toNode(docs.front(), Where{1, 1, 0}, 0, src);
   if (root.kind == Node::Kind::Null) root.at = Where{1, 1, 0};
 
   if (root.kind != Node::Kind::Map)
@@ -923,16 +1019,19 @@ Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
 
   checkShape(root, schemaOf(*units), &otherSchemaOf(*units), *units, "", src);
   const std::string stem = stemOf(display_name);
-  return *units == Units::Physical ? buildPhysical(root, src, stem) : buildScaled(root, src, stem);
+  const Rig rig =
+      *units == Units::Physical ? buildPhysical(root, src, stem) : buildScaled(root, src, stem);
+  try {
+    checkPlan(root, rig, src, options);
+  } catch (const std::invalid_argument& e) {  // computeScaled on a rig it cannot scale
+    src.fail(Where{}, e.what());
+  }
+  return rig;
 }
 
-Rig loadRigFile(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw RigError(path + ": cannot open the rig file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw RigError(path + ": cannot read the rig file");
-  return loadRigText(text.str(), path, overrides);
+Rig loadRigFile(const std::string& path, const std::vector<std::string>& overrides,
+                const LoadOptions& options) {
+  return loadRigText(readRigFile(path), path, overrides, options);
 }
 
 std::string defaultRigYaml() {
@@ -972,8 +1071,8 @@ simulation:
 )";
 }
 
-Rig defaultRig(const std::vector<std::string>& overrides) {
-  return loadRigText(defaultRigYaml(), "<default rig>", overrides);
+Rig defaultRig(const std::vector<std::string>& overrides, const LoadOptions& options) {
+  return loadRigText(defaultRigYaml(), "<default rig>", overrides, options);
 }
 
 }  // namespace metrosync
