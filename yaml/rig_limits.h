@@ -18,7 +18,7 @@ constexpr std::uintmax_t kMaxRigFileBytes = 16u << 20;
 // Every pendulum couples to every other through the platform: the engines' work per step grows as
 // N^2 (dense mass matrix, N+1 coordinates) and a trajectory row holds 2N + 4 numbers. At 1000
 // the mass matrix alone is 8 MB and a row ~40 kB, still runnable; the loader's tree stays below
-// the YAML node budget (about 20 nodes a metronome, yaml/yaml_screen.h).
+// the YAML node budget (about 20 nodes a metronome, yaml/rig_tree.h).
 constexpr std::size_t kMaxMetronomes = 1000;
 
 // A name becomes an output folder (at most 255 bytes on common file systems) and a JSON string.

@@ -1,6 +1,8 @@
 // Rig files: YAML text -> a tree that remembers where each value was written -> --set overrides
 // -> a shape pass against the schema (unknown keys, maps vs lists vs values) -> a build pass that
-// reads, range-checks and converts every value into a Rig.
+// reads, range-checks and converts every value into a Rig -> a plan pass on the built rig (the
+// run's end, sample interval and estimated output, the integrator's name, starts below the top).
+// Every limit on the way is in docs/rig-limits.md.
 //
 // Which keys are required (everything else is optional, with the default given):
 //   both units:  units; platform.friction.law, with mu (coulomb) or c (viscous), nothing for
@@ -19,8 +21,6 @@
 // A metronome's name defaults to its 1-based number.
 #include "yaml/rig_loader.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -35,8 +35,8 @@
 #include <utility>
 
 #include "models/scaling.h"
+#include "yaml/rig_tree.h"
 #include "yaml/utf8.h"
-#include "yaml/yaml_screen.h"
 
 namespace metrosync {
 
@@ -48,43 +48,6 @@ constexpr double kPi = 3.14159265358979323846;
 // 1.144e-5 against 0.0226 * 0.0225^2 = 1.1441e-5) must pass; a value in the slack is raised to
 // m L^2, which is what it stands for.
 constexpr double kInertiaSlack = 1e-3;
-
-// ---------------------------------------------------------------------------------------------
-// the rig as a tree that remembers where each node came from
-
-struct Where {
-  int line = 0, col = 0;  // 1-based; 0 = unknown
-  int origin = 0;         // 0: the rig text; k > 0: the k-th --set
-};
-
-struct Entry;
-struct Node {
-  enum class Kind { Null, Scalar, Map, Seq };
-  Kind kind = Kind::Null;
-  std::string scalar;
-  std::vector<Entry> map;  // in document order
-  std::vector<Node> seq;
-  Where at;
-
-  const Node* find(const std::string& key) const;
-  Node* find(const std::string& key);
-};
-struct Entry {
-  std::string key;
-  Where key_at;
-  Node value;
-};
-
-const Node* Node::find(const std::string& key) const {
-  for (const Entry& e : map)
-    if (e.key == key) return &e.value;
-  return nullptr;
-}
-Node* Node::find(const std::string& key) {
-  for (Entry& e : map)
-    if (e.key == key) return &e.value;
-  return nullptr;
-}
 
 const char* kindName(const Node& n) {
   switch (n.kind) {
@@ -153,51 +116,6 @@ class Source {
   std::string name_;
   std::vector<std::string> overrides_;
 };
-
-Where whereOf(const YAML::Mark& m, const Where& fallback, int origin) {
-  if (m.is_null() || m.line < 0) return Where{fallback.line, fallback.col, origin};
-  return Where{m.line + 1, m.column + 1, origin};
-}
-
-// yaml-cpp's node -> Node; duplicate keys are errors (yaml-cpp keeps both silently).
-Node toNode(const YAML::Node& y, const Where& fallback, int origin, const Source& src) {
-  Node n;
-  n.at = whereOf(y.Mark(), fallback, origin);
-  switch (y.Type()) {
-    case YAML::NodeType::Undefined:
-    case YAML::NodeType::Null:
-      n.kind = Node::Kind::Null;
-      break;
-    case YAML::NodeType::Scalar:
-      n.kind = Node::Kind::Scalar;
-      n.scalar = y.Scalar();
-      // the text was UTF-8 (screenYaml), but an escape such as "\ud800" may not be
-      if (firstBadUtf8(n.scalar))
-        src.fail(n.at, "'" + shown(n) + "' is not UTF-8 text after its escapes");
-      break;
-    case YAML::NodeType::Sequence:
-      n.kind = Node::Kind::Seq;
-      for (const YAML::Node& item : y) n.seq.push_back(toNode(item, n.at, origin, src));
-      break;
-    case YAML::NodeType::Map:
-      n.kind = Node::Kind::Map;
-      for (const auto& kv : y) {
-        const Where key_at = whereOf(kv.first.Mark(), n.at, origin);
-        if (!kv.first.IsScalar()) src.fail(key_at, "a key must be a plain name, not a map or list");
-        const std::string key = kv.first.Scalar();
-        for (const Entry& e : n.map)
-          if (e.key == key)
-            src.fail(key_at, "key '" + key + "' appears twice in the same map (first at line " +
-                                 std::to_string(e.key_at.line) + ")");
-        Node value = toNode(kv.second, key_at, origin, src);
-        // an empty value has no text of its own: point at its key
-        if (value.kind == Node::Kind::Null) value.at = key_at;
-        n.map.push_back(Entry{key, key_at, std::move(value)});
-      }
-      break;
-  }
-  return n;
-}
 
 // ---------------------------------------------------------------------------------------------
 // the schema: which keys exist where, for each units
@@ -487,16 +405,13 @@ void applyOverride(Node& root, int origin, const Source& src) {
 
   if (auto bad = firstBadUtf8(text))
     src.fail(here, "not UTF-8 text (byte " + std::to_string(*bad + 1) + " of the --set)");
-  if (auto p = screenYaml(value_text))
-    src.fail(here, path + (p->syntax ? ": the value is not valid YAML (" + p->what + ")"
-                                     : ": the value: " + p->what));
-
   // the value, parsed as YAML so that numbers, names, maps and lists all work
   Node value;
   try {
-    value = toNode(YAML::Load(value_text), here, origin, src);
-  } catch (const YAML::Exception& e) {
-    src.fail(here, path + ": the value is not valid YAML (" + e.msg + ")");
+    value = parseTree(value_text, origin);
+  } catch (const TreeError& e) {
+    src.fail(here, path + (e.syntax ? ": the value is not valid YAML (" + e.what + ")"
+                                    : ": the value: " + e.what));
   }
 
   if (root.kind != Node::Kind::Map)
@@ -994,16 +909,13 @@ Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
                 const std::vector<std::string>& overrides, const LoadOptions& options) {
   const Source src(display_name, overrides);
 
-  // parse: text, one YAML document, bounded size and depth, no aliases (yaml/yaml_screen.h)
-  if (auto p = screenYaml(yaml_text))
-    src.fail(Where{p->line, p->col, 0}, (p->syntax ? "YAML syntax error: " : "") + p->what);
+  // parse: text, one YAML document, bounded size and depth, no aliases (yaml/rig_tree.h)
   Node root;
   try {
-    root = toNode(YAML::Load(yaml_text), Where{1, 1, 0}, 0, src);
-  } catch (const YAML::Exception& e) {
-    src.fail(whereOf(e.mark, Where{}, 0), "YAML syntax error: " + e.msg);
+    root = parseTree(yaml_text, 0);
+  } catch (const TreeError& e) {
+    src.fail(e.at, (e.syntax ? "YAML syntax error: " : "") + e.what);
   }
-  if (root.kind == Node::Kind::Null) root.at = Where{1, 1, 0};
 
   if (root.kind != Node::Kind::Map)
     src.fail(root.at, std::string("the rig is ") + kindName(root) +
