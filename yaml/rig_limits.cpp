@@ -10,10 +10,14 @@ namespace metrosync {
 namespace {
 
 constexpr double kTwoPi = 6.28318530717958647692;
-// The engines' default trajectory interval and envelope grid, in fast periods (direct and Simbody
-// engines: period / 20 and period / 64).
+// The engines' default trajectory interval (direct and Simbody engines: period / 20), and the
+// envelope's one row per fast period (sim/record/envelope_recorder.h; the slow flow's rows are
+// on the same grid).
 constexpr double kDefaultSamplesPerPeriod = 20.0;
-constexpr double kEnvelopeRowsPerPeriod = 64.0;
+constexpr double kEnvelopeRowsPerPeriod = 1.0;
+// compare writes two envelopes and comparison.csv (tau, A_i and psi_j of both models: about two
+// envelopes wide): at most four envelopes' worth.
+constexpr double kEnvelopeFiles = 4.0;
 // Widest number printed: %.12g (trajectory) as "-1.23456789012e-308" (19) plus a separator;
 // %.10g (envelope) 17 plus a separator.
 constexpr double kTrajectoryBytesPerNumber = 20.0;
@@ -30,7 +34,7 @@ OutputEstimate estimateOutput(const Rig& rig) {
   e.envelope_rows = std::floor(rig.sim.t_end_s / period * kEnvelopeRowsPerPeriod) + 1.0;
   // trajectory: t, x, xdot, (theta_i, thetadot_i), platform; envelope: tau, A_i, psi_j, r
   e.bytes = e.trajectory_rows * (2.0 * n + 4.0) * kTrajectoryBytesPerNumber +
-            e.envelope_rows * (2.0 * n + 1.0) * kEnvelopeBytesPerNumber;
+            kEnvelopeFiles * e.envelope_rows * (2.0 * n + 1.0) * kEnvelopeBytesPerNumber;
   return e;
 }
 

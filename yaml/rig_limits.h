@@ -37,8 +37,8 @@ constexpr double kSampleResolution = 1e-10;
 // Default output limit (bytes written by one run, all files): 2 GB; --max-output lifts it.
 constexpr double kDefaultMaxOutputBytes = 2e9;
 
-// What a run of `rig` writes at most: the trajectory (every sample) and the envelope (64 rows a
-// fast period, the engines' envelope grid).
+// What a run of `rig` writes at most: the trajectory (every sample) and the envelope files (one
+// row a fast period; compare's two envelopes and comparison.csv counted as four).
 struct OutputEstimate {
   double sample_s = 0.0;  // the trajectory interval: simulation.sample or the engines' default
   double trajectory_rows = 0.0;

@@ -38,11 +38,11 @@ TEST(HostileOutput, EstimateBoundsWhatARunWrites) {
     const double traj_rows = static_cast<double>(linesOf(out + "/trajectory.csv")) - 1.0;
     const double env_rows = static_cast<double>(linesOf(out + "/envelope.csv")) - 1.0;
     EXPECT_NEAR(traj_rows, e.trajectory_rows, 1.0) << "sample " << sample;
-    EXPECT_LE(env_rows, e.envelope_rows) << "sample " << sample;
+    EXPECT_NEAR(env_rows, e.envelope_rows, 1.0) << "sample " << sample;
     const double written = static_cast<double>(fs::file_size(out + "/trajectory.csv") +
                                                fs::file_size(out + "/envelope.csv"));
     EXPECT_LE(written, e.bytes);
-    EXPECT_GE(written, 0.25 * e.bytes) << "an estimate this loose would refuse reasonable runs";
+    EXPECT_GE(written, 0.5 * e.bytes) << "an estimate this loose would refuse reasonable runs";
     fs::remove_all(out);
   }
 }
