@@ -3,6 +3,7 @@
 // yaml-cpp type crosses it.
 #pragma once
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -23,8 +24,10 @@ struct RigError : std::runtime_error {
 
 // What the caller adds to the rig's own checks (docs/rig-limits.md).
 struct LoadOptions {
-  // A run of the rig may write at most this many bytes (estimateOutput); infinity: no limit.
-  double max_output_bytes = kDefaultMaxOutputBytes;
+  // A run of the rig may write at most this many bytes (estimateOutput). No limit unless the
+  // caller sets one: `run` and `compare` do (kDefaultMaxOutputBytes, --max-output); a sweep point
+  // writes no trajectory.
+  double max_output_bytes = HUGE_VAL;
   // The integrator names simulation.integrator may take, and how to list them in a message;
   // empty: the name is not checked here (the engine checks it).
   std::vector<std::string> integrators;

@@ -50,9 +50,11 @@ TEST(HostileOutput, EstimateBoundsWhatARunWrites) {
 TEST(HostileOutput, RefusedAboveTheLimitWithTheEstimateAndTheWayOut) {
   const std::string rig = shippedRig("experiment.yaml");
   const std::vector<std::string> sets = {"simulation.duration=1e6", "simulation.sample=1e-3"};
-  const OutputEstimate e = estimateOutput(loadRigText(rig, "r", sets, withLimit(HUGE_VAL)));
+  const OutputEstimate e = estimateOutput(loadRigText(rig, "r", sets));
   ASSERT_GT(e.bytes, kDefaultMaxOutputBytes);
-  const std::string msg = loadError(rig, sets);
+  // no limit unless the caller gives one (a sweep point writes no trajectory)
+  EXPECT_EQ(loadError(rig, sets), "");
+  const std::string msg = loadError(rig, sets, withLimit(kDefaultMaxOutputBytes));
   EXPECT_EQ(msg.rfind("rig.yaml: --set simulation.sample=1e-3: simulation.sample = 1e-3: the run "
                       "would write about 1e+09 trajectory rows",
                       0),
@@ -63,7 +65,8 @@ TEST(HostileOutput, RefusedAboveTheLimitWithTheEstimateAndTheWayOut) {
   EXPECT_EQ(loadError(rig, sets, withLimit(e.bytes * (1 + 1e-9))), "");
   EXPECT_NE(loadError(rig, sets, withLimit(e.bytes * (1 - 1e-9))), "");
   // without simulation.sample the run's length is blamed
-  const std::string long_run = loadError(rig, {"simulation.duration=1e9"});
+  const std::string long_run =
+      loadError(rig, {"simulation.duration=1e9"}, withLimit(kDefaultMaxOutputBytes));
   EXPECT_NE(long_run.find("simulation.duration = 1e9: the run would write"), std::string::npos)
       << long_run;
 }
