@@ -42,6 +42,12 @@ void addRigOptions(CLI::App* cmd, Options& opt, bool with_out) {
                     "output directory (default: runs/<rig name>-<command>); metrosync's own "
                     "output files already there are replaced")
         ->type_name("DIR");
+    cmd->add_option("--max-output", opt.max_output,
+                    "refuse a run that would write more than BYTES (estimated from the run's "
+                    "length and simulation.sample; docs/rig-limits.md)")
+        ->type_name("BYTES")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     cmd->add_flag("-q,--quiet", opt.quiet,
                   "no summary on stdout (errors and warnings still go "
                   "to stderr)");

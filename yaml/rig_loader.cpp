@@ -1,6 +1,8 @@
 // Rig files: YAML text -> a tree that remembers where each value was written -> --set overrides
 // -> a shape pass against the schema (unknown keys, maps vs lists vs values) -> a build pass that
-// reads, range-checks and converts every value into a Rig.
+// reads, range-checks and converts every value into a Rig -> a plan pass on the built rig (the
+// run's end, sample interval and estimated output, the integrator's name, starts below the top).
+// Every limit on the way is in docs/rig-limits.md.
 //
 // Which keys are required (everything else is optional, with the default given):
 //   both units:  units; platform.friction.law, with mu (coulomb) or c (viscous), nothing for
@@ -19,8 +21,6 @@
 // A metronome's name defaults to its 1-based number.
 #include "yaml/rig_loader.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -35,6 +35,8 @@
 #include <utility>
 
 #include "models/scaling.h"
+#include "yaml/rig_tree.h"
+#include "yaml/utf8.h"
 
 namespace metrosync {
 
@@ -46,43 +48,6 @@ constexpr double kPi = 3.14159265358979323846;
 // 1.144e-5 against 0.0226 * 0.0225^2 = 1.1441e-5) must pass; a value in the slack is raised to
 // m L^2, which is what it stands for.
 constexpr double kInertiaSlack = 1e-3;
-
-// ---------------------------------------------------------------------------------------------
-// the rig as a tree that remembers where each node came from
-
-struct Where {
-  int line = 0, col = 0;  // 1-based; 0 = unknown
-  int origin = 0;         // 0: the rig text; k > 0: the k-th --set
-};
-
-struct Entry;
-struct Node {
-  enum class Kind { Null, Scalar, Map, Seq };
-  Kind kind = Kind::Null;
-  std::string scalar;
-  std::vector<Entry> map;  // in document order
-  std::vector<Node> seq;
-  Where at;
-
-  const Node* find(const std::string& key) const;
-  Node* find(const std::string& key);
-};
-struct Entry {
-  std::string key;
-  Where key_at;
-  Node value;
-};
-
-const Node* Node::find(const std::string& key) const {
-  for (const Entry& e : map)
-    if (e.key == key) return &e.value;
-  return nullptr;
-}
-Node* Node::find(const std::string& key) {
-  for (Entry& e : map)
-    if (e.key == key) return &e.value;
-  return nullptr;
-}
 
 const char* kindName(const Node& n) {
   switch (n.kind) {
@@ -105,8 +70,8 @@ std::string shown(const Node& n) {
       return "(nothing)";
     case Node::Kind::Scalar: {
       if (n.scalar.empty()) return "''";
-      if (n.scalar.size() > 40) return n.scalar.substr(0, 37) + "...";
-      return n.scalar;
+      if (n.scalar.size() > 40) return printable(n.scalar.substr(0, 37)) + "...";
+      return printable(n.scalar);
     }
     case Node::Kind::Map:
       return "(a map)";
@@ -138,9 +103,9 @@ class Source {
 
   [[noreturn]] void fail(const Where& at, const std::string& what) const {
     std::ostringstream os;
-    os << name_;
+    os << printable(name_);
     if (at.origin > 0)
-      os << ": --set " << overrides_[at.origin - 1];
+      os << ": --set " << printable(overrides_[at.origin - 1]);
     else if (at.line > 0)
       os << ':' << at.line << ':' << at.col;
     os << ": " << what;
@@ -151,48 +116,6 @@ class Source {
   std::string name_;
   std::vector<std::string> overrides_;
 };
-
-Where whereOf(const YAML::Mark& m, const Where& fallback, int origin) {
-  if (m.is_null() || m.line < 0) return Where{fallback.line, fallback.col, origin};
-  return Where{m.line + 1, m.column + 1, origin};
-}
-
-// yaml-cpp's node -> Node; duplicate keys are errors (yaml-cpp keeps both silently).
-Node toNode(const YAML::Node& y, const Where& fallback, int origin, const Source& src) {
-  Node n;
-  n.at = whereOf(y.Mark(), fallback, origin);
-  switch (y.Type()) {
-    case YAML::NodeType::Undefined:
-    case YAML::NodeType::Null:
-      n.kind = Node::Kind::Null;
-      break;
-    case YAML::NodeType::Scalar:
-      n.kind = Node::Kind::Scalar;
-      n.scalar = y.Scalar();
-      break;
-    case YAML::NodeType::Sequence:
-      n.kind = Node::Kind::Seq;
-      for (const YAML::Node& item : y) n.seq.push_back(toNode(item, n.at, origin, src));
-      break;
-    case YAML::NodeType::Map:
-      n.kind = Node::Kind::Map;
-      for (const auto& kv : y) {
-        const Where key_at = whereOf(kv.first.Mark(), n.at, origin);
-        if (!kv.first.IsScalar()) src.fail(key_at, "a key must be a plain name, not a map or list");
-        const std::string key = kv.first.Scalar();
-        for (const Entry& e : n.map)
-          if (e.key == key)
-            src.fail(key_at, "key '" + key + "' appears twice in the same map (first at line " +
-                                 std::to_string(e.key_at.line) + ")");
-        Node value = toNode(kv.second, key_at, origin, src);
-        // an empty value has no text of its own: point at its key
-        if (value.kind == Node::Kind::Null) value.at = key_at;
-        n.map.push_back(Entry{key, key_at, std::move(value)});
-      }
-      break;
-  }
-  return n;
-}
 
 // ---------------------------------------------------------------------------------------------
 // the schema: which keys exist where, for each units
@@ -459,6 +382,18 @@ std::optional<Units> unitsOf(const Node& root) {
   return std::nullopt;
 }
 
+// The rig's other keys are written in its units: a --set cannot reinterpret them, and the errors
+// that would follow would blame the file's keys rather than the --set.
+void refuseUnitsSwitch(const Node& old_units, const Node& value, const Where& here,
+                       const Source& src) {
+  if (old_units.at.origin != 0 || old_units.kind != Node::Kind::Scalar) return;
+  if (value.kind == Node::Kind::Scalar && value.scalar == old_units.scalar) return;
+  src.fail(here, "the rig is written in units: " + shown(old_units) + " (line " +
+                     std::to_string(old_units.at.line) +
+                     "); a --set cannot change the units of its other keys (convert the rig: "
+                     "'metrosync scale' prints its scaled parameters)");
+}
+
 void applyOverride(Node& root, int origin, const Source& src) {
   const std::string& text = src.overrides()[origin - 1];
   const Where here{0, 0, origin};
@@ -468,12 +403,15 @@ void applyOverride(Node& root, int origin, const Source& src) {
   const std::string path = text.substr(0, eq), value_text = text.substr(eq + 1);
   const std::vector<std::string> segs = splitPath(path);
 
+  if (auto bad = firstBadUtf8(text))
+    src.fail(here, "not UTF-8 text (byte " + std::to_string(*bad + 1) + " of the --set)");
   // the value, parsed as YAML so that numbers, names, maps and lists all work
   Node value;
   try {
-    value = toNode(YAML::Load(value_text), here, origin, src);
-  } catch (const YAML::Exception& e) {
-    src.fail(here, path + ": the value is not valid YAML (" + e.msg + ")");
+    value = parseTree(value_text, origin);
+  } catch (const TreeError& e) {
+    src.fail(here, path + (e.syntax ? ": the value is not valid YAML (" + e.what + ")"
+                                    : ": the value: " + e.what));
   }
 
   if (root.kind != Node::Kind::Map)
@@ -524,6 +462,7 @@ void applyOverride(Node& root, int origin, const Source& src) {
       next = &cur->seq[idx];
     }
     if (last) {
+      if (at == "units") refuseUnitsSwitch(*next, value, here, src);
       *next = value;
       return;
     }
@@ -630,10 +569,22 @@ double nonNegative(const Reader& r, const std::string& key, double v) {
   return v;
 }
 
+// A name goes into files (summary.json, CSV headers) and, for the rig, an output folder.
+std::optional<std::string> optName(const Reader& r) {
+  const std::optional<std::string> name = r.optText("name");
+  if (!name) return name;
+  if (name->empty()) r.bad("name", "must not be empty");
+  if (name->size() > kMaxNameBytes)
+    r.bad("name", "is " + std::to_string(name->size()) + " bytes long (at most " +
+                      std::to_string(kMaxNameBytes) + ")");
+  for (unsigned char ch : *name)
+    if (ch < 0x20 || ch == 0x7F) r.bad("name", "must not contain control characters");
+  return name;
+}
+
 std::string readName(const Reader& top, const std::string& fallback) {
-  const std::optional<std::string> name = top.optText("name");
+  const std::optional<std::string> name = optName(top);
   if (!name) return fallback;
-  if (name->empty()) top.bad("name", "must not be empty");
   if (name->find_first_of("/\\") != std::string::npos)
     top.bad("name", "must not contain '/' or '\\' (it names the output folder)");
   return *name;
@@ -693,6 +644,10 @@ void readSimulation(const Reader& top, const char* duration_key, const std::stri
   duration = positive(s, duration_key, what);
   if (auto a = s.optNumber("accuracy")) {
     if (!(*a > 0 && *a < 1)) s.bad("accuracy", "must be in (0, 1)");
+    if (*a < kMinAccuracy)
+      s.bad("accuracy",
+            "must be >= " + fmt(kMinAccuracy) +
+                ": no integrator can meet a smaller relative error in double precision");
     accuracy = *a;
   }
   if (auto name = s.optText("integrator")) integrator = *name;  // the engine checks the name
@@ -706,6 +661,9 @@ const Node& readMetronomeList(const Reader& top, const std::string& what) {
   if (!top.has("metronomes")) top.missing("metronomes", what);
   const Node& list = *top.find("metronomes");
   if (list.seq.empty()) top.bad("metronomes", "must hold at least one metronome");
+  if (list.seq.size() > kMaxMetronomes)
+    top.bad("metronomes", "holds " + std::to_string(list.seq.size()) + " metronomes (at most " +
+                              std::to_string(kMaxMetronomes) + ", see docs/rig-limits.md)");
   return list;
 }
 
@@ -736,7 +694,7 @@ Rig buildPhysical(const Node& root, const Source& src, const std::string& fallba
   for (std::size_t i = 0; i < list.seq.size(); ++i) {
     const Reader m(list.seq[i], "metronomes." + std::to_string(i), src);
     MetronomeSpec mt;
-    mt.name = m.optText("name").value_or(std::to_string(i + 1));
+    mt.name = optName(m).value_or(std::to_string(i + 1));
     mt.box_mass_kg =
         nonNegative(m, "box_mass", m.number("box_mass", "kg, the metronome without its pendulum"));
 
@@ -840,7 +798,7 @@ Rig buildScaled(const Node& root, const Source& src, const std::string& fallback
   for (std::size_t i = 0; i < list.seq.size(); ++i) {
     const Reader m(list.seq[i], "metronomes." + std::to_string(i), src);
     ScaledMetronomeInput mt;
-    mt.name = m.optText("name").value_or(std::to_string(i + 1));
+    mt.name = optName(m).value_or(std::to_string(i + 1));
     mt.nu = nonNegative(m, "nu", m.number("nu", "scaled pendulum damping, >= 0"));
     mt.J = nonNegative(m, "J", m.number("J", "scaled escapement impulse, >= 0"));
     mt.theta_c = m.number("theta_c", "scaled critical angle of the escapement");
@@ -886,6 +844,60 @@ Rig buildScaled(const Node& root, const Source& src, const std::string& fallback
   }
 }
 
+// What a run of the rig would write, against the caller's limit (yaml/rig_limits.h); blamed on
+// simulation.sample if given, else on the run's length.
+void checkOutput(const Reader& sim, const char* duration_key, const Rig& rig,
+                 const LoadOptions& opt) {
+  const char* culprit = sim.has("sample") ? "sample" : duration_key;
+  if (!std::isfinite(rig.sim.t_end_s))
+    sim.bad(duration_key, "the run would end at t = " + fmt(rig.sim.t_end_s) +
+                              " s: it must end at a finite time");
+  if (rig.sim.sample_s > 0 && rig.sim.sample_s < rig.sim.t_end_s * kSampleResolution)
+    sim.bad("sample", "below the time resolution of the run (" + fmt(kSampleResolution) +
+                          " * its length, " + fmt(rig.sim.t_end_s * kSampleResolution) +
+                          " s here): consecutive rows would have the same time");
+  const OutputEstimate e = estimateOutput(rig);
+  if (!(e.bytes > opt.max_output_bytes)) return;
+  sim.bad(culprit, "the run would write about " + fmt(e.trajectory_rows) +
+                       " trajectory rows (every " + fmt(e.sample_s) + " s) and " +
+                       fmt(e.envelope_rows) + " envelope rows, about " + fmt(e.bytes) +
+                       " bytes, above the output limit of " + fmt(opt.max_output_bytes) +
+                       " bytes: raise simulation.sample, shorten the run, or lift the limit with "
+                       "--max-output BYTES");
+}
+
+// Where a start is blamed: the --set that changed one of its values if any, else the start map.
+Where startCulprit(const Reader& metronome) {
+  const Node* start = metronome.find("start");
+  if (!start) return metronome.at();
+  for (const Entry& e : start->map)
+    if (e.value.at.origin > 0) return e.value.at;
+  return start->at;
+}
+
+// Checks that need the built rig's derived values, each blamed on the key that asked for them.
+void checkPlan(const Node& root, const Rig& rig, const Source& src, const LoadOptions& opt) {
+  const Reader top(root, "", src);
+  const Reader sim = top.map("simulation", "");
+  const char* duration_key = rig.units == Units::Physical ? "duration" : "tau";
+  if (auto name = sim.optText("integrator"); name && !opt.integrators.empty()) {
+    const auto& names = opt.integrators;
+    if (std::find(names.begin(), names.end(), *name) == names.end()) {
+      std::string why = "unknown integrator";
+      if (auto c = closest(*name, names)) why += " (did you mean '" + *c + "'?)";
+      sim.bad("integrator", why + "; " + opt.integrator_help);
+    }
+  }
+  checkOutput(sim, duration_key, rig, opt);
+  const Node& list = *top.find("metronomes");
+  for (std::size_t i = 0; i < rig.metronomes.size() && i < list.seq.size(); ++i) {
+    const std::optional<std::string> why = overTheTop(rig.metronomes[i], rig.gravity_m_s2);
+    if (!why) continue;
+    const Reader m(list.seq[i], "metronomes." + std::to_string(i), src);
+    src.fail(startCulprit(m), m.path("start") + ": " + *why);
+  }
+}
+
 std::string stemOf(const std::string& display_name) {
   std::string stem = std::filesystem::path(display_name).stem().string();
   return stem.empty() ? std::string("rig") : stem;
@@ -894,20 +906,16 @@ std::string stemOf(const std::string& display_name) {
 }  // namespace
 
 Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
-                const std::vector<std::string>& overrides) {
+                const std::vector<std::string>& overrides, const LoadOptions& options) {
   const Source src(display_name, overrides);
 
-  // parse: exactly one YAML document
-  std::vector<YAML::Node> docs;
+  // parse: text, one YAML document, bounded size and depth, no aliases (yaml/rig_tree.h)
+  Node root;
   try {
-    docs = YAML::LoadAll(yaml_text);
-  } catch (const YAML::Exception& e) {
-    src.fail(whereOf(e.mark, Where{}, 0), "YAML syntax error: " + e.msg);
+    root = parseTree(yaml_text, 0);
+  } catch (const TreeError& e) {
+    src.fail(e.at, (e.syntax ? "YAML syntax error: " : "") + e.what);
   }
-  if (docs.size() > 1)
-    src.fail(Where{}, "holds " + std::to_string(docs.size()) + " YAML documents; a rig is one");
-  Node root = docs.empty() ? Node{} : toNode(docs.front(), Where{1, 1, 0}, 0, src);
-  if (root.kind == Node::Kind::Null) root.at = Where{1, 1, 0};
 
   if (root.kind != Node::Kind::Map)
     src.fail(root.at, std::string("the rig is ") + kindName(root) +
@@ -923,16 +931,19 @@ Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
 
   checkShape(root, schemaOf(*units), &otherSchemaOf(*units), *units, "", src);
   const std::string stem = stemOf(display_name);
-  return *units == Units::Physical ? buildPhysical(root, src, stem) : buildScaled(root, src, stem);
+  const Rig rig =
+      *units == Units::Physical ? buildPhysical(root, src, stem) : buildScaled(root, src, stem);
+  try {
+    checkPlan(root, rig, src, options);
+  } catch (const std::invalid_argument& e) {  // computeScaled on a rig it cannot scale
+    src.fail(Where{}, e.what());
+  }
+  return rig;
 }
 
-Rig loadRigFile(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw RigError(path + ": cannot open the rig file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw RigError(path + ": cannot read the rig file");
-  return loadRigText(text.str(), path, overrides);
+Rig loadRigFile(const std::string& path, const std::vector<std::string>& overrides,
+                const LoadOptions& options) {
+  return loadRigText(readRigFile(path), path, overrides, options);
 }
 
 std::string defaultRigYaml() {
@@ -972,8 +983,8 @@ simulation:
 )";
 }
 
-Rig defaultRig(const std::vector<std::string>& overrides) {
-  return loadRigText(defaultRigYaml(), "<default rig>", overrides);
+Rig defaultRig(const std::vector<std::string>& overrides, const LoadOptions& options) {
+  return loadRigText(defaultRigYaml(), "<default rig>", overrides, options);
 }
 
 }  // namespace metrosync

@@ -3,11 +3,13 @@
 // yaml-cpp type crosses it.
 #pragma once
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "models/rig.h"
+#include "yaml/rig_limits.h"
 
 namespace metrosync {
 
@@ -20,20 +22,38 @@ struct RigError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What the caller adds to the rig's own checks (docs/rig-limits.md).
+struct LoadOptions {
+  // A run of the rig may write at most this many bytes (estimateOutput). No limit unless the
+  // caller sets one: `run` and `compare` do (kDefaultMaxOutputBytes, --max-output); a sweep point
+  // writes no trajectory.
+  double max_output_bytes = HUGE_VAL;
+  // The integrator names simulation.integrator may take, and how to list them in a message;
+  // empty: the name is not checked here (the engine checks it).
+  std::vector<std::string> integrators;
+  std::string integrator_help;
+};
+
 // Reads a rig file, applies the overrides in order ("key.path=value", the value parsed as YAML),
 // validates everything and converts it to a Rig (a scaled rig becomes its equivalent physical
-// system, see rigFromScaled). rig.name is the `name` key, else the file's stem.
-Rig loadRigFile(const std::string& path, const std::vector<std::string>& overrides = {});
+// system, see rigFromScaled). rig.name is the `name` key, else the file's stem. The path must be a
+// regular file of at most kMaxRigFileBytes.
+Rig loadRigFile(const std::string& path, const std::vector<std::string>& overrides = {},
+                const LoadOptions& options = {});
+
+// The text of a rig file, after checking the path: a regular file (not a directory, device, FIFO
+// or socket) of at most kMaxRigFileBytes. Throws RigError naming the path and what is wrong.
+std::string readRigFile(const std::string& path);
 
 // The same for YAML text; display_name stands for the file in messages (and gives the name).
 Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
-                const std::vector<std::string>& overrides = {});
+                const std::vector<std::string>& overrides = {}, const LoadOptions& options = {});
 
 // The built-in default rig (SPEC section 2, the paper's experiment): the text of
 // yaml/rigs/experiment.yaml.
 std::string defaultRigYaml();
 
-// loadRigText(defaultRigYaml(), "<default rig>", overrides)
-Rig defaultRig(const std::vector<std::string>& overrides = {});
+// loadRigText(defaultRigYaml(), "<default rig>", overrides, options)
+Rig defaultRig(const std::vector<std::string>& overrides = {}, const LoadOptions& options = {});
 
 }  // namespace metrosync

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -16,6 +17,7 @@
 #include "tools/report/plot.h"
 #include "sim/analysis/regime.h"
 #include "tools/report/scale_report.h"
+#include "sim/engines/direct/direct_engine.h"
 #include "sim/engines/simbody/simbody_engine.h"
 #include "tools/cli/engines.h"
 #include "yaml/rig_loader.h"
@@ -62,7 +64,12 @@ struct LoadedRig {
 
 LoadedRig loadAndCheck(const Options& opt) {
   LoadedRig r;
-  r.rig = opt.rig_path.empty() ? defaultRig(opt.sets) : loadRigFile(opt.rig_path, opt.sets);
+  LoadOptions lo;  // issue 17: the output limit and the integrator's name, located in the rig
+  lo.max_output_bytes = opt.max_output;
+  lo.integrators = directIntegratorNames();
+  for (const auto& n : simbodyIntegratorNames()) lo.integrators.push_back(n);
+  lo.integrator_help = "one of: " + integratorHelp();
+  r.rig = opt.rig_path.empty() ? defaultRig(opt.sets, lo) : loadRigFile(opt.rig_path, opt.sets, lo);
 
   // the integrator is the engine's business, so the loader leaves its name to us
   r.engine = chooseEngine(opt.engine, r.rig, rigDisplayName(opt));
@@ -306,7 +313,9 @@ int compareCommand(const Options& opt) {
 }
 
 int scaleCommand(const Options& opt) {
-  const LoadedRig r = loadAndCheck(opt);
+  Options no_output = opt;  // scale writes no file: no output limit
+  no_output.max_output = HUGE_VAL;
+  const LoadedRig r = loadAndCheck(no_output);
   if (opt.json)
     std::cout << r.scaled_json.dump(2) << "\n";
   else

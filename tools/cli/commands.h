@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "yaml/rig_limits.h"
+
 namespace metrosync::cli {
 
 enum ExitCode : int { kSuccess = 0, kOtherError = 1, kBadInput = 2, kSimulationFailed = 3 };
@@ -23,6 +25,7 @@ struct Options {
   std::string model = "full";  // run: full | slow
   std::string engine;          // run, compare: simbody | direct; empty: chooseEngine()'s default
   bool json = false;           // scale
+  double max_output = kDefaultMaxOutputBytes;  // --max-output BYTES (yaml/rig_limits.h)
 };
 
 // The engines `--engine` accepts in this build.
