@@ -26,8 +26,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "models/scaling.h"
 #include "models/minimal_equations.h"
+#include "models/scaling.h"
 #include "sim/ode/rk_stepper.h"
 #include "sim/ode/root_find.h"
 #include "sim/record/envelope_recorder.h"
@@ -593,7 +593,10 @@ RunReport DirectRun::run() {
       ticks_due.clear();
       bool platform = false;
       for (const Crossing& c : found_) {
-        if (c.th.lo > th_e) continue;
+        // membership is the witness's sign at the window's end, not its bracket: near a root the
+        // dense output is not monotone at the ulp level, and a witness already past zero at th_e
+        // whose bracket landed a few ulps later would start the next step at or above zero and
+        // never be seen again (a lost tick)
         const Witness& w = witnesses_[c.witness];
         if (!c.forced && witnessAt(w, th_e) < 0) continue;
         if (w.kind == WitnessKind::Platform) {
