@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <map>
+#include <ostream>
 #include <string>
 #include <tuple>
 
@@ -61,6 +62,11 @@ const Runs& runsFor(const Case& c) {
 std::string describe(const Case& c) {
   return std::string(c.start == Start::ByPhase ? "by phase" : "by state") +
          (c.antiphase ? ", antiphase" : ", in phase") + ", delta " + std::to_string(c.delta);
+}
+
+// gtest prints the parameter with this (instead of its bytes)
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << describe(c);
 }
 
 class NearSimultaneous : public ::testing::TestWithParam<Case> {};
