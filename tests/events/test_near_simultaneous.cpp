@@ -61,7 +61,7 @@ const Runs& runsFor(const Case& c) {
 
 std::string describe(const Case& c) {
   return std::string(c.start == Start::ByPhase ? "by phase" : "by state") +
-         (c.antiphase ? ", antiphase" : ", in phase") + ", delta " + std::to_string(c.delta);
+         (c.antiphase ? ", antiphase" : ", in phase") + ", delta " + eventtests::num(c.delta);
 }
 
 // gtest prints the parameter with this (instead of its bytes)
