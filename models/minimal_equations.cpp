@@ -3,11 +3,25 @@
 #include <cmath>
 #include <stdexcept>
 
+namespace metrosync {
+
+PlatformFriction platformFriction(const Rig& rig) {
+  PlatformFriction f;
+  f.law = rig.platform.law;
+  if (f.law == FrictionLaw::Coulomb)
+    f.coulomb =
+        CoulombLaw::fromCoefficient(rig.platform.mu_bar, rig.totalMass() * rig.gravity_m_s2);
+  if (f.law == FrictionLaw::Viscous) f.viscous.c = rig.platform.c_Ns_m;
+  return f;
+}
+
+}  // namespace metrosync
+
 namespace metrosync::direct {
 
 MetronomeEquations::MetronomeEquations(const Rig& rig)
     : has_platform_(rig.platform.law != FrictionLaw::Fixed),
-      law_(rig.platform.law),
+      friction_(platformFriction(rig)),
       mass_(rig.totalMass()) {
   const double g = rig.gravity_m_s2;
   for (int i = 0; i < static_cast<int>(rig.metronomes.size()); ++i) {
@@ -28,9 +42,6 @@ MetronomeEquations::MetronomeEquations(const Rig& rig)
   if (has_platform_) {
     if (!(mass_ > 0)) throw std::invalid_argument("the platform's total mass must be > 0");
     spring_ = rig.platform.spring_N_m;
-    if (law_ == FrictionLaw::Viscous) viscous_ = rig.platform.c_Ns_m;
-    if (law_ == FrictionLaw::Coulomb)
-      coulomb_.bound = rig.platform.mu_bar * mass_ * g;  // eq. frictionlaw
   }
   c_.resize(layout_.n);
   r_.resize(layout_.n);
@@ -49,10 +60,10 @@ void MetronomeEquations::rhs(const double* y, PlatformMode mode, double* dy) con
   double a = 0.0;  // xddot
   double friction_power = 0.0;
   const bool platform_moves =
-      has_platform_ && !(law_ == FrictionLaw::Coulomb && mode == PlatformMode::Stuck);
+      has_platform_ && !(friction_.setValued() && mode == PlatformMode::Stuck);
   if (platform_moves) {
     // pass 1: c_j, r_j and the platform's Schur-reduced equation Meff xddot = G + F
-    double G = -spring_ * y[StateLayout::kX] - viscous_ * v, schur = 0.0;
+    double G = -spring_ * y[StateLayout::kX], schur = 0.0;
     for (int j = 0; j < n; ++j) {
       const PendulumConstants& p = pend_[j];
       const double s = std::sin(th[j]), co = std::cos(th[j]);
@@ -63,13 +74,8 @@ void MetronomeEquations::rhs(const double* y, PlatformMode mode, double* dy) con
       c_[j] = c;
       r_[j] = r;
     }
-    double F = 0.0;
-    if (law_ == FrictionLaw::Coulomb) {
-      F = coulomb_.slipForce(mode);
-      friction_power = -F * v;
-    } else if (law_ == FrictionLaw::Viscous) {
-      friction_power = viscous_ * v * v;
-    }
+    const double F = friction_.force(v, mode);  // the law's force (contact/platform_friction.h)
+    friction_power = friction_.power(v, mode);
     a = (G + F) / (mass_ - schur);
     // pass 2: the pendulums
     for (int j = 0; j < n; ++j) dw[j] = (r_[j] - c_[j] * a) * pend_[j].inv_inertia;
@@ -120,48 +126,41 @@ double MetronomeEquations::holdingForceRate(const double* y) const {
   return -dG;
 }
 
-TickImpulse MetronomeEquations::applyTicks(double* y,
-                                           const std::vector<std::pair<int, int>>& ticks) const {
-  TickImpulse out;
+double MetronomeEquations::applyImpulse(double* y, const double* pin_impulse,
+                                        double platform_impulse) const {
   const int n = layout_.n;
-  std::vector<double> impulse(n, 0.0);  // generalized impulse on each pin (N m s)
-  for (const auto& [j, side] : ticks) impulse[j] += side * pend_[j].impulse;
-  // the kinetic energy jumps by p . (u + du / 2), p the generalized impulse: only the ticking
-  // pins' terms
-  auto work = [&](const std::vector<double>& w_before) {
-    double dT = 0.0;
-    for (const auto& [j, side] : ticks) {
-      (void)side;
-      dT += impulse[j] * 0.5 * (w_before[j] + y[layout_.omega(j)]);
+  // the kinetic energy jumps by p . (u + du / 2), p the generalized impulse
+  double dT = 0.0;
+  double dv = 0.0;
+  if (has_platform_) {
+    // [[M, c^T], [c, diag(I)]] [dv; dw] = [p_x; p]: platform first (Schur complement)
+    double schur = 0.0, rhs = platform_impulse;
+    for (int j = 0; j < n; ++j) {
+      c_[j] = pend_[j].mL * std::cos(y[layout_.theta(j)]);
+      schur += c_[j] * c_[j] * pend_[j].inv_inertia;
+      rhs -= c_[j] * pend_[j].inv_inertia * pin_impulse[j];
     }
-    return dT;
-  };
-  std::vector<double> w_before(n);
-  for (int j = 0; j < n; ++j) w_before[j] = y[layout_.omega(j)];
-  if (!has_platform_) {
-    for (int j = 0; j < n; ++j) y[layout_.omega(j)] += impulse[j] * pend_[j].inv_inertia;
-    out.dT = work(w_before);
-    return out;
+    dv = rhs / (mass_ - schur);
+    dT += platform_impulse * (y[StateLayout::kV] + 0.5 * dv);
+    y[StateLayout::kV] += dv;
   }
-  // [[M, c^T], [c, diag(I)]] [dv; dw] = [0; impulse]: platform first (Schur complement)
-  double schur = 0.0;
   for (int j = 0; j < n; ++j) {
-    c_[j] = pend_[j].mL * std::cos(y[layout_.theta(j)]);
-    schur += c_[j] * c_[j] * pend_[j].inv_inertia;
+    const double coupling = has_platform_ ? c_[j] * dv : 0.0;
+    const double dw = (pin_impulse[j] - coupling) * pend_[j].inv_inertia;
+    dT += pin_impulse[j] * (y[layout_.omega(j)] + 0.5 * dw);
+    y[layout_.omega(j)] += dw;
   }
-  const double meff = mass_ - schur;
-  double sum = 0.0;
-  for (const auto& [j, side] : ticks) {
-    const double part = c_[j] * side * pend_[j].impulse * pend_[j].inv_inertia;
-    sum += part;
-    out.dv_abs += std::abs(part) / meff;
+  return dT;
+}
+
+double MetronomeEquations::platformMobility(const double* y) const {
+  if (!has_platform_) return 0.0;
+  double schur = 0.0;
+  for (int j = 0; j < layout_.n; ++j) {
+    const double c = pend_[j].mL * std::cos(y[layout_.theta(j)]);
+    schur += c * c * pend_[j].inv_inertia;
   }
-  out.dv = -sum / meff;
-  y[StateLayout::kV] += out.dv;
-  for (int j = 0; j < n; ++j)
-    y[layout_.omega(j)] += (impulse[j] - c_[j] * out.dv) * pend_[j].inv_inertia;
-  out.dT = work(w_before);
-  return out;
+  return 1.0 / (mass_ - schur);
 }
 
 double MetronomeEquations::energy(const double* y) const {
@@ -173,16 +172,6 @@ double MetronomeEquations::energy(const double* y) const {
     e += p.mL * co * v * w + 0.5 * p.inertia * w * w - p.mgL * co;
   }
   return e;
-}
-
-double MetronomeEquations::platformKineticEnergy(const double* y) const {
-  if (!has_platform_) return 0.0;
-  const double v = y[StateLayout::kV];
-  if (v == 0.0) return 0.0;
-  double sum = 0.0;
-  for (int j = 0; j < layout_.n; ++j)
-    sum += pend_[j].mL * std::cos(y[layout_.theta(j)]) * y[layout_.omega(j)];
-  return 0.5 * mass_ * v * v + v * sum;
 }
 
 }  // namespace metrosync::direct

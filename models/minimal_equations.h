@@ -21,8 +21,17 @@
 
 #include <vector>
 
-#include "contact/coulomb.h"
+#include "contact/escapement.h"
+#include "contact/platform_friction.h"
 #include "models/rig.h"
+
+namespace metrosync {
+
+// The platform's law from the rig: the Coulomb bound mu-bar M g (eq. frictionlaw), M the
+// platform with everything on it, or the viscous c-bar. Both engines take it from here.
+PlatformFriction platformFriction(const Rig& rig);
+
+}  // namespace metrosync
 
 namespace metrosync::direct {
 
@@ -49,13 +58,6 @@ struct PendulumConstants {
   double impulse = 0.0;  // J-bar_j (N m s); 0 = no escapement
 };
 
-// The impulses of one event window on the platform: what the cancellation rule needs.
-struct TickImpulse {
-  double dv = 0.0;      // jump of xdot
-  double dv_abs = 0.0;  // sum of |jump of xdot| over the ticking pendulums
-  double dT = 0.0;      // jump of the kinetic energy (J): the work of the impulses
-};
-
 class MetronomeEquations {
  public:
   explicit MetronomeEquations(const Rig& rig);
@@ -64,8 +66,10 @@ class MetronomeEquations {
   int numSwinging() const { return layout_.n; }
   const PendulumConstants& pendulum(int j) const { return pend_[j]; }
   bool hasPlatform() const { return has_platform_; }
-  FrictionLaw law() const { return law_; }
-  const CoulombLaw& coulomb() const { return coulomb_; }
+  FrictionLaw law() const { return friction_.law; }
+  const PlatformFriction& friction() const { return friction_; }
+  const CoulombLaw& coulomb() const { return friction_.coulomb; }
+  Escapement escapement(int j) const { return {pend_[j].theta_c, pend_[j].impulse}; }
   double totalMass() const { return mass_; }
 
   // dy/dt in the given platform mode (only Coulomb uses it: Stuck holds xdot = 0, a slip feels
@@ -77,27 +81,25 @@ class MetronomeEquations {
   // dH/dt along the motion with the platform held still (xddot = 0).
   double holdingForceRate(const double* y) const;
 
-  // Generalized impulses side_j * J-bar_j on the pendulums in `ticks` ((pendulum, side) pairs),
-  // all at once, through the full mass matrix with the platform free to move: dry friction,
-  // bounded, gives no impulse. A fixed platform takes none of it.
-  TickImpulse applyTicks(double* y, const std::vector<std::pair<int, int>>& ticks) const;
+  // One combined generalized impulse: pin_impulse[j] on each pendulum's pin (N m s, (n x 1)) and
+  // platform_impulse on x (N s), through the full mass matrix [[M, c^T], [c, diag(I)]] with the
+  // platform free to move (dry friction, bounded, gives no impulse). A fixed platform takes none
+  // of it. Returns the jump of the kinetic energy (J): the work of the impulse.
+  double applyImpulse(double* y, const double* pin_impulse, double platform_impulse) const;
+  // (M^-1)_xx = 1 / Meff: the platform's velocity change per unit impulse on x (1/kg).
+  double platformMobility(const double* y) const;
 
   // Kinetic + potential energy (J), with Simbody's zero: gravity m g y of each pendulum's centre
   // of mass, y = -L cos theta below its pivot; the platform spring 1/2 k x^2.
   double energy(const double* y) const;
-  // The part of the kinetic energy that setting xdot to 0 removes: 1/2 M xdot^2 + xdot sum_j c_j
-  // thetadot_j (J).
-  double platformKineticEnergy(const double* y) const;
 
  private:
   StateLayout layout_;
   std::vector<PendulumConstants> pend_;  // (n x 1)
   bool has_platform_ = false;
-  FrictionLaw law_ = FrictionLaw::Coulomb;
-  CoulombLaw coulomb_;
+  PlatformFriction friction_;
   double mass_ = 0.0;                  // M (kg)
   double spring_ = 0.0;                // k (N/m)
-  double viscous_ = 0.0;               // c-bar (N s/m)
   mutable std::vector<double> c_, r_;  // scratch of rhs(), (n x 1)
 };
 

@@ -37,10 +37,7 @@ double CoulombElement::holdingForce(const State& s) const {
 PlatformMode CoulombElement::settleAtRest(const System& system, State& s) const {
   stick(s);  // xdot = 0, slider locked at zero velocity
   system.realize(s, Stage::Acceleration);
-  const double h = holdingForce(s);
-  const PlatformMode m = mustBreakFree(h)
-                             ? (h > 0 ? PlatformMode::SlipNegative : PlatformMode::SlipPositive)
-                             : PlatformMode::Stuck;
+  const PlatformMode m = law_.modeAtRest(holdingForce(s));
   if (m != PlatformMode::Stuck) {
     slip(s, m);
     system.realize(s, Stage::Acceleration);
@@ -53,8 +50,8 @@ PlatformMode CoulombElement::resolveSwitch(const System& system, State& s) const
   const PlatformMode m = mode(s);
   if (m == PlatformMode::Stuck) {
     const double h = holdingForce(s);
-    if (!mustBreakFree(h)) return m;
-    const PlatformMode to = h > 0 ? PlatformMode::SlipNegative : PlatformMode::SlipPositive;
+    if (!law_.breaksFree(h)) return m;
+    const PlatformMode to = CoulombLaw::slipDirection(h);
     slip(s, to);
     system.realize(s, Stage::Acceleration);
     return to;

@@ -2,7 +2,7 @@
 // platform's slider. The platform's mode (stuck, slipping right, slipping left) is a discrete
 // state variable; while slipping the element applies the kinetic force -bound*sign(xdot); while
 // stuck the slider is locked at zero velocity and the lock's generalized force is the static
-// friction that holds it. Mode switches are made by the event logic (sim/simbody), never here.
+// friction that holds it. Mode switches are made by the event resolver (sim/events/), never here.
 #pragma once
 
 #include <Simbody.h>
@@ -37,9 +37,6 @@ class CoulombElement : public SimTK::Force::Custom::Implementation {
   // holding force has reached the bound slips; a slipping platform whose velocity has reached
   // zero (or reversed) settles at rest. Returns the new mode (unchanged if no rule applies).
   PlatformMode resolveSwitch(const SimTK::System& system, SimTK::State& s) const;
-
-  // CoulombLaw::breaksFree: the holding force has reached the bound.
-  bool mustBreakFree(double holding_force) const { return law_.breaksFree(holding_force); }
 
   // Event witness (falls through zero at a switch; needs Acceleration stage):
   // slipping: mode * xdot (the platform stops); stuck: bound - |holding force| (it breaks free).

@@ -2,6 +2,9 @@
 
 #include <stdexcept>
 
+#include "contact/simbody/smooth_friction_element.h"
+#include "models/minimal_equations.h"
+
 namespace metrosync {
 
 using namespace SimTK;
@@ -25,16 +28,12 @@ void DissipationMeter::realizeAcceleration(const State& s) const {
     const double w = pin.getOneU(s, MobilizerUIndex(0));
     damping += c * w * w;
   }
-  // friction power: bound*|xdot| while slipping (Coulomb), c xdot^2 (viscous)
+  // friction power, the law's (bound*|xdot| while slipping, c xdot^2 viscous)
   double friction = 0.0;
   if (slider_) {
     const double v = slider_->getOneU(s, MobilizerUIndex(0));
-    if (coulomb_) {
-      const PlatformMode m = coulomb_->mode(s);
-      if (m != PlatformMode::Stuck) friction = -coulomb_->law().slipForce(m) * v;
-    } else {
-      friction = viscous_c_ * v * v;
-    }
+    const PlatformMode m = coulomb_ ? coulomb_->mode(s) : PlatformMode::Stuck;
+    friction = friction_.power(v, m);
   }
   Vector& zdot = s.updZDot(forces_.getMySubsystemIndex());
   zdot[z_] = damping;
@@ -45,7 +44,8 @@ MetronomeSystem::MetronomeSystem(const Rig& rig) : rig_(rig), matter_(system_), 
   const double g = rig_.gravity_m_s2;
   Force::Gravity(forces_, matter_, -YAxis, g);
 
-  has_platform_ = rig_.platform.law != FrictionLaw::Fixed;
+  const PlatformFriction friction = platformFriction(rig_);
+  has_platform_ = friction.platformMoves();
   MobilizedBody parent = matter_.Ground();
   if (has_platform_) {
     // the slider carries everything that does not swing: board, boxes, locked pendulums
@@ -59,13 +59,12 @@ MetronomeSystem::MetronomeSystem(const Rig& rig) : rig_(rig), matter_(system_), 
     if (rig_.platform.spring_N_m > 0)
       Force::MobilityLinearSpring(forces_, slider_, MobilizerQIndex(0), rig_.platform.spring_N_m,
                                   0.0);
-    if (rig_.platform.law == FrictionLaw::Viscous && rig_.platform.c_Ns_m > 0)
-      Force::MobilityLinearDamper(forces_, slider_, MobilizerUIndex(0), rig_.platform.c_Ns_m);
-    if (rig_.platform.law == FrictionLaw::Coulomb) {
-      const CoulombLaw law{rig_.platform.mu_bar * rig_.totalMass() * g};
-      auto* element = new CoulombElement(forces_, slider_, law);
+    if (friction.setValued()) {
+      auto* element = new CoulombElement(forces_, slider_, friction.coulomb);
       Force::Custom(forces_, element);  // takes ownership
       coulomb_ = element;
+    } else if (friction.law != FrictionLaw::None) {
+      Force::Custom(forces_, new SmoothFrictionElement(slider_, friction));
     }
   }
 
@@ -89,9 +88,8 @@ MetronomeSystem::MetronomeSystem(const Rig& rig) : rig_(rig), matter_(system_), 
     }
   }
 
-  double viscous_c = rig_.platform.law == FrictionLaw::Viscous ? rig_.platform.c_Ns_m : 0.0;
   auto* meter = new DissipationMeter(forces_, std::move(dampers),
-                                     has_platform_ ? &slider_ : nullptr, coulomb_, viscous_c);
+                                     has_platform_ ? &slider_ : nullptr, coulomb_, friction);
   Force::Custom(forces_, meter);
   meter_ = meter;
   system_.realizeTopology();

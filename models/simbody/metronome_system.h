@@ -3,7 +3,8 @@
 //          -> Pin per swinging pendulum (mass m_i, centre of mass at L_i below the pivot,
 //             inertia I_i about the pivot), gravity -g y,
 //   a pivot damper (torque -nu-bar L^2 thetadot) only where nu-bar > 0,
-//   the platform law: CoulombElement (coulomb), MobilityLinearDamper (viscous), nothing (none),
+//   the platform law (platformFriction(rig), models/minimal_equations.h): CoulombElement for the
+//   set-valued Coulomb law, SmoothFrictionElement for a smooth law (viscous), nothing (none),
 //   a platform spring only when the rig has one,
 //   and a DissipationMeter integrating the damping and friction power for the energy ledger.
 #pragma once
@@ -13,6 +14,7 @@
 #include <memory>
 #include <vector>
 
+#include "contact/platform_friction.h"
 #include "contact/simbody/coulomb_element.h"
 #include "models/rig.h"
 
@@ -25,12 +27,12 @@ class DissipationMeter : public SimTK::Force::Custom::Implementation {
   DissipationMeter(const SimTK::GeneralForceSubsystem& forces,
                    std::vector<std::pair<SimTK::MobilizedBody, double>> dampers,
                    const SimTK::MobilizedBody* slider, const CoulombElement* coulomb,
-                   double viscous_c)
+                   PlatformFriction friction)
       : forces_(forces),
         dampers_(std::move(dampers)),
         slider_(slider),
         coulomb_(coulomb),
-        viscous_c_(viscous_c) {}
+        friction_(friction) {}
 
   double dampingLoss(const SimTK::State& s) const;
   double frictionLoss(const SimTK::State& s) const;
@@ -46,7 +48,7 @@ class DissipationMeter : public SimTK::Force::Custom::Implementation {
   std::vector<std::pair<SimTK::MobilizedBody, double>> dampers_;  // (pin, nu-bar L^2)
   const SimTK::MobilizedBody* slider_;
   const CoulombElement* coulomb_;
-  double viscous_c_;
+  PlatformFriction friction_;
   mutable SimTK::ZIndex z_;
 };
 

@@ -33,8 +33,9 @@ struct RunCounts {
   long steps = 0;                 // integrator steps taken
   long rhs_evals = 0;             // right-hand-side (realize Acceleration) evaluations
   std::vector<long> escapements;  // (N x 1) ticks per metronome
-  long stick_slip = 0;            // platform mode switches (stick<->slip, slip reversals)
-  long events = 0;                // event localizations of any kind
+  long stick_slip = 0;            // platform stick <-> slip transitions
+  long slip_reversals = 0;        // slip+ <-> slip- without sticking in between
+  long events = 0;                // event windows of any kind, and plastic stops
 };
 
 struct RunReport {

@@ -1,13 +1,20 @@
-// CoulombLaw, the one rule both engines use for the platform's stick and slip.
+// CoulombLaw, the one rule both engines use for the platform's stick and slip; the escapement
+// rule; the platform's law as both engines query it. Property tests over many random inputs and
+// at the exact ties (|holding| == bound, xdot == 0 exactly, |theta| == theta_c).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "contact/coulomb.h"
+#include "contact/escapement.h"
+#include "contact/platform_friction.h"
 
 namespace metrosync {
 namespace {
+
+constexpr int kTrials = 20000;
 
 TEST(CoulombLaw, HoldsStrictlyInsideTheBoundAndBreaksFreeAtIt) {
   const CoulombLaw law{2.0};
@@ -32,6 +39,109 @@ TEST(CoulombLaw, SlipsAgainstTheNeededHoldingForce) {
   EXPECT_EQ(law.slipForce(PlatformMode::SlipNegative), 1.0);
   EXPECT_EQ(law.slipForce(PlatformMode::Stuck), 0.0);
   EXPECT_DOUBLE_EQ(law.stickMargin(-0.25), 0.75);
+}
+
+// The decisions must be one rule: whatever the input, canHold, breaksFree, modeAtRest and the
+// sign of the stick margin say the same thing, and a slip from rest goes the way the other forces
+// push (against the holding force).
+void expectConsistent(const CoulombLaw& law, double h) {
+  const bool hold = law.canHold(h);
+  EXPECT_EQ(hold, !law.breaksFree(h)) << "h " << h << " bound " << law.bound;
+  EXPECT_EQ(hold, law.modeAtRest(h) == PlatformMode::Stuck) << "h " << h;
+  EXPECT_EQ(hold, law.stickMargin(h) > 0) << "h " << h << " bound " << law.bound;
+  if (!hold) {
+    EXPECT_LE(static_cast<int>(law.modeAtRest(h)) * h, 0.0) << "h " << h;
+  }
+  // at xdot == 0 exactly the mode is the mode at rest; any velocity slips its own way
+  EXPECT_EQ(law.modeAt(0.0, h), law.modeAtRest(h));
+  EXPECT_EQ(law.modeAt(-0.0, h), law.modeAtRest(h));
+  const double tiny = std::numeric_limits<double>::denorm_min();
+  EXPECT_EQ(law.modeAt(tiny, h), PlatformMode::SlipPositive);
+  EXPECT_EQ(law.modeAt(-tiny, h), PlatformMode::SlipNegative);
+}
+
+TEST(CoulombLaw, OneRuleOverRandomInputs) {
+  std::mt19937_64 rng(20261123);
+  std::uniform_real_distribution<double> mag(-3.0, 3.0), exp10(-12.0, 12.0);
+  for (int k = 0; k < kTrials; ++k) {
+    const CoulombLaw law{std::pow(10.0, exp10(rng))};
+    expectConsistent(law, mag(rng) * law.bound);
+    expectConsistent(law, std::pow(10.0, exp10(rng)) * (k % 2 ? 1 : -1));
+  }
+}
+
+TEST(CoulombLaw, OneRuleAtTheExactTies) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> exp10(-12.0, 12.0);
+  for (int k = 0; k < kTrials; ++k) {
+    const CoulombLaw law{std::pow(10.0, exp10(rng))};
+    for (double h : {law.bound, -law.bound}) {
+      expectConsistent(law, h);
+      EXPECT_FALSE(law.canHold(h)) << "a tie breaks free";
+      EXPECT_EQ(law.stickMargin(h), 0.0);
+      EXPECT_EQ(law.modeAtRest(h), CoulombLaw::slipDirection(h));
+      // one ulp inside holds
+      const double inside = std::nextafter(h, 0.0);
+      expectConsistent(law, inside);
+      EXPECT_TRUE(law.canHold(inside));
+    }
+  }
+  // a zero bound (mu = 0) holds nothing, not even a zero force
+  expectConsistent(CoulombLaw{0.0}, 0.0);
+  EXPECT_FALSE(CoulombLaw{0.0}.canHold(0.0));
+}
+
+TEST(CoulombLaw, BoundIsTheCoefficientTimesTheNormalForce) {
+  EXPECT_DOUBLE_EQ(CoulombLaw::fromCoefficient(0.25, 8.0).bound, 2.0);
+}
+
+TEST(Escapement, DueExactlyFromTheSlackOutwards) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> tc_dist(0.01, 1.5), rate(-5.0, 5.0), frac(0.0, 2.0);
+  for (int k = 0; k < kTrials; ++k) {
+    const Escapement e{tc_dist(rng), 1.0};
+    const double th = frac(rng) * e.theta_c * (k % 2 ? 1 : -1), w = rate(rng);
+    const bool outward = th * w > 0;
+    const bool past = std::abs(th) >= e.theta_c * (1 - Escapement::kSlack);
+    EXPECT_EQ(e.due(th, w), outward && past);
+    // a due side is never re-armed (a tick cannot be both consumed and armed)
+    if (e.due(th, w)) {
+      EXPECT_FALSE(e.rearms(th, Escapement::side(th)));
+    }
+    // the witness rises through zero at theta_c on its side
+    EXPECT_EQ(e.witness(th, Escapement::side(th)) >= 0, std::abs(th) >= e.theta_c);
+    EXPECT_EQ(e.tickImpulse(th), Escapement::side(th) * e.impulse);
+  }
+  const Escapement e{0.9, 2.8};
+  EXPECT_TRUE(e.due(0.9, 1e-300));  // the tie: exactly at theta_c, moving outwards
+  EXPECT_FALSE(e.due(0.9, 0.0));    // at rest at theta_c: no outward rate
+  EXPECT_FALSE(e.due(-0.9, 1.0));   // inwards
+  EXPECT_TRUE(e.due(-0.9, -1.0));
+  EXPECT_TRUE(e.due(0.9 * (1 - Escapement::kSlack), 1.0));
+  EXPECT_FALSE(e.due(std::nextafter(0.9 * (1 - Escapement::kSlack), 0.0), 1.0));
+  EXPECT_FALSE((Escapement{0.9, 0.0}.due(1.0, 1.0)));  // no escapement
+}
+
+TEST(PlatformFriction, EveryLawDissipatesAndOnlyCoulombIsSetValued) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> v_dist(-10.0, 10.0), c_dist(0.0, 5.0);
+  for (FrictionLaw law :
+       {FrictionLaw::Coulomb, FrictionLaw::Viscous, FrictionLaw::None, FrictionLaw::Fixed}) {
+    PlatformFriction f;
+    f.law = law;
+    f.coulomb.bound = c_dist(rng);
+    f.viscous.c = c_dist(rng);
+    EXPECT_EQ(f.setValued(), law == FrictionLaw::Coulomb);
+    for (int k = 0; k < 1000; ++k) {
+      const double v = v_dist(rng);
+      const PlatformMode m = v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative;
+      EXPECT_GE(f.power(v, m), 0.0) << toString(law);
+      EXPECT_EQ(f.power(v, m), -f.force(v, m) * v);
+    }
+    EXPECT_EQ(f.force(0.0, PlatformMode::Stuck), 0.0) << toString(law);
+  }
+  PlatformFriction viscous{FrictionLaw::Viscous, {}, {0.5}};
+  EXPECT_DOUBLE_EQ(viscous.force(2.0, PlatformMode::Stuck), -1.0);
 }
 
 }  // namespace

@@ -82,6 +82,7 @@ TEST_P(EnginesAgree, OnShippedRig) {
 
   EXPECT_EQ(d.counts.escapements, s.counts.escapements);
   EXPECT_EQ(d.counts.stick_slip, s.counts.stick_slip);
+  EXPECT_EQ(d.counts.slip_reversals, s.counts.slip_reversals);
   EXPECT_EQ(d.counts.events, s.counts.events);
   EXPECT_EQ(sd.events.size(), ss.events.size());
 

@@ -1,5 +1,5 @@
-// The direct engine's equations (models/minimal_equations.h) against an independent formulation: the
-// full mass matrix [[M, c^T], [c, diag(I)]] and Lagrange's equations written out densely and
+// The direct engine's equations (models/minimal_equations.h) against an independent formulation:
+// the full mass matrix [[M, c^T], [c, diag(I)]] and Lagrange's equations written out densely and
 // solved by Eigen, on random rigs and states (property tests, Pinocchio style). The O(N) Schur
 // solves must give the same accelerations, holding force and tick impulses.
 #include <gtest/gtest.h>
@@ -134,33 +134,43 @@ TEST(DirectEquations, SchurSolveMatchesTheDenseMassMatrix) {
   }
 }
 
-TEST(DirectEquations, TickImpulsesMatchTheDenseMassMatrix) {
+// One combined impulse (ticks on every other pendulum, alternating sides, and an impulse on x):
+// the velocity jump is M^-1 p with the dense mass matrix, the kinetic energy jump p.(u + du/2),
+// and the horizontal momentum changes by exactly the impulse on x.
+TEST(DirectEquations, CombinedImpulseMatchesTheDenseMassMatrix) {
   std::mt19937 rng(777);
+  std::uniform_real_distribution<double> px_dist(-1e-3, 1e-3);
   for (int trial = 0; trial < 100; ++trial) {
     const int n = 1 + trial % 6;
     RandomCase rc = makeCase(rng, n, FrictionLaw::Coulomb);
     MetronomeEquations eq(rc.rig);
     const Dense d = dense(eq, rc.rig, rc.y);
-    // every other swinging pendulum ticks, alternating sides
-    std::vector<std::pair<int, int>> ticks;
+    std::vector<double> pins(eq.numSwinging(), 0.0);
     Eigen::VectorXd impulse = Eigen::VectorXd::Zero(eq.numSwinging() + 1);
+    const double px = trial % 2 ? px_dist(rng) : 0.0;
+    impulse(0) = px;
     for (int j = 0; j < eq.numSwinging(); j += 2) {
       const int side = (j / 2) % 2 ? -1 : 1;
-      ticks.emplace_back(j, side);
-      impulse(j + 1) = side * eq.pendulum(j).impulse;
+      pins[j] = side * eq.pendulum(j).impulse;
+      impulse(j + 1) = pins[j];
     }
     const Eigen::VectorXd du = d.M.ldlt().solve(impulse);
     std::vector<double> y = rc.y;
-    const TickImpulse ti = eq.applyTicks(y.data(), ticks);
+    const double dT = eq.applyImpulse(y.data(), pins.data(), px);
     const double scale = du.cwiseAbs().maxCoeff();
-    EXPECT_NEAR(ti.dv, du(0), 1e-12 * scale);
     EXPECT_NEAR(y[StateLayout::kV] - rc.y[StateLayout::kV], du(0), 1e-12 * scale);
     for (int j = 0; j < eq.numSwinging(); ++j)
       EXPECT_NEAR(y[eq.layout().omega(j)] - rc.y[eq.layout().omega(j)], du(j + 1), 1e-12 * scale);
     // positions do not jump
     for (int j = 0; j < eq.numSwinging(); ++j)
       EXPECT_EQ(y[eq.layout().theta(j)], rc.y[eq.layout().theta(j)]);
-    // the impulse is internal: horizontal momentum M xdot + sum c_j thetadot_j is unchanged
+    EXPECT_NEAR(1.0 / eq.platformMobility(rc.y.data()), 1.0 / d.M.inverse()(0, 0),
+                1e-12 * d.M(0, 0));
+    // the kinetic energy jump is the energy's (positions fixed: potential unchanged)
+    const double dE = eq.energy(y.data()) - eq.energy(rc.y.data());
+    EXPECT_NEAR(dT, dE, 1e-10 * (std::abs(dE) + std::abs(eq.energy(rc.y.data()))));
+    // the pins' impulses are internal: horizontal momentum M xdot + sum c_j thetadot_j changes
+    // by the impulse on x alone
     auto momentum = [&](const std::vector<double>& s) {
       const Dense dd = dense(eq, rc.rig, s);
       Eigen::VectorXd u(eq.numSwinging() + 1);
@@ -168,7 +178,7 @@ TEST(DirectEquations, TickImpulsesMatchTheDenseMassMatrix) {
       for (int j = 0; j < eq.numSwinging(); ++j) u(j + 1) = s[eq.layout().omega(j)];
       return dd.M.row(0).dot(u);
     };
-    EXPECT_NEAR(momentum(y), momentum(rc.y), 1e-14 * (1 + std::abs(momentum(rc.y))));
+    EXPECT_NEAR(momentum(y) - px, momentum(rc.y), 1e-14 * (1 + std::abs(momentum(rc.y))));
   }
 }
 

@@ -63,15 +63,17 @@ void expectSound(const HardRun& r, const std::string& what) {
   ASSERT_TRUE(r.report.has_ledger);
   EXPECT_LE(std::abs(r.report.ledger.relativeResidual()), 1e-6)
       << what << ": ledger residual " << r.report.ledger.residual_J() << " J";
-  // every switch is counted once and written once; every tick window writes one row and ticks at
-  // least one metronome; an event window holds at least a tick or a switch
-  EXPECT_EQ(r.report.counts.stick_slip, r.switchRows()) << what;
+  // every switch (stick <-> slip, or a slip reversal) is counted once and written once; every
+  // tick window writes one row and ticks at least one metronome; an event window holds at least a
+  // tick or a switch
+  const long switches = r.report.counts.stick_slip + r.report.counts.slip_reversals;
+  EXPECT_EQ(switches, r.switchRows()) << what;
   long ticks = 0;
   for (long e : r.report.counts.escapements) ticks += e;
   EXPECT_GE(ticks, r.tickRows()) << what;
   EXPECT_LE(ticks, r.tickRows() * static_cast<long>(r.report.counts.escapements.size())) << what;
   EXPECT_GE(r.report.counts.events, r.tickRows()) << what;
-  EXPECT_LE(r.report.counts.events, r.tickRows() + r.report.counts.stick_slip) << what;
+  EXPECT_LE(r.report.counts.events, r.tickRows() + switches) << what;
 }
 
 double maxEnvelopeDifference(const HardRun& a, const HardRun& b) {
@@ -222,7 +224,9 @@ TEST(HardCases, ZeroFrictionIsAFreePlatform) {
   const HardRun a = runDirect(coulomb, 1e-11), b = runDirect(none, 1e-11);
   expectSound(a, "mu = 0");
   expectSound(b, "law none");
-  EXPECT_GT(a.report.counts.stick_slip, 10) << "reversals: stop, settle, break free at once";
+  // it never sticks: every stop is a reversal (stop, settle, break free at once the other way)
+  EXPECT_EQ(a.report.counts.stick_slip, 0);
+  EXPECT_GT(a.report.counts.slip_reversals, 10);
   EXPECT_EQ(a.countRows("stick"), 0);
   EXPECT_EQ(a.report.counts.escapements, b.report.counts.escapements);
   ASSERT_EQ(a.sink.trajectory.size(), b.sink.trajectory.size());
@@ -255,18 +259,16 @@ TEST(HardCases, ZeroFrictionIsAFreePlatform) {
 TEST(HardCases, HugeFrictionOnlyLetsTicksMoveThePlatform) {
   const HardRun r = runDirect(hardRig("mu-huge.yaml"));
   expectSound(r, "mu = 1e6");
-  // each tick window: a slip (the impulse) and a stick (friction stops it at once)
-  EXPECT_EQ(r.report.counts.stick_slip, 2 * r.tickRows());
-  EXPECT_EQ(r.countRows("slip"), r.countRows("stick"));
-  // the push never breaks it free: every slip starts at a tick (same time as a tick row)
-  for (size_t k = 0; k < r.sink.events.size(); ++k) {
-    if (r.sink.events[k].first != "slip") continue;
-    ASSERT_LT(k + 1, r.sink.events.size());
-    EXPECT_EQ(r.sink.events[k + 1].first, "tick");
-    EXPECT_EQ(r.sink.events[k + 1].second[0], r.sink.events[k].second[0]);
-  }
-  // each slip moves the platform by dv^2 / (2 mu) ~ (eps J)^2 / 2e6 ~ 1e-9 (scaled): after 130
-  // ticks it has moved less than 1e-6
+  // each tick sets the platform moving at dv ~ eps J, which friction stops within
+  // dv / (mu * mobility) ~ 1e-7 fast periods: a plastic stop in the same window (the pendulums
+  // take the reaction), counted by where it ends, stuck as before: no switch, no slip row
+  EXPECT_GT(r.tickRows(), 100);
+  EXPECT_EQ(r.report.counts.stick_slip, 0);
+  EXPECT_EQ(r.countRows("slip"), 0);
+  EXPECT_EQ(r.countRows("stick"), 0);
+  // ... and friction took the kinetic energy of every stop
+  EXPECT_GT(r.report.ledger.friction_out_J, 0.0);
+  // the platform never moves (a slip integrated for 1e-7 periods would move it by ~1e-9)
   for (const auto& row : r.sink.trajectory) ASSERT_LT(std::abs(row[1]), 1e-6) << "t = " << row[0];
 }
 

@@ -161,7 +161,8 @@ TEST(FullModel, EnergyLedgerClosesWithEveryEffectOn) {
   RunReport r = runFullModel(rig, sink);
   ASSERT_TRUE(r.complete) << r.failure;
   ASSERT_TRUE(r.has_ledger);
-  EXPECT_GT(r.counts.stick_slip, 100);
+  // the spring keeps the platform going: mostly slip reversals, counted apart from stick <-> slip
+  EXPECT_GT(r.counts.stick_slip + r.counts.slip_reversals, 100);
   EXPECT_GT(r.counts.escapements[0], 100);
   EXPECT_GT(r.ledger.friction_out_J, 0);
   EXPECT_GT(r.ledger.damping_out_J, 0);

@@ -207,6 +207,7 @@ nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict)
   j["counts"] = {{"steps", report.counts.steps},
                  {"escapements", report.counts.escapements},
                  {"stick_slip", report.counts.stick_slip},
+                 {"slip_reversals", report.counts.slip_reversals},
                  {"rhs_evals", report.counts.rhs_evals},
                  {"events", report.counts.events}};
   j["wall_seconds"] = report.wall_seconds;

@@ -1,19 +1,18 @@
 // The direct engine's run loop. Top to bottom:
-//   1. witnesses with an explicit direction, each rising through zero at its event:
-//        tick (i, side):  side * theta_i - theta_c,i          (passes +-theta_c outwards)
-//        slipping:        -mode * xdot                         (the slip's velocity reaches 0)
-//        stuck:           |H| - bound                          (friction can no longer hold it)
+//   1. witnesses (sim/events/witness.h), each turned into one that rises through zero at its
+//      event: ticks side * theta_i - theta_c,i (only while armed, sim/events/resolver.h); the
+//      platform's PlatformWitness with the sign flipped (|H| - bound while stuck, -mode * xdot
+//      while slipping).
 //   2. detection on each kept step: a sign change between the step's ends, or a hidden double
 //      crossing (grazing) found at the extreme of the witness inside the step (the root of its
 //      rate on the dense output); then each crossing is bracketed by Illinois on the dense output
-//      to a few ulps. The event is placed at the earliest bracket's upper end, and every witness
-//      that has crossed there belongs to the same window.
-//   3. one resolver for the window, in Simbody's order: escapement impulses first (all ticking
-//      pendulums together, through the full mass matrix with the platform free), then the
-//      platform's Coulomb rule on the resulting state.
-//   4. recorders: trajectory rows and envelope samples from the dense output (the integrator is
-//      never stopped at a sample), samples on both sides of every event, the energy ledger from
-//      two quadrature states.
+//      to a few ulps. The window ends at the earliest bracket's upper end; every witness past
+//      zero there belongs to it (its sign decides, not its bracket: near a root the dense output
+//      is not monotone at the ulp level).
+//   3. the shared resolver (sim/events/resolver.h) acts on the window's end state, through this
+//      engine's EventSystem (the state vector and the platform mode).
+//   4. recorders: trajectory rows and envelope samples from the dense output on the shared
+//      schedule (sim/events/sample_schedule.h), the energy ledger from two quadrature states.
 #include "sim/engines/direct/direct_engine.h"
 
 #include <algorithm>
@@ -26,8 +25,12 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "models/scaling.h"
 #include "models/minimal_equations.h"
+#include "models/scaling.h"
+#include "sim/events/resolver.h"
+#include "sim/events/sample_schedule.h"
+#include "sim/events/storm_guard.h"
+#include "sim/events/witness.h"
 #include "sim/ode/rk_stepper.h"
 #include "sim/ode/root_find.h"
 #include "sim/record/envelope_recorder.h"
@@ -47,11 +50,6 @@ namespace direct {
 namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
-// Simbody's tickDue(): a tick needs |theta| >= theta_c (1 - 1e-9) and an outward rate.
-constexpr double kTickSlack = 1e-9;
-// Simbody's cancellation rule: ticks whose platform impulses cancel to this fraction leave the
-// platform at rest.
-constexpr double kCancelTol = 1e-9;
 
 class Dynamics : public OdeRhs {
  public:
@@ -78,10 +76,28 @@ struct Crossing {
   bool forced = false;  // a slip that could not get going: stopped a sixteenth into the step
 };
 
-class DirectRun {
+// The run: a stepper, the witnesses, and the shared resolver acting on the event state through
+// this class's EventSystem side (the state vector ev_y_ and the platform mode).
+class DirectRun : public EventSystem {
  public:
   DirectRun(const Rig& rig, RunSink& sink, const DirectOptions& opt);
   RunReport run();
+
+  // --- EventSystem (on ev_y_) -------------------------------------------------------------
+  double theta(int j) const override { return ev_y_[lay_.theta(j)]; }
+  double thetadot(int j) const override { return ev_y_[lay_.omega(j)]; }
+  double xdot() const override { return ev_y_[StateLayout::kV]; }
+  PlatformMode mode() const override { return dyn_.mode; }
+  void setMode(PlatformMode m) override {
+    dyn_.mode = m;
+    if (m == PlatformMode::Stuck) ev_y_[StateLayout::kV] = 0.0;  // held: the residual of a stop
+  }
+  double holdingForce() override { return eq_.holdingForce(ev_y_); }
+  double applyImpulse(const std::vector<double>& pin, double platform) override {
+    return eq_.applyImpulse(ev_y_, pin.data(), platform);
+  }
+  double platformMobility() override { return eq_.platformMobility(ev_y_); }
+  void eventRow(const char* kind) override { sink_.eventRow(kind, makeRow(ev_y_, ev_t_)); }
 
  private:
   // --- witnesses --------------------------------------------------------------------------
@@ -91,38 +107,31 @@ class DirectRun {
                                           bool allow_forced);
   std::optional<Crossing> detectMargin(int index);
   std::optional<Crossing> detectSlipFromRest(int index, int k, double sign, double g1);
-  // the stuck platform's witness |H| - bound (minus CoulombLaw's stick margin) and its rate
+  // the stuck platform's witness made rising: -stickMargin = |H| - bound, and its rate
   double excessPush(const double* y) const {
-    return std::abs(eq_.holdingForce(y)) - eq_.coulomb().bound;
+    return risingSign(PlatformWitness::kDirection) *
+           PlatformWitness::value(eq_.coulomb(), PlatformMode::Stuck, 0.0, eq_.holdingForce(y));
   }
   double excessPushRate(const double* y) const {
     const double h = eq_.holdingForce(y);
     return (h >= 0 ? 1.0 : -1.0) * eq_.holdingForceRate(y);
   }
 
-  // --- event resolution -------------------------------------------------------------------
-  bool tickDue(const double* y, int j) const {
-    const double th = y[lay_.theta(j)], w = y[lay_.omega(j)];
-    return std::abs(th) >= eq_.pendulum(j).theta_c * (1 - kTickSlack) && th * w > 0;
-  }
-  bool mustBreakFree(double holding) const {
-    const CoulombLaw& law = eq_.coulomb();
-    // the law's rule (shared with the Simbody engine): the push has reached the bound
-    return law.breaksFree(holding);
-  }
-  PlatformMode settleAtRest(double* y);
-  PlatformMode resolveSwitch(double* y);
-  void resolve(double* y, double t, const std::vector<int>& ticks_due, bool platform);
-  void setMode(PlatformMode m) { dyn_.mode = m; }
-  PlatformMode mode() const { return dyn_.mode; }
+  // --- the run's stages ---------------------------------------------------------------------
+  std::vector<double> startState();
+  double maxStepSize() const;
+  // false: rejected (h is the retry's size); err: the accepted step's error estimate
+  bool attemptStep(double step, double& h, double& err);
+  void findCrossings();
+  double locateWindow();  // brackets the crossings; the window's end th_e
+  void resolveWindow(double t_e, double th_e);
+  void rearm(const double* y);
+  void integrate(double h_max, StormGuard& storm);
 
   // --- recording --------------------------------------------------------------------------
   const std::vector<double>& makeRow(const double* y, double t);  // in row_
   void recordTrajectory(const double* y, double t);
   void recordEnvelope(const double* y, double t);
-  void eventRow(const char* kind, const double* y, double t) {
-    sink_.eventRow(kind, makeRow(y, t));
-  }
   void emitSamplesBefore(double t_limit, bool inclusive);
 
   void fail(double t, const std::string& why) {
@@ -150,14 +159,17 @@ class DirectRun {
   double omega0_ = 1.0, period_ = 1.0;
   std::vector<Witness> witnesses_;
   std::vector<Crossing> found_;
+  std::optional<EventResolver> resolver_;
+  std::optional<SampleSchedule> schedule_;
+  double* ev_y_ = nullptr;  // the state the resolver acts on, at time ev_t_
+  double ev_t_ = 0.0;
   std::vector<double> ya_, yb_;  // scratch states (dim): the event's, the witnesses'
   std::vector<double> env_th_, env_w_;
   std::vector<double> row_;         // the trajectory row being written
-  double friction_settle_J_ = 0.0;  // kinetic energy removed by setting xdot to 0
+  double friction_settle_J_ = 0.0;  // kinetic energy removed by plastic stops
   bool debug_ = std::getenv("METROSYNC_DEBUG") != nullptr;
-  // output schedule
-  double traj_dt_ = 0.0, env_dt_ = 0.0, t_end_ = 0.0;
-  long k_traj_ = 1, k_env_ = 1;
+  double t_end_ = 0.0;
+  int nonfinite_ = 0;  // consecutive attempts that produced a NaN or an infinity
 };
 
 DirectRun::DirectRun(const Rig& rig, RunSink& sink, const DirectOptions& opt)
@@ -227,6 +239,7 @@ double DirectRun::witnessAt(const Witness& w, double th) {
 
 std::optional<Crossing> DirectRun::detect(int index) {
   const Witness& w = witnesses_[index];
+  if (w.kind == WitnessKind::Tick && !resolver_->armed(w.pendulum, w.side)) return std::nullopt;
   if (w.kind == WitnessKind::Tick)
     return detectComponent(index, lay_.theta(w.pendulum), w.side, eq_.pendulum(w.pendulum).theta_c,
                            false);
@@ -328,80 +341,6 @@ std::optional<Crossing> DirectRun::detectMargin(int index) {
   return std::nullopt;
 }
 
-// --- event resolution -----------------------------------------------------------------------
-
-PlatformMode DirectRun::settleAtRest(double* y) {
-  y[StateLayout::kV] = 0.0;
-  const double h = eq_.holdingForce(y);
-  const PlatformMode m = !mustBreakFree(h)
-                             ? PlatformMode::Stuck
-                             : (h > 0 ? PlatformMode::SlipNegative : PlatformMode::SlipPositive);
-  setMode(m);
-  return m;
-}
-
-PlatformMode DirectRun::resolveSwitch(double* y) {
-  const PlatformMode m = mode();
-  if (m == PlatformMode::Stuck) {
-    const double h = eq_.holdingForce(y);
-    if (!mustBreakFree(h)) return m;
-    const PlatformMode to = h > 0 ? PlatformMode::SlipNegative : PlatformMode::SlipPositive;
-    setMode(to);
-    return to;
-  }
-  if (static_cast<int>(m) * y[StateLayout::kV] > 0) return m;
-  return settleAtRest(y);
-}
-
-void DirectRun::resolve(double* y, double t, const std::vector<int>& ticks_due, bool platform) {
-  const bool coulomb = eq_.law() == FrictionLaw::Coulomb;
-  // 1. escapement: all ticking pendulums at once
-  if (!ticks_due.empty()) {
-    const bool was_stuck = coulomb && mode() == PlatformMode::Stuck;
-    std::vector<std::pair<int, int>> ticks;
-    for (int j : ticks_due) {
-      ticks.emplace_back(j, y[lay_.theta(j)] > 0 ? 1 : -1);
-      ++report_.counts.escapements[eq_.pendulum(j).rig_index];
-    }
-    const TickImpulse imp = eq_.applyTicks(y, ticks);
-    double energy_in = imp.dT;  // the escapement's work (Simbody's ledger: E after - E before)
-    if (coulomb) {
-      const PlatformMode before = was_stuck ? PlatformMode::Stuck : mode();
-      const double v = y[StateLayout::kV];
-      if (std::abs(v) <= kCancelTol * imp.dv_abs) {
-        // the impulses cancel on the platform (identical metronomes in exact antiphase)
-        energy_in -= eq_.platformKineticEnergy(y);
-        const PlatformMode after = settleAtRest(y);
-        if (after != before) {
-          ++report_.counts.stick_slip;
-          eventRow(after == PlatformMode::Stuck ? "stick" : "slip", y, t);
-        }
-      } else {
-        const PlatformMode m = v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative;
-        setMode(m);
-        if (m != before) {
-          ++report_.counts.stick_slip;
-          eventRow("slip", y, t);
-        }
-      }
-    }
-    report_.ledger.escapement_in_J += energy_in;
-    eventRow("tick", y, t);
-  }
-  // 2. the platform's rule on the resulting state
-  if (coulomb && (platform || !ticks_due.empty())) {
-    const PlatformMode before = mode();
-    // a stop sets xdot (a rounding error past zero) to exactly 0: friction took that energy
-    const double removed = before == PlatformMode::Stuck ? 0.0 : eq_.platformKineticEnergy(y);
-    const PlatformMode after = resolveSwitch(y);
-    if (after != before) {
-      ++report_.counts.stick_slip;
-      eventRow(after == PlatformMode::Stuck ? "stick" : "slip", y, t);
-      if (y[StateLayout::kV] == 0.0) friction_settle_J_ += removed;
-    }
-  }
-}
-
 // --- recording ------------------------------------------------------------------------------
 
 const std::vector<double>& DirectRun::makeRow(const double* y, double t) {
@@ -452,59 +391,45 @@ void DirectRun::recordEnvelope(const double* y, double t) {
 // Samples due in the current step before t_limit (or at it, if inclusive), from the dense output.
 void DirectRun::emitSamplesBefore(double t_limit, bool inclusive) {
   const double t0 = stepper_.t(), h = stepper_.h();
-  auto due = [&](double ts) {
-    return ts < t_end_ && (ts < t_limit || (inclusive && ts == t_limit));
-  };
-  while (true) {
-    const double tt = static_cast<double>(k_traj_) * traj_dt_;
-    const double te = static_cast<double>(k_env_) * env_dt_;
-    const double ts = std::min(tt, te);
-    if (!due(ts)) break;
-    const double th = std::clamp((ts - t0) / h, 0.0, 1.0);
-    stepper_.interpolate(th, ya_.data());
-    if (tt <= ts) {
-      recordTrajectory(ya_.data(), ts);
-      ++k_traj_;
-    }
-    if (te <= ts) {
-      recordEnvelope(ya_.data(), ts);
-      ++k_env_;
-    }
-  }
+  schedule_->takeDue(t_limit, inclusive, [&](double ts, bool row, bool env) {
+    stepper_.interpolate(std::clamp((ts - t0) / h, 0.0, 1.0), ya_.data());
+    if (row) recordTrajectory(ya_.data(), ts);
+    if (env) recordEnvelope(ya_.data(), ts);
+  });
 }
 
-// --- the run --------------------------------------------------------------------------------
+// --- the run's stages -----------------------------------------------------------------------
 
-RunReport DirectRun::run() {
-  const auto wall0 = std::chrono::steady_clock::now();
-  t_end_ = rig_.sim.t_end_s;
-  traj_dt_ = rig_.sim.sample_s > 0 ? rig_.sim.sample_s : period_ / 20;
-  env_dt_ = period_ / 64;
-
-  // the start: the rig's state, the platform's mode decided at rest
+// The rig's start state; the resolver, armed by it; the platform's mode decided at rest.
+std::vector<double> DirectRun::startState() {
   std::vector<double> y(lay_.dim(), 0.0);
   if (eq_.hasPlatform()) {
     y[StateLayout::kX] = rig_.platform.start_x_m;
     y[StateLayout::kV] = rig_.platform.start_v_m_s;
   }
+  std::vector<Escapement> esc;
+  std::vector<double> theta0;
   for (int j = 0; j < lay_.n; ++j) {
     const MetronomeSpec& m = rig_.metronomes[eq_.pendulum(j).rig_index];
     y[lay_.theta(j)] = m.start_angle_rad;
     y[lay_.omega(j)] = m.start_rate_rad_s;
+    esc.push_back(eq_.escapement(j));
+    theta0.push_back(m.start_angle_rad);
   }
-  if (eq_.law() == FrictionLaw::Coulomb) {
-    const double v = y[StateLayout::kV];
-    if (v == 0) {
-      setMode(PlatformMode::Stuck);
-      if (settleAtRest(y.data()) != PlatformMode::Stuck) eventRow("slip", y.data(), 0.0);
-    } else {
-      setMode(v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative);
-    }
+  std::optional<CoulombLaw> coulomb;
+  if (eq_.friction().setValued()) coulomb = eq_.coulomb();
+  resolver_.emplace(esc, coulomb, period_, theta0);
+  if (coulomb) {
+    ev_y_ = y.data();
+    ev_t_ = 0.0;
+    resolver_->settleAtStart(*this);
   }
-  report_.ledger.initial_J = eq_.energy(y.data());
+  return y;
+}
 
-  // the largest step: a fraction of the fastest oscillation (pendulums, platform spring), so that
-  // a step holds at most one extreme of any witness
+// The largest step: a fraction of the fastest oscillation (pendulums, platform spring), so that a
+// step holds at most one extreme of any witness.
+double DirectRun::maxStepSize() const {
   double fastest = period_;
   for (int j = 0; j < lay_.n; ++j) {
     const PendulumConstants& p = eq_.pendulum(j);
@@ -516,7 +441,134 @@ RunReport DirectRun::run() {
       meff -= eq_.pendulum(j).mL * eq_.pendulum(j).mL / eq_.pendulum(j).inertia;
     fastest = std::min(fastest, kTwoPi * std::sqrt(meff / rig_.platform.spring_N_m));
   }
-  const double h_max = fastest / 10;
+  return fastest / 10;
+}
+
+// One attempt; false when rejected, with h set to the retry's size. A step that produced a NaN
+// or an infinity is redone 4 times smaller, a few times; a state that is not finite itself fails.
+bool DirectRun::attemptStep(double step, double& h, double& err) {
+  err = stepper_.attempt(step);
+  if (err <= 1.0) {
+    nonfinite_ = 0;
+    return true;
+  }
+  if (!std::isfinite(err) &&
+      (++nonfinite_ > 50 || !std::all_of(stepper_.y(), stepper_.y() + lay_.mechanical(),
+                                         [](double v) { return std::isfinite(v); }))) {
+    fail(stepper_.t(), "non-finite state");
+    return false;
+  }
+  h = std::isfinite(err) ? stepper_.nextStepSize(step, err, false) : 0.25 * step;
+  return false;
+}
+
+void DirectRun::findCrossings() {
+  found_.clear();
+  for (int w = 0; w < static_cast<int>(witnesses_.size()); ++w)
+    if (auto c = detect(w)) found_.push_back(*c);
+}
+
+// Brackets the crossings to a few ulps, earliest first; the window ends at the earliest upper end
+// (a crossing that starts after it cannot be earlier and needs no bracketing).
+double DirectRun::locateWindow() {
+  std::sort(found_.begin(), found_.end(),
+            [](const Crossing& a, const Crossing& b) { return a.th.lo < b.th.lo; });
+  double th_e = 2.0;
+  for (Crossing& c : found_) {
+    if (c.th.lo >= th_e) break;
+    if (!c.forced && c.th.hi > c.th.lo) {
+      const Witness& w = witnesses_[c.witness];
+      auto g = [&](double th) { return witnessAt(w, th); };
+      c.th = illinois(g, c.th.lo, g(c.th.lo), c.th.hi, g(c.th.hi));
+    }
+    th_e = std::min(th_e, c.th.hi);
+  }
+  return th_e;
+}
+
+// The window's end state in ya_: the platform's witness decides whether it switches (a tick
+// witness needs no report: the resolver takes every due tick from the state), the resolver acts,
+// the stepper restarts from the result.
+void DirectRun::resolveWindow(double t_e, double th_e) {
+  stepper_.interpolate(th_e, ya_.data());
+  bool platform = false;
+  for (const Crossing& c : found_) {
+    const Witness& w = witnesses_[c.witness];
+    if (w.kind == WitnessKind::Platform && (c.forced || witnessAt(w, th_e) >= 0)) platform = true;
+  }
+  ++report_.counts.events;
+  if (debug_)
+    std::fprintf(stderr, "event t %.17g th %.17g platform %d mode %d v %.6g\n", t_e, th_e,
+                 static_cast<int>(platform), static_cast<int>(mode()), ya_[StateLayout::kV]);
+  recordEnvelope(ya_.data(), t_e);  // the last state before the event
+  ev_y_ = ya_.data();
+  ev_t_ = t_e;
+  const WindowOutcome out = resolver_->resolve(*this, platform);
+  for (int j : out.ticked) ++report_.counts.escapements[eq_.pendulum(j).rig_index];
+  report_.counts.stick_slip += out.stick_slip;
+  report_.counts.slip_reversals += out.slip_reversals;
+  report_.ledger.escapement_in_J += out.escapement_in;
+  friction_settle_J_ += out.friction_out;
+  stepper_.restart(t_e, ya_.data());
+  recordEnvelope(ya_.data(), t_e);  // and the first after it
+}
+
+void DirectRun::rearm(const double* y) {
+  for (int j = 0; j < lay_.n; ++j) resolver_->rearm(j, y[lay_.theta(j)]);
+}
+
+// Steps to t_end: each kept step either has no crossing (samples, re-arming, advance) or ends
+// at its earliest event window, resolved before the next step.
+void DirectRun::integrate(double h_max, StormGuard& storm) {
+  double h = std::min(h_max, 0.5 * period_ * std::pow(rig_.sim.accuracy, 1.0 / (tab_.order + 1)));
+  while (stepper_.t() < t_end_) {
+    const double t0 = stepper_.t();
+    const bool last = t0 + h >= t_end_ * (1 - 4 * std::numeric_limits<double>::epsilon());
+    const double step = last ? t_end_ - t0 : h;
+    const double min_step =
+        std::max(1e-14 * period_, 16 * std::numeric_limits<double>::epsilon() * t0);
+    if (!(step > min_step) && !last) {
+      fail(t0, "step size underflow (h = " + std::to_string(step) + " s)");
+      break;
+    }
+    double err = 0.0;
+    if (!attemptStep(step, h, err)) {
+      if (!report_.complete) break;
+      continue;
+    }
+    ++report_.counts.steps;
+    const double t1 = last ? t_end_ : stepper_.t1();
+    h = std::min(h_max, stepper_.nextStepSize(step, err, true));
+    findCrossings();
+    if (found_.empty()) {
+      emitSamplesBefore(t1, true);
+      rearm(stepper_.y1());
+      stepper_.advance();
+      if (last) break;
+      continue;
+    }
+    const double th_e = locateWindow();
+    const double t_e = th_e >= 1.0 ? t1 : t0 + th_e * step;
+    emitSamplesBefore(t_e, false);
+    resolveWindow(t_e, th_e);
+    if (storm.note(t_e)) {
+      fail(t_e, storm.why());
+      break;
+    }
+    if (last && th_e >= 1.0) break;
+  }
+}
+
+// --- the run --------------------------------------------------------------------------------
+
+RunReport DirectRun::run() {
+  const auto wall0 = std::chrono::steady_clock::now();
+  t_end_ = rig_.sim.t_end_s;
+  schedule_.emplace(rig_.sim.sample_s, period_, t_end_);
+  std::vector<double> y = startState();
+  report_.ledger.initial_J = eq_.energy(y.data());
+  const double h_max = maxStepSize();
+  StormGuard storm(period_, opt_.storm_events, opt_.storm_window);
 
   stepper_.restart(0.0, y.data());
   double t_fin = 0.0;
@@ -524,112 +576,7 @@ RunReport DirectRun::run() {
   try {
     recordTrajectory(y.data(), 0.0);
     recordEnvelope(y.data(), 0.0);
-
-    double h = std::min(h_max, 0.5 * period_ * std::pow(rig_.sim.accuracy, 1.0 / (tab_.order + 1)));
-    long burst = 0;
-    double burst_start = 0.0;
-    int nonfinite = 0;
-    std::vector<int> ticks_due;
-    const double storm_window = opt_.storm_window * period_;
-
-    while (stepper_.t() < t_end_) {
-      const double t0 = stepper_.t();
-      const bool last = t0 + h >= t_end_ * (1 - 4 * std::numeric_limits<double>::epsilon());
-      const double step = last ? t_end_ - t0 : h;
-      const double min_step =
-          std::max(1e-14 * period_, 16 * std::numeric_limits<double>::epsilon() * t0);
-      if (!(step > min_step) && !last) {
-        fail(t0, "step size underflow (h = " + std::to_string(step) + " s)");
-        break;
-      }
-      const double err = stepper_.attempt(step);
-      if (!(err <= 1.0)) {
-        // a step that produced a NaN or an infinity is redone 4 times smaller, a few times; a
-        // state that is not finite itself fails at once
-        if (!std::isfinite(err) &&
-            (++nonfinite > 50 || !std::all_of(stepper_.y(), stepper_.y() + lay_.mechanical(),
-                                              [](double v) { return std::isfinite(v); }))) {
-          fail(t0, "non-finite state");
-          break;
-        }
-        h = std::isfinite(err) ? stepper_.nextStepSize(step, err, false) : 0.25 * step;
-        continue;
-      }
-      nonfinite = 0;
-      ++report_.counts.steps;
-      const double h_next = std::min(h_max, stepper_.nextStepSize(step, err, true));
-      const double t1 = last ? t_end_ : stepper_.t1();
-
-      // events in this step
-      found_.clear();
-      for (int w = 0; w < static_cast<int>(witnesses_.size()); ++w)
-        if (auto c = detect(w)) found_.push_back(*c);
-      if (found_.empty()) {
-        emitSamplesBefore(t1, true);
-        stepper_.advance();
-        if (last) break;
-        h = h_next;
-        continue;
-      }
-
-      // bracket the crossings to a few ulps, earliest first; the window ends at the earliest
-      // upper end (a crossing that starts after it cannot be earlier and needs no bracketing)
-      std::sort(found_.begin(), found_.end(),
-                [](const Crossing& a, const Crossing& b) { return a.th.lo < b.th.lo; });
-      double th_e = 2.0;
-      for (Crossing& c : found_) {
-        if (c.th.lo >= th_e) break;
-        if (!c.forced && c.th.hi > c.th.lo) {
-          const Witness& w = witnesses_[c.witness];
-          auto g = [&](double th) { return witnessAt(w, th); };
-          c.th = illinois(g, c.th.lo, g(c.th.lo), c.th.hi, g(c.th.hi));
-        }
-        th_e = std::min(th_e, c.th.hi);
-      }
-      const double t_e = th_e >= 1.0 ? t1 : t0 + th_e * step;
-      emitSamplesBefore(t_e, false);
-      stepper_.interpolate(th_e, ya_.data());
-      // every witness that has crossed by the window's end belongs to it
-      ticks_due.clear();
-      bool platform = false;
-      for (const Crossing& c : found_) {
-        if (c.th.lo > th_e) continue;
-        const Witness& w = witnesses_[c.witness];
-        if (!c.forced && witnessAt(w, th_e) < 0) continue;
-        if (w.kind == WitnessKind::Platform) {
-          platform = true;
-        } else if (tickDue(ya_.data(), w.pendulum) &&
-                   std::find(ticks_due.begin(), ticks_due.end(), w.pendulum) == ticks_due.end()) {
-          ticks_due.push_back(w.pendulum);
-        }
-      }
-      std::sort(ticks_due.begin(), ticks_due.end());
-      ++report_.counts.events;
-      if (debug_)
-        std::fprintf(stderr,
-                     "event t %.17g th %.17g (step %.6g..%.6g) ticks %zu platform %d mode %d v "
-                     "%.6g forced %d\n",
-                     t_e, th_e, t0, t1, ticks_due.size(), platform, static_cast<int>(mode()),
-                     ya_[StateLayout::kV], static_cast<int>(found_.front().forced));
-      recordEnvelope(ya_.data(), t_e);  // the last state before the event
-      resolve(ya_.data(), t_e, ticks_due, platform);
-      stepper_.restart(t_e, ya_.data());
-      recordEnvelope(ya_.data(), t_e);  // and the first after it
-      h = h_next;
-
-      // event storm (Zeno): many events without time advancing
-      if (t_e - burst_start > storm_window) {
-        burst_start = t_e;
-        burst = 0;
-      }
-      if (++burst > opt_.storm_events) {
-        std::ostringstream os;
-        os << "event storm: " << opt_.storm_events << " events within " << storm_window << " s";
-        fail(t_e, os.str());
-        break;
-      }
-      if (last && th_e >= 1.0) break;
-    }
+    integrate(h_max, storm);
     t_fin = stepper_.t() >= t_end_ * (1 - 1e-15) && report_.complete ? t_end_ : stepper_.t();
     std::copy(stepper_.y(), stepper_.y() + lay_.dim(), y_fin.begin());
   } catch (const std::exception& e) {

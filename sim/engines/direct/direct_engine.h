@@ -1,18 +1,17 @@
 // The full model (e1.1a-c) on a minimal-coordinates engine: the platform's x and one angle per
 // swinging pendulum (models/minimal_equations.h), an embedded Runge-Kutta pair with dense output
 // (sim/ode/rk_stepper.h), and events located on the dense output to the last few bits.
-// Same semantics and same outputs as the Simbody engine (sim/engines/simbody/simbody_engine.h): ticks when
-// |theta_i| passes theta_c,i outwards, every tick and platform switch found in one event window
-// resolved together (impulses first, through the full mass matrix with the platform free; then
-// the Coulomb rule), grazing crossings found from the dense output's extremes, an event storm
-// ending the run with complete = false.
-// The Coulomb rule is CoulombLaw's (contact/coulomb.h), the same object the Simbody engine uses.
+// Same semantics and same outputs as the Simbody engine (sim/engines/simbody/simbody_engine.h):
+// the witnesses, the window resolver, the escapement and Coulomb rules, the storm rule and the
+// sample schedule are the shared ones (sim/events/, contact/; docs/events.md); this engine only
+// locates the windows, on its dense output, grazing crossings included.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "models/rig.h"
+#include "sim/events/storm_guard.h"
 #include "sim/record/run_report.h"
 
 namespace metrosync {
@@ -29,10 +28,10 @@ const std::vector<std::string>& directIntegratorNames();
 std::string defaultDirectIntegrator(const Rig& rig);
 
 struct DirectOptions {
-  // An event storm (Zeno): more than `storm_events` events with time advancing by less than
-  // `storm_window` fast periods (2 pi / omega0) ends the run, incomplete.
-  long storm_events = 1000;
-  double storm_window = 1e-6;
+  // The storm rule's limits (sim/events/storm_guard.h): more than `storm_events` events with time
+  // advancing by less than `storm_window` fast periods (2 pi / omega0) ends the run, incomplete.
+  long storm_events = StormGuard::kMaxEvents;
+  double storm_window = StormGuard::kWindowPeriods;
 };
 
 // Runs the rig to rig.sim.t_end_s. Never throws for a failed simulation: the report says

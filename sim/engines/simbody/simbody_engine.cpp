@@ -1,17 +1,20 @@
 // The full model's run loop on Simbody. The pieces, top to bottom:
-//   1. witnesses: thin TriggeredEventHandlers that only say "my witness crossed" (ticks: rising
-//      theta_i -/+ theta_c; platform: falling mode*xdot while slipping, falling stick margin while
-//      stuck). Simbody calls every handler whose witness crossed in the localization window, in
+//   1. witnesses (sim/events/witness.h, directions from their types): thin
+//      TriggeredEventHandlers that only say "my witness crossed" (ticks: rising side * theta_i -
+//      theta_c; platform: falling mode*xdot while slipping, falling stick margin while stuck).
+//      Simbody calls every handler whose witness crossed in the localization window, in
 //      registration order, on the same state; so none of them acts.
-//   2. one resolver acts on the whole window at once, in a fixed order: escapement impulses
-//      first (all ticking pendulums together, through the unlocked mass matrix: dry friction
-//      gives no impulse), then the platform's mode, decided from the resulting state. The result
-//      does not depend on the order in which Simbody called the handlers.
+//   2. the shared resolver (sim/events/resolver.h) acts on the whole window at once, through this
+//      engine's EventSystem: every due tick as one combined impulse through the unlocked mass
+//      matrix, then the platform's Coulomb rule on the resulting state. The result does not
+//      depend on the order in which Simbody called the handlers. A window whose only reports are
+//      consumed ticks (applied inside their slack) is not an event.
 //   3. a grazing guard: a step whose end points both lie inside +-theta_c (or both on one side of
 //      xdot = 0) can still have crossed twice; the cubic Hermite through the step's end values
 //      finds such steps and the step is redone with smaller steps.
-//   4. recorders: trajectory rows and envelope samples by interpolation (the integrator is
-//      never forced to stop at a sample), with samples on both sides of every event.
+//   4. recorders: trajectory rows and envelope samples by interpolation on the shared schedule
+//      (sim/events/sample_schedule.h: the integrator is never forced to stop at a sample), with
+//      samples on both sides of every event; the shared storm rule (sim/events/storm_guard.h).
 #include "sim/engines/simbody/simbody_engine.h"
 
 #include <Simbody.h>
@@ -21,9 +24,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "models/simbody/metronome_system.h"
+#include "sim/events/resolver.h"
+#include "sim/events/sample_schedule.h"
+#include "sim/events/storm_guard.h"
+#include "sim/events/witness.h"
 #include "sim/record/envelope_recorder.h"
 
 namespace metrosync {
@@ -50,44 +58,51 @@ std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const System
   throw std::invalid_argument("unknown integrator '" + name + "'");
 }
 
-// What the witnesses report to the resolver within one localization window.
+// What the witnesses report within one localization window: which (pendulum, side) tick
+// witnesses and whether the platform's witness crossed. The resolver acts on the state; a report
+// only says whether the window is live (a disarmed tick witness crossing, after a tick applied
+// inside its slack, changes nothing and is not an event).
 struct Pending {
-  std::vector<bool> tick;  // (N x 1)
+  std::vector<std::pair<int, int>> ticks;
   bool platform = false;
   void clear() {
-    std::fill(tick.begin(), tick.end(), false);
+    ticks.clear();
     platform = false;
   }
 };
 
-class TickWitness : public TriggeredEventHandler {
+void setDirection(TriggeredEventHandler& h, Direction d) {
+  h.getTriggerInfo().setTriggerOnRisingSignTransition(d != Direction::Falling);
+  h.getTriggerInfo().setTriggerOnFallingSignTransition(d != Direction::Rising);
+}
+
+class TickHandler : public TriggeredEventHandler {
  public:
-  TickWitness(const MetronomeSystem& ms, int i, int side, Pending& pending)
-      : TriggeredEventHandler(Stage::Position), ms_(ms), i_(i), side_(side), pending_(pending) {
-    getTriggerInfo().setTriggerOnRisingSignTransition(true);
-    getTriggerInfo().setTriggerOnFallingSignTransition(false);
+  TickHandler(const MetronomeSystem& ms, int i, int side, Pending& pending)
+      : TriggeredEventHandler(Stage::Position), ms_(ms), w_{i, side}, pending_(pending) {
+    setDirection(*this, TickWitness::kDirection);
+    esc_.theta_c = ms.rig().metronomes[i].theta_c_rad;
+    esc_.impulse = ms.rig().metronomes[i].impulse_Nms;
   }
-  // side*theta - theta_c: rises through zero when the pendulum passes +-theta_c outwards
-  Real getValue(const State& s) const override {
-    return side_ * ms_.theta(s, i_) - ms_.rig().metronomes[i_].theta_c_rad;
+  Real getValue(const State& s) const override { return w_.value(esc_, ms_.theta(s, w_.pendulum)); }
+  void handleEvent(State&, Real, bool&) const override {
+    pending_.ticks.emplace_back(w_.pendulum, w_.side);
   }
-  void handleEvent(State&, Real, bool&) const override { pending_.tick[i_] = true; }
 
  private:
   const MetronomeSystem& ms_;
-  int i_, side_;
+  TickWitness w_;
+  Escapement esc_;
   Pending& pending_;
 };
 
-class PlatformWitness : public TriggeredEventHandler {
+class PlatformHandler : public TriggeredEventHandler {
  public:
-  PlatformWitness(const MetronomeSystem& ms, Pending& pending)
+  PlatformHandler(const MetronomeSystem& ms, Pending& pending)
       : TriggeredEventHandler(Stage::Acceleration), ms_(ms), pending_(pending) {
-    getTriggerInfo().setTriggerOnRisingSignTransition(false);
-    getTriggerInfo().setTriggerOnFallingSignTransition(true);
+    setDirection(*this, PlatformWitness::kDirection);
   }
-  // slipping: mode*xdot (falls through zero when the platform stops);
-  // stuck: bound - |holding force| (falls through zero when friction can no longer hold it)
+  // the element's witness is PlatformWitness::value (stick margin / mode * xdot)
   Real getValue(const State& s) const override { return ms_.coulomb()->witness(s); }
   void handleEvent(State&, Real, bool&) const override { pending_.platform = true; }
 
@@ -133,7 +148,9 @@ double hermiteInteriorExtreme(double p0, double d0, double p1, double d1, double
   return best;
 }
 
-class FullModelRun {
+// The run: Simbody's integrator, thin witnesses, and the shared resolver acting on the event
+// state through this class's EventSystem side (the State ev_s_).
+class FullModelRun : public EventSystem {
  public:
   FullModelRun(const Rig& rig, RunSink& sink)
       : rig_(rig),
@@ -142,7 +159,6 @@ class FullModelRun {
         sink_(sink),
         n_(ms_.numMetronomes()),
         env_(sp_.epsilon, activeMask(rig), sink) {
-    pending_.tick.assign(n_, false);
     report_.model = "full";
     report_.engine = "simbody";
     report_.integrator =
@@ -154,15 +170,29 @@ class FullModelRun {
     // witnesses: only what the scene needs
     for (int i = 0; i < n_; ++i) {
       if (!ms_.swings(i) || !(rig.metronomes[i].impulse_Nms > 0)) continue;
-      ms_.system().addEventHandler(new TickWitness(ms_, i, +1, pending_));
-      ms_.system().addEventHandler(new TickWitness(ms_, i, -1, pending_));
+      ms_.system().addEventHandler(new TickHandler(ms_, i, +1, pending_));
+      ms_.system().addEventHandler(new TickHandler(ms_, i, -1, pending_));
     }
-    if (ms_.coulomb()) ms_.system().addEventHandler(new PlatformWitness(ms_, pending_));
+    if (ms_.coulomb()) ms_.system().addEventHandler(new PlatformHandler(ms_, pending_));
     ms_.system().setDefaultTimeScale(sp_.time_scale_s);
     ms_.system().realizeTopology();
   }
 
   RunReport run();
+
+  // --- EventSystem (on ev_s_) -------------------------------------------------------------
+  double theta(int i) const override { return ms_.theta(*ev_s_, i); }
+  double thetadot(int i) const override { return ms_.thetadot(*ev_s_, i); }
+  double xdot() const override { return ms_.xdot(*ev_s_); }
+  PlatformMode mode() const override { return ms_.coulomb()->mode(*ev_s_); }
+  void setMode(PlatformMode m) override;
+  double holdingForce() override {
+    ms_.system().realize(*ev_s_, Stage::Acceleration);
+    return ms_.coulomb()->holdingForce(*ev_s_);
+  }
+  double applyImpulse(const std::vector<double>& pin, double platform) override;
+  double platformMobility() override;
+  void eventRow(const char* kind) override { eventRow(kind, *ev_s_); }
 
  private:
   static std::vector<bool> activeMask(const Rig& rig) {
@@ -171,35 +201,17 @@ class FullModelRun {
     return a;
   }
 
-  // --- event resolution -------------------------------------------------------------------
-  bool tickDue(const State& s, int i) const {
-    const double th = ms_.theta(s, i), w = ms_.thetadot(s, i);
-    const double tc = rig_.metronomes[i].theta_c_rad;
-    // re-check: outward through +-theta_c (the localization window ends just past the root)
-    return std::abs(th) >= tc * (1 - 1e-9) && th * w > 0;
-  }
-  void decideAtRest(State& s, PlatformMode before);
-  // (M^-1)_xx: the platform's velocity change per unit impulse on x (the platform unlocked)
-  double platformMobility(const State& s) const {
-    Vector f(s.getNU(), 0.0), du;
-    ms_.slider().applyOneMobilityForce(s, 0, 1.0, f);
-    ms_.matter().multiplyByMInv(s, f, du);
-    return ms_.slider().getOneFromUPartition(s, 0, du);
-  }
-  // would friction alone stop a platform slipping at v within a millionth of a period?
-  bool microSlip(const State& s, double v) const {
-    const double decel = ms_.coulomb()->law().bound * platformMobility(s);
-    return std::abs(v) < 1e-6 * period_ * decel;
-  }
-  void stopPlastically(State& s, double v) {
-    Vector f(s.getNU(), 0.0), du;
-    ms_.slider().applyOneMobilityForce(s, 0, -v / platformMobility(s), f);
-    ms_.matter().multiplyByMInv(s, f, du);
-    s.updU() += du;
-    ms_.setXDot(s, 0.0);
-    ms_.system().realize(s, Stage::Velocity);
-  }
-  Stage resolve(State& s);
+  // --- the run's stages ---------------------------------------------------------------------
+  State startState();
+  std::unique_ptr<Integrator> makeRunIntegrator(const State& s0);
+  // Checks a step just taken: grazing (redo it smaller), a slip that ended inside it (stop).
+  // Returns true when the step was redone.
+  bool checkNewStep(Integrator& integ, Integrator::SuccessfulStepStatus status);
+  void redoStep(Integrator& integ);
+  void handleTrigger(Integrator& integ);
+  bool windowIsLive() const;
+  Stage resolveWindow(State& s);  // the resolver on s; the lowest stage it changed
+  void takeSamples(const Integrator& integ, double t_limit);
 
   // --- recording --------------------------------------------------------------------------
   void recordTrajectory(const State& s, double t);
@@ -237,6 +249,9 @@ class FullModelRun {
       report_.failure = os.str();
     }
   }
+  void noteDiscontinuity(double t) {
+    if (storm_->note(t)) fail(t, storm_->why());
+  }
 
   const Rig& rig_;
   ScaledParams sp_;
@@ -248,111 +263,203 @@ class FullModelRun {
   RunReport report_;
   double omega0_ = 1;
   double period_ = 1;  // fast period, seconds
-  long rewinds_ = 0;
+  std::optional<EventResolver> resolver_;
+  std::optional<SampleSchedule> schedule_;
+  std::optional<StormGuard> storm_;
+  State* ev_s_ = nullptr;  // the state the resolver acts on
+  // grazing guard: the last checked step end, and the state of a redo
+  StepEnd prev_, cur_;
+  double checked_until_ = 0.0;
+  double guard_until_ = -1;  // while redoing a grazing step: time until which hmax is reduced
+  int guard_depth_ = 0;
+  long steps_base_ = 0, evals_base_ = 0, rewinds_ = 0;
   bool debug_ = std::getenv("METROSYNC_DEBUG") != nullptr;
   std::vector<double> scratch_th_, scratch_w_;
 };
 
-void FullModelRun::decideAtRest(State& s, PlatformMode before) {
+// --- EventSystem ------------------------------------------------------------------------------
+
+void FullModelRun::setMode(PlatformMode m) {
   const CoulombElement& c = *ms_.coulomb();
-  const PlatformMode after = c.settleAtRest(ms_.system(), s);
-  if (after != before) {
-    ++report_.counts.stick_slip;
-    eventRow(after == PlatformMode::Stuck ? "stick" : "slip", s);
-  }
+  if (m == PlatformMode::Stuck)
+    c.stick(*ev_s_);  // the slider locked at xdot = 0: the residual of a stop
+  else
+    c.slip(*ev_s_, m);
+  ms_.system().realize(*ev_s_, Stage::Velocity);
 }
 
-Stage FullModelRun::resolve(State& s) {
-  Stage lowest = Stage::Infinity;
-  ms_.system().realize(s, Stage::Velocity);
-  const CoulombElement* coulomb = ms_.coulomb();
-
-  // 1. escapement: every pendulum whose witness crossed and whose tick condition still holds
-  std::vector<int> ticking;
+double FullModelRun::applyImpulse(const std::vector<double>& pin, double platform) {
+  State& s = *ev_s_;
+  const CoulombElement* c = ms_.coulomb();
+  if (c && c->mode(s) == PlatformMode::Stuck) {
+    c->slip(s, PlatformMode::SlipPositive);  // provisional: the resolver sets the mode next
+    ms_.system().realize(s, Stage::Position);
+  }
+  const double e0 = energy(s);
+  Vector f(s.getNU(), 0.0), du;
   for (int i = 0; i < n_; ++i)
-    if (pending_.tick[i] && tickDue(s, i)) ticking.push_back(i);
-  if (!ticking.empty()) {
-    const double e0 = energy(s);
-    const bool was_stuck = coulomb && coulomb->mode(s) == PlatformMode::Stuck;
-    if (was_stuck) {
-      coulomb->slip(s, PlatformMode::SlipPositive);  // provisional: unlocks the slider
-      ms_.system().realize(s, Stage::Position);
-    }
-    // generalized impulse +-J-bar on each ticking pin, through the unlocked mass matrix
-    const SimbodyMatterSubsystem& matter = ms_.matter();
-    Vector du_total(s.getNU(), 0.0);
-    double dv_abs = 0.0;  // sum of the platform velocity jumps, for the cancellation test
-    for (int i : ticking) {
-      Vector impulse(s.getNU(), 0.0), du;
-      const double side = ms_.theta(s, i) > 0 ? 1.0 : -1.0;
-      ms_.pin(i).applyOneMobilityForce(s, 0, side * rig_.metronomes[i].impulse_Nms, impulse);
-      matter.multiplyByMInv(s, impulse, du);
-      du_total += du;
-      if (ms_.hasPlatform()) dv_abs += std::abs(ms_.slider().getOneFromUPartition(s, 0, du));
-      ++report_.counts.escapements[i];
-    }
-    s.updU() += du_total;
-    ms_.system().realize(s, Stage::Velocity);
-    lowest = Stage::Velocity;
-    // the escapement's work: the kinetic energy jump of the impulses alone (what the platform
-    // does next is booked by its own rule)
-    report_.ledger.escapement_in_J += energy(s) - e0;
-    if (coulomb) {
-      const double v = ms_.xdot(s);
-      if (std::abs(v) <= 1e-9 * dv_abs) {
-        // the impulses cancel on the platform (e.g. identical metronomes in exact antiphase);
-        // xdot (rounding-sized) is set to 0
-        const double e_before = energy(s);
-        decideAtRest(s, was_stuck ? PlatformMode::Stuck : coulomb->mode(s));
-        report_.ledger.friction_out_J += e_before - energy(s);
-      } else if (microSlip(s, v)) {
-        // friction stops the platform within a negligible time (a huge mu): the limit of that
-        // slip is a plastic stop, an impulse on x alone that brings xdot to zero; the kinetic
-        // energy it removes is friction's. It is counted and recorded as the direct engine
-        // (which integrates that slip) counts it: a slip, unless one was under way in that
-        // direction, then its stop as an event of its own
-        const PlatformMode m = v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative;
-        const PlatformMode before = was_stuck ? PlatformMode::Stuck : coulomb->mode(s);
-        if (m != before) {
-          ++report_.counts.stick_slip;
-          eventRow("slip", s);
-        }
-        const double e_before = energy(s);
-        stopPlastically(s, v);
-        report_.ledger.friction_out_J += e_before - energy(s);
-        ++report_.counts.events;
-        decideAtRest(s, m);
-      } else {
-        const PlatformMode m = v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative;
-        const PlatformMode before = was_stuck ? PlatformMode::Stuck : coulomb->mode(s);
-        coulomb->slip(s, m);
-        if (m != before) {
-          ++report_.counts.stick_slip;
-          eventRow("slip", s);
-        }
-      }
-      lowest = Stage::Model;
-    }
-    eventRow("tick", s);
-  }
+    if (pin[i] != 0) ms_.pin(i).applyOneMobilityForce(s, 0, pin[i], f);
+  if (platform != 0 && ms_.hasPlatform()) ms_.slider().applyOneMobilityForce(s, 0, platform, f);
+  ms_.matter().multiplyByMInv(s, f, du);
+  s.updU() += du;
+  ms_.system().realize(s, Stage::Velocity);
+  // the work of the impulse: the kinetic energy jump (the potential energy does not jump)
+  return energy(s) - e0;
+}
 
-  // 2. the platform: its switching rule, on the current state
-  if (coulomb && (pending_.platform || !ticking.empty())) {
-    const PlatformMode before = coulomb->mode(s);
-    const double e0 = energy(s);
-    const PlatformMode after = coulomb->resolveSwitch(ms_.system(), s);
-    if (after != before) {
-      ++report_.counts.stick_slip;
-      eventRow(after == PlatformMode::Stuck ? "stick" : "slip", s);
-      // a stop sets xdot (~1e-12 past zero at the window's end) to exactly 0: book that
-      // kinetic energy as friction loss
-      report_.ledger.friction_out_J += e0 - energy(s);
-      lowest = Stage::Model;
-    }
+double FullModelRun::platformMobility() {
+  const State& s = *ev_s_;
+  Vector f(s.getNU(), 0.0), du;
+  ms_.slider().applyOneMobilityForce(s, 0, 1.0, f);
+  ms_.matter().multiplyByMInv(s, f, du);
+  return ms_.slider().getOneFromUPartition(s, 0, du);
+}
+
+// --- the run's stages -------------------------------------------------------------------------
+
+// The rig's start state, the resolver armed by it, the platform's mode decided at rest.
+State FullModelRun::startState() {
+  State s0 = ms_.initialState();
+  std::vector<Escapement> esc;
+  std::vector<double> theta0;
+  for (int i = 0; i < n_; ++i) {
+    const MetronomeSpec& m = rig_.metronomes[i];
+    esc.push_back({m.theta_c_rad, ms_.swings(i) ? m.impulse_Nms : 0.0});
+    theta0.push_back(ms_.theta(s0, i));
   }
+  std::optional<CoulombLaw> coulomb;
+  if (ms_.coulomb()) coulomb = ms_.coulomb()->law();
+  resolver_.emplace(esc, coulomb, period_, theta0);
+  if (coulomb) {
+    ev_s_ = &s0;
+    resolver_->settleAtStart(*this);
+    ev_s_ = nullptr;
+  }
+  ms_.system().realize(s0, Stage::Acceleration);
+  return s0;
+}
+
+std::unique_ptr<Integrator> FullModelRun::makeRunIntegrator(const State& s0) {
+  std::unique_ptr<Integrator> integ = makeIntegrator(report_.integrator, ms_.system());
+  integ->setAccuracy(rig_.sim.accuracy);
+  integ->setFinalTime(rig_.sim.t_end_s);
+  integ->setReturnEveryInternalStep(true);
+  // witnesses that cross twice in one step are missed; the pendulums normally keep steps far
+  // below this, but a stuck platform with dead pendulums would not
+  integ->setMaximumStepSize(period_ / 8);
+  integ->initialize(s0);
+  return integ;
+}
+
+bool FullModelRun::checkNewStep(Integrator& integ, Integrator::SuccessfulStepStatus status) {
+  const State& adv = integ.getAdvancedState();
+  if (!allFinite(adv.getY())) {
+    fail(adv.getTime(), "non-finite state");
+    return false;
+  }
+  captureStepEnd(adv, cur_);
+  const PlatformMode mode = ms_.coulomb() ? ms_.coulomb()->mode(adv) : PlatformMode::Stuck;
+  const bool event_step = status == Integrator::ReachedEventTrigger;
+  if (guard_depth_ < 5 && cur_.t - prev_.t > 1e-12 * period_ &&
+      grazingMissed(prev_, cur_, mode, event_step)) {
+    redoStep(integ);
+    return true;
+  }
+  if (ms_.coulomb() && mode != PlatformMode::Stuck && static_cast<int>(mode) * cur_.v < 0 &&
+      !event_step) {
+    // still inconsistent at the finest step: the slip ended inside this step; stop now
+    if (debug_) std::fprintf(stderr, "forced stop at %.9g v %g\n", cur_.t, cur_.v);
+    noteDiscontinuity(cur_.t);
+    pending_.platform = true;
+    const Stage lowest = resolveWindow(integ.updAdvancedState());
+    integ.reinitialize(lowest < Stage::Infinity ? lowest : Stage::Report, false);
+    captureStepEnd(integ.getAdvancedState(), cur_);
+  }
+  if (guard_depth_ > 0 && cur_.t >= guard_until_) {
+    guard_depth_ = 0;
+    integ.setMaximumStepSize(period_ / 8);
+  }
+  prev_ = cur_;
+  checked_until_ = cur_.t;
+  return false;
+}
+
+// Redoes the step just taken from its start with steps 8 times smaller.
+void FullModelRun::redoStep(Integrator& integ) {
+  const double h = cur_.t - prev_.t;
+  steps_base_ += integ.getNumStepsTaken();
+  const long evals_before = integ.getNumRealizations();
+  State back = integ.getAdvancedState();
+  back.setTime(prev_.t);
+  back.updY() = prev_.y;
+  ms_.system().realize(back, Stage::Acceleration);
+  integ.setMaximumStepSize(std::max(h / 8, 1e-14 * period_));
+  guard_until_ = cur_.t;
+  ++guard_depth_;
+  ++rewinds_;
+  noteDiscontinuity(cur_.t);
+  if (!report_.complete) return;
+  if (debug_) std::fprintf(stderr, "rewind %.9g..%.9g depth %d\n", prev_.t, cur_.t, guard_depth_);
+  integ.initialize(back);
+  evals_base_ += evals_before - integ.getNumRealizations();
+  checked_until_ = prev_.t;
+}
+
+bool FullModelRun::windowIsLive() const {
+  if (pending_.platform) return true;
+  for (const auto& [i, side] : pending_.ticks)
+    if (resolver_->armed(i, side)) return true;
+  return false;
+}
+
+// Every triggered witness reports, then the resolver acts once on the whole window.
+void FullModelRun::handleTrigger(Integrator& integ) {
+  State& adv = integ.updAdvancedState();
+  HandleEventsOptions opts(integ.getAccuracyInUse());
+  HandleEventsResults results;
+  ms_.system().handleEvents(adv, Event::Cause::Triggered, integ.getTriggeredEvents(), opts,
+                            results);
+  if (!windowIsLive()) {
+    pending_.clear();
+    return;
+  }
+  ++report_.counts.events;
+  recordEnvelope(integ.getState(), integ.getTime());  // the last state before the event
+  if (debug_)
+    std::fprintf(stderr, "event at %.9g mode %d\n", adv.getTime(),
+                 ms_.coulomb() ? static_cast<int>(ms_.coulomb()->mode(adv)) : 9);
+  const Stage lowest = resolveWindow(adv);
+  integ.reinitialize(lowest < Stage::Infinity ? lowest : Stage::Report, false);
+  recordEnvelope(integ.getAdvancedState(), integ.getAdvancedTime());  // and the first after it
+  captureStepEnd(integ.getAdvancedState(), prev_);
+  checked_until_ = integ.getAdvancedTime();
+  noteDiscontinuity(adv.getTime());
+}
+
+Stage FullModelRun::resolveWindow(State& s) {
+  ms_.system().realize(s, Stage::Acceleration);
+  ev_s_ = &s;
+  const WindowOutcome out = resolver_->resolve(*this, pending_.platform);
+  ev_s_ = nullptr;
   pending_.clear();
-  if (lowest < Stage::Infinity) ms_.system().realize(s, Stage::Acceleration);
-  return lowest;
+  for (int i : out.ticked) ++report_.counts.escapements[i];
+  report_.counts.stick_slip += out.stick_slip;
+  report_.counts.slip_reversals += out.slip_reversals;
+  report_.ledger.escapement_in_J += out.escapement_in;
+  report_.ledger.friction_out_J += out.friction_out;
+  if (!out.changed()) return Stage::Infinity;
+  ms_.system().realize(s, Stage::Acceleration);
+  return out.stick_slip || out.slip_reversals || out.plastic_stops || ms_.coulomb()
+             ? Stage::Model
+             : Stage::Velocity;
+}
+
+// The samples due up to t_limit (inclusive), from the integrator's interpolated state.
+void FullModelRun::takeSamples(const Integrator& integ, double t_limit) {
+  schedule_->takeDue(t_limit, true, [&](double ts, bool row, bool env) {
+    if (row) recordTrajectory(integ.getState(), ts);
+    if (env) recordEnvelope(integ.getState(), ts);
+  });
 }
 
 void FullModelRun::recordTrajectory(const State& s, double t) {
@@ -401,6 +508,7 @@ void FullModelRun::captureStepEnd(const State& s, StepEnd& e) {
   for (int i = 0; i < n_; ++i) {
     e.th[i] = ms_.theta(s, i);
     e.w[i] = ms_.thetadot(s, i);
+    resolver_->rearm(i, e.th[i]);  // a tick side is armed again once back inside theta_c
   }
   if (ms_.coulomb()) {
     e.v = ms_.xdot(s);
@@ -445,171 +553,37 @@ bool FullModelRun::grazingMissed(const StepEnd& a, const StepEnd& b, PlatformMod
 RunReport FullModelRun::run() {
   const auto wall0 = std::chrono::steady_clock::now();
   const double t_end = rig_.sim.t_end_s;
-  const double period = 2 * Pi / omega0_;
-  const double traj_dt = rig_.sim.sample_s > 0 ? rig_.sim.sample_s : period / 20;
-  const double env_dt = period / 64;
-
-  State s0 = ms_.initialState();
-  if (const CoulombElement* c = ms_.coulomb()) {
-    const double v = ms_.xdot(s0);
-    if (v == 0)
-      decideAtRest(s0, PlatformMode::Stuck);
-    else
-      c->slip(s0, v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative);
-    report_.counts.stick_slip = 0;  // the start is not a switch
-  }
-  ms_.system().realize(s0, Stage::Acceleration);
+  schedule_.emplace(rig_.sim.sample_s, period_, t_end);
+  storm_.emplace(period_);
+  State s0 = startState();
   report_.ledger.initial_J = energy(s0);
-
-  std::unique_ptr<Integrator> integ = makeIntegrator(report_.integrator, ms_.system());
-  integ->setAccuracy(rig_.sim.accuracy);
-  integ->setFinalTime(t_end);
-  integ->setReturnEveryInternalStep(true);
-  // witnesses that cross twice in one step are missed; the pendulums normally keep steps far
-  // below this, but a stuck platform with dead pendulums would not
-  integ->setMaximumStepSize(period / 8);
-  integ->initialize(s0);
-
-  long k_traj = 0, k_env = 0;
+  std::unique_ptr<Integrator> integ = makeRunIntegrator(s0);
   recordTrajectory(integ->getState(), 0.0);
   recordEnvelope(integ->getState(), 0.0);
-  k_traj = k_env = 1;
-
-  StepEnd prev, cur;
-  captureStepEnd(integ->getAdvancedState(), prev);
-  double checked_until = integ->getAdvancedTime();
-  long steps_base = 0, evals_base = 0;
-  double guard_until = -1;  // while redoing a grazing step: time until which hmax is reduced
-  int guard_depth = 0;
-  double hmax = Infinity;
-  // event storm (Zeno): too many discontinuities (events, forced stops, redone steps) within a
-  // millionth of a fast period
-  long events_in_burst = 0;
-  double burst_start = -Infinity;
-  const long kMaxBurst = 1000;
-  auto stormCheck = [&](double t) {
-    if (t - burst_start > 1e-6 * period) {
-      burst_start = t;
-      events_in_burst = 0;
-    }
-    if (++events_in_burst > kMaxBurst) {
-      std::ostringstream os;
-      os << "event storm: more than " << kMaxBurst << " events within " << 1e-6 * period
-         << " s (a millionth of a fast period)";
-      fail(t, os.str());
-    }
-  };
-
-  auto nextReport = [&]() {
-    return std::min(
-        {static_cast<double>(k_traj) * traj_dt, static_cast<double>(k_env) * env_dt, t_end});
-  };
+  captureStepEnd(integ->getAdvancedState(), prev_);
+  checked_until_ = integ->getAdvancedTime();
 
   try {
     while (true) {
-      const double t_now = integ->getTime();
-      // reports due at or before the current time (possible right after an event)
-      while (nextReport() <= t_now && nextReport() < t_end) {
-        const double tr = nextReport();
-        if (static_cast<double>(k_traj) * traj_dt <= tr)
-          recordTrajectory(integ->getState(), tr), ++k_traj;
-        if (static_cast<double>(k_env) * env_dt <= tr)
-          recordEnvelope(integ->getState(), tr), ++k_env;
-      }
-      if (t_now >= t_end) break;
-
-      const Integrator::SuccessfulStepStatus status = integ->stepTo(nextReport(), t_end);
-
+      // samples due at or before the current time (possible right after an event)
+      takeSamples(*integ, integ->getTime());
+      if (integ->getTime() >= t_end) break;
+      const Integrator::SuccessfulStepStatus status = integ->stepTo(schedule_->next(), t_end);
       // a new step has been taken: check it before anything from it is recorded
-      if (integ->getAdvancedTime() > checked_until) {
-        const State& adv = integ->getAdvancedState();
-        if (!allFinite(adv.getY())) {
-          fail(adv.getTime(), "non-finite state");
-          break;
-        }
-        captureStepEnd(adv, cur);
-        const PlatformMode mode = ms_.coulomb() ? ms_.coulomb()->mode(adv) : PlatformMode::Stuck;
-        const bool event_step = status == Integrator::ReachedEventTrigger;
-        if (guard_depth < 5 && cur.t - prev.t > 1e-12 * period &&
-            grazingMissed(prev, cur, mode, event_step)) {
-          // redo the step from its start with steps 8 times smaller
-          const double h = cur.t - prev.t;
-          steps_base += integ->getNumStepsTaken();
-          const long evals_before = integ->getNumRealizations();
-          State back = adv;
-          back.setTime(prev.t);
-          back.updY() = prev.y;
-          ms_.system().realize(back, Stage::Acceleration);
-          hmax = std::max(h / 8, 1e-14 * period);
-          integ->setMaximumStepSize(hmax);
-          guard_until = cur.t;
-          ++guard_depth;
-          ++rewinds_;
-          stormCheck(cur.t);
-          if (!report_.complete) break;
-          if (debug_)
-            std::fprintf(stderr, "rewind %.9g..%.9g depth %d\n", prev.t, cur.t, guard_depth);
-          integ->initialize(back);
-          evals_base += evals_before - integ->getNumRealizations();
-          checked_until = prev.t;
-          continue;
-        }
-        if (ms_.coulomb() && mode != PlatformMode::Stuck && static_cast<int>(mode) * cur.v < 0 &&
-            !event_step) {
-          // still inconsistent at the finest step: the slip ended inside this step; stop now
-          if (debug_) std::fprintf(stderr, "forced stop at %.9g v %g\n", cur.t, cur.v);
-          State& st = integ->updAdvancedState();
-          stormCheck(cur.t);
-          pending_.platform = true;
-          const Stage lowest = resolve(st);
-          integ->reinitialize(lowest < Stage::Infinity ? lowest : Stage::Report, false);
-          captureStepEnd(integ->getAdvancedState(), cur);
-        }
-        if (guard_depth > 0 && cur.t >= guard_until) {
-          guard_depth = 0;
-          hmax = period / 8;
-          integ->setMaximumStepSize(hmax);
-        }
-        prev = cur;
-        checked_until = cur.t;
+      if (integ->getAdvancedTime() > checked_until_ && checkNewStep(*integ, status)) {
+        if (!report_.complete) break;
+        continue;
       }
-
+      if (!report_.complete) break;
       switch (status) {
         case Integrator::ReachedReportTime:
         case Integrator::ReachedScheduledEvent:
-        case Integrator::EndOfSimulation: {
-          const double t = integ->getTime();
-          if (static_cast<double>(k_traj) * traj_dt <= t && t < t_end) {
-            recordTrajectory(integ->getState(), t);
-            ++k_traj;
-          }
-          if (static_cast<double>(k_env) * env_dt <= t && t < t_end) {
-            recordEnvelope(integ->getState(), t);
-            ++k_env;
-          }
+        case Integrator::EndOfSimulation:
+          takeSamples(*integ, integ->getTime());
           break;
-        }
-        case Integrator::ReachedEventTrigger: {
-          ++report_.counts.events;
-          // the last state before the event (interpolated at the window's low end)
-          recordEnvelope(integ->getState(), integ->getTime());
-          State& adv = integ->updAdvancedState();
-          // let every triggered witness report, then act once on the whole window
-          HandleEventsOptions opts(integ->getAccuracyInUse());
-          HandleEventsResults results;
-          ms_.system().handleEvents(adv, Event::Cause::Triggered, integ->getTriggeredEvents(), opts,
-                                    results);
-          if (debug_)
-            std::fprintf(stderr, "event at %.9g mode %d\n", adv.getTime(),
-                         ms_.coulomb() ? (int)ms_.coulomb()->mode(adv) : 9);
-          const Stage lowest = resolve(adv);
-          integ->reinitialize(lowest < Stage::Infinity ? lowest : Stage::Report, false);
-          recordEnvelope(integ->getAdvancedState(), integ->getAdvancedTime());
-          captureStepEnd(integ->getAdvancedState(), prev);
-          checked_until = integ->getAdvancedTime();
-          stormCheck(adv.getTime());
+        case Integrator::ReachedEventTrigger:
+          handleTrigger(*integ);
           break;
-        }
         default:
           break;
       }
@@ -627,8 +601,8 @@ RunReport FullModelRun::run() {
   recordEnvelope(fin, t_fin);
   report_.final_row = env_.finish();  // the last period ending at t_fin (SPEC 3 final)
 
-  report_.counts.steps = steps_base + integ->getNumStepsTaken();
-  report_.counts.rhs_evals = evals_base + integ->getNumRealizations();
+  report_.counts.steps = steps_base_ + integ->getNumStepsTaken();
+  report_.counts.rhs_evals = evals_base_ + integ->getNumRealizations();
   report_.ledger.final_J = energy(fin);
   report_.ledger.damping_out_J = ms_.meter().dampingLoss(fin);
   report_.ledger.friction_out_J += ms_.meter().frictionLoss(fin);

@@ -1,0 +1,148 @@
+#include "sim/events/resolver.h"
+
+#include <cmath>
+
+namespace metrosync {
+
+EventResolver::EventResolver(std::vector<Escapement> escapements, std::optional<CoulombLaw> coulomb,
+                             double period, const std::vector<double>& theta0)
+    : esc_(std::move(escapements)), coulomb_(coulomb), period_(period) {
+  armed_.assign(2 * esc_.size(), 0);
+  // a witness that starts below zero can cross; one already past it waits for the next swing
+  for (size_t j = 0; j < esc_.size(); ++j)
+    for (int side : {-1, 1}) armed_[2 * j + (side > 0)] = esc_[j].witness(theta0[j], side) < 0;
+}
+
+WindowOutcome EventResolver::resolve(EventSystem& sys, bool platform_reported) {
+  WindowOutcome out;
+  const std::vector<int> due = dueTicks(sys);
+  if (!due.empty()) {
+    const PlatformMode before = coulomb_ ? sys.mode() : PlatformMode::Stuck;
+    applyTicks(sys, due, out);
+    if (coulomb_) modeAfterImpulse(sys, before, out);
+    sys.eventRow("tick");
+  }
+  if (coulomb_ && (platform_reported || !due.empty())) coulombRule(sys, out);
+  return out;
+}
+
+void EventResolver::rearm(int j, double theta) {
+  for (int side : {-1, 1}) {
+    char& a = armed_[2 * j + (side > 0)];
+    if (!a && esc_[j].rearms(theta, side)) a = 1;
+  }
+}
+
+void EventResolver::rearm(const EventSystem& sys) {
+  for (int j = 0; j < static_cast<int>(esc_.size()); ++j) rearm(j, sys.theta(j));
+}
+
+PlatformMode EventResolver::settleAtStart(EventSystem& sys) const {
+  const double v = sys.xdot();
+  if (v != 0) {
+    const PlatformMode m = v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative;
+    sys.setMode(m);
+    return m;
+  }
+  sys.setMode(PlatformMode::Stuck);
+  const PlatformMode m = coulomb_->modeAtRest(sys.holdingForce());
+  if (m != PlatformMode::Stuck) {
+    sys.setMode(m);
+    sys.eventRow("slip");
+  }
+  return m;
+}
+
+// --- 1. ticks ---------------------------------------------------------------------------------
+
+std::vector<int> EventResolver::dueTicks(const EventSystem& sys) const {
+  std::vector<int> due;
+  for (int j = 0; j < static_cast<int>(esc_.size()); ++j) {
+    const double th = sys.theta(j);
+    if (armed(j, Escapement::side(th)) && esc_[j].due(th, sys.thetadot(j))) due.push_back(j);
+  }
+  return due;
+}
+
+void EventResolver::applyTicks(EventSystem& sys, const std::vector<int>& due, WindowOutcome& out) {
+  std::vector<double> impulse(esc_.size(), 0.0);
+  for (int j : due) {
+    const double th = sys.theta(j);
+    impulse[j] = esc_[j].tickImpulse(th);
+    armed_[2 * j + (th > 0)] = 0;  // consumed until the pendulum is back inside
+  }
+  out.escapement_in += sys.applyImpulse(impulse, 0.0);
+  out.ticked = due;
+}
+
+// --- 2. the platform after the impulse --------------------------------------------------------
+
+void EventResolver::modeAfterImpulse(EventSystem& sys, PlatformMode before, WindowOutcome& out) {
+  const double v = sys.xdot();
+  if (v == 0) {
+    // exactly cancelling impulses leave a stuck platform stuck; a slip at exactly 0 stops in
+    // the Coulomb rule below
+    if (before == PlatformMode::Stuck) sys.setMode(PlatformMode::Stuck);
+    return;
+  }
+  const PlatformMode m = v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative;
+  sys.setMode(m);
+  if (microSlip(sys)) {
+    // a slip friction ends at once: counted by where it ends, against the mode before the
+    // window (a stuck platform that stays stuck has not switched; nearly cancelling ticks)
+    stopAndSettle(sys, before, out);
+    ++out.plastic_stops;
+    return;
+  }
+  countSwitch(sys, before, m, out);
+}
+
+// --- 3. the Coulomb rule ----------------------------------------------------------------------
+
+void EventResolver::coulombRule(EventSystem& sys, WindowOutcome& out) {
+  const PlatformMode m = sys.mode();
+  if (m == PlatformMode::Stuck) {
+    const double h = sys.holdingForce();
+    if (!coulomb_->breaksFree(h)) return;
+    const PlatformMode to = CoulombLaw::slipDirection(h);
+    sys.setMode(to);
+    countSwitch(sys, m, to, out);
+    return;
+  }
+  if (static_cast<int>(m) * sys.xdot() > 0) return;  // still slipping its way
+  stopAndSettle(sys, m, out);
+}
+
+bool EventResolver::microSlip(EventSystem& sys) const {
+  // friction alone decelerates the platform at bound * (M^-1)_xx
+  const double decel = coulomb_->bound * sys.platformMobility();
+  return std::abs(sys.xdot()) < kPlasticStopPeriods * period_ * decel;
+}
+
+void EventResolver::stopAndSettle(EventSystem& sys, PlatformMode before, WindowOutcome& out) {
+  const double v = sys.xdot();
+  if (v != 0) {
+    // friction's impulse on x alone, -v / (M^-1)_xx: xdot becomes 0 (to rounding), the pendulums
+    // take the reaction; the kinetic energy it removes is friction's
+    const std::vector<double> none(esc_.size(), 0.0);
+    out.friction_out -= sys.applyImpulse(none, -v / sys.platformMobility());
+  }
+  sys.setMode(PlatformMode::Stuck);
+  const PlatformMode after = coulomb_->modeAtRest(sys.holdingForce());
+  if (after != PlatformMode::Stuck) sys.setMode(after);
+  countSwitch(sys, before, after, out);
+}
+
+// --- 4. counts and rows -----------------------------------------------------------------------
+
+void EventResolver::countSwitch(EventSystem& sys, PlatformMode before, PlatformMode after,
+                                WindowOutcome& out) {
+  if (after == before) return;
+  if (before == PlatformMode::Stuck || after == PlatformMode::Stuck)
+    ++out.stick_slip;
+  else
+    ++out.slip_reversals;
+  sys.eventRow(after == PlatformMode::Stuck ? "stick" : "slip");
+}
+
+}  // namespace metrosync

@@ -1,0 +1,50 @@
+// When trajectory rows and envelope samples are taken, for both engines: rows every `row_dt`
+// (simulation.sample, default period/20), envelope samples every period/64 (the envelope
+// recorder's quadrature, sim/record/envelope_recorder.h), both strictly before t_end (the run's
+// last state is recorded by the run itself), and samples on both sides of every event (the
+// engines call their envelope recorder just before and just after each resolved window). The
+// engines take samples from their interpolants: a sample never forces the integrator to stop.
+#pragma once
+
+#include <algorithm>
+
+namespace metrosync {
+
+class SampleSchedule {
+ public:
+  static constexpr int kEnvelopeSamplesPerPeriod = 64;
+  static constexpr int kRowsPerPeriodByDefault = 20;
+
+  // sample: the rig's row interval (<= 0: the default); period: the fast period; both in the
+  // engine's time unit.
+  SampleSchedule(double sample, double period, double t_end)
+      : row_dt_(sample > 0 ? sample : period / kRowsPerPeriodByDefault),
+        env_dt_(period / kEnvelopeSamplesPerPeriod),
+        t_end_(t_end) {}
+
+  // The next sample time, or t_end when none is left before it.
+  double next() const { return std::min({nextRow(), nextEnvelope(), t_end_}); }
+
+  // Calls take(t, row, envelope) for every sample due before t_limit (or at it, if inclusive),
+  // in time order; row / envelope say which of the two is due at t.
+  template <class Take>
+  void takeDue(double t_limit, bool inclusive, Take&& take) {
+    while (true) {
+      const double ts = std::min(nextRow(), nextEnvelope());
+      if (!(ts < t_end_ && (ts < t_limit || (inclusive && ts == t_limit)))) return;
+      const bool row = nextRow() <= ts, env = nextEnvelope() <= ts;
+      take(ts, row, env);
+      k_row_ += row;
+      k_env_ += env;
+    }
+  }
+
+ private:
+  double nextRow() const { return static_cast<double>(k_row_) * row_dt_; }
+  double nextEnvelope() const { return static_cast<double>(k_env_) * env_dt_; }
+
+  double row_dt_, env_dt_, t_end_;
+  long k_row_ = 1, k_env_ = 1;  // the samples at t = 0 are the run's first state
+};
+
+}  // namespace metrosync
