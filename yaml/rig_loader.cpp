@@ -891,12 +891,8 @@ std::string stemOf(const std::string& display_name) {
   return stem.empty() ? std::string("rig") : stem;
 }
 
-}  // namespace
-
-Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
-                const std::vector<std::string>& overrides) {
-  const Source src(display_name, overrides);
-
+// The rig's tree with the overrides applied (not yet checked against the schema).
+Node rootWithOverrides(const std::string& yaml_text, const Source& src) {
   // parse: exactly one YAML document
   std::vector<YAML::Node> docs;
   try {
@@ -913,7 +909,17 @@ Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
     src.fail(root.at, std::string("the rig is ") + kindName(root) +
                           "; expected a map of keys starting with units: physical or scaled");
 
-  for (std::size_t k = 1; k <= overrides.size(); ++k) applyOverride(root, static_cast<int>(k), src);
+  for (std::size_t k = 1; k <= src.overrides().size(); ++k)
+    applyOverride(root, static_cast<int>(k), src);
+  return root;
+}
+
+}  // namespace
+
+Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
+                const std::vector<std::string>& overrides) {
+  const Source src(display_name, overrides);
+  const Node root = rootWithOverrides(yaml_text, src);
 
   // units decide the schema
   const Reader top(root, "", src);
@@ -924,6 +930,27 @@ Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
   checkShape(root, schemaOf(*units), &otherSchemaOf(*units), *units, "", src);
   const std::string stem = stemOf(display_name);
   return *units == Units::Physical ? buildPhysical(root, src, stem) : buildScaled(root, src, stem);
+}
+
+std::optional<double> rigNumber(const std::string& yaml_text, const std::string& display_name,
+                                const std::vector<std::string>& overrides, const std::string& key) {
+  loadRigText(yaml_text, display_name, overrides);  // the rig must be valid
+  const Source src(display_name, overrides);
+  const Node root = rootWithOverrides(yaml_text, src);
+  const Node* n = &root;
+  for (const std::string& seg : splitPath(key)) {
+    if (n->kind == Node::Kind::Map) {
+      n = n->find(seg);
+    } else if (n->kind == Node::Kind::Seq && isIndex(seg) && std::stoul(seg) < n->seq.size()) {
+      n = &n->seq[std::stoul(seg)];
+    } else {
+      n = nullptr;
+    }
+    if (!n) return std::nullopt;
+  }
+  if (n->kind != Node::Kind::Scalar || !parseNumber(n->scalar))
+    throw RigError(display_name + ": " + key + " is not a number");
+  return parseNumber(n->scalar);
 }
 
 Rig loadRigFile(const std::string& path, const std::vector<std::string>& overrides) {

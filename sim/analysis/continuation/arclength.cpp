@@ -43,9 +43,11 @@ std::optional<Truncation> truncation(const ContinuationSystem& sys, const Branch
     const auto q = locateOnStep(sys, from, h, g0, g1, g, &hf);
     if (q && (!first || hf < first->h)) first = Truncation{*q, hf, border};
   };
+  // the range: only when the step leaves it (from may lie on a bound: the start, or a restart)
   for (const double bound : {s.p_min, s.p_max}) {
+    const double inside = bound == s.p_min ? 1.0 : -1.0;  // the sign of p - bound inside
     auto g = [bound](const BranchPoint& q) { return q.p() - bound; };
-    consider(g(from), g(to), g, -1);
+    if (g(to) * inside < 0) consider(inside * std::max(std::abs(g(from)), 1e-300), g(to), g, -1);
   }
   const Region there = regionAt(sys, to.y.head(sys.n), to.p());
   for (size_t k = 0; k < there.size(); ++k) {
