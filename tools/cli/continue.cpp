@@ -198,7 +198,11 @@ void followAll(const ContinueOptions& opt, const ScaledParams& sp, double from,
                  " locked state(s) found by Newton from a grid of seeds";
   for (const Vec& x : states) {
     if (alreadyFollowed(result, prob.amplitudes(x), prob.phaseDifferences(x), from)) continue;
-    appendBranches(prob, continueFrom(prob.system(), x, from, settings), result);
+    // the largest amplitude as the reference: z_r real stays regular while z_r does not vanish
+    const std::vector<Cd> z = prob.unpack(x);
+    const SlowFlowProblem mine(paramsAt(opt), from, largest(z));
+    appendBranches(mine, continueFrom(mine.system(), mine.pack(z, prob.omega(x)), from, settings),
+                   result);
   }
 }
 

@@ -106,10 +106,10 @@ void smoothEvents(const ContinuationSystem& sys, const BranchPoint& a, const Bra
 
 std::optional<BranchPoint> switchBranch(const ContinuationSystem& sys, const BranchSwitch& sw,
                                         double h) {
-  const auto c = correct(sys, sw.at.y, sw.direction, h, sw.at.region);
-  if (!c) return std::nullopt;
-  const Vec t = tangentAt(sys, c->y, sw.direction, sw.at.region);
-  return makePoint(sys, c->y, t, sw.at.region);
+  // the new branch must be there along the direction; it is followed from the branch point
+  // itself both ways (a start beside it would step back onto the old branch)
+  if (!correct(sys, sw.at.y, sw.direction, h, sw.at.region)) return std::nullopt;
+  return makePoint(sys, sw.at.y, sw.direction, sw.at.region);
 }
 
 }  // namespace metrosync::continuation

@@ -22,8 +22,8 @@ struct BranchSwitch {
 void smoothEvents(const ContinuationSystem& sys, const BranchPoint& a, const BranchPoint& b,
                   double h, std::vector<Bifurcation>& special, std::vector<BranchSwitch>& switches);
 
-// The first point of the new branch at a branch point: a corrector step of arclength h along the
-// switch direction. nullopt when it does not converge.
+// The start of the new branch: the branch point with the switch direction as its tangent, when a
+// corrector step of arclength h along that direction converges; else nullopt.
 std::optional<BranchPoint> switchBranch(const ContinuationSystem& sys, const BranchSwitch& sw,
                                         double h);
 
