@@ -1,10 +1,19 @@
 #include "tests/continuation/fixtures.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include "contact/averaged_response.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::continuation::testing {
+
+namespace {
+constexpr double kJ = 2.8, kThetaC = 0.9;
+
+double bisect(double lo, double hi, double s, double nu);
+double smallestMu(double s, double nu);
+}  // namespace
 
 ScaledParams singleMetronome(double mu) {
   ScaledParams p;
@@ -61,6 +70,48 @@ double worstResidual(const SlowFlowProblem& prob, const std::vector<Branch>& bra
         worst = std::max(worst, std::abs(f[i] - std::complex<double>(0, prob.omega(x)) * z[i]));
     }
   return worst;
+}
+
+double amplitudeRate(double A, double s, double nu) {
+  return -coulombBeta2(s) * A - nu * A / 2 + kJ / M_PI * std::sqrt(1 - kThetaC * kThetaC / (A * A));
+}
+
+namespace {
+double bisect(double lo, double hi, double s, double nu) {
+  const bool rising = amplitudeRate(lo, s, nu) < 0;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    ((amplitudeRate(mid, s, nu) < 0) == rising ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// min over the roots A of G(., s) of A / s (inf when there is none). The rate is negative at
+// theta_c and for large A, positive between the two roots: bracket at its maximum.
+double smallestMu(double s, double nu) {
+  double best = kThetaC, rate = amplitudeRate(kThetaC, s, nu);
+  for (double A = kThetaC; A < 6; A += 5e-3)  // a bracket only
+    if (amplitudeRate(A, s, nu) > rate) best = A, rate = amplitudeRate(A, s, nu);
+  if (rate <= 0) return INFINITY;
+  return std::min(bisect(kThetaC, best, s, nu), bisect(best, 10.0, s, nu)) / s;
+}
+
+}  // namespace
+
+double closedFormFoldMu(double nu, double s_lo, double s_hi) {
+  double lo = s_lo, hi = s_hi, best = INFINITY, at = s_lo;
+  for (double s = s_lo; s < s_hi; s += 0.01)
+    if (smallestMu(s, nu) < best) best = smallestMu(s, nu), at = s;
+  lo = at - 0.01, hi = at + 0.01;
+  const double g = 0.5 * (std::sqrt(5.0) - 1);
+  for (int i = 0; i < 200 && hi - lo > 1e-9; ++i) {  // mu is flat there: 1e-18
+    const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+    if (smallestMu(a, nu) < smallestMu(b, nu))
+      hi = b;
+    else
+      lo = a;
+  }
+  return smallestMu(0.5 * (lo + hi), nu);
 }
 
 }  // namespace metrosync::continuation::testing

@@ -22,6 +22,15 @@ ScaledParams f44(double alpha);
 // equation, as the problem's x, by bisection on A (independent of the continuation's Newton).
 Vec singleTicking(const SlowFlowProblem& prob, double mu);
 
+// e3.1a for one metronome (J = 2.8, theta_c = 0.9, damping nu) driven by its own amplitude A,
+// platform at s = A / mu: dA/dtau = -beta2(s) A - nu A / 2 + (J/pi) sqrt(1 - theta_c^2/A^2).
+double amplitudeRate(double A, double s, double nu);
+
+// The fold of the single metronome's ticking states in mu, independently of the continuation:
+// along the curve amplitudeRate(A, s) = 0 in the (s, A) plane mu = A / s; its smallest value,
+// by bisection for both roots A at each s and golden section over s in [s_lo, s_hi].
+double closedFormFoldMu(double nu, double s_lo = 1.0, double s_hi = 4.0);
+
 // The largest residual of the slow flow (max |dz_i/dtau - i Omega z_i|) over all branch points.
 double worstResidual(const SlowFlowProblem& prob, const std::vector<Branch>& branches);
 

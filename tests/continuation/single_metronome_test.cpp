@@ -22,40 +22,7 @@ using testing::worstResidual;
 constexpr double kNu = 0.7, kJ = 2.8, kThetaC = 0.9;
 
 double amplitudeRate(double A, double s) {
-  return -coulombBeta2(s) * A - kNu * A / 2 +
-         kJ / M_PI * std::sqrt(1 - kThetaC * kThetaC / (A * A));
-}
-
-double bisect(double lo, double hi, double s) {
-  const bool rising = amplitudeRate(lo, s) < 0;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    ((amplitudeRate(mid, s) < 0) == rising ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
-
-// min over the roots A of G(., s) of A / s (inf when there is none). The rate is negative at
-// theta_c and for large A, positive between the two roots: bracket at its maximum.
-double smallestMu(double s) {
-  double best = kThetaC, rate = amplitudeRate(kThetaC, s);
-  for (double A = kThetaC; A < 6; A += 1e-3)
-    if (amplitudeRate(A, s) > rate) best = A, rate = amplitudeRate(A, s);
-  if (rate <= 0) return INFINITY;
-  return std::min(bisect(kThetaC, best, s), bisect(best, 10.0, s)) / s;
-}
-
-double independentFoldMu() {
-  double lo = 1.0, hi = kCoulombSlipThreshold, best = INFINITY, at = 1;
-  for (double s = 1.0; s < 4.0; s += 0.01)
-    if (smallestMu(s) < best) best = smallestMu(s), at = s;
-  lo = at - 0.01, hi = at + 0.01;
-  const double g = 0.5 * (std::sqrt(5.0) - 1);
-  for (int i = 0; i < 200 && hi - lo > 1e-12; ++i) {
-    const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
-    (smallestMu(a) < smallestMu(b) ? hi : lo) = (smallestMu(a) < smallestMu(b) ? b : a);
-  }
-  return smallestMu(0.5 * (lo + hi));
+  return testing::amplitudeRate(A, s, kNu);
 }
 
 struct FollowResult {
@@ -86,7 +53,7 @@ TEST(SingleMetronome, FoldAtTheClosedFormMinimumOfMu) {
   const FollowResult r = follow(prob, 3.0, 0.05);
   const auto folds = valuesOf(r, BifurcationType::Fold);
   ASSERT_EQ(folds.size(), 1u);
-  const double truth = independentFoldMu();
+  const double truth = testing::closedFormFoldMu(kNu);
   EXPECT_NEAR(folds[0], truth, 1e-8) << "independent fold at mu = " << truth;
   EXPECT_LT(worstResidual(prob, r.branches), 1e-12);
 }
