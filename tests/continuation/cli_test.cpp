@@ -2,8 +2,10 @@
 // input refused with exit 2, a message naming what is wrong, and nothing written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "tests/common/run_metrosync.h"
 
@@ -43,6 +45,36 @@ TEST(ContinueCli, F44FilesAndTheFold) {
   const auto summary = nlohmann::json::parse(slurp(out + "/summary.json"));
   EXPECT_EQ(summary["bifurcations"]["fold"], 1);
   EXPECT_EQ(summary["from"].get<double>(), 3.8);
+}
+
+TEST(ContinueCli, FoldCurveInASecondKey) {
+  const std::string out = scratchDir("continue", "fold");
+  const auto r = runMetrosync("continue " + shellQuote(kRig) +
+                              " --param metronomes.1.alpha --from 3.8 --to 4.0 --fold "
+                              "platform.friction.mu --to2 0.41 -q --out " +
+                              shellQuote(out));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string csv = slurp(out + "/fold_curve.csv");
+  std::istringstream lines(csv);
+  std::string header, row;
+  std::getline(lines, header);
+  EXPECT_EQ(header, "fold,metronomes.1.alpha,platform.friction.mu,A_1,A_2,psi_2");
+  int rows = 0;
+  double mu_max = 0;
+  while (std::getline(lines, row)) {
+    ++rows;
+    std::istringstream f(row);
+    std::string id, alpha, mu;
+    std::getline(f, id, ',');
+    std::getline(f, alpha, ',');
+    std::getline(f, mu, ',');
+    EXPECT_EQ(id, "0");
+    mu_max = std::max(mu_max, std::stod(mu));
+  }
+  EXPECT_GT(rows, 3);
+  EXPECT_NEAR(mu_max, 0.41, 1e-9);  // the curve reaches the end of KEY2's range
+  const auto summary = nlohmann::json::parse(slurp(out + "/summary.json"));
+  EXPECT_EQ(summary["param2"], "platform.friction.mu");
 }
 
 struct BadCase {

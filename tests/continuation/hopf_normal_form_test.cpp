@@ -60,7 +60,9 @@ TEST(HopfNormalForm, LocatedAtZeroWithItsLyapunovCoefficient) {
     EXPECT_TRUE(h[0].stability_changes);
     // the branch: stable for b < 0, unstable for b > 0
     for (const BranchPoint& q : branches[0].points)
-      if (std::abs(q.p()) > 1e-6) EXPECT_EQ(q.stable, q.p() < 0) << q.p();
+      if (std::abs(q.p()) > 1e-6) {
+        EXPECT_EQ(q.stable, q.p() < 0) << q.p();
+      }
   }
 }
 

@@ -37,7 +37,9 @@ TEST(Pitchfork, BranchPointFoundAndSwitched) {
   EXPECT_EQ(bps, 1);
   for (const BranchPoint& q : branches[0].points) {
     EXPECT_NEAR(q.y(0), 0.0, 1e-12);
-    if (std::abs(q.p()) > 1e-9) EXPECT_EQ(q.stable, q.p() < 0);
+    if (std::abs(q.p()) > 1e-9) {
+      EXPECT_EQ(q.stable, q.p() < 0);
+    }
   }
   // the new branch: x^2 = p, stable away from the branch point, reaching p = 0.5 both ways
   const Branch& b = branches[1];
@@ -45,7 +47,9 @@ TEST(Pitchfork, BranchPointFoundAndSwitched) {
   for (const BranchPoint& q : b.points) {
     // 1e-10: its first point is the branch point, located to ~1e-11 in arclength
     EXPECT_NEAR(q.y(0) * q.y(0), q.p(), 1e-10);
-    if (std::abs(q.y(0)) > 1e-6) EXPECT_TRUE(q.stable);
+    if (std::abs(q.y(0)) > 1e-6) {
+      EXPECT_TRUE(q.stable);
+    }
     xmin = std::min(xmin, q.y(0)), xmax = std::max(xmax, q.y(0));
   }
   EXPECT_NEAR(xmax, std::sqrt(0.5), 1e-9);

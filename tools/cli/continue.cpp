@@ -9,6 +9,7 @@
 
 #include "models/scaling.h"
 #include "sim/analysis/continuation/arclength.h"
+#include "sim/analysis/continuation/fold_curve.h"
 #include "sim/analysis/continuation/result.h"
 #include "sim/analysis/continuation/start_states.h"
 #include "tools/cli/commands.h"
@@ -21,6 +22,12 @@ namespace {
 
 using namespace metrosync::continuation;
 using Cd = std::complex<double>;
+
+// A located fold, for --fold.
+struct FoldSeed {
+  int reference;
+  BranchPoint at;
+};
 
 ContinueOptions& options() {
   static ContinueOptions opt;
@@ -64,18 +71,27 @@ bool sameSlowFlow(const ScaledParams& a, const ScaledParams& b) {
          a.theta_c == b.theta_c && a.alpha == b.alpha && a.locked == b.locked;
 }
 
-// The parameter map p -> scaled rig with KEY = p; values the rig refuses give NaN parameters, so
-// the corrector fails there and the step control stays out.
+// The rig with KEY_k = p_k, scaled; values the rig refuses give NaN parameters, so the corrector
+// fails there and the step control stays out.
+ScaledParams scaledAt(const ContinueOptions& opt, const std::vector<std::string>& keys,
+                      const std::vector<double>& values) {
+  std::vector<std::string> o;
+  for (size_t k = 0; k < keys.size(); ++k) o.push_back(keys[k] + "=" + fmt(values[k]));
+  try {
+    return computeScaled(loadWith(opt, o));
+  } catch (const std::exception&) {
+    ScaledParams bad = computeScaled(loadWith(opt, {}));
+    for (double& v : bad.nu) v = std::nan("");
+    return bad;
+  }
+}
+
 ParamsAt paramsAt(const ContinueOptions& opt) {
-  return [opt](double p) {
-    try {
-      return computeScaled(loadWith(opt, {opt.param + "=" + fmt(p)}));
-    } catch (const std::exception&) {
-      ScaledParams bad = computeScaled(loadWith(opt, {}));
-      for (double& v : bad.nu) v = std::nan("");
-      return bad;
-    }
-  };
+  return [opt](double p) { return scaledAt(opt, {opt.param}, {p}); };
+}
+
+ParamsAt2 paramsAt2(const ContinueOptions& opt) {
+  return [opt](double p1, double p2) { return scaledAt(opt, {opt.param, opt.fold_key}, {p1, p2}); };
 }
 
 double startValue(const ContinueOptions& opt) {
@@ -161,6 +177,32 @@ ContinuationSettings settingsFor(const ContinueOptions& opt, double from) {
   return s;
 }
 
+// KEY2's start (the rig's value), checked like KEY's.
+double secondStart(const ContinueOptions& opt) {
+  if (opt.fold_key == opt.param)
+    throw UsageError("--fold " + opt.fold_key + ": the same as --param");
+  ContinueOptions second = opt;
+  second.param = opt.fold_key, second.to = opt.to2, second.from.reset();
+  return startValue(second);
+}
+
+void foldCurves(const ContinueOptions& opt, double from2, const std::vector<FoldSeed>& folds,
+                ContinuationResult& result) {
+  ContinueOptions second = opt;
+  second.to = opt.to2, second.step = 0;
+  ContinuationSettings s = settingsFor(second, from2);
+  // the curve's arclength is mostly in KEY and the state (O(1)), not only KEY2's span
+  constexpr double kFoldStep = 0.005, kFoldStepMax = 0.05;
+  s.step = std::max(s.step, kFoldStep);
+  s.step_max = std::max(s.step_max, kFoldStepMax);
+  result.param2 = opt.fold_key;
+  for (const FoldSeed& f : folds) {
+    const int n = static_cast<int>(f.at.y.size()) - 1;
+    result.fold_curves.push_back(
+        continueFold(paramsAt2(opt), f.reference, f.at.y.head(n), f.at.p(), from2, f.at.region, s));
+  }
+}
+
 std::string outDir(const ContinueOptions& opt, const Rig& rig) {
   return opt.out.empty() ? "runs/" + rig.name + "-continue" : opt.out;
 }
@@ -185,8 +227,17 @@ bool alreadyFollowed(const ContinuationResult& r, const std::vector<double>& A,
   return false;
 }
 
+void record(const SlowFlowProblem& prob, const std::vector<Branch>& branches,
+            ContinuationResult& result, std::vector<FoldSeed>& folds) {
+  appendBranches(prob, branches, result);
+  for (const Branch& b : branches)
+    for (const Bifurcation& e : b.special)
+      if (e.type == BifurcationType::Fold) folds.push_back({prob.reference(), e.point});
+}
+
 void followAll(const ContinueOptions& opt, const ScaledParams& sp, double from,
-               const ContinuationSettings& settings, ContinuationResult& result) {
+               const ContinuationSettings& settings, ContinuationResult& result,
+               std::vector<FoldSeed>& folds) {
   int ref = 0;
   while (ref < static_cast<int>(sp.locked.size()) && sp.locked[ref]) ++ref;
   if (ref == static_cast<int>(sp.locked.size())) throw UsageError("every metronome is locked");
@@ -201,8 +252,8 @@ void followAll(const ContinueOptions& opt, const ScaledParams& sp, double from,
     // the largest amplitude as the reference: z_r real stays regular while z_r does not vanish
     const std::vector<Cd> z = prob.unpack(x);
     const SlowFlowProblem mine(paramsAt(opt), from, largest(z));
-    appendBranches(mine, continueFrom(mine.system(), mine.pack(z, prob.omega(x)), from, settings),
-                   result);
+    record(mine, continueFrom(mine.system(), mine.pack(z, prob.omega(x)), from, settings), result,
+           folds);
   }
 }
 
@@ -239,8 +290,14 @@ CLI::App* addContinueCommand(CLI::App& app) {
   c->add_flag("--all", opt.all, "every locked state at the start value (Newton from a grid)");
   c->add_option("--out", opt.out, "output directory (default runs/<rig name>-continue)");
   c->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
+  CLI::Option* fold = c->add_option("--fold", opt.fold_key,
+                                    "a second rig key: continue every fold found in KEY and KEY2 "
+                                    "(from KEY2's value in the rig) -> fold_curve.csv, .png");
+  c->add_option("--to2", opt.to2, "KEY2's other end (with --fold)")->needs(fold);
+  fold->needs("--to2");
   c->footer(
-      "Files in --out DIR: branches.csv, bifurcations.json, branches.png, summary.json (see "
+      "Files in --out DIR: branches.csv, bifurcations.json, branches.png, summary.json; with "
+      "--fold also fold_curve.csv, fold_curve.png (see "
       "docs/continuation.md).\nExit codes: 0 success; 2 bad command line or rig (nothing "
       "written); 1 anything else.");
   return c;
@@ -249,6 +306,7 @@ CLI::App* addContinueCommand(CLI::App& app) {
 int continueCommand() {
   const ContinueOptions& opt = options();
   const double from = startValue(opt);
+  const double from2 = opt.fold_key.empty() ? 0.0 : secondStart(opt);
   const Rig rig = loadWith(opt, {opt.param + "=" + fmt(from)});
   const ScaledParams sp = computeScaled(rig);
   const ContinuationSettings settings = settingsFor(opt, from);
@@ -256,15 +314,17 @@ int continueCommand() {
   result.param = opt.param, result.from = from, result.to = opt.to;
   result.metronomes = static_cast<int>(sp.nu.size());
   result.theta_c = sp.theta_c;
+  std::vector<FoldSeed> folds;
   if (opt.all) {
-    followAll(opt, sp, from, settings, result);
+    followAll(opt, sp, from, settings, result, folds);
   } else {
     const std::vector<Cd> z = startState(opt, sp, result.start);
     const SlowFlowProblem prob(paramsAt(opt), from, largest(z));
     const auto x = solveLocked(prob, prob.pack(z, prob.omegaGuess(from, z)), from);
     if (!x) throw UsageError("Newton does not converge to a locked state from " + result.start);
-    appendBranches(prob, continueFrom(prob.system(), *x, from, settings), result);
+    record(prob, continueFrom(prob.system(), *x, from, settings), result, folds);
   }
+  if (!opt.fold_key.empty()) foldCurves(opt, from2, folds, result);
   const OutputDir dir(outDir(opt, rig));
   writeContinuation(dir, result, rig.name);
   if (!opt.quiet) printSummary(result, dir.path());

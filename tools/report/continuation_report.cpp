@@ -91,7 +91,36 @@ std::string diagramScript(const ContinuationResult& r, const std::string& data,
   return g.str();
 }
 
+std::string foldPlotScript(const ContinuationResult& r, const std::string& data,
+                           const std::string& png) {
+  std::ostringstream g;
+  g << "set terminal pngcairo size 900,700 font ',11'\n"
+    << "set output '" << png << "'\n"
+    << "set grid\nset key outside right\n"
+    << "set title 'fold curves: where locked states are born or die' noenhanced\n"
+    << "set xlabel '" << r.param << "' noenhanced\nset ylabel '" << r.param2 << "' noenhanced\n"
+    << "plot for [i=0:" << r.fold_curves.size() - 1 << "] '" << data
+    << "' index i using 1:2 with lines lw 2 title sprintf('fold %d', i)\n";
+  return g.str();
+}
+
 }  // namespace
+
+std::string foldCurveCsv(const ContinuationResult& r) {
+  std::ostringstream c;
+  c << "fold," << r.param << "," << r.param2;
+  for (int i = 1; i <= r.metronomes; ++i) c << ",A_" << i;
+  for (int j = 2; j <= r.metronomes; ++j) c << ",psi_" << j;
+  c << "\n";
+  for (size_t f = 0; f < r.fold_curves.size(); ++f)
+    for (const auto& q : r.fold_curves[f].points) {
+      c << f << "," << num(q.p1) << "," << num(q.p2);
+      for (double a : q.A) c << "," << num(a);
+      for (double p : q.psi) c << "," << num(p);
+      c << "\n";
+    }
+  return c.str();
+}
 
 std::string branchesCsv(const ContinuationResult& r) {
   std::ostringstream c;
@@ -138,11 +167,22 @@ nlohmann::json continuationSummaryJson(const ContinuationResult& r, const std::s
                         {"end_forward", b.end_forward}});
   std::map<std::string, int> counts = {{"fold", 0}, {"hopf", 0}, {"branch", 0}, {"border", 0}};
   for (const auto& s : r.special) ++counts[s.type];
-  return {{"command", "continue"},  {"version", metrosyncVersion()},
-          {"rig", rig_name},        {"param", r.param},
-          {"from", r.from},         {"to", r.to},
-          {"start", r.start},       {"branches", branches},
-          {"bifurcations", counts}, {"complete", true}};
+  nlohmann::json j = {{"command", "continue"},  {"version", metrosyncVersion()},
+                      {"rig", rig_name},        {"param", r.param},
+                      {"from", r.from},         {"to", r.to},
+                      {"start", r.start},       {"branches", branches},
+                      {"bifurcations", counts}, {"complete", true}};
+  if (!r.param2.empty()) {
+    nlohmann::json curves = nlohmann::json::array();
+    for (size_t f = 0; f < r.fold_curves.size(); ++f)
+      curves.push_back({{"fold", f},
+                        {"points", r.fold_curves[f].points.size()},
+                        {"end_backward", r.fold_curves[f].end_backward},
+                        {"end_forward", r.fold_curves[f].end_forward}});
+    j["param2"] = r.param2;
+    j["fold_curves"] = curves;
+  }
+  return j;
 }
 
 std::vector<std::string> writeContinuation(const OutputDir& dir, const ContinuationResult& r,
@@ -153,6 +193,20 @@ std::vector<std::string> writeContinuation(const OutputDir& dir, const Continuat
   if (drawPng(dir, "branches.png", plotData(r),
               [&](const std::string& d, const std::string& p) { return diagramScript(r, d, p); }))
     written.push_back("branches.png");
+  if (!r.param2.empty()) {
+    writeFileAtomically(dir.file("fold_curve.csv"), foldCurveCsv(r));
+    written.push_back("fold_curve.csv");
+    std::ostringstream d;
+    for (const auto& curve : r.fold_curves) {
+      for (const auto& q : curve.points) d << num(q.p1) << " " << num(q.p2) << "\n";
+      d << "\n\n";
+    }
+    if (!r.fold_curves.empty() && drawPng(dir, "fold_curve.png", d.str(),
+                                          [&](const std::string& data, const std::string& png) {
+                                            return foldPlotScript(r, data, png);
+                                          }))
+      written.push_back("fold_curve.png");
+  }
   writeSummary(dir, continuationSummaryJson(r, rig_name));
   written.push_back("summary.json");
   return written;

@@ -10,7 +10,9 @@
 //   branches.png       the diagram: A_i (top) and psi_j (bottom) against KEY, stable solid,
 //                      unstable dashed, special points marked
 //   summary.json       the command, the start, the branches (points, why each end stopped), the
-//                      special points counted by type
+//                      special points counted by type; with --fold param2 and fold_curves
+//   fold_curve.csv     (--fold) fold,KEY,KEY2,A_1..A_N,psi_2..psi_N: each fold's curve
+//   fold_curve.png     (--fold) the curves in the (KEY, KEY2) plane
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -23,6 +25,7 @@
 namespace metrosync {
 
 std::string branchesCsv(const continuation::ContinuationResult& r);
+std::string foldCurveCsv(const continuation::ContinuationResult& r);
 nlohmann::json bifurcationsJson(const continuation::ContinuationResult& r);
 nlohmann::json continuationSummaryJson(const continuation::ContinuationResult& r,
                                        const std::string& rig_name);

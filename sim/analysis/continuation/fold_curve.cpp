@@ -11,6 +11,10 @@ namespace metrosync::continuation {
 
 namespace {
 
+// The fold system's acceptance level: g's difference Jacobian has errors ~1e-10 and the outer
+// Newton differentiates it again, so 1e-9 is what it reaches reliably.
+constexpr double kFoldTolerance = 1e-9;
+
 // One SlowFlowProblem (in p1) per value of p2, kept while the continuation needs it.
 class Family {
  public:
@@ -70,6 +74,8 @@ FoldCurve continueFold(const ParamsAt2& params, int reference, const Vec& x0, do
     return out;
   };
   sys.eigenvalues = [](const Vec&, double, const Region&) { return CVec(); };
+  // g comes from a difference Jacobian (~1e-10 noise, derivatives.h): solve to well above it
+  sys.tolerance = kFoldTolerance;
 
   Vec y0(n + 1);
   y0 << x0, p1_0;

@@ -16,14 +16,15 @@ bool finite(const Vec& v) {
   return v.allFinite();
 }
 
-// Newton polishes to this (an eighth of the acceptance level) so that every component, and the
-// modulus of each complex equation, is safely below kResidualTolerance; it accepts the
-// acceptance level once the steps reach rounding (a residual of O(1) terms cannot go lower).
-constexpr double kPolish = kResidualTolerance / 8;
+// Newton polishes to an eighth of the acceptance level (sys.tolerance) so that every component,
+// and the modulus of each complex equation, is safely below it; it accepts the acceptance level
+// once the steps reach rounding (a residual of O(1) terms cannot go lower).
+constexpr double kPolishFraction = 1.0 / 8;
 constexpr double kRoundingStep = 1e-14;
 
-bool converged(double residual, double step, double size) {
-  return residual < kPolish || (residual < kResidualTolerance && step < kRoundingStep * (1 + size));
+bool converged(const ContinuationSystem& sys, double residual, double step, double size) {
+  return residual < kPolishFraction * sys.tolerance ||
+         (residual < sys.tolerance && step < kRoundingStep * (1 + size));
 }
 
 }  // namespace
@@ -44,10 +45,10 @@ std::optional<Vec> solveAt(const ContinuationSystem& sys, const Vec& x0, double 
     const Vec F = sys.residual(x, p, region);
     if (!finite(F)) return std::nullopt;
     const double r = F.lpNorm<Eigen::Infinity>();
-    if (r < kPolish) return x;
+    if (r < kPolishFraction * sys.tolerance) return x;
     const Vec dx = jacobianX(sys, x, p, region).fullPivLu().solve(-F);
     if (!finite(dx)) return std::nullopt;
-    if (converged(r, dx.norm(), x.norm())) return x;
+    if (converged(sys, r, dx.norm(), x.norm())) return x;
     x += dx;
   }
   return std::nullopt;
@@ -63,13 +64,13 @@ std::optional<Corrected> correct(const ContinuationSystem& sys, const Vec& y0, c
     G(n) = t0.dot(y - y0) - h;
     if (!finite(G)) return std::nullopt;
     const double r = G.lpNorm<Eigen::Infinity>();
-    if (r < kPolish) return Corrected{y, it};
+    if (r < kPolishFraction * sys.tolerance) return Corrected{y, it};
     Mat M(n + 1, n + 1);
     M.topRows(n) = extendedJacobian(sys, y, region);
     M.row(n) = t0.transpose();
     const Vec dy = M.fullPivLu().solve(-G);
     if (!finite(dy)) return std::nullopt;
-    if (converged(r, dy.norm(), y.norm())) return Corrected{y, it};
+    if (converged(sys, r, dy.norm(), y.norm())) return Corrected{y, it};
     y += dy;
   }
   return std::nullopt;

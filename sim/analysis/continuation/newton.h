@@ -8,9 +8,9 @@
 
 namespace metrosync::continuation {
 
-// A solution is accepted when max |F_i| is below this: the fixed points satisfy the slow flow to
-// 1e-12 (the requirement), with room for the rounding of O(1) terms (~1e-16).
-constexpr double kResidualTolerance = 1e-12;
+// Newton accepts a solution when max |F_i| < sys.tolerance, 1e-12 by default: the fixed points
+// satisfy the slow flow to 1e-12 (the requirement), with room for the rounding of O(1)
+// terms (~1e-16).
 
 // Newton on F(x, p) = 0 at fixed p from x0; nullopt when it does not converge.
 std::optional<Vec> solveAt(const ContinuationSystem& sys, const Vec& x0, double p,

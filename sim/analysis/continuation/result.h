@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sim/analysis/continuation/branch.h"
+#include "sim/analysis/continuation/fold_curve.h"
 #include "sim/analysis/continuation/slow_flow_problem.h"
 
 namespace metrosync::continuation {
@@ -48,6 +49,9 @@ struct ContinuationResult {
   std::vector<ResultPoint> points;
   std::vector<ResultSpecial> special;
   std::vector<ResultBranch> branches;
+  // --fold: the second key and the curve of each fold in (param, param2)
+  std::string param2;
+  std::vector<FoldCurve> fold_curves;
 };
 
 // Appends the branches (ids offset by the branches already in `out`) to `out`.
