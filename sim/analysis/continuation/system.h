@@ -33,8 +33,9 @@ struct ContinuationSystem {
   std::function<double(const Vec& x, double p, const Region& region)> lyapunov;
   // Name of border k, for messages ("A_2 = theta_c", "s = 1").
   std::function<std::string(int k)> borderName;
-  // Newton accepts a solution when max |F_i| is below this (newton.h's kResidualTolerance unless
-  // the residual itself is noisier, e.g. built from a difference Jacobian).
+  // Newton accepts a solution when max |F_i| is below this: 1e-12 (the slow flow's fixed points
+  // to 1e-12, the requirement) unless the residual itself is noisier, e.g. built from a
+  // difference Jacobian (fold_curve.cpp).
   double tolerance = 1e-12;
 };
 
