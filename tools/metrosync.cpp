@@ -9,6 +9,7 @@
 #include "tools/report/outputs.h"
 #include "sim/engines/simbody/simbody_engine.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/continue.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/sweep.h"
 #include "tools/cli/validate.h"
@@ -111,6 +112,7 @@ int main(int argc, char** argv) {
   const metrosync::cli::SweepCommands sweep = metrosync::cli::addSweepCommands(app, sweep_opt);
   metrosync::cli::ValidateOptions validate_opt;  // tools/cli/validate.h
   CLI::App* validate = metrosync::cli::addValidateCommand(app, validate_opt);
+  CLI::App* continue_cmd = metrosync::cli::addContinueCommand(app);  // tools/cli/continue.h
 
   try {
     app.parse(argc, argv);
@@ -129,6 +131,7 @@ int main(int argc, char** argv) {
     if (sweep.sweep->parsed()) return metrosync::cli::sweepCommand(sweep_opt);
     if (sweep.merge->parsed()) return metrosync::cli::mergeCommand(sweep_opt);
     if (validate->parsed()) return metrosync::cli::validateCommand(validate_opt);
+    if (continue_cmd->parsed()) return metrosync::cli::continueCommand();
     return metrosync::cli::kBadInput;
   } catch (const metrosync::RigError& e) {
     std::cerr << "metrosync: error: " << e.what() << "\n";

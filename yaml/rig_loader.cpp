@@ -903,25 +903,29 @@ std::string stemOf(const std::string& display_name) {
   return stem.empty() ? std::string("rig") : stem;
 }
 
-}  // namespace
-
-Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
-                const std::vector<std::string>& overrides, const LoadOptions& options) {
-  const Source src(display_name, overrides);
-
-  // parse: text, one YAML document, bounded size and depth, no aliases (yaml/rig_tree.h)
+// The rig's tree with the overrides applied (not yet checked against the schema): text, one
+// YAML document, bounded size and depth, no aliases (yaml/rig_tree.h).
+Node rootWithOverrides(const std::string& yaml_text, const Source& src) {
   Node root;
   try {
     root = parseTree(yaml_text, 0);
   } catch (const TreeError& e) {
     src.fail(e.at, (e.syntax ? "YAML syntax error: " : "") + e.what);
   }
-
   if (root.kind != Node::Kind::Map)
     src.fail(root.at, std::string("the rig is ") + kindName(root) +
                           "; expected a map of keys starting with units: physical or scaled");
+  for (std::size_t k = 1; k <= src.overrides().size(); ++k)
+    applyOverride(root, static_cast<int>(k), src);
+  return root;
+}
 
-  for (std::size_t k = 1; k <= overrides.size(); ++k) applyOverride(root, static_cast<int>(k), src);
+}  // namespace
+
+Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
+                const std::vector<std::string>& overrides, const LoadOptions& options) {
+  const Source src(display_name, overrides);
+  const Node root = rootWithOverrides(yaml_text, src);
 
   // units decide the schema
   const Reader top(root, "", src);
@@ -939,6 +943,27 @@ Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
     src.fail(Where{}, e.what());
   }
   return rig;
+}
+
+std::optional<double> rigNumber(const std::string& yaml_text, const std::string& display_name,
+                                const std::vector<std::string>& overrides, const std::string& key) {
+  loadRigText(yaml_text, display_name, overrides);  // the rig must be valid
+  const Source src(display_name, overrides);
+  const Node root = rootWithOverrides(yaml_text, src);
+  const Node* n = &root;
+  for (const std::string& seg : splitPath(key)) {
+    if (n->kind == Node::Kind::Map) {
+      n = n->find(seg);
+    } else if (n->kind == Node::Kind::Seq && isIndex(seg) && std::stoul(seg) < n->seq.size()) {
+      n = &n->seq[std::stoul(seg)];
+    } else {
+      n = nullptr;
+    }
+    if (!n) return std::nullopt;
+  }
+  if (n->kind != Node::Kind::Scalar || !parseNumber(n->scalar))
+    throw RigError(display_name + ": " + key + " is not a number");
+  return parseNumber(n->scalar);
 }
 
 Rig loadRigFile(const std::string& path, const std::vector<std::string>& overrides,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -48,6 +49,12 @@ std::string readRigFile(const std::string& path);
 // The same for YAML text; display_name stands for the file in messages (and gives the name).
 Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
                 const std::vector<std::string>& overrides = {}, const LoadOptions& options = {});
+
+// The number at `key` (a --set path) in the rig after the overrides, e.g. for the value a
+// continuation starts from; nullopt when the key is absent (its default applies). Throws RigError
+// for an invalid rig or a value there that is not a number.
+std::optional<double> rigNumber(const std::string& yaml_text, const std::string& display_name,
+                                const std::vector<std::string>& overrides, const std::string& key);
 
 // The built-in default rig (SPEC section 2, the paper's experiment): the text of
 // yaml/rigs/experiment.yaml.

@@ -1,0 +1,74 @@
+#include "sim/analysis/continuation/borders.h"
+
+#include <cmath>
+
+#include "sim/analysis/continuation/arclength.h"
+#include "sim/analysis/continuation/derivatives.h"
+#include "sim/analysis/continuation/newton.h"
+
+namespace metrosync::continuation {
+
+namespace {
+
+std::string stabilityWords(const BranchPoint& before, const BranchPoint& after) {
+  const auto word = [](bool s) { return s ? "stable" : "unstable"; };
+  if (before.stable == after.stable)
+    return std::string("stability does not change (") + word(before.stable) + ")";
+  return std::string("stability changes: ") + word(before.stable) + " -> " + word(after.stable);
+}
+
+// The kink: the same point, the new formulas' tangent pointing into the new region.
+std::optional<BranchPoint> acrossKink(const ContinuationSystem& sys, const BranchPoint& at, int k,
+                                      const Region& side, Bifurcation& b) {
+  Vec t = tangentAt(sys, at.y, at.tangent, side);
+  const double h = centralStep(1.0);
+  auto border = [&](const Vec& y) { return sys.borders(y.head(sys.n), y(sys.n))(k); };
+  const double slope = border(at.y + h * t) - border(at.y - h * t);
+  if ((slope > 0) != (side[k] == 1)) t = -t;
+  BranchPoint after = makePoint(sys, at.y, t, side);
+  b.stability_changes = at.stable != after.stable;
+  const bool turns = (t(sys.n) > 0) != (at.tangent(sys.n) > 0);
+  b.detail = "kink of the vector field at " + sys.borderName(k) + ": " + stabilityWords(at, after) +
+             (turns ? "; the branch turns back in the parameter here (non-smooth fold)" : "");
+  return after;
+}
+
+// The jump: re-solve with the new formulas at the same parameter.
+std::optional<BranchPoint> acrossJump(const ContinuationSystem& sys, const BranchPoint& at, int k,
+                                      const Region& side, Bifurcation& b) {
+  const double p = at.p();
+  const auto x = solveAt(sys, at.y.head(sys.n), p, side);
+  if (!x || regionAt(sys, *x, p) != side) {
+    b.detail = "jump of the vector field at " + sys.borderName(k) +
+               ": the branch ends here (no fixed point of the other side's formulas nearby: a "
+               "boundary equilibrium)";
+    return std::nullopt;
+  }
+  Vec y(sys.n + 1);
+  y << *x, p;
+  BranchPoint after = makePoint(sys, y, tangentAt(sys, y, at.tangent, side), side);
+  b.stability_changes = at.stable != after.stable;
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.4g", (*x - at.y.head(sys.n)).norm());
+  b.detail = "jump of the vector field at " + sys.borderName(k) + ": the fixed point moves by " +
+             buf + " at the same parameter; " + stabilityWords(at, after);
+  return after;
+}
+
+}  // namespace
+
+std::optional<BranchPoint> crossBorder(const ContinuationSystem& sys, const BranchPoint& at, int k,
+                                       std::vector<Bifurcation>& special) {
+  Region side = at.region;
+  side[k] = 1 - side[k];
+  Bifurcation b;
+  b.type = BifurcationType::Border;
+  b.point = at;
+  b.border = k;
+  const auto after =
+      sys.jumps && sys.jumps(k) ? acrossJump(sys, at, k, side, b) : acrossKink(sys, at, k, side, b);
+  special.push_back(b);
+  return after;
+}
+
+}  // namespace metrosync::continuation

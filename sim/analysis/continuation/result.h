@@ -1,0 +1,61 @@
+// A continuation of the slow flow as plain values: what `metrosync continue` writes
+// (tools/report/continuation_report.h), in the rig's metronome numbering (1-based in names).
+#pragma once
+
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "sim/analysis/continuation/branch.h"
+#include "sim/analysis/continuation/fold_curve.h"
+#include "sim/analysis/continuation/slow_flow_problem.h"
+
+namespace metrosync::continuation {
+
+struct ResultPoint {
+  int branch = 0;
+  double value = 0.0;       // the parameter
+  std::vector<double> A;    // (N x 1)
+  std::vector<double> psi;  // (N-1 x 1), phi_1 - phi_j in [-pi/2, 3 pi/2)
+  double omega = 0.0;       // the locked state's rotation rate in slow time
+  bool stable = false;
+  double max_real = 0.0;  // largest real part of the eigenvalues
+  std::string ticking;    // metronomes with the escapement on, "1 2" ("none")
+  std::string platform;   // beta's regime: stuck (s <= 1), stick-slip (1 < s <= s_b), slip
+  double s = 0.0;         // |Z| / mu
+  std::vector<std::complex<double>> eigenvalues;
+};
+
+struct ResultSpecial {
+  ResultPoint at;
+  std::string type;  // fold | hopf | branch | border
+  std::string detail;
+  double lyapunov = 0.0;  // hopf only (NaN when unknown)
+  bool stability_changes = false;
+};
+
+struct ResultBranch {
+  int id = 0;
+  long points = 0;
+  std::string end_backward, end_forward;
+};
+
+struct ContinuationResult {
+  std::string param;  // the rig key
+  double from = 0.0, to = 0.0;
+  std::string start;  // how the start was found
+  int metronomes = 0;
+  std::vector<double> theta_c;  // (N x 1) at the start
+  std::vector<ResultPoint> points;
+  std::vector<ResultSpecial> special;
+  std::vector<ResultBranch> branches;
+  // --fold: the second key and the curve of each fold in (param, param2)
+  std::string param2;
+  std::vector<FoldCurve> fold_curves;
+};
+
+// Appends the branches (ids offset by the branches already in `out`) to `out`.
+void appendBranches(const SlowFlowProblem& prob, const std::vector<Branch>& branches,
+                    ContinuationResult& out);
+
+}  // namespace metrosync::continuation

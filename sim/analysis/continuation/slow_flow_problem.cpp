@@ -1,0 +1,237 @@
+#include "sim/analysis/continuation/slow_flow_problem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "sim/analysis/continuation/derivatives.h"
+#include "sim/analysis/continuation/lyapunov.h"
+
+namespace metrosync::continuation {
+
+namespace {
+
+using Cd = std::complex<double>;
+constexpr double kPi = 3.14159265358979323846;
+// The parameter cache holds a few hundred values: a Newton step and its differences use 3.
+constexpr size_t kCacheSize = 256;
+
+}  // namespace
+
+SlowFlowProblem::SlowFlowProblem(ParamsAt params_at, double p0, int reference)
+    : params_at_(std::move(params_at)), ref_(reference) {
+  const ScaledParams& sp = params(p0);
+  n_ = static_cast<int>(sp.nu.size());
+  for (int i = 0; i < n_; ++i)
+    if (!sp.locked[i]) unlocked_.push_back(i);
+  if (reference < 0 || reference >= n_ || sp.locked[reference])
+    throw std::invalid_argument("the reference metronome must be an unlocked one");
+  coulomb_ = sp.law == FrictionLaw::Coulomb && sp.mu > 0;
+  const int m = static_cast<int>(unlocked_.size());
+  sys_.n = 2 * m;
+  sys_.residual = [this](const Vec& x, double p, const Region& r) { return residual(x, p, r); };
+  sys_.borders = [this](const Vec& x, double p) { return borders(x, p); };
+  sys_.jumps = [m](int k) { return k < m; };
+  sys_.eigenvalues = [this](const Vec& x, double p, const Region& r) {
+    return eigenvalues(x, p, r);
+  };
+  sys_.lyapunov = [this](const Vec& x, double p, const Region& r) { return lyapunov(x, p, r); };
+  sys_.borderName = [this, m](int k) {
+    if (k < m) return "A_" + std::to_string(unlocked_[k] + 1) + " = theta_c";
+    return std::string(k == m ? "s = 1" : "s = sqrt(1 + pi^2/4)");
+  };
+}
+
+const ScaledParams& SlowFlowProblem::params(double p) const {
+  auto it = cache_.find(p);
+  if (it != cache_.end()) return it->second;
+  if (cache_.size() > kCacheSize) cache_.clear();
+  return cache_.emplace(p, params_at_(p)).first->second;
+}
+
+Vec SlowFlowProblem::pack(std::vector<Cd> z, double omega) const {
+  const double a = std::abs(z[ref_]);
+  const Cd rot = a > 0 ? std::conj(z[ref_]) / a : Cd(1.0);
+  Vec x(sys_.n);
+  int k = 0;
+  for (int i : unlocked_) {
+    const Cd zi = z[i] * rot;
+    x(k++) = zi.real();
+    if (i != ref_) x(k++) = zi.imag();
+  }
+  x(k) = omega;
+  return x;
+}
+
+std::vector<Cd> SlowFlowProblem::unpack(const Vec& x) const {
+  std::vector<Cd> z(n_, Cd(0.0));
+  int k = 0;
+  for (int i : unlocked_) {
+    if (i == ref_) {
+      z[i] = x(k++);
+    } else {
+      z[i] = Cd(x(k), x(k + 1));
+      k += 2;
+    }
+  }
+  return z;
+}
+
+SlowFlowModes SlowFlowProblem::modes(const Region& r) const {
+  SlowFlowModes md;
+  md.engaged.assign(n_, false);
+  const int m = static_cast<int>(unlocked_.size());
+  for (int k = 0; k < m; ++k) md.engaged[unlocked_[k]] = r[k] == 1;
+  if (coulomb_)
+    md.platform = r[m + 1] ? CoulombRegime::Slip
+                  : r[m]   ? CoulombRegime::StickSlip
+                           : CoulombRegime::Stuck;
+  return md;
+}
+
+// G_i = f_i(z) - i Omega z_i (e3.1a-c in the rotating frame), real and imaginary parts.
+Vec SlowFlowProblem::residual(const Vec& x, double p, const Region& r) const {
+  const std::vector<Cd> z = unpack(x);
+  const std::vector<Cd> f = slowFlowRhs(params(p), modes(r), z);
+  const double om = omega(x);
+  Vec G(sys_.n);
+  int k = 0;
+  for (int i : unlocked_) {
+    const Cd g = f[i] - Cd(0, om) * z[i];
+    G(k++) = g.real();
+    G(k++) = g.imag();
+  }
+  return G;
+}
+
+double SlowFlowProblem::s(const Vec& x, double p) const {
+  const ScaledParams& sp = params(p);
+  Cd Z = 0;
+  for (const Cd& zi : unpack(x)) Z += zi;
+  return sp.mu > 0 ? std::abs(Z) / sp.mu : std::numeric_limits<double>::infinity();
+}
+
+Vec SlowFlowProblem::borders(const Vec& x, double p) const {
+  const ScaledParams& sp = params(p);
+  const std::vector<Cd> z = unpack(x);
+  const int m = static_cast<int>(unlocked_.size());
+  Vec b(m + (coulomb_ ? 2 : 0));
+  for (int k = 0; k < m; ++k) b(k) = std::abs(z[unlocked_[k]]) - sp.theta_c[unlocked_[k]];
+  if (coulomb_) {
+    const double sv = s(x, p);
+    b(m) = sv - 1.0;
+    b(m + 1) = sv - kCoulombSlipThreshold;
+  }
+  return b;
+}
+
+CVec SlowFlowProblem::eigenvalues(const Vec& x, double p, const Region& r) const {
+  // G as a function of all 2m real coordinates (Re z_i, Im z_i), Omega and the region held
+  const double om = omega(x);
+  const std::vector<Cd> z0 = unpack(x);
+  const int m = static_cast<int>(unlocked_.size());
+  auto G = [&](const Vec& u) {
+    std::vector<Cd> z = z0;
+    for (int k = 0; k < m; ++k) z[unlocked_[k]] = Cd(u(2 * k), u(2 * k + 1));
+    const std::vector<Cd> f = slowFlowRhs(params(p), modes(r), z);
+    Vec g(2 * m);
+    for (int k = 0; k < m; ++k) {
+      const Cd gk = f[unlocked_[k]] - Cd(0, om) * z[unlocked_[k]];
+      g(2 * k) = gk.real(), g(2 * k + 1) = gk.imag();
+    }
+    return g;
+  };
+  Vec u(2 * m), v(2 * m);  // v = i z, the symmetry's direction: G'(u) v = i G(u) = 0
+  for (int k = 0; k < m; ++k) {
+    const Cd zk = z0[unlocked_[k]];
+    u(2 * k) = zk.real(), u(2 * k + 1) = zk.imag();
+    v(2 * k) = -zk.imag(), v(2 * k + 1) = zk.real();
+  }
+  const Mat J = jacobianOf(G, u);
+  if (v.norm() == 0) return J.eigenvalues();
+  // orthonormal basis [v/|v|, U]: in it J is block triangular, the rest is U^T J U
+  const Mat Q = Eigen::HouseholderQR<Mat>(v.normalized()).householderQ();
+  const Mat U = Q.rightCols(2 * m - 1);
+  return (U.transpose() * J * U).eigenvalues();
+}
+
+// The reduced polar flow (A_i, phi_i - phi_r) near the Hopf point, for the Lyapunov coefficient.
+double SlowFlowProblem::lyapunov(const Vec& x, double p, const Region& r) const {
+  const std::vector<Cd> z0 = unpack(x);
+  const int m = static_cast<int>(unlocked_.size());
+  for (int i : unlocked_)
+    if (std::abs(z0[i]) == 0) return std::numeric_limits<double>::quiet_NaN();
+  const double phase_r = std::arg(z0[ref_]);
+  const int kr =
+      static_cast<int>(std::find(unlocked_.begin(), unlocked_.end(), ref_) - unlocked_.begin());
+  Vec y(2 * m);
+  for (int k = 0; k < m; ++k) {
+    y(k) = std::abs(z0[unlocked_[k]]);
+    y(m + k) = std::arg(z0[unlocked_[k]]) - phase_r;
+  }
+  auto f = [&](const Vec& w) {
+    std::vector<Cd> z = z0;
+    for (int k = 0; k < m; ++k) z[unlocked_[k]] = std::polar(w(k), w(m + k));
+    const std::vector<Cd> dz = slowFlowRhs(params(p), modes(r), z);
+    Vec out(2 * m);
+    for (int k = 0; k < m; ++k) {
+      const Cd e = std::polar(1.0, -w(m + k)) * dz[unlocked_[k]];
+      out(k) = e.real();
+      out(m + k) = e.imag() / w(k);
+    }
+    const double dphi_r = out(m + kr);
+    for (int k = 0; k < m; ++k) out(m + k) -= dphi_r;
+    return out;
+  };
+  // drop the reference's phase (identically 0): the reduced flow has 2m - 1 coordinates
+  auto keep = [&](const Vec& full) {
+    Vec red(2 * m - 1);
+    for (int i = 0, j = 0; i < 2 * m; ++i)
+      if (i != m + kr) red(j++) = full(i);
+    return red;
+  };
+  auto expand = [&](const Vec& red) {
+    Vec full(2 * m);
+    for (int i = 0, j = 0; i < 2 * m; ++i) full(i) = i == m + kr ? 0.0 : red(j++);
+    return full;
+  };
+  return firstLyapunovCoefficient([&](const Vec& w) { return keep(f(expand(w))); }, keep(y));
+}
+
+double SlowFlowProblem::omegaGuess(double p, const std::vector<Cd>& z) const {
+  const std::vector<Cd> f = slowFlowRhs(params(p), z);
+  return z[ref_] == Cd(0) ? 0.0 : (f[ref_] / z[ref_]).imag();
+}
+
+std::vector<double> SlowFlowProblem::amplitudes(const Vec& x) const {
+  std::vector<double> A;
+  for (const Cd& zi : unpack(x)) A.push_back(std::abs(zi));
+  return A;
+}
+
+std::vector<double> SlowFlowProblem::phaseDifferences(const Vec& x) const {
+  const std::vector<Cd> z = unpack(x);
+  std::vector<double> psi;
+  for (int j = 1; j < n_; ++j) {
+    double d = std::arg(z[0]) - std::arg(z[j]);
+    while (d < -0.5 * kPi) d += 2 * kPi;
+    while (d >= 1.5 * kPi) d -= 2 * kPi;
+    psi.push_back(d);
+  }
+  return psi;
+}
+
+std::string SlowFlowProblem::ticking(const Region& r) const {
+  std::string s;
+  for (size_t k = 0; k < unlocked_.size(); ++k)
+    if (r[k]) s += (s.empty() ? "" : " ") + std::to_string(unlocked_[k] + 1);
+  return s.empty() ? "none" : s;
+}
+
+std::string SlowFlowProblem::platform(const Region& r) const {
+  if (!coulomb_) return "constant";
+  return toString(modes(r).platform);
+}
+
+}  // namespace metrosync::continuation

@@ -1,0 +1,76 @@
+#include "sim/analysis/continuation/test_functions.h"
+
+#include <cmath>
+
+#include "sim/analysis/continuation/arclength.h"
+#include "sim/analysis/continuation/newton.h"
+
+namespace metrosync::continuation {
+
+namespace {
+
+// Location stops when the bracket in arclength is this narrow: near a fold p varies as h^2, so
+// the parameter is then exact to far better than the required 1e-8; elsewhere the point is on
+// the branch to ~1e-11.
+constexpr double kLocateArclength = 1e-11;
+constexpr int kMaxLocateIterations = 100;
+
+}  // namespace
+
+double foldTest(const BranchPoint& q) {
+  return q.tangent(q.tangent.size() - 1);
+}
+
+double branchTest(const ContinuationSystem& sys, const BranchPoint& q) {
+  Mat M(sys.n + 1, sys.n + 1);
+  M.topRows(sys.n) = extendedJacobian(sys, q.y, q.region);
+  M.row(sys.n) = q.tangent.transpose();
+  return M.determinant();
+}
+
+double hopfTest(const CVec& ev) {
+  std::complex<double> prod = 1.0;
+  for (int i = 0; i < ev.size(); ++i)
+    for (int j = i + 1; j < ev.size(); ++j) prod *= ev(i) + ev(j);
+  return prod.real();
+}
+
+std::optional<BranchPoint> pointAlong(const ContinuationSystem& sys, const BranchPoint& from,
+                                      double h, int* iterations) {
+  const auto c = correct(sys, from.y, from.tangent, h, from.region);
+  if (!c) return std::nullopt;
+  if (iterations) *iterations = c->iterations;
+  const Vec t = tangentAt(sys, c->y, from.tangent, from.region);
+  return makePoint(sys, c->y, t, from.region);
+}
+
+std::optional<BranchPoint> locateOnStep(const ContinuationSystem& sys, const BranchPoint& from,
+                                        double h1, double g0, double g1,
+                                        const std::function<double(const BranchPoint&)>& g,
+                                        double* h_found) {
+  double a = 0.0, b = h1, ga = g0, gb = g1;
+  std::optional<BranchPoint> best;
+  int side = 0;  // Illinois: halve the weight of an end kept twice in a row
+  for (int it = 0; it < kMaxLocateIterations && b - a > kLocateArclength; ++it) {
+    double h = (a * gb - b * ga) / (gb - ga);
+    if (!(h > a && h < b)) h = 0.5 * (a + b);
+    const auto q = pointAlong(sys, from, h);
+    if (!q) return std::nullopt;
+    const double gh = g(*q);
+    best = q;
+    if (h_found) *h_found = h;
+    if (gh == 0.0) break;
+    if ((gh > 0) == (ga > 0)) {
+      a = h, ga = gh;
+      if (side == -1) gb *= 0.5;
+      side = -1;
+    } else {
+      b = h, gb = gh;
+      if (side == 1) ga *= 0.5;
+      side = 1;
+    }
+  }
+  return best;
+}
+
+}  // namespace metrosync::continuation

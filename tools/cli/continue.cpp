@@ -1,0 +1,334 @@
+#include "tools/cli/continue.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "models/scaling.h"
+#include "sim/analysis/continuation/arclength.h"
+#include "sim/analysis/continuation/fold_curve.h"
+#include "sim/analysis/continuation/result.h"
+#include "sim/analysis/continuation/start_states.h"
+#include "tools/cli/commands.h"
+#include "tools/report/continuation_report.h"
+#include "yaml/rig_loader.h"
+
+namespace metrosync::cli {
+
+namespace {
+
+using namespace metrosync::continuation;
+using Cd = std::complex<double>;
+
+// A located fold, for --fold.
+struct FoldSeed {
+  int reference;
+  BranchPoint at;
+};
+
+ContinueOptions& options() {
+  static ContinueOptions opt;
+  return opt;
+}
+
+std::string fmt(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+// The rig with --set, then `extra` (the parameter's KEY=VALUE, named --param in messages).
+Rig loadWith(const ContinueOptions& opt, std::vector<std::string> extra) {
+  std::vector<std::string> o = opt.sets;
+  o.insert(o.end(), extra.begin(), extra.end());
+  try {
+    return opt.rig_path.empty() ? defaultRig(o) : loadRigFile(opt.rig_path, o);
+  } catch (const RigError& e) {
+    std::string what = e.what();
+    for (const auto& x : extra)
+      for (size_t at = what.find("--set " + x); at != std::string::npos;
+           at = what.find("--set " + x, at))
+        what.replace(at, 5, "--param");
+    throw RigError(what);
+  }
+}
+
+std::string rigText(const ContinueOptions& opt) {
+  if (opt.rig_path.empty()) return defaultRigYaml();
+  std::ifstream in(opt.rig_path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in) throw RigError(opt.rig_path + ": cannot read the rig file");
+  return text.str();
+}
+
+// The slow flow's inputs: equal when KEY has no effect on it.
+bool sameSlowFlow(const ScaledParams& a, const ScaledParams& b) {
+  return a.law == b.law && a.mu == b.mu && a.c == b.c && a.nu == b.nu && a.J == b.J &&
+         a.theta_c == b.theta_c && a.alpha == b.alpha && a.locked == b.locked;
+}
+
+// The rig with KEY_k = p_k, scaled; values the rig refuses give NaN parameters, so the corrector
+// fails there and the step control stays out.
+ScaledParams scaledAt(const ContinueOptions& opt, const std::vector<std::string>& keys,
+                      const std::vector<double>& values) {
+  std::vector<std::string> o;
+  for (size_t k = 0; k < keys.size(); ++k) o.push_back(keys[k] + "=" + fmt(values[k]));
+  try {
+    return computeScaled(loadWith(opt, o));
+  } catch (const std::exception&) {
+    ScaledParams bad = computeScaled(loadWith(opt, {}));
+    for (double& v : bad.nu) v = std::nan("");
+    return bad;
+  }
+}
+
+ParamsAt paramsAt(const ContinueOptions& opt) {
+  return [opt](double p) { return scaledAt(opt, {opt.param}, {p}); };
+}
+
+ParamsAt2 paramsAt2(const ContinueOptions& opt) {
+  return [opt](double p1, double p2) { return scaledAt(opt, {opt.param, opt.fold_key}, {p1, p2}); };
+}
+
+double startValue(const ContinueOptions& opt) {
+  if (opt.param == "epsilon")
+    throw UsageError(
+        "--param epsilon: epsilon has no effect on the slow flow (it only sets the "
+        "time scale of the full model); choose a key the slow flow depends on");
+  const Rig rig = loadWith(opt, {});  // the rig itself must load
+  const std::string display = opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
+  const std::optional<double> in_rig = rigNumber(rigText(opt), display, opt.sets, opt.param);
+  if (!opt.from && !in_rig)
+    throw UsageError("--param " + opt.param +
+                     ": the key is not set in the rig (its default applies); give --from VALUE");
+  const double from = opt.from ? *opt.from : *in_rig;
+  if (!std::isfinite(opt.to) || !std::isfinite(from) || opt.to == from)
+    throw UsageError("--to " + fmt(opt.to) + ": must differ from the start value " + opt.param +
+                     " = " + fmt(from));
+  const ScaledParams a = computeScaled(loadWith(opt, {opt.param + "=" + fmt(from)}));
+  const ScaledParams b = computeScaled(loadWith(opt, {opt.param + "=" + fmt(opt.to)}));
+  if (sameSlowFlow(a, b))
+    throw UsageError("--param " + opt.param + ": has no effect on the slow flow (its scaled " +
+                     "parameters are the same at " + fmt(from) + " and " + fmt(opt.to) + ")");
+  return from;
+}
+
+std::vector<double> parseList(const std::string& text) {
+  std::vector<double> v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    size_t used = 0;
+    double x = 0;
+    try {
+      x = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos)
+      throw UsageError("--start " + text + ": '" + item + "' is not a number");
+    v.push_back(x);
+  }
+  return v;
+}
+
+int largest(const std::vector<Cd>& z) {
+  int r = 0;
+  for (size_t i = 1; i < z.size(); ++i)
+    if (std::abs(z[i]) > std::abs(z[r])) r = static_cast<int>(i);
+  return r;
+}
+
+// The start state (rotated z, N x 1) and how it was found.
+std::vector<Cd> startState(const ContinueOptions& opt, const ScaledParams& sp, std::string& how) {
+  const int n = static_cast<int>(sp.nu.size());
+  if (!opt.start.empty()) {
+    const std::vector<double> v = parseList(opt.start);
+    if (static_cast<int>(v.size()) != 2 * n - 1)
+      throw UsageError("--start " + opt.start + ": expected " + std::to_string(2 * n - 1) +
+                       " numbers A_1..A_" + std::to_string(n) + ",psi_2..psi_" + std::to_string(n));
+    for (int i = 0; i < n; ++i)
+      if (!(v[i] >= 0)) throw UsageError("--start: A_" + std::to_string(i + 1) + " must be >= 0");
+    how = "--start " + opt.start;
+    return stateFrom({v.begin(), v.begin() + n}, {v.begin() + n, v.end()});
+  }
+  const SettledState st = settleFromStart(sp, sp.tau_end > 0 ? sp.tau_end : 300.0);
+  if (!st.settled)
+    throw UsageError("the rig's start does not settle to a locked state (slow flow up to tau = " +
+                     fmt(st.tau) + "): " + st.why + "; give --start A_1,..,psi_N");
+  how = "the rig's start, settled by the slow flow at tau = " + fmt(st.tau);
+  return st.z;
+}
+
+ContinuationSettings settingsFor(const ContinueOptions& opt, double from) {
+  if (opt.step < 0) throw UsageError("--step " + fmt(opt.step) + ": must be > 0");
+  if (opt.max_points < 2) throw UsageError("--max-points: must be >= 2");
+  ContinuationSettings s;
+  s.p_min = std::min(from, opt.to);
+  s.p_max = std::max(from, opt.to);
+  const double span = s.p_max - s.p_min;
+  s.step = opt.step > 0 ? opt.step : span / 100;
+  s.step_max = std::max(s.step, span / 25);
+  s.max_points = opt.max_points;
+  return s;
+}
+
+// KEY2's start (the rig's value), checked like KEY's.
+double secondStart(const ContinueOptions& opt) {
+  if (opt.fold_key == opt.param)
+    throw UsageError("--fold " + opt.fold_key + ": the same as --param");
+  ContinueOptions second = opt;
+  second.param = opt.fold_key, second.to = opt.to2, second.from.reset();
+  return startValue(second);
+}
+
+void foldCurves(const ContinueOptions& opt, double from2, const std::vector<FoldSeed>& folds,
+                ContinuationResult& result) {
+  ContinueOptions second = opt;
+  second.to = opt.to2, second.step = 0;
+  ContinuationSettings s = settingsFor(second, from2);
+  // the curve's arclength is mostly in KEY and the state (O(1)), not only KEY2's span
+  constexpr double kFoldStep = 0.005, kFoldStepMax = 0.05;
+  s.step = std::max(s.step, kFoldStep);
+  s.step_max = std::max(s.step_max, kFoldStepMax);
+  result.param2 = opt.fold_key;
+  for (const FoldSeed& f : folds) {
+    const int n = static_cast<int>(f.at.y.size()) - 1;
+    result.fold_curves.push_back(
+        continueFold(paramsAt2(opt), f.reference, f.at.y.head(n), f.at.p(), from2, f.at.region, s));
+  }
+}
+
+std::string outDir(const ContinueOptions& opt, const Rig& rig) {
+  return opt.out.empty() ? "runs/" + rig.name + "-continue" : opt.out;
+}
+
+// Whether the state (A, psi) at parameter p lies on a branch already in r (between two of its
+// consecutive points, linearly interpolated).
+bool alreadyFollowed(const ContinuationResult& r, const std::vector<double>& A,
+                     const std::vector<double>& psi, double p) {
+  constexpr double kSame = 1e-3;  // far above the interpolation error of a step, far below a gap
+  for (size_t k = 1; k < r.points.size(); ++k) {
+    const ResultPoint &a = r.points[k - 1], &b = r.points[k];
+    if (a.branch != b.branch || (a.value - p) * (b.value - p) > 0 || a.value == b.value) continue;
+    const double w = (p - a.value) / (b.value - a.value);
+    double d = 0;
+    for (size_t i = 0; i < A.size(); ++i)
+      d = std::max(d, std::abs(A[i] - (a.A[i] + w * (b.A[i] - a.A[i]))));
+    for (size_t j = 0; j < psi.size(); ++j)
+      d = std::max(
+          d, std::abs(std::remainder(psi[j] - (a.psi[j] + w * (b.psi[j] - a.psi[j])), 2 * M_PI)));
+    if (d < kSame) return true;
+  }
+  return false;
+}
+
+void record(const SlowFlowProblem& prob, const std::vector<Branch>& branches,
+            ContinuationResult& result, std::vector<FoldSeed>& folds) {
+  appendBranches(prob, branches, result);
+  for (const Branch& b : branches)
+    for (const Bifurcation& e : b.special)
+      if (e.type == BifurcationType::Fold) folds.push_back({prob.reference(), e.point});
+}
+
+void followAll(const ContinueOptions& opt, const ScaledParams& sp, double from,
+               const ContinuationSettings& settings, ContinuationResult& result,
+               std::vector<FoldSeed>& folds) {
+  int ref = 0;
+  while (ref < static_cast<int>(sp.locked.size()) && sp.locked[ref]) ++ref;
+  if (ref == static_cast<int>(sp.locked.size())) throw UsageError("every metronome is locked");
+  const SlowFlowProblem prob(paramsAt(opt), from, ref);
+  const std::vector<Vec> states = allLockedStates(prob, from);
+  if (states.empty())
+    throw UsageError("--all: Newton finds no locked state at " + opt.param + " = " + fmt(from));
+  result.start = "--all: " + std::to_string(states.size()) +
+                 " locked state(s) found by Newton from a grid of seeds";
+  for (const Vec& x : states) {
+    if (alreadyFollowed(result, prob.amplitudes(x), prob.phaseDifferences(x), from)) continue;
+    // the largest amplitude as the reference: z_r real stays regular while z_r does not vanish
+    const std::vector<Cd> z = prob.unpack(x);
+    const SlowFlowProblem mine(paramsAt(opt), from, largest(z));
+    record(mine, continueFrom(mine.system(), mine.pack(z, prob.omega(x)), from, settings), result,
+           folds);
+  }
+}
+
+void printSummary(const ContinuationResult& r, const std::string& dir) {
+  std::cout << "continue " << r.param << " from " << r.from << " to " << r.to << ": "
+            << r.branches.size() << " branch(es), " << r.points.size() << " points\n";
+  for (const auto& s : r.special)
+    std::cout << "  " << s.type << " at " << r.param << " = " << fmt(s.at.value) << " (branch "
+              << s.at.branch << "): " << s.detail << "\n";
+  std::cout << "files in " << dir << "\n";
+}
+
+}  // namespace
+
+CLI::App* addContinueCommand(CLI::App& app) {
+  ContinueOptions& opt = options();
+  CLI::App* c = app.add_subcommand(
+      "continue",
+      "follow the slow flow's locked states in one rig key: stability, folds, Hopf "
+      "points, branch points, border crossings");
+  c->add_option("RIG", opt.rig_path, "rig file (YAML); default: the built-in rig");
+  c->add_option("--set", opt.sets, "override a rig key (as in run); repeatable")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  c->add_option("--param", opt.param, "the rig key to vary, e.g. metronomes.1.alpha")->required();
+  c->add_option("--to", opt.to, "the other end of the parameter range")->required();
+  c->add_option("--from", opt.from, "the start value (default: the rig's value of KEY)");
+  c->add_option("--start", opt.start,
+                "the start state A_1,..,A_N,psi_2,..,psi_N (default: the "
+                "rig's start, integrated until it settles)");
+  c->add_option("--step", opt.step, "first arclength step (default |to - from| / 100)");
+  c->add_option("--max-points", opt.max_points, "points per direction of each branch")
+      ->capture_default_str();
+  c->add_flag("--all", opt.all, "every locked state at the start value (Newton from a grid)");
+  c->add_option("--out", opt.out, "output directory (default runs/<rig name>-continue)");
+  c->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
+  CLI::Option* fold = c->add_option("--fold", opt.fold_key,
+                                    "a second rig key: continue every fold found in KEY and KEY2 "
+                                    "(from KEY2's value in the rig) -> fold_curve.csv, .png");
+  c->add_option("--to2", opt.to2, "KEY2's other end (with --fold)")->needs(fold);
+  fold->needs("--to2");
+  c->footer(
+      "Files in --out DIR: branches.csv, bifurcations.json, branches.png, summary.json; with "
+      "--fold also fold_curve.csv, fold_curve.png (see "
+      "docs/continuation.md).\nExit codes: 0 success; 2 bad command line or rig (nothing "
+      "written); 1 anything else.");
+  return c;
+}
+
+int continueCommand() {
+  const ContinueOptions& opt = options();
+  const double from = startValue(opt);
+  const double from2 = opt.fold_key.empty() ? 0.0 : secondStart(opt);
+  const Rig rig = loadWith(opt, {opt.param + "=" + fmt(from)});
+  const ScaledParams sp = computeScaled(rig);
+  const ContinuationSettings settings = settingsFor(opt, from);
+  ContinuationResult result;
+  result.param = opt.param, result.from = from, result.to = opt.to;
+  result.metronomes = static_cast<int>(sp.nu.size());
+  result.theta_c = sp.theta_c;
+  std::vector<FoldSeed> folds;
+  if (opt.all) {
+    followAll(opt, sp, from, settings, result, folds);
+  } else {
+    const std::vector<Cd> z = startState(opt, sp, result.start);
+    const SlowFlowProblem prob(paramsAt(opt), from, largest(z));
+    const auto x = solveLocked(prob, prob.pack(z, prob.omegaGuess(from, z)), from);
+    if (!x) throw UsageError("Newton does not converge to a locked state from " + result.start);
+    record(prob, continueFrom(prob.system(), *x, from, settings), result, folds);
+  }
+  if (!opt.fold_key.empty()) foldCurves(opt, from2, folds, result);
+  const OutputDir dir(outDir(opt, rig));
+  writeContinuation(dir, result, rig.name);
+  if (!opt.quiet) printSummary(result, dir.path());
+  return kSuccess;
+}
+
+}  // namespace metrosync::cli

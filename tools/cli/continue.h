@@ -1,0 +1,36 @@
+// `metrosync continue` (issue 12): the slow flow's locked states followed in one rig key, with
+// their stability and bifurcations (sim/analysis/continuation/, files tools/report/
+// continuation_report.h).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace metrosync::cli {
+
+struct ContinueOptions {
+  std::string rig_path;           // empty: the built-in default rig
+  std::vector<std::string> sets;  // --set KEY=VALUE, in order
+  std::string param;              // --param KEY
+  double to = 0.0;                // --to VALUE
+  std::optional<double> from;     // --from VALUE; default: the rig's value of KEY
+  std::string start;              // --start A_1,..,A_N,psi_2,..,psi_N
+  double step = 0.0;              // --step H (arclength); 0: |to - from| / 100
+  int max_points = 500;           // per direction of each branch
+  bool all = false;               // --all: every locked state at the start value
+  std::string out;                // --out DIR; empty: runs/<rig name>-continue
+  bool quiet = false;
+  std::string fold_key;  // --fold KEY2: continue each fold in KEY and KEY2
+  double to2 = 0.0;      // --to2 VALUE: KEY2's other end (it starts at the rig's value)
+};
+
+// Adds the `continue` subcommand; its options land in a static ContinueOptions.
+CLI::App* addContinueCommand(CLI::App& app);
+
+// The exit code (SPEC 5); bad input throws RigError or UsageError (exit 2) before anything is
+// written.
+int continueCommand();
+
+}  // namespace metrosync::cli

@@ -1,0 +1,38 @@
+// The files of `metrosync continue` (issue 12), written atomically into the output directory:
+//   branches.csv       branch,KEY,A_1..A_N,psi_2..psi_N,stable,max_real,ticking,platform,s
+//                      (one row per point, in order along each branch; stable 1/0; max_real the
+//                      largest real part of the eigenvalues; ticking the metronomes whose
+//                      escapement is on; platform beta's regime: stuck s <= 1, stick-slip
+//                      1 < s <= sqrt(1 + pi^2/4), slip above; s = |Z| / mu)
+//   bifurcations.json  a list of {type: fold|hopf|branch|border, param, value, A, psi,
+//                      eigenvalues [[re, im]...], detail, branch, stability_changes, lyapunov
+//                      (hopf)}
+//   branches.png       the diagram: A_i (top) and psi_j (bottom) against KEY, stable solid,
+//                      unstable dashed, special points marked
+//   summary.json       the command, the start, the branches (points, why each end stopped), the
+//                      special points counted by type; with --fold param2 and fold_curves
+//   fold_curve.csv     (--fold) fold,KEY,KEY2,A_1..A_N,psi_2..psi_N: each fold's curve
+//   fold_curve.png     (--fold) the curves in the (KEY, KEY2) plane
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "sim/analysis/continuation/result.h"
+#include "tools/report/outputs.h"
+
+namespace metrosync {
+
+std::string branchesCsv(const continuation::ContinuationResult& r);
+std::string foldCurveCsv(const continuation::ContinuationResult& r);
+nlohmann::json bifurcationsJson(const continuation::ContinuationResult& r);
+nlohmann::json continuationSummaryJson(const continuation::ContinuationResult& r,
+                                       const std::string& rig_name);
+
+// Writes the four files; returns their names (branches.png missing when gnuplot is absent).
+std::vector<std::string> writeContinuation(const OutputDir& dir,
+                                           const continuation::ContinuationResult& r,
+                                           const std::string& rig_name);
+
+}  // namespace metrosync
