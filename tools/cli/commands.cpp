@@ -13,6 +13,7 @@
 #include "sim/analysis/compare.h"
 #include "sim/analysis/regime.h"
 #include "tools/cli/engines.h"
+#include "tools/report/comparison_csv.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
 #include "tools/report/scale_report.h"
