@@ -103,16 +103,24 @@ CLI::App* addValidateCommand(CLI::App& app, ValidateOptions& opt) {
   return cmd;
 }
 
-int validateCommand(const ValidateOptions& opt) {
-  const std::string rigs_dir = findRigsDir(opt.rigs);
-  // the full model's engine at its default integrator: the runs are rebuilt from the scaled
-  // parameters (rigAtEpsilon), so the rigs' own simulation keys do not reach it
-  const Engine* engine = nullptr;
+namespace {
+
+// The full model's engine at its default integrator: the runs are rebuilt from the scaled
+// parameters (rigAtEpsilon), so the rigs' own simulation keys do not reach it.
+const Engine& validationEngine(const std::string& requested) {
+  const Engine* e = findEngine(requested);
+  if (e && e->model() != "full")
+    throw UsageError("--engine " + requested + ": validate runs the full model against the slow " +
+                     "flow; the full model's engines: " + engineNames("full"));
   try {
-    engine = &selectEngine(opt.engine, "full", "");
+    return selectEngine(requested, "full", "");
   } catch (const EngineSelectionError& e) {
     throw UsageError(std::string("validate: ") + e.what());
   }
+}
+
+// The shipped scenarios' scaled parameters; a bad rig throws RigError naming its file.
+std::vector<Scenario> loadScenarios(const std::string& rigs_dir) {
   std::vector<Scenario> scenarios;
   for (const auto& spec : shippedScenarios()) {
     const Rig rig = loadRigFile((fs::path(rigs_dir) / spec.file).string());
@@ -125,6 +133,15 @@ int validateCommand(const ValidateOptions& opt) {
     }
     scenarios.push_back(sc);
   }
+  return scenarios;
+}
+
+}  // namespace
+
+int validateCommand(const ValidateOptions& opt) {
+  const std::string rigs_dir = findRigsDir(opt.rigs);
+  const Engine* engine = &validationEngine(opt.engine);
+  const std::vector<Scenario> scenarios = loadScenarios(rigs_dir);
   // the directory only now that every rig is good (SPEC 5: a bad rig writes nothing)
   std::unique_ptr<OutputDir> dir;
   try {
