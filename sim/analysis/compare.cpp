@@ -80,17 +80,23 @@ ComparisonResult joinEnvelopes(
   return r;
 }
 
-ComparisonResult compareEnvelopes(const std::vector<EnvelopeRow>& full,
-                                  const std::vector<EnvelopeRow>& slow, double epsilon) {
+int metronomesOf(const std::vector<EnvelopeRow>& full, const std::vector<EnvelopeRow>& slow) {
   const EnvelopeRow* first = !full.empty()   ? &full.front()
                              : !slow.empty() ? &slow.front()
                                              : nullptr;
   if (!first) throw std::invalid_argument("compareEnvelopes: no rows to compare");
-  size_t i = 0, k = 0;
-  return joinEnvelopes(
-      static_cast<int>(first->A.size()),
-      [&](EnvelopeRow& r) { return i < full.size() ? (r = full[i++], true) : false; },
-      [&](EnvelopeRow& r) { return k < slow.size() ? (r = slow[k++], true) : false; }, epsilon);
+  return static_cast<int>(first->A.size());
+}
+
+RowSource rowSource(const std::vector<EnvelopeRow>& rows) {
+  return [&rows, i = size_t{0}](EnvelopeRow& r) mutable {
+    return i < rows.size() ? (r = rows[i++], true) : false;
+  };
+}
+
+ComparisonResult compareEnvelopes(const std::vector<EnvelopeRow>& full,
+                                  const std::vector<EnvelopeRow>& slow, double epsilon) {
+  return joinEnvelopes(metronomesOf(full, slow), rowSource(full), rowSource(slow), epsilon);
 }
 
 }  // namespace metrosync

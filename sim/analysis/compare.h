@@ -51,6 +51,12 @@ ComparisonResult joinEnvelopes(
     int n, const RowSource& next_full, const RowSource& next_slow, double epsilon,
     const std::function<void(const EnvelopeRow&, const EnvelopeRow&)>& on_pair = {});
 
+// The number of metronomes of two row vectors (from the first row of either); throws
+// std::invalid_argument when both are empty.
+int metronomesOf(const std::vector<EnvelopeRow>& full, const std::vector<EnvelopeRow>& slow);
+// The rows of a vector, in order (the vector must outlive the source).
+RowSource rowSource(const std::vector<EnvelopeRow>& rows);
+
 // The same over two row vectors (n from the first row of either).
 ComparisonResult compareEnvelopes(const std::vector<EnvelopeRow>& full,
                                   const std::vector<EnvelopeRow>& slow, double epsilon);

@@ -98,16 +98,7 @@ bool EnvelopeCsvReader::next(EnvelopeRow& row) {
 ComparisonResult writeComparisonCsv(const std::vector<EnvelopeRow>& full,
                                     const std::vector<EnvelopeRow>& slow, double epsilon,
                                     const std::string& out_csv) {
-  const EnvelopeRow* first = !full.empty()   ? &full.front()
-                             : !slow.empty() ? &slow.front()
-                                             : nullptr;
-  if (!first) throw std::invalid_argument("compareEnvelopes: no rows to compare");
-  size_t i = 0, k = 0;
-  return joinAndWrite(
-      static_cast<int>(first->A.size()),
-      [&](EnvelopeRow& r) { return i < full.size() ? (r = full[i++], true) : false; },
-      [&](EnvelopeRow& r) { return k < slow.size() ? (r = slow[k++], true) : false; }, epsilon,
-      out_csv);
+  return joinAndWrite(metronomesOf(full, slow), rowSource(full), rowSource(slow), epsilon, out_csv);
 }
 
 ComparisonResult compareEnvelopeFiles(const std::string& full_csv, const std::string& slow_csv,
