@@ -6,26 +6,17 @@
 #include <iostream>
 #include <string>
 
-#include "tools/report/outputs.h"
-#include "sim/engines/simbody/simbody_engine.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/continue.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/sweep.h"
 #include "tools/cli/validate.h"
+#include "tools/report/outputs.h"
 #include "yaml/rig_loader.h"
 
 namespace {
 
 using metrosync::cli::Options;
-
-std::string integratorList() {
-  return metrosync::cli::integratorHelp();
-}
-
-const char* kEngineHelp =
-    "engine of the full model: direct (minimal coordinates; the default) or simbody (the "
-    "default when simulation.integrator names a Simbody integrator)";
 
 // RIG, --set, --out, --quiet: shared by run and compare (scale has no --out).
 void addRigOptions(CLI::App* cmd, Options& opt, bool with_out) {
@@ -76,14 +67,14 @@ int main(int argc, char** argv) {
   addRigOptions(run, opt, true);
   run->add_option("--model", opt.model,
                   "full: the governing equations, integrated exactly (stick-slip and escapement "
-                  "events); slow: the slow flow")
-      ->check(CLI::IsMember({"full", "slow"}))
-      ->capture_default_str();
-  run->add_option("--engine", opt.engine, kEngineHelp)->check(CLI::IsMember({"simbody", "direct"}));
+                  "events); slow: the slow flow (default: the --engine's model, else full)")
+      ->check(CLI::IsMember({"full", "slow"}));
+  // the registry checks --engine (and its model) with the rig, so that the message can say why
+  run->add_option("--engine", opt.engine, metrosync::cli::anyEngineHelp());
   run->footer(
       "Integrators of the full model (rig key simulation.integrator, e.g. --set "
       "simulation.integrator=verner76): " +
-      integratorList() +
+      metrosync::integratorHelp() +
       ". Accuracy: simulation.accuracy (relative local error target, default 1e-8).\n"
       "Files in --out DIR: trajectory.csv (full model), envelope.csv, envelope.png, "
       "summary.json.\n" +
@@ -92,8 +83,7 @@ int main(int argc, char** argv) {
   CLI::App* compare = app.add_subcommand(
       "compare", "run the full model and the slow flow on one rig and compare their envelopes");
   addRigOptions(compare, opt, true);
-  compare->add_option("--engine", opt.engine, kEngineHelp)
-      ->check(CLI::IsMember({"simbody", "direct"}));
+  compare->add_option("--engine", opt.engine, metrosync::cli::fullEngineHelp());
   compare->footer(
       "Files in --out DIR: trajectory.csv, envelope_full.csv, envelope_slow.csv, comparison.csv "
       "(tau, A_i full/slow, psi_j full/slow), comparison.png, summary.json (top-level keys: the "

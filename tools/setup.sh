@@ -3,6 +3,8 @@
 # then either runs the default rig (`run`, the main job, with its plots) or every test (`test`).
 #   bash tools/setup.sh run   [extra metrosync run arguments]
 #   bash tools/setup.sh test
+#   bash tools/setup.sh sanitize   (CI's second stage, .ci/run: the `fast` tests under
+#                                   AddressSanitizer + UndefinedBehaviorSanitizer in build-asan)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -25,6 +27,18 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
+
+# The sanitizer stage: its own build directory (every object differs), only the fast tests'
+# executables built, every ODR violation and leak reported, the first UB finding fatal.
+if [ "$mode" = sanitize ]; then
+  fast_tests=(test_contact test_models test_sim test_yaml test_layout)
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DMETROSYNC_SANITIZE=ON >/dev/null
+  cmake --build build-asan -j"$jobs" --target "${fast_tests[@]}"
+  ASAN_OPTIONS=detect_odr_violation=2:detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+    ctest --test-dir build-asan -L fast --output-on-failure -j"$jobs" --timeout 900
+  exit $?
+fi
+
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j"$jobs"
 
@@ -36,7 +50,7 @@ case "$mode" in
     ctest --test-dir build --output-on-failure -j"$jobs" --timeout 900
     ;;
   *)
-    echo "usage: bash tools/setup.sh run|test" >&2
+    echo "usage: bash tools/setup.sh run|test|sanitize" >&2
     exit 2
     ;;
 esac

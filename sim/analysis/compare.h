@@ -1,14 +1,13 @@
-// The full model against the slow flow (SPEC section 3, comparison.csv): both emit envelope rows
-// on the grid tau_k = envelopeTau(eps, k), so rows are matched by their grid index k. Amplitudes
-// are compared directly; phase differences modulo 2 pi (the difference wrapped to (-pi, pi]),
-// because after a long drift the two unwrapped psi_j may sit on branches a multiple of 2 pi
-// apart. comparison.csv keeps each model's psi_j as it wrote it. Rows off the grid -- the start's
-// row at tau = 0 and the final row at tau_end (docs/outputs.md) -- are not compared.
+// The full model against the slow flow (SPEC section 3): both emit envelope rows on the grid
+// tau_k = envelopeTau(eps, k), so rows are matched by their grid index k. Amplitudes are compared
+// directly; phase differences modulo 2 pi (the difference wrapped to (-pi, pi]), because after a
+// long drift the two unwrapped psi_j may sit on branches a multiple of 2 pi apart. The values
+// only: comparison.csv, the reading of envelope CSV files and the summary's JSON are
+// tools/report/comparison_csv.h. Rows off the grid -- the start's row at tau = 0 and the final
+// row at tau_end (docs/outputs.md) -- are not compared.
 #pragma once
 
-#include <cstdio>
-#include <fstream>
-#include <nlohmann/json.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -31,10 +30,8 @@ struct ComparisonResult {
 class EnvelopeComparator {
  public:
   explicit EnvelopeComparator(int n);
-  // tau,A_1_full,A_1_slow,...,A_N_full,A_N_slow,psi_2_full,psi_2_slow,...,psi_N_full,psi_N_slow
-  std::string header() const;
-  // Adds one pair (same tau) and returns its comparison.csv line (no newline).
-  std::string add(const EnvelopeRow& full, const EnvelopeRow& slow);
+  // Adds one pair (same tau). Throws std::invalid_argument for rows of the wrong width.
+  void add(const EnvelopeRow& full, const EnvelopeRow& slow);
   ComparisonResult& result() { return result_; }
   const ComparisonResult& result() const { return result_; }
 
@@ -45,33 +42,24 @@ class EnvelopeComparator {
 // Index k of a row on the grid tau_k = envelopeTau(epsilon, k).
 long envelopeIndex(double epsilon, double tau);
 
-// Reads an envelope.csv one row at a time (readEnvelopeCsv holds the whole file).
-class EnvelopeCsvReader {
- public:
-  explicit EnvelopeCsvReader(const std::string& path);  // throws std::runtime_error
-  int n() const { return n_; }
-  // false at the end of the file; throws std::runtime_error on a malformed line
-  bool next(EnvelopeRow& row);
+// A stream of rows: fills the row and returns true, or returns false at the end.
+using RowSource = std::function<bool(EnvelopeRow&)>;
 
- private:
-  std::string path_;
-  std::ifstream in_;
-  EnvelopeLayout layout_;
-  int n_ = 0;
-  long lineno_ = 1;
-};
+// Merge-joins two row streams of n metronomes on the grid index: every matched pair goes to the
+// comparator and then to `on_pair` (may be empty; a writer's hook); rows without a partner (a run
+// that stopped early) are counted.
+ComparisonResult joinEnvelopes(
+    int n, const RowSource& next_full, const RowSource& next_slow, double epsilon,
+    const std::function<void(const EnvelopeRow&, const EnvelopeRow&)>& on_pair = {});
 
-// Joins the two row streams on the grid index and writes comparison.csv to `out_csv` atomically.
-// Rows without a partner (a run that stopped early) are counted, not written.
+// The number of metronomes of two row vectors (from the first row of either); throws
+// std::invalid_argument when both are empty.
+int metronomesOf(const std::vector<EnvelopeRow>& full, const std::vector<EnvelopeRow>& slow);
+// The rows of a vector, in order (the vector must outlive the source).
+RowSource rowSource(const std::vector<EnvelopeRow>& rows);
+
+// The same over two row vectors (n from the first row of either).
 ComparisonResult compareEnvelopes(const std::vector<EnvelopeRow>& full,
-                                  const std::vector<EnvelopeRow>& slow, double epsilon,
-                                  const std::string& out_csv);
-// The same from two envelope CSV files, streaming.
-ComparisonResult compareEnvelopeFiles(const std::string& full_csv, const std::string& slow_csv,
-                                      double epsilon, const std::string& out_csv);
-
-// {max_abs_dA[], max_abs_dpsi[], tau_max_dA[], tau_max_dpsi[], rows, unmatched_full,
-// unmatched_slow}; a maximum over no row is null.
-nlohmann::json comparisonJson(const ComparisonResult& r);
+                                  const std::vector<EnvelopeRow>& slow, double epsilon);
 
 }  // namespace metrosync

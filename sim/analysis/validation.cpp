@@ -607,7 +607,7 @@ ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Sc
     for (size_t k = 0; k < plan.sweep_mu.size(); ++k) {
       tasks.push_back({b.tau_end / b.epsilon, [&res, &plan, &engines, &runLine, scp = &sc, k] {
                          const Scenario& sc2 = *scp;
-                         SweepPoint& pt = res.sweep[k];
+                         FrictionSweepPoint& pt = res.sweep[k];
                          ScaledParams q = sc2.scaled;
                          q.mu = plan.sweep_mu[k];
                          pt.mu = q.mu;

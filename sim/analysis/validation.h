@@ -67,7 +67,7 @@ Rig rigAtEpsilon(const ScaledParams& p, const std::string& name, double epsilon,
 // ---- engines ------------------------------------------------------------------------------------
 
 struct ValidationEngines {
-  std::function<RunReport(const Rig&, RunSink&)> full_model;        // runFullModel
+  std::function<RunReport(const Rig&, RunSink&)> full_model;        // an Engine's run
   std::function<DrivenCoulombMeasurement(double s)> coulomb_probe;  // measureDrivenCoulomb
 };
 
@@ -191,7 +191,9 @@ struct RegimeComparison {  // part 4
   std::vector<bool> mirror_agree;
 };
 
-struct SweepPoint {  // part 5
+// One friction value of part 5 (both models at mu): not the sweep command's point
+// (sim/analysis/sweep.h SweepPoint), which is one cell of a regime map.
+struct FrictionSweepPoint {  // part 5
   double mu = 0.0, mu_bar = 0.0;
   ModelRun slow, full;
 };
@@ -204,7 +206,7 @@ struct ValidationResults {
   std::vector<RegimeComparison> regimes;
   std::string sweep_scenario;
   double sweep_epsilon = 0.0, sweep_tau = 0.0, sweep_psi0 = 0.0;  // of the sweep's base rig
-  std::vector<SweepPoint> sweep;
+  std::vector<FrictionSweepPoint> sweep;
   double wall_seconds = 0.0;
 
   int failedChecks() const;    // betas, paper regimes, convergence orders

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "sim/analysis/compare.h"
+#include "tools/report/comparison_csv.h"
 #include "tools/report/outputs.h"
 
 namespace metrosync {
@@ -46,7 +47,7 @@ TEST(Compare, MaxDifferencesAndWhereTheyOccur) {
   const auto slow = rows(0, 400, 0.0, 0.0, 0.0);
   const auto full = rows(0, 400, 0.02, -0.01, 0.04);
   const std::string dir = freshDir("max");
-  const ComparisonResult r = compareEnvelopes(full, slow, kEps, dir + "/comparison.csv");
+  const ComparisonResult r = writeComparisonCsv(full, slow, kEps, dir + "/comparison.csv");
   ASSERT_EQ(r.max_abs_dA.size(), 2u);
   ASSERT_EQ(r.max_abs_dpsi.size(), 1u);
   // |0.02 sin(tau)| at its largest on the grid
@@ -59,20 +60,25 @@ TEST(Compare, MaxDifferencesAndWhereTheyOccur) {
   EXPECT_NEAR(r.max_abs_dpsi[0], 0.04, 1e-9);
   EXPECT_EQ(r.rows, 400);
   EXPECT_EQ(r.unmatched_full + r.unmatched_slow, 0);
+  // the analysis without the file (sim/analysis) gives the writer's numbers (tools/report)
+  const ComparisonResult values = compareEnvelopes(full, slow, kEps);
+  EXPECT_EQ(values.max_abs_dA, r.max_abs_dA);
+  EXPECT_EQ(values.tau_max_dpsi, r.tau_max_dpsi);
+  EXPECT_EQ(values.rows, r.rows);
 }
 
 TEST(Compare, PhasesAreComparedModuloTwoPi) {
   // the full model's psi sits three turns away (a long drift) and 0.05 rad ahead
   const auto slow = rows(0, 100, 0, 0, 0.0);
   const auto full = rows(0, 100, 0, 0, 6 * kPi + 0.05);
-  ComparisonResult r = compareEnvelopes(full, slow, kEps, freshDir("wrap") + "/c.csv");
+  ComparisonResult r = compareEnvelopes(full, slow, kEps);
   EXPECT_NEAR(r.max_abs_dpsi[0], 0.05, 1e-9);
   // differences just short of +-pi on either side of the branch cut are near pi, not 2 pi
   const auto across = rows(0, 100, 0, 0, -(2 * kPi - 0.1));
-  r = compareEnvelopes(across, slow, kEps, freshDir("wrap2") + "/c.csv");
+  r = compareEnvelopes(across, slow, kEps);
   EXPECT_NEAR(r.max_abs_dpsi[0], 0.1, 1e-9);
   const auto half = rows(0, 100, 0, 0, kPi - 0.01);
-  r = compareEnvelopes(half, slow, kEps, freshDir("wrap3") + "/c.csv");
+  r = compareEnvelopes(half, slow, kEps);
   EXPECT_NEAR(r.max_abs_dpsi[0], kPi - 0.01, 1e-9);
 }
 
@@ -80,7 +86,7 @@ TEST(Compare, CsvHasTheSpecColumnsAndOneLinePerMatchedRow) {
   const auto slow = rows(0, 50, 0, 0, 0);
   const auto full = rows(0, 50, 0.1, 0.2, 0.3);
   const std::string path = freshDir("csv") + "/comparison.csv";
-  compareEnvelopes(full, slow, kEps, path);
+  writeComparisonCsv(full, slow, kEps, path);
   const auto lines = readLines(path);
   ASSERT_EQ(lines.size(), 51u);
   EXPECT_EQ(lines[0], "tau,A_1_full,A_1_slow,A_2_full,A_2_slow,psi_2_full,psi_2_slow");
@@ -106,7 +112,7 @@ TEST(Compare, RowsAreMatchedOnTheGridIndex) {
   full.insert(full.end(), rest.begin(), rest.end());
   const auto slow = rows(0, 100, 0, 0, 0);
   const std::string path = freshDir("grid") + "/comparison.csv";
-  const ComparisonResult r = compareEnvelopes(full, slow, kEps, path);
+  const ComparisonResult r = writeComparisonCsv(full, slow, kEps, path);
   EXPECT_EQ(r.rows, 55);
   EXPECT_EQ(r.unmatched_slow, 45);
   EXPECT_EQ(r.unmatched_full, 0);
@@ -131,7 +137,7 @@ TEST(Compare, FromFilesEqualsInMemory) {
     out << envelopeHeader(2) << "\n";
     for (const auto& r : *rs) out << formatEnvelopeRow(r) << "\n";
   }
-  const ComparisonResult a = compareEnvelopes(full, slow, kEps, dir + "/a.csv");
+  const ComparisonResult a = writeComparisonCsv(full, slow, kEps, dir + "/a.csv");
   const ComparisonResult b = compareEnvelopeFiles(dir + "/envelope_full.csv",
                                                   dir + "/envelope_slow.csv", kEps, dir + "/b.csv");
   EXPECT_EQ(a.rows, 297);
@@ -148,7 +154,7 @@ TEST(Compare, FromFilesEqualsInMemory) {
 TEST(Compare, NothingMatchedGivesNullMaxima) {
   const std::string dir = freshDir("none");
   const ComparisonResult r =
-      compareEnvelopes(rows(0, 5, 0, 0, 0), rows(10, 15, 0, 0, 0), kEps, dir + "/c.csv");
+      writeComparisonCsv(rows(0, 5, 0, 0, 0), rows(10, 15, 0, 0, 0), kEps, dir + "/c.csv");
   EXPECT_EQ(r.rows, 0);
   const nlohmann::json j = comparisonJson(r);
   EXPECT_TRUE(j["max_abs_dA"][0].is_null());

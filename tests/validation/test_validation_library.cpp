@@ -1,7 +1,7 @@
-// The validation library's own pieces (sim/analysis/validation.h, tools/report/validation_report.h) on inputs whose
-// answers are known by construction: the order fit, the envelope distance and error, the rig at
-// another epsilon, the agreement rule, the regime sequence, and the report (its numbers are the
-// results' numbers).
+// The validation library's own pieces (sim/analysis/validation.h, tools/report/validation_report.h)
+// on inputs whose answers are known by construction: the order fit, the envelope distance and
+// error, the rig at another epsilon, the agreement rule, the regime sequence, and the report (its
+// numbers are the results' numbers).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -133,9 +133,9 @@ TEST(ValidationLibrary, ExchangingIdenticalMetronomesIsASymmetry) {
 }
 
 TEST(ValidationLibrary, RegimeSequenceCollapsesAndMarksUncoupledStates) {
-  std::vector<SweepPoint> sweep;
+  std::vector<FrictionSweepPoint> sweep;
   auto add = [&](double mu, Regime g, const std::string& platform) {
-    SweepPoint p;
+    FrictionSweepPoint p;
     p.mu = mu;
     p.slow = judged(g, {2, 2}, {0}, platform);
     p.full = p.slow;
@@ -181,8 +181,12 @@ TEST(ValidationLibrary, ReportTablesCarryTheResultsNumbers) {
   c.pass = true;
   r.convergence.push_back(c);
   r.wall_seconds = 42;
-  ReportContext ctx{"metrosync validate --quick --out X", "yaml/rigs", "2000-01-01 00:00 UTC"};
+  ReportContext ctx{"metrosync validate --quick --out X", "yaml/rigs", "2000-01-01 00:00 UTC",
+                    "direct"};
   const std::string md = validationReportMarkdown(r, ctx, {"convergence.png"});
+  // the report says which engine ran the full model (validate's --engine)
+  EXPECT_NE(md.find("The full model is the direct engine"), std::string::npos);
+  EXPECT_EQ(validationJson(r, ctx)["engine"], "direct");
   EXPECT_NE(md.find("`metrosync validate --quick --out X`"), std::string::npos);
   EXPECT_NE(md.find("1.2345"), std::string::npos);
   EXPECT_NE(md.find("0.012345678900"), std::string::npos);

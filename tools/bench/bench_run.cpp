@@ -12,8 +12,7 @@
 #include <stdexcept>
 
 #include "sim/analysis/regime.h"
-#include "sim/engines/direct/direct_engine.h"
-#include "sim/engines/simbody/simbody_engine.h"
+#include "sim/engines/engine.h"
 #include "tools/bench/odeint_peer.h"
 #include "tools/bench/siconos_peer.h"
 #include "yaml/rig_loader.h"
@@ -103,15 +102,15 @@ std::string Method::setting() const {
 }
 
 bool engineAvailable(const std::string& engine) {
-  if (engine == "simbody" || engine == "direct") return true;
+  const Engine* e = findEngine(engine);
+  if (e) return e->model() == "full";  // the bench times the full model's engines
   if (engine == "siconos") return siconosAvailable();
   if (engine == "odeint") return odeintAvailable();
   return false;
 }
 
 std::vector<std::string> integratorsOf(const std::string& engine) {
-  if (engine == "simbody") return simbodyIntegratorNames();
-  if (engine == "direct") return directIntegratorNames();
+  if (const Engine* e = findEngine(engine)) return e->integrators();
   if (engine == "siconos") return {"moreau-jean"};
   if (engine == "odeint") return odeintIntegratorNames();
   return {};
@@ -153,10 +152,8 @@ RunResult runOnce(const Scene& scene, const Method& method, double budget_s) {
   const double cpu0 = cpuSeconds();
   const auto wall0 = std::chrono::steady_clock::now();
   try {
-    if (method.engine == "simbody") {
-      rep = runFullModel(rig, sink);
-    } else if (method.engine == "direct") {
-      rep = runDirectModel(rig, sink);
+    if (const Engine* e = findEngine(method.engine)) {
+      rep = e->run(rig, sink);
     } else if (method.engine == "siconos") {
       const std::string why = siconosUnsupported(rig);
       if (!why.empty()) throw std::invalid_argument("siconos peer: " + why);

@@ -34,7 +34,23 @@ struct Common {
   double max_wait_s = 3600;
   std::string out = "docs/bench";
   bool quiet = false;
+  std::string engine;  // --engine: only this engine's methods ("" = every engine's)
 };
+
+// The methods of `c.engine` only (all of them when it is empty); none left is an error.
+std::vector<mb::Method> ofEngine(std::vector<mb::Method> methods, const Common& c) {
+  if (c.engine.empty()) return methods;
+  if (!mb::engineAvailable(c.engine))
+    throw std::invalid_argument("--engine " + c.engine +
+                                ": not a full-model engine of this build (direct, simbody" +
+                                (mb::siconosAvailable() ? ", siconos)" : ")"));
+  methods.erase(std::remove_if(methods.begin(), methods.end(),
+                               [&](const mb::Method& m) { return m.engine != c.engine; }),
+                methods.end());
+  if (methods.empty())
+    throw std::invalid_argument("--engine " + c.engine + ": none of --methods is of that engine");
+  return methods;
+}
 
 // Waits (up to max_wait_s) until the 1-minute load average is below max_load; returns the load
 // seen last.
@@ -167,6 +183,7 @@ int precision(const PrecisionOptions& o, const Common& c) {
   } else {
     for (const auto& s : splitList(o.methods)) methods.push_back(mb::parseMethod(s));
   }
+  methods = ofEngine(std::move(methods), c);
   const std::vector<double> accuracies = parseList(o.accuracies);
   const std::vector<double> simbody_accuracies =
       o.simbody_accuracies.empty() ? accuracies : parseList(o.simbody_accuracies);
@@ -320,6 +337,7 @@ metrosync::Rig nRig(int n, const NScaleOptions& o) {
 int nscale(const NScaleOptions& o, const Common& c) {
   std::vector<mb::Method> methods;
   for (const auto& s : splitList(o.methods)) methods.push_back(mb::parseMethod(s));
+  methods = ofEngine(std::move(methods), c);
   std::filesystem::create_directories(c.out);
   std::vector<mb::Record> recs;
   std::vector<bool> stopped(methods.size(), false);
@@ -348,6 +366,8 @@ int nscale(const NScaleOptions& o, const Common& c) {
 }
 
 void addCommon(CLI::App* cmd, Common& c) {
+  cmd->add_option("--engine", c.engine,
+                  "time only this engine's methods (direct, simbody, siconos when built in)");
   cmd->add_option("--repeat", c.repeat, "timed runs per point (median)")->capture_default_str();
   cmd->add_option("--budget", c.budget_s,
                   "seconds a run may take; longer runs are stopped and the tighter settings of "

@@ -11,15 +11,13 @@
 #include <sstream>
 
 #include "models/scaling.h"
-#include "sim/engines/slow_flow/slow_flow_engine.h"
 #include "sim/analysis/compare.h"
+#include "sim/analysis/regime.h"
+#include "tools/cli/engines.h"
+#include "tools/report/comparison_csv.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
-#include "sim/analysis/regime.h"
 #include "tools/report/scale_report.h"
-#include "sim/engines/direct/direct_engine.h"
-#include "sim/engines/simbody/simbody_engine.h"
-#include "tools/cli/engines.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
@@ -59,20 +57,21 @@ struct LoadedRig {
   Rig rig;
   ScaledParams scaled;
   nlohmann::json scaled_json;
-  std::string engine;  // of the full model (tools/cli/engines.h)
+  const Engine* engine = nullptr;  // run: the one that runs; compare: the full model's
 };
 
-LoadedRig loadAndCheck(const Options& opt) {
+// `model`: run's --model ("" = the engine's own), "full" for compare, "" for scale.
+LoadedRig loadAndCheck(const Options& opt, const std::string& model) {
   LoadedRig r;
   LoadOptions lo;  // issue 17: the output limit and the integrator's name, located in the rig
   lo.max_output_bytes = opt.max_output;
-  lo.integrators = directIntegratorNames();
-  for (const auto& n : simbodyIntegratorNames()) lo.integrators.push_back(n);
+  for (const Engine* e : engines())
+    for (const std::string& n : e->integrators()) lo.integrators.push_back(n);
   lo.integrator_help = "one of: " + integratorHelp();
   r.rig = opt.rig_path.empty() ? defaultRig(opt.sets, lo) : loadRigFile(opt.rig_path, opt.sets, lo);
 
   // the integrator is the engine's business, so the loader leaves its name to us
-  r.engine = chooseEngine(opt.engine, r.rig, rigDisplayName(opt));
+  r.engine = &chooseEngine(opt.engine, model, r.rig, rigDisplayName(opt));
 
   try {
     r.scaled = computeScaled(r.rig);
@@ -107,15 +106,14 @@ RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::stri
   return o;
 }
 
-// Runs one model into `sink`. An engine that lets an interruption (or a SimulationFailure) through
+// Runs `engine` into `sink`. An engine that lets an interruption (or a SimulationFailure) through
 // still gives a report: incomplete, with what the sink saw.
-RunReport runModel(const std::string& model, const Options& opt, const LoadedRig& r,
-                   FileSink& sink) {
+RunReport runModel(const Engine& engine, const LoadedRig& r, FileSink& sink) {
   const Clock::time_point t0 = Clock::now();
   auto incomplete = [&](double t, const std::string& why) {
     RunReport rep;
-    rep.model = model;
-    rep.engine = model == "full" ? r.engine : "slowflow";
+    rep.model = engine.model();
+    rep.engine = engine.name();
     rep.complete = false;
     rep.failure = "stopped at t = " + fmt(t, "%.6g") +
                   (r.rig.units == Units::Physical ? " s" : "") + ": " + why;
@@ -123,13 +121,7 @@ RunReport runModel(const std::string& model, const Options& opt, const LoadedRig
     return rep;
   };
   try {
-    if (model == "full") return runFullModelOn(r.engine, r.rig, sink);
-    SlowFlowOptions so;
-    so.tau_end = r.scaled.tau_end;
-    // simulation.accuracy is the relative local error target of whichever integrator runs
-    so.rtol = r.rig.sim.accuracy;
-    so.atol = 1e-2 * r.rig.sim.accuracy;
-    return runSlowFlow(r.scaled, so, sink);
+    return engine.run(r.rig, sink);
   } catch (const RunInterrupted& e) {
     return incomplete(e.t, e.what());
   } catch (const SimulationFailure& f) {
@@ -191,11 +183,6 @@ extern "C" void onStopSignal(int) {
 
 }  // namespace
 
-const std::vector<std::string>& availableEngines() {
-  static const std::vector<std::string> engines = {"direct", "simbody"};
-  return engines;
-}
-
 void installStopHandlers() {
   struct sigaction sa {};
   sa.sa_handler = onStopSignal;
@@ -206,21 +193,20 @@ void installStopHandlers() {
 }
 
 int runCommand(const Options& opt) {
-  if (opt.model != "full" && opt.model != "slow")
-    throw UsageError("--model " + opt.model + ": must be full or slow");
-  LoadedRig r = loadAndCheck(opt);
+  LoadedRig r = loadAndCheck(opt, opt.model);
+  const std::string model = r.engine->model();
   installStopHandlers();  // before any file exists, so that no signal can leave a bare .part
   const OutputDir dir = openOutputDir(opt, r.rig, "run");
-  const bool full = opt.model == "full";
+  const bool full = model == "full";
 
   FileSink sink(dir, sinkOptions(r, full, "envelope.csv"));
-  RunReport report = runModel(opt.model, opt, r, sink);
+  RunReport report = runModel(*r.engine, r, sink);
   sink.commit();
   const RegimeVerdict verdict = judge(report, sink, r);
 
   std::vector<std::string> files = sink.fileNames();
   if (plotEnvelope(dir, "envelope.png", sink.plotRows(), r.scaled.theta_c,
-                   r.rig.name + " - " + modelTitle(opt.model) + " - " + regimeName(verdict)))
+                   r.rig.name + " - " + modelTitle(model) + " - " + regimeName(verdict)))
     files.push_back("envelope.png");
   files.push_back("summary.json");
 
@@ -229,24 +215,28 @@ int runCommand(const Options& opt) {
   writeSummary(dir, summary);  // last: a summary.json means the run's files are all there
 
   if (!opt.quiet) {
-    printRunSummary(opt.model, r, report, verdict);
+    printRunSummary(model, r, report, verdict);
     printFiles(dir, files);
   }
   if (!report.complete) {
-    reportFailure(opt.model, report, dir);
+    reportFailure(model, report, dir);
     return kSimulationFailed;
   }
   return kSuccess;
 }
 
 int compareCommand(const Options& opt) {
-  LoadedRig r = loadAndCheck(opt);
+  const Engine* requested = findEngine(opt.engine);
+  if (requested && requested->model() != "full")
+    throw UsageError("--engine " + opt.engine + ": compare runs the full model (--engine " +
+                     engineNames("full") + ") against the slow flow");
+  LoadedRig r = loadAndCheck(opt, "full");
   installStopHandlers();
   const OutputDir dir = openOutputDir(opt, r.rig, "compare");
   const Clock::time_point t0 = Clock::now();
 
   FileSink full_sink(dir, sinkOptions(r, true, "envelope_full.csv"));
-  RunReport full = runModel("full", opt, r, full_sink);
+  RunReport full = runModel(*r.engine, r, full_sink);
   full_sink.commit();
 
   FileSink slow_sink(dir, sinkOptions(r, false, "envelope_slow.csv"));
@@ -257,7 +247,7 @@ int compareCommand(const Options& opt) {
     slow.complete = false;
     slow.failure = "not run: interrupted by a signal";
   } else {
-    slow = runModel("slow", opt, r, slow_sink);
+    slow = runModel(*findEngine("slowflow"), r, slow_sink);
   }
   slow_sink.commit();
 
@@ -315,7 +305,7 @@ int compareCommand(const Options& opt) {
 int scaleCommand(const Options& opt) {
   Options no_output = opt;  // scale writes no file: no output limit
   no_output.max_output = HUGE_VAL;
-  const LoadedRig r = loadAndCheck(no_output);
+  const LoadedRig r = loadAndCheck(no_output, "");
   if (opt.json)
     std::cout << r.scaled_json.dump(2) << "\n";
   else

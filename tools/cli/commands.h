@@ -22,14 +22,11 @@ struct Options {
   std::vector<std::string> sets;  // --set KEY=VALUE, in order
   std::string out;                // --out DIR; empty: runs/<rig name>-<command>
   bool quiet = false;
-  std::string model = "full";  // run: full | slow
-  std::string engine;          // run, compare: simbody | direct; empty: chooseEngine()'s default
-  bool json = false;           // scale
+  std::string model;   // run: full | slow; empty: the engine's model, full when no --engine
+  std::string engine;  // run, compare: a registry name (sim/engines/engine.h); empty: default
+  bool json = false;   // scale
   double max_output = kDefaultMaxOutputBytes;  // --max-output BYTES (yaml/rig_limits.h)
 };
-
-// The engines `--engine` accepts in this build.
-const std::vector<std::string>& availableEngines();
 
 // Each returns the exit code; a bad rig or command line throws RigError or UsageError (exit 2),
 // before anything is written.

@@ -1,27 +1,25 @@
-// The two engines of the full model behind `--engine` (SPEC section 2): "simbody"
-// (sim/engines/simbody/simbody_engine.h, a Simbody multibody system) and "direct" (sim/engines/direct/direct_engine.h,
-// minimal coordinates). Both run every rig and agree (tests/direct/test_agreement.cpp); the
-// direct one is two orders of magnitude faster, so it is the default, except when the rig's
-// simulation.integrator names one of Simbody's integrators.
+// `--engine` and `--model` on the command line: the registry's choice (sim/engines/engine.h)
+// with its errors turned into the command line's (UsageError) or the rig's (RigError), both
+// exit 2 before anything is written.
 #pragma once
 
 #include <string>
-#include <vector>
 
 #include "models/rig.h"
-#include "sim/record/run_report.h"
+#include "sim/engines/engine.h"
 
 namespace metrosync::cli {
 
-// The engine that runs `rig`'s full model: `requested` is "simbody", "direct" or "" (the default,
-// as above). Throws UsageError for an unknown engine and RigError (prefixed by `rig_name`) when
-// simulation.integrator is not one of that engine's integrators.
-std::string chooseEngine(const std::string& requested, const Rig& rig, const std::string& rig_name);
+// The engine that runs `model` ("full", "slow", or "" = the engine's own) of `rig` with
+// `requested` ("" = the default: see selectEngine). Throws UsageError for an unknown engine or
+// one of the other model, RigError (prefixed by `rig_name`) when simulation.integrator is not
+// one of that engine's integrators.
+const Engine& chooseEngine(const std::string& requested, const std::string& model, const Rig& rig,
+                           const std::string& rig_name);
 
-// Runs the full model on `engine` (as returned by chooseEngine).
-RunReport runFullModelOn(const std::string& engine, const Rig& rig, RunSink& sink);
-
-// "simbody: rk-merson (default), ...; direct: verner65 (default), ..." for --help.
-std::string integratorHelp();
+// The --engine help of the commands that run the full model only (compare, validate, sweep's
+// full model, bench) and of those that run either (run, sweep).
+std::string fullEngineHelp();
+std::string anyEngineHelp();
 
 }  // namespace metrosync::cli

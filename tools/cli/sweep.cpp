@@ -20,15 +20,13 @@
 #include <thread>
 
 #include "models/scaling.h"
-#include "sim/engines/slow_flow/slow_flow_engine.h"
-#include "tools/report/outputs.h"
-#include "tools/report/plot.h"
 #include "sim/analysis/regime.h"
-#include "sim/engines/simbody/simbody_engine.h"
 #include "sim/analysis/sweep.h"
-#include "tools/report/sweep_maps.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/engines.h"
+#include "tools/report/outputs.h"
+#include "tools/report/plot.h"
+#include "tools/report/sweep_maps.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
@@ -95,13 +93,8 @@ void removeStaleSweepOutputs(const OutputDir& dir) {
 // ---- the rig and the grid, checked before anything is written --------------------------------
 
 std::string readRigText(const SweepOptions& opt) {
-  if (opt.rig_path.empty()) return defaultRigYaml();
-  std::ifstream in(opt.rig_path, std::ios::binary);
-  if (!in) throw RigError(opt.rig_path + ": cannot open the rig file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw RigError(opt.rig_path + ": cannot read the rig file");
-  return text.str();
+  // the same checks as every command: a regular file of bounded size (yaml/rig_loader.h)
+  return opt.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.rig_path);
 }
 
 std::string displayName(const SweepOptions& opt) {
@@ -112,8 +105,14 @@ std::string displayName(const SweepOptions& opt) {
 struct PointInput {
   Rig rig;
   ScaledParams scaled;
-  std::string engine;  // of the full model (tools/cli/engines.h)
+  const Engine* engine = nullptr;  // the same at every point (no --vary names one)
 };
+
+// The model --model asks for: as given, else the --engine's, else the slow flow.
+std::string requestedModel(const SweepOptions& opt) {
+  if (!opt.model.empty()) return opt.model;
+  return opt.engine.empty() ? "slow" : "";
+}
 
 // The rig of one point: the base rig, --set, then the point's KEY=VALUE; checked like `run`
 // checks its rig. Throws RigError naming the point.
@@ -135,7 +134,8 @@ PointInput loadPoint(const std::string& text, const SweepOptions& opt, const Swe
         what.replace(at, 6 + o.size(), "--vary point " + o);
     throw RigError(what + "\n  at " + where + " of the sweep");
   }
-  in.engine = chooseEngine(opt.engine, in.rig, displayName(opt));  // checks the integrator
+  // checks --engine against --model and the point's integrator
+  in.engine = &chooseEngine(opt.engine, requestedModel(opt), in.rig, displayName(opt));
   try {
     in.scaled = computeScaled(in.rig);
   } catch (const std::invalid_argument& e) {
@@ -171,7 +171,7 @@ bool failureInjected(long g) {
   return std::find(points.begin(), points.end(), g) != points.end();
 }
 
-std::optional<SweepPoint> runPoint(const PointInput& in, const std::string& model, long g) {
+std::optional<SweepPoint> runPoint(const PointInput& in, long g) {
   const Clock::time_point t0 = Clock::now();
   const ScaledParams& sp = in.scaled;
   PointSink sink(sp.tau_end, sp.epsilon);
@@ -179,15 +179,7 @@ std::optional<SweepPoint> runPoint(const PointInput& in, const std::string& mode
   try {
     if (failureInjected(g))
       throw SimulationFailure{0.0, "failure injected by METROSYNC_SWEEP_FAIL_AT, a test hook"};
-    if (model == "full") {
-      rep = runFullModelOn(in.engine, in.rig, sink);
-    } else {
-      SlowFlowOptions so;
-      so.tau_end = sp.tau_end;
-      so.rtol = in.rig.sim.accuracy;  // as `run`: the relative local error target
-      so.atol = 1e-2 * in.rig.sim.accuracy;
-      rep = runSlowFlow(sp, so, sink);
-    }
+    rep = in.engine->run(in.rig, sink);
   } catch (const RunInterrupted&) {
     return std::nullopt;
   } catch (const SimulationFailure& f) {
@@ -355,8 +347,6 @@ namespace {
 
 int sweepImpl(const SweepOptions& opt) {
   const Clock::time_point t_start = Clock::now();
-  if (opt.model != "slow" && opt.model != "full")
-    throw UsageError("--model " + opt.model + ": must be slow or full");
   if (opt.jobs < 0) throw UsageError("--jobs " + std::to_string(opt.jobs) + ": must be >= 1");
   std::vector<SweepAxis> axes;
   for (const auto& v : opt.vary) axes.push_back(parseVary(v));
@@ -369,7 +359,7 @@ int sweepImpl(const SweepOptions& opt) {
   const int n = static_cast<int>(base.metronomes.size());
   const std::vector<long> mine = shardIndices(grid, shard);
   std::map<long, PointInput> inputs;
-  std::string engine;  // of the full model: the same at every point (no --vary names one)
+  const Engine* engine = nullptr;  // the same at every point (no --vary names one)
   for (long g = 0; g < grid.size(); ++g) {
     PointInput in = loadPoint(text, opt, grid, g);
     if (static_cast<int>(in.rig.metronomes.size()) != n)
@@ -380,8 +370,8 @@ int sweepImpl(const SweepOptions& opt) {
   }
 
   SweepManifest manifest;
-  manifest.model = opt.model;
-  manifest.engine = opt.model == "full" ? engine : "slowflow";
+  manifest.model = engine->model();
+  manifest.engine = engine->name();
   manifest.rig_path = opt.rig_path;
   manifest.rig_name = base.name;
   manifest.rig_text = text;
@@ -457,7 +447,7 @@ int sweepImpl(const SweepOptions& opt) {
   long finished_now = 0;
 
   runSweepPoints(
-      todo, jobs, [&](long g) { return runPoint(inputs.at(g), opt.model, g); },
+      todo, jobs, [&](long g) { return runPoint(inputs.at(g), g); },
       [&](const SweepPoint& p) {
         const std::string line = formatRegimesRow(grid, p);
         regimes.append(line);
@@ -488,7 +478,7 @@ int sweepImpl(const SweepOptions& opt) {
 
   long failed = status["points"]["failed"].get<long>();
   if (!opt.quiet) {
-    std::cout << "sweep of " << base.name << " (" << modelTitle(opt.model) << ", " << n
+    std::cout << "sweep of " << base.name << " (" << modelTitle(manifest.model) << ", " << n
               << (n == 1 ? " metronome" : " metronomes") << "): " << gridText(grid)
               << (shard.n > 1
                       ? ", shard " + shard.text() + ": " + std::to_string(mine.size()) + " of them"
@@ -603,14 +593,12 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
                    "override a rig key for every point, e.g. --set simulation.tau=100; repeatable")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
-  c.sweep->add_option("--model", opt.model, "slow: the slow flow; full: the full model")
-      ->check(CLI::IsMember({"slow", "full"}))
-      ->capture_default_str();
   c.sweep
-      ->add_option("--engine", opt.engine,
-                   "engine of the full model: direct (minimal coordinates; the default) or "
-                   "simbody (the default when simulation.integrator names a Simbody integrator)")
-      ->check(CLI::IsMember({"simbody", "direct"}));
+      ->add_option("--model", opt.model,
+                   "slow: the slow flow; full: the full model (default: the --engine's model, "
+                   "else slow)")
+      ->check(CLI::IsMember({"slow", "full"}));
+  c.sweep->add_option("--engine", opt.engine, anyEngineHelp());
   c.sweep
       ->add_option("--jobs", opt.jobs,
                    "worker threads (default: the number of cores); the results do not "

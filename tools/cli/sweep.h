@@ -1,6 +1,7 @@
 // `metrosync sweep` and `metrosync merge` (SPEC section 2): regime maps over one or two rig keys,
 // run in parallel, resumable, in shards that merge joins. The grid, the files and the scheduling
-// are sim/analysis/sweep.h; the maps tools/report/sweep_maps.h; this is the command line and how one point runs.
+// are sim/analysis/sweep.h; the maps tools/report/sweep_maps.h; this is the command line and how
+// one point runs.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -15,9 +16,9 @@ struct SweepOptions {
   std::vector<std::string> vary;  // --vary KEY=FROM:TO:COUNT[:open], in order (first: across)
   std::string out;                // --out DIR; empty: runs/<rig name>-sweep (-merge)
   bool quiet = false;
-  std::string model = "slow";  // slow | full
-  std::string engine;          // full model: simbody | direct; empty: chooseEngine()'s default
-  int jobs = 0;                // worker threads; 0: the number of cores
+  std::string model;   // slow | full; empty: the --engine's model, else slow
+  std::string engine;  // a registry name (sim/engines/engine.h); empty: the model's default
+  int jobs = 0;        // worker threads; 0: the number of cores
   bool resume = false;
   std::string shard;              // "K/N"; empty: the whole grid
   std::vector<std::string> dirs;  // merge: the sweep output directories to join

@@ -10,11 +10,11 @@
 #include <thread>
 
 #include "contact/simbody/driven_coulomb.h"
-#include "tools/report/outputs.h"
-#include "sim/engines/simbody/simbody_engine.h"
 #include "sim/analysis/validation.h"
-#include "tools/report/validation_report.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/engines.h"
+#include "tools/report/outputs.h"
+#include "tools/report/validation_report.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
@@ -92,6 +92,8 @@ CLI::App* addValidateCommand(CLI::App& app, ValidateOptions& opt) {
                   "depend on it")
       ->type_name("N")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--engine", opt.engine, fullEngineHelp() + "; validate's default: direct")
+      ->capture_default_str();
   cmd->add_flag("-q,--quiet", opt.quiet, "no progress on stdout");
   cmd->footer(
       "Files in --out DIR: report.md (tables, the command that made it), betas.png, "
@@ -101,8 +103,24 @@ CLI::App* addValidateCommand(CLI::App& app, ValidateOptions& opt) {
   return cmd;
 }
 
-int validateCommand(const ValidateOptions& opt) {
-  const std::string rigs_dir = findRigsDir(opt.rigs);
+namespace {
+
+// The full model's engine at its default integrator: the runs are rebuilt from the scaled
+// parameters (rigAtEpsilon), so the rigs' own simulation keys do not reach it.
+const Engine& validationEngine(const std::string& requested) {
+  const Engine* e = findEngine(requested);
+  if (e && e->model() != "full")
+    throw UsageError("--engine " + requested + ": validate runs the full model against the slow " +
+                     "flow; the full model's engines: " + engineNames("full"));
+  try {
+    return selectEngine(requested, "full", "");
+  } catch (const EngineSelectionError& e) {
+    throw UsageError(std::string("validate: ") + e.what());
+  }
+}
+
+// The shipped scenarios' scaled parameters; a bad rig throws RigError naming its file.
+std::vector<Scenario> loadScenarios(const std::string& rigs_dir) {
   std::vector<Scenario> scenarios;
   for (const auto& spec : shippedScenarios()) {
     const Rig rig = loadRigFile((fs::path(rigs_dir) / spec.file).string());
@@ -115,6 +133,15 @@ int validateCommand(const ValidateOptions& opt) {
     }
     scenarios.push_back(sc);
   }
+  return scenarios;
+}
+
+}  // namespace
+
+int validateCommand(const ValidateOptions& opt) {
+  const std::string rigs_dir = findRigsDir(opt.rigs);
+  const Engine* engine = &validationEngine(opt.engine);
+  const std::vector<Scenario> scenarios = loadScenarios(rigs_dir);
   // the directory only now that every rig is good (SPEC 5: a bad rig writes nothing)
   std::unique_ptr<OutputDir> dir;
   try {
@@ -125,7 +152,7 @@ int validateCommand(const ValidateOptions& opt) {
   removeStaleReport(dir->path());
 
   ValidationEngines engines;
-  engines.full_model = [](const Rig& rig, RunSink& sink) { return runFullModel(rig, sink); };
+  engines.full_model = [engine](const Rig& rig, RunSink& sink) { return engine->run(rig, sink); };
   engines.coulomb_probe = [](double s) { return measureDrivenCoulomb(s); };
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -139,23 +166,26 @@ int validateCommand(const ValidateOptions& opt) {
   const ValidationPlan plan = defaultValidationPlan(opt.quick);
   const int jobs =
       opt.jobs > 0 ? opt.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  progress("validate: " + std::string(opt.quick ? "quick" : "full") + " plan, rigs from " +
-           rigs_dir + ", " + std::to_string(jobs) + " jobs");
+  progress("validate: " + std::string(opt.quick ? "quick" : "full") + " plan, full model on the " +
+           engine->name() + " engine, rigs from " + rigs_dir + ", " + std::to_string(jobs) +
+           " jobs");
   const ValidationResults res = runValidation(plan, scenarios, engines, progress, jobs);
 
   ReportContext ctx;
   // the command that regenerates the report (--jobs and --quiet do not change it)
-  ctx.command = std::string("metrosync validate") + (opt.quick ? " --quick" : "") + " --out " +
-                opt.out + (opt.rigs.empty() ? "" : " --rigs " + opt.rigs);
+  ctx.command = std::string("metrosync validate") + (opt.quick ? " --quick" : "") + " --engine " +
+                engine->name() + " --out " + opt.out +
+                (opt.rigs.empty() ? "" : " --rigs " + opt.rigs);
   ctx.rigs_dir = rigs_dir;
   ctx.date = utcNow();
+  ctx.engine = engine->name();
   const std::vector<std::string> files = writeValidationReport(*dir, res, ctx);
 
   const int failed = res.failedChecks(), incomplete = res.incompleteRuns();
   if (!opt.quiet) {
-    std::cout << "validate: " << failed << " checks failed, " << incomplete
-              << " runs stopped early, wall time " << res.wall_seconds
-              << " s\nfiles: " << dir->path() << "/ (";
+    std::cout << "validate (full model on the " << engine->name() << " engine): " << failed
+              << " checks failed, " << incomplete << " runs stopped early, wall time "
+              << res.wall_seconds << " s\nfiles: " << dir->path() << "/ (";
     for (size_t k = 0; k < files.size(); ++k) std::cout << (k ? ", " : "") << files[k];
     std::cout << ")\n";
   }

@@ -1,6 +1,6 @@
-// `metrosync validate [--out DIR] [--quick]`: the full model against the asymptotics (the slow
-// flow and its closed forms), written up as DIR/report.md with its plots (sim/analysis/validation.h,
-// tools/report/validation_report.h). Registered in tools/metrosync.cpp.
+// `metrosync validate [--out DIR] [--quick] [--engine E]`: the full model against the asymptotics
+// (the slow flow and its closed forms), written up as DIR/report.md with its plots
+// (sim/analysis/validation.h, tools/report/validation_report.h). Registered in tools/metrosync.cpp.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -14,6 +14,7 @@ struct ValidateOptions {
   std::string rigs;                   // --rigs DIR; empty: found (see validate.cpp)
   int jobs = 0;                       // --jobs N; 0: one per hardware thread
   bool quiet = false;
+  std::string engine = "direct";  // --engine: the full model's engine
 };
 
 // Adds the `validate` subcommand to `app`, parsing into `opt`.

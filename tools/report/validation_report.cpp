@@ -267,7 +267,7 @@ std::string sweepLabel(const ModelRun& run) {
   return label;
 }
 
-std::vector<RegimeStretch> regimeSequence(const std::vector<SweepPoint>& sweep, bool full) {
+std::vector<RegimeStretch> regimeSequence(const std::vector<FrictionSweepPoint>& sweep, bool full) {
   std::vector<RegimeStretch> seq;
   for (const auto& p : sweep) {
     const std::string label = sweepLabel(full ? p.full : p.slow);
@@ -300,7 +300,7 @@ bool followsPaperOrder(const std::vector<RegimeStretch>& seq) {
   return k == 3;
 }
 
-double firstMuWith(const std::vector<SweepPoint>& sweep, bool full, Regime g) {
+double firstMuWith(const std::vector<FrictionSweepPoint>& sweep, bool full, Regime g) {
   for (const auto& p : sweep)
     if ((full ? p.full : p.slow).verdict.regime == g) return p.mu;
   return std::nan("");
@@ -335,7 +335,7 @@ std::string validationReportMarkdown(const ValidationResults& r, const ReportCon
      << "Rigs: the shipped ones (`" << ctx.rigs_dir << "`): the paper's eight simulations in "
      << "`paper/` (scaled units, section 4 captions) and the experiment's four "
      << "(`experiment-{low,high}-friction-{inphase,antiphase}.yaml`, physical units, section 3). "
-     << "The full model is the Simbody engine at its default accuracy ("
+     << "The full model is the " << ctx.engine << " engine at its default accuracy ("
      << shortSci(ScaledRigInput{}.accuracy) << "); the slow flow is integrated at rtol "
      << shortSci(SlowFlowOptions{}.rtol) << ".\n\n";
 
@@ -623,7 +623,7 @@ std::string validationReportMarkdown(const ValidationResults& r, const ReportCon
       md << ".";
     }
     // the highest friction: a still platform in the slow flow, not quite in the full model
-    const SweepPoint& top = r.sweep.back();
+    const FrictionSweepPoint& top = r.sweep.back();
     if (top.slow.platform == "stuck" && top.full.report.complete && top.full.platform != "stuck" &&
         std::isfinite(top.full.platform_stuck_fraction) && !top.full.final().psi.empty())
       md << " At μ = " << fmt("%g", top.mu)
@@ -670,6 +670,7 @@ nlohmann::json validationJson(const ValidationResults& r, const ReportContext& c
   j["command"] = ctx.command;
   j["version"] = metrosyncVersion();
   j["date"] = ctx.date;
+  j["engine"] = ctx.engine;
   j["plan"] = r.plan.quick ? "quick" : "full";
   j["failed_checks"] = r.failedChecks();
   j["incomplete_runs"] = r.incompleteRuns();

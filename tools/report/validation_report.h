@@ -1,14 +1,14 @@
-// The report of `metrosync validate` (sim/analysis/validation.h): report.md with its tables, a few PNG plots
-// through gnuplot (a missing gnuplot drops the plots, with a warning, never the report) and
-// summary.json. Every number in them comes from the ValidationResults passed in.
+// The report of `metrosync validate` (sim/analysis/validation.h): report.md with its tables, a few
+// PNG plots through gnuplot (a missing gnuplot drops the plots, with a warning, never the report)
+// and summary.json. Every number in them comes from the ValidationResults passed in.
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "tools/report/outputs.h"
 #include "sim/analysis/validation.h"
+#include "tools/report/outputs.h"
 
 namespace metrosync {
 
@@ -16,6 +16,7 @@ struct ReportContext {
   std::string command;   // the exact command line that regenerates the report
   std::string rigs_dir;  // where the shipped rigs were read from
   std::string date;      // when the run ended (UTC, ISO 8601)
+  std::string engine;    // the full model's engine (sim/engines/engine.h registry name)
 };
 
 // Consecutive sweep points with the same label, collapsed: the regime sequence over mu. The label
@@ -24,7 +25,7 @@ struct RegimeStretch {
   std::string label;
   double mu_from = 0.0, mu_to = 0.0;
 };
-std::vector<RegimeStretch> regimeSequence(const std::vector<SweepPoint>& sweep, bool full);
+std::vector<RegimeStretch> regimeSequence(const std::vector<FrictionSweepPoint>& sweep, bool full);
 std::string sweepLabel(const ModelRun& run);
 
 // The markdown of report.md; `plots` are the PNG names written (the report links to those only).

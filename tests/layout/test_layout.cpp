@@ -1,0 +1,177 @@
+// The layout's one rule (CMakeLists.txt, COMMON): every `#include "..."` of the libraries and
+// tools points downwards in
+//   contact < contact/simbody < models < models/simbody < sim/ode, sim/record < sim/events
+//     < sim/engines/{direct,simbody,slow_flow} < sim/engines < sim/analysis < yaml
+//     < tools/report < tools/cli < tools
+// or stays in its own folder. Folders of one level (sim/ode and sim/record, the three engines)
+// do not include each other; tools/bench (a benchmark nothing links) may include anything;
+// tests/ are not scanned. A folder the order does not name is itself a failure: a new library
+// must be placed in the order here and in CMakeLists.txt.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The level of each library folder; kAnything for the folders that may include anything.
+constexpr int kAnything = 1000;
+const std::map<std::string, int>& levels() {
+  static const std::map<std::string, int> m = {
+      {"contact", 0},
+      {"contact/simbody", 1},
+      {"models", 2},
+      {"models/simbody", 3},
+      {"sim/ode", 4},
+      {"sim/record", 4},
+      {"sim/events", 5},
+      {"sim/engines/direct", 6},
+      {"sim/engines/simbody", 6},
+      {"sim/engines/slow_flow", 6},
+      {"sim/engines", 7},
+      {"sim/analysis", 8},
+      {"yaml", 9},
+      {"tools/report", 10},
+      {"tools/cli", 11},
+      {"tools", 12},
+      {"tools/bench", kAnything},
+  };
+  return m;
+}
+
+// The scanned top-level folders (the libraries and tools; not tests/, not build/).
+const std::vector<std::string> kScanned = {"contact", "models", "sim", "yaml", "tools"};
+
+std::optional<int> levelOf(const std::string& folder) {
+  // a folder below a library folder that the order does not name sits with it (e.g.
+  // tools/bench/cmake)
+  for (std::string f = folder; !f.empty();) {
+    const auto it = levels().find(f);
+    if (it != levels().end()) return it->second;
+    const size_t slash = f.rfind('/');
+    if (slash == std::string::npos) break;
+    f = f.substr(0, slash);
+    if (f == "sim") break;  // sim/ itself is no library: sim/foo must be named
+  }
+  return std::nullopt;
+}
+
+std::string folderOf(const std::string& rel_path) {
+  const size_t slash = rel_path.rfind('/');
+  return slash == std::string::npos ? "" : rel_path.substr(0, slash);
+}
+
+std::string libraryOf(const std::string& folder) {
+  for (std::string f = folder; !f.empty(); f = folderOf(f))
+    if (levels().count(f)) return f;
+  return folder;
+}
+
+// Every violation under `root`, one line each: "FILE:LINE: includes TARGET (why)".
+std::vector<std::string> layoutViolations(const fs::path& root) {
+  static const std::regex include_re(R"(^\s*#\s*include\s*"([^"]+)\")");
+  std::vector<std::string> out;
+  for (const auto& top : kScanned) {
+    if (!fs::is_directory(root / top)) continue;
+    for (const auto& e : fs::recursive_directory_iterator(root / top)) {
+      const std::string ext = e.path().extension().string();
+      if (!e.is_regular_file() || (ext != ".h" && ext != ".cpp")) continue;
+      const std::string rel = fs::relative(e.path(), root).generic_string();
+      const std::string from = libraryOf(folderOf(rel));
+      const std::optional<int> from_level = levelOf(folderOf(rel));
+      std::ifstream in(e.path());
+      std::string line;
+      for (int n = 1; std::getline(in, line); ++n) {
+        std::smatch m;
+        if (!std::regex_search(line, m, include_re)) continue;
+        const std::string target = m[1];
+        const std::string where = rel + ":" + std::to_string(n) + ": includes " + target;
+        if (!fs::exists(root / target)) {
+          out.push_back(where + " (not a path from the repository root)");
+          continue;
+        }
+        const std::string to = libraryOf(folderOf(target));
+        const std::optional<int> to_level = levelOf(folderOf(target));
+        if (!from_level) {
+          out.push_back(where + " (" + folderOf(rel) + " is not in the layout's order)");
+        } else if (!to_level) {
+          out.push_back(where + " (" + folderOf(target) + " is not in the layout's order)");
+        } else if (from == to || *from_level == kAnything) {
+          continue;
+        } else if (*to_level > *from_level) {
+          out.push_back(where + " (upwards: " + from + " -> " + to + ")");
+        } else if (*to_level == *from_level) {
+          out.push_back(where + " (sideways: " + from + " and " + to + " are one level)");
+        }
+      }
+    }
+  }
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += "  " + x + "\n";
+  return s;
+}
+
+TEST(Layout, EveryIncludePointsDownwards) {
+  const std::vector<std::string> v = layoutViolations(METROSYNC_SOURCE_DIR);
+  EXPECT_TRUE(v.empty()) << v.size() << " includes against the layout:\n" << joined(v);
+}
+
+// The checker itself, on a small tree with one include of each kind: it must be able to fail.
+class LayoutChecker : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::path(::testing::TempDir()) / ("metrosync_layout_" + std::to_string(::getpid()));
+    fs::remove_all(root_);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+  void file(const std::string& rel, const std::string& text = "") {
+    fs::create_directories((root_ / rel).parent_path());
+    std::ofstream(root_ / rel) << text;
+  }
+  std::vector<std::string> violations() { return layoutViolations(root_); }
+  fs::path root_;
+};
+
+TEST_F(LayoutChecker, AcceptsDownwardsAndOwnFolder) {
+  file("contact/coulomb.h");
+  file("contact/simbody/element.h", "#include \"contact/coulomb.h\"\n");
+  file("models/rig.h", "#include \"contact/coulomb.h\"\n#include \"models/rig.h\"\n");
+  file("sim/engines/engine.h", "#include \"sim/engines/direct/d.h\"\n");
+  file("sim/engines/direct/d.h", "  #  include \"models/rig.h\"  // spaced\n");
+  file("tools/cli/c.cpp", "#include \"sim/engines/engine.h\"\n#include <vector>\n");
+  file("tools/bench/b.cpp", "#include \"tools/cli/c.cpp\"\n");  // bench may include anything
+  EXPECT_TRUE(violations().empty()) << joined(violations());
+}
+
+TEST_F(LayoutChecker, FlagsUpwardsSidewaysUnknownAndUnresolved) {
+  file("contact/coulomb.h", "#include \"models/rig.h\"\n");  // the old FrictionLaw include
+  file("models/rig.h");
+  file("models/slow.h", "#include \"sim/engines/slow_flow/s.h\"\n");
+  file("sim/engines/slow_flow/s.h");
+  file("sim/engines/direct/d.h", "#include \"sim/engines/slow_flow/s.h\"\n");
+  file("sim/newthing/n.h", "#include \"models/rig.h\"\n");
+  file("yaml/y.cpp", "#include \"rig.h\"\n");
+  const std::vector<std::string> v = violations();
+  ASSERT_EQ(v.size(), 5u) << joined(v);
+  const std::string all = joined(v);
+  for (const char* expect :
+       {"contact/coulomb.h:1: includes models/rig.h (upwards: contact -> models)",
+        "models/slow.h:1: includes sim/engines/slow_flow/s.h (upwards",
+        "sim/engines/direct/d.h:1: includes sim/engines/slow_flow/s.h (sideways",
+        "sim/newthing is not in the layout's order", "yaml/y.cpp:1: includes rig.h (not a path"})
+    EXPECT_NE(all.find(expect), std::string::npos) << expect << "\n" << all;
+}
+
+}  // namespace

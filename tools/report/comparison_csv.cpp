@@ -1,0 +1,130 @@
+#include "tools/report/comparison_csv.h"
+
+#include <cstdio>
+#include <stdexcept>
+
+#include "sim/record/atomic_file.h"
+
+namespace metrosync {
+
+namespace {
+
+void appendNumber(std::string& s, double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, ",%.12g", v);
+  s += buf;
+}
+
+// joinEnvelopes with every matched pair written to out_csv, committed at the end.
+ComparisonResult joinAndWrite(int n, const RowSource& next_full, const RowSource& next_slow,
+                              double epsilon, const std::string& out_csv) {
+  AtomicFile out(out_csv);
+  out.writeLine(comparisonCsvHeader(n));
+  const ComparisonResult r = joinEnvelopes(
+      n, next_full, next_slow, epsilon,
+      [&](const EnvelopeRow& f, const EnvelopeRow& s) { out.writeLine(comparisonCsvLine(f, s)); });
+  out.commit();
+  return r;
+}
+
+}  // namespace
+
+std::string comparisonCsvHeader(int n) {
+  std::string h = "tau";
+  for (int i = 1; i <= n; ++i) {
+    const std::string a = ",A_" + std::to_string(i);
+    h += a + "_full" + a + "_slow";
+  }
+  for (int j = 2; j <= n; ++j) {
+    const std::string p = ",psi_" + std::to_string(j);
+    h += p + "_full" + p + "_slow";
+  }
+  return h;
+}
+
+std::string comparisonCsvLine(const EnvelopeRow& full, const EnvelopeRow& slow) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", full.tau);
+  std::string line = buf;
+  for (size_t i = 0; i < full.A.size(); ++i) {
+    appendNumber(line, full.A[i]);
+    appendNumber(line, slow.A[i]);
+  }
+  for (size_t j = 0; j < full.psi.size(); ++j) {
+    appendNumber(line, full.psi[j]);
+    appendNumber(line, slow.psi[j]);
+  }
+  return line;
+}
+
+EnvelopeCsvReader::EnvelopeCsvReader(const std::string& path) : path_(path), in_(path) {
+  if (!in_) throw std::runtime_error(path + ": cannot open");
+  std::string header;
+  if (!std::getline(in_, header)) throw std::runtime_error(path + ": empty file");
+  layout_ = parseEnvelopeHeader(header, path);  // with or without the r column
+  n_ = layout_.n;
+}
+
+bool EnvelopeCsvReader::next(EnvelopeRow& row) {
+  std::string line;
+  while (std::getline(in_, line)) {
+    ++lineno_;
+    if (line.empty()) continue;
+    std::vector<double> v;
+    v.reserve(layout_.columns());
+    size_t start = 0;
+    while (start <= line.size()) {
+      const size_t comma = line.find(',', start);
+      const std::string cell =
+          line.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+      try {
+        size_t used = 0;
+        v.push_back(std::stod(cell, &used));
+      } catch (const std::exception&) {
+        throw std::runtime_error(path_ + ":" + std::to_string(lineno_) + ": bad number '" + cell +
+                                 "'");
+      }
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+    if (static_cast<int>(v.size()) != layout_.columns())
+      throw std::runtime_error(path_ + ":" + std::to_string(lineno_) + ": wrong number of columns");
+    row = envelopeRowFromValues(v, layout_);
+    return true;
+  }
+  return false;
+}
+
+ComparisonResult writeComparisonCsv(const std::vector<EnvelopeRow>& full,
+                                    const std::vector<EnvelopeRow>& slow, double epsilon,
+                                    const std::string& out_csv) {
+  return joinAndWrite(metronomesOf(full, slow), rowSource(full), rowSource(slow), epsilon, out_csv);
+}
+
+ComparisonResult compareEnvelopeFiles(const std::string& full_csv, const std::string& slow_csv,
+                                      double epsilon, const std::string& out_csv) {
+  EnvelopeCsvReader full(full_csv), slow(slow_csv);
+  if (full.n() != slow.n())
+    throw std::runtime_error(full_csv + " has " + std::to_string(full.n()) + " metronomes, " +
+                             slow_csv + " has " + std::to_string(slow.n()));
+  return joinAndWrite(
+      full.n(), [&](EnvelopeRow& r) { return full.next(r); },
+      [&](EnvelopeRow& r) { return slow.next(r); }, epsilon, out_csv);
+}
+
+nlohmann::json comparisonJson(const ComparisonResult& r) {
+  auto orNull = [&](const std::vector<double>& v) {
+    nlohmann::json a = nlohmann::json::array();
+    for (double x : v) a.push_back(r.rows > 0 ? nlohmann::json(x) : nlohmann::json(nullptr));
+    return a;
+  };
+  return {{"max_abs_dA", orNull(r.max_abs_dA)},
+          {"max_abs_dpsi", orNull(r.max_abs_dpsi)},
+          {"tau_max_dA", orNull(r.tau_max_dA)},
+          {"tau_max_dpsi", orNull(r.tau_max_dpsi)},
+          {"rows", r.rows},
+          {"unmatched_full", r.unmatched_full},
+          {"unmatched_slow", r.unmatched_slow}};
+}
+
+}  // namespace metrosync

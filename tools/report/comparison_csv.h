@@ -1,0 +1,50 @@
+// comparison.csv (SPEC section 3) and the comparison's summary JSON, from the values of
+// sim/analysis/compare.h: the file parts of `compare`. comparison.csv keeps each model's psi_j
+// as it wrote it.
+#pragma once
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "sim/analysis/compare.h"
+#include "sim/record/envelope.h"
+
+namespace metrosync {
+
+// tau,A_1_full,A_1_slow,...,A_N_full,A_N_slow,psi_2_full,psi_2_slow,...,psi_N_full,psi_N_slow
+std::string comparisonCsvHeader(int n);
+// One matched pair's line (no newline).
+std::string comparisonCsvLine(const EnvelopeRow& full, const EnvelopeRow& slow);
+
+// Reads an envelope.csv one row at a time (readEnvelopeCsv holds the whole file).
+class EnvelopeCsvReader {
+ public:
+  explicit EnvelopeCsvReader(const std::string& path);  // throws std::runtime_error
+  int n() const { return n_; }
+  // false at the end of the file; throws std::runtime_error on a malformed line
+  bool next(EnvelopeRow& row);
+
+ private:
+  std::string path_;
+  std::ifstream in_;
+  EnvelopeLayout layout_;
+  int n_ = 0;
+  long lineno_ = 1;
+};
+
+// compareEnvelopes, and comparison.csv written to `out_csv` atomically. Rows without a partner
+// (a run that stopped early) are counted, not written.
+ComparisonResult writeComparisonCsv(const std::vector<EnvelopeRow>& full,
+                                    const std::vector<EnvelopeRow>& slow, double epsilon,
+                                    const std::string& out_csv);
+// The same from two envelope CSV files, streaming.
+ComparisonResult compareEnvelopeFiles(const std::string& full_csv, const std::string& slow_csv,
+                                      double epsilon, const std::string& out_csv);
+
+// {max_abs_dA[], max_abs_dpsi[], tau_max_dA[], tau_max_dpsi[], rows, unmatched_full,
+// unmatched_slow}; a maximum over no row is null.
+nlohmann::json comparisonJson(const ComparisonResult& r);
+
+}  // namespace metrosync
