@@ -27,19 +27,25 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
+# ccache, when the machine has it, makes a rebuild of an unchanged file free
+launcher=""
+command -v ccache >/dev/null 2>&1 && launcher="-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"
 
 # The sanitizer stage: its own build directory (every object differs), only the fast tests'
 # executables built, every ODR violation and leak reported, the first UB finding fatal.
+# -O1: a third of -O3's compile time, and what the sanitizers' documentation recommends for
+# readable reports at a small run-time cost.
 if [ "$mode" = sanitize ]; then
   fast_tests=(test_contact test_models test_sim test_yaml test_layout)
-  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DMETROSYNC_SANITIZE=ON >/dev/null
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
+        -DMETROSYNC_SANITIZE=ON $launcher >/dev/null
   cmake --build build-asan -j"$jobs" --target "${fast_tests[@]}"
   ASAN_OPTIONS=detect_odr_violation=2:detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
     ctest --test-dir build-asan -L fast --output-on-failure -j"$jobs" --timeout 900
   exit $?
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release $launcher >/dev/null
 cmake --build build -j"$jobs"
 
 case "$mode" in
