@@ -13,8 +13,8 @@
 #include <thread>
 
 #include "contact/averaged_response.h"
-#include "sim/engines/slow_flow/slow_flow_engine.h"
 #include "sim/analysis/compare.h"
+#include "sim/engines/slow_flow/slow_flow_engine.h"
 
 namespace metrosync {
 
@@ -278,6 +278,26 @@ double fitOrder(const std::vector<double>& x, const std::vector<double>& y) {
 
 // ---- checks -------------------------------------------------------------------------------------
 
+namespace {
+
+// The longest stretch of slow time with metronome 1 alive and 2 dead (A_1 >= theta_c,1,
+// A_2 < theta_c,2).
+double longestSuppression(const std::vector<EnvelopeRow>& envelope, double tc1, double tc2) {
+  double longest = 0, start = -1;
+  for (const auto& r : envelope) {
+    const bool suppressing = r.A[0] >= tc1 && r.A[1] < tc2;
+    if (suppressing && start < 0) start = r.tau;
+    if (!suppressing && start >= 0) {
+      longest = std::max(longest, r.tau - start);
+      start = -1;
+    }
+  }
+  if (start >= 0 && !envelope.empty()) longest = std::max(longest, envelope.back().tau - start);
+  return longest;
+}
+
+}  // namespace
+
 std::vector<Check> paperChecks(PaperOutcome outcome, const ModelRun& slow, const ScaledParams& p) {
   std::vector<Check> checks;
   const RegimeVerdict& v = slow.verdict;
@@ -351,19 +371,8 @@ std::vector<Check> paperChecks(PaperOutcome outcome, const ModelRun& slow, const
       break;
     case PaperOutcome::SuppressionThenDeath: {
       regimeIs(Regime::Death);
-      // the longest stretch with metronome 1 alive and 2 dead; "a long time" against the
-      // amplitudes' relaxation time 2 / nu (~3): at least 50
-      double longest = 0, start = -1;
-      for (const auto& r : slow.envelope) {
-        const bool suppressing = r.A[0] >= tc1 && r.A[1] < tc2;
-        if (suppressing && start < 0) start = r.tau;
-        if (!suppressing && start >= 0) {
-          longest = std::max(longest, r.tau - start);
-          start = -1;
-        }
-      }
-      if (start >= 0 && !slow.envelope.empty())
-        longest = std::max(longest, slow.envelope.back().tau - start);
+      // "a long time" against the amplitudes' relaxation time 2 / nu (~3): at least 50
+      const double longest = longestSuppression(slow.envelope, tc1, tc2);
       add("metronome 1 suppresses 2 for a long time first: >= 50 in tau", longest >= 50.0,
           "longest suppression of 2 by 1: " + fmt("%.1f", longest) + " in tau");
       break;
@@ -489,26 +498,38 @@ bool identicalPair(const ScaledParams& p) {
          (p.locked.empty() || p.locked[0] == p.locked[1]);
 }
 
-ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Scenario>& scenarios,
-                                const ValidationEngines& engines,
-                                const std::function<void(const std::string&)>& progress, int jobs) {
-  const Clock::time_point t0 = Clock::now();
-  std::mutex say_mutex;
-  auto say = [&](const std::string& line) {
-    if (!progress) return;
-    std::lock_guard<std::mutex> lock(say_mutex);
-    progress(line);
-  };
-  auto runLine = [&](const std::string& what, const ModelRun& r) {
+namespace {
+
+// Progress lines from every thread, one at a time.
+class ProgressLog {
+ public:
+  explicit ProgressLog(const std::function<void(const std::string&)>& out) : out_(out) {}
+  void say(const std::string& line) {
+    if (!out_) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    out_(line);
+  }
+  void run(const std::string& what, const ModelRun& r) {
     std::string s = what + ": " + (r.report.complete ? toString(r.verdict.regime) : "FAILED");
     s += " (" + fmt("%.1f", r.report.wall_seconds) + " s)";
     if (!r.report.complete) s += " - " + r.report.failure;
     say(s);
-  };
-  ValidationResults res;
-  res.plan = plan;
+  }
 
-  // 1. betas against the Coulomb element
+ private:
+  const std::function<void(const std::string&)>& out_;
+  std::mutex mutex_;
+};
+
+// A full-model run of parts 3-5, queued so that one pool runs them longest (tau / epsilon) first.
+struct Task {
+  double cost;
+  std::function<void()> run;
+};
+
+// Part 1: betas against the Coulomb element.
+void runBetas(const ValidationPlan& plan, const ValidationEngines& engines, ProgressLog& log,
+              int jobs, ValidationResults& res) {
   res.betas.resize(plan.beta_s.size());
   parallelFor(jobs, identity(plan.beta_s.size()), [&](size_t k) {
     BetaRow& row = res.betas[k];
@@ -520,11 +541,14 @@ ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Sc
     row.err1 = std::abs(row.measured.beta1 - row.beta1_closed);
     row.err2 = std::abs(row.measured.beta2 - row.beta2_closed);
     row.pass = row.measured.periodic && row.err1 <= plan.beta_tol && row.err2 <= plan.beta_tol;
-    say("betas s = " + fmt("%.9g", s) + ": |d beta1| = " + fmt("%.1e", row.err1) +
-        ", |d beta2| = " + fmt("%.1e", row.err2) + (row.pass ? "" : "  FAIL"));
+    log.say("betas s = " + fmt("%.9g", s) + ": |d beta1| = " + fmt("%.1e", row.err1) +
+            ", |d beta2| = " + fmt("%.1e", row.err2) + (row.pass ? "" : "  FAIL"));
   });
+}
 
-  // 2. the paper's scenarios from the slow flow, at their shipped epsilon and tau (cheap)
+// Part 2: the paper's scenarios from the slow flow, at their shipped epsilon and tau (cheap).
+void runPaperScenarios(const std::vector<Scenario>& scenarios, ProgressLog& log,
+                       ValidationResults& res) {
   for (const auto& sc : scenarios) {
     if (sc.spec.outcome == PaperOutcome::None) continue;
     ScenarioResult r;
@@ -533,20 +557,16 @@ ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Sc
     r.checks = paperChecks(sc.spec.outcome, r.slow, sc.scaled);
     r.pass = r.slow.report.complete &&
              std::all_of(r.checks.begin(), r.checks.end(), [](const Check& c) { return c.pass; });
-    say("paper " + r.name + ": slow flow " + toString(r.slow.verdict.regime) +
-        (r.pass ? "" : "  FAIL"));
+    log.say("paper " + r.name + ": slow flow " + toString(r.slow.verdict.regime) +
+            (r.pass ? "" : "  FAIL"));
     res.scenarios.push_back(std::move(r));
   }
+}
 
-  // 3-5: every full-model run is a task of one pool, the longest (tau / epsilon) first; the slow
-  // flow runs alongside (cheap)
-  struct Task {
-    double cost;
-    std::function<void()> run;
-  };
-  std::vector<Task> tasks;
-
-  // 3. convergence in epsilon over tau in [0, convergence_tau]
+// Part 3: convergence in epsilon over tau in [0, convergence_tau].
+void queueConvergence(const ValidationPlan& plan, const std::vector<Scenario>& scenarios,
+                      const ValidationEngines& engines, ProgressLog& log, ValidationResults& res,
+                      std::vector<Task>& tasks) {
   res.convergence.resize(plan.convergence_scenarios.size());
   for (size_t c = 0; c < plan.convergence_scenarios.size(); ++c) {
     const Scenario& sc = findScenario(scenarios, plan.convergence_scenarios[c]);
@@ -557,20 +577,24 @@ ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Sc
     cv.runs_complete.assign(cv.eps.size(), 0);
     for (size_t k = 0; k < cv.eps.size(); ++k)
       tasks.push_back(
-          {plan.convergence_tau / cv.eps[k], [&res, &plan, &engines, &say, scp = &sc, c, k] {
+          {plan.convergence_tau / cv.eps[k], [&res, &plan, &engines, &log, scp = &sc, c, k] {
              ConvergenceResult& cv2 = res.convergence[c];
              const double eps = cv2.eps[k], tau = plan.convergence_tau;
              const ModelRun slow = runSlowModel(scp->scaled, eps, tau);
              const ModelRun full = runFullModelAt(engines, scp->scaled, cv2.name, eps, tau);
              cv2.runs_complete[k] = slow.report.complete && full.report.complete;
              cv2.error[k] = envelopeError(full.envelope, slow.envelope, eps, tau);
-             say("convergence " + cv2.name + " eps = " + fmt("%g", eps) + ": error " +
-                 fmt("%.3e", cv2.error[k].max_distance) + " (" +
-                 fmt("%.1f", full.report.wall_seconds) + " s)");
+             log.say("convergence " + cv2.name + " eps = " + fmt("%g", eps) + ": error " +
+                     fmt("%.3e", cv2.error[k].max_distance) + " (" +
+                     fmt("%.1f", full.report.wall_seconds) + " s)");
            }});
   }
+}
 
-  // 4. final regimes: full model at several epsilons against the slow flow
+// Part 4: final regimes, the full model at several epsilons against the slow flow.
+void queueRegimes(const ValidationPlan& plan, const std::vector<Scenario>& scenarios,
+                  const ValidationEngines& engines, ProgressLog& log, ValidationResults& res,
+                  std::vector<Task>& tasks) {
   res.regimes.resize(plan.regime_scenarios.size());
   for (size_t c = 0; c < plan.regime_scenarios.size(); ++c) {
     const Scenario& sc = findScenario(scenarios, plan.regime_scenarios[c]);
@@ -578,56 +602,55 @@ ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Sc
     rc.name = sc.spec.name;
     rc.tau_end = sc.spec.regime_tau;
     rc.slow = runSlowModel(sc.scaled, sc.scaled.epsilon, rc.tau_end);
-    runLine("regimes " + rc.name + " slow", rc.slow);
+    log.run("regimes " + rc.name + " slow", rc.slow);
     rc.full.resize(plan.regime_eps.size());
     for (size_t k = 0; k < plan.regime_eps.size(); ++k) {
       const double eps = plan.regime_eps[k] > 0 ? plan.regime_eps[k] : sc.scaled.epsilon;
-      tasks.push_back({rc.tau_end / eps, [&res, &engines, &runLine, scp = &sc, c, k, eps] {
+      tasks.push_back({rc.tau_end / eps, [&res, &engines, &log, scp = &sc, c, k, eps] {
                          RegimeComparison& rc2 = res.regimes[c];
                          rc2.full[k] =
                              runFullModelAt(engines, scp->scaled, rc2.name, eps, rc2.tau_end);
-                         runLine("regimes " + rc2.name + " full eps = " + fmt("%.4g", eps) +
+                         log.run("regimes " + rc2.name + " full eps = " + fmt("%.4g", eps) +
                                      " tau = " + fmt("%g", rc2.tau_end),
                                  rc2.full[k]);
                        }});
     }
   }
+}
 
-  // 5. the experiment's regime sequence over mu, both models at the rig's epsilon
-  if (!plan.sweep_mu.empty()) {
-    const Scenario& sc = findScenario(scenarios, plan.sweep_scenario);
-    res.sweep_scenario = plan.sweep_scenario;
-    res.sweep_epsilon = sc.scaled.epsilon;
-    res.sweep_tau = sc.scaled.tau_end;
-    const ScaledParams& b = sc.scaled;
-    if (b.theta0.size() >= 2)
-      res.sweep_psi0 = wrapToPi(std::atan2(b.theta0[0], b.thetadot0[0]) -
-                                std::atan2(b.theta0[1], b.thetadot0[1]));
-    res.sweep.resize(plan.sweep_mu.size());
-    for (size_t k = 0; k < plan.sweep_mu.size(); ++k) {
-      tasks.push_back({b.tau_end / b.epsilon, [&res, &plan, &engines, &runLine, scp = &sc, k] {
-                         const Scenario& sc2 = *scp;
-                         FrictionSweepPoint& pt = res.sweep[k];
-                         ScaledParams q = sc2.scaled;
-                         q.mu = plan.sweep_mu[k];
-                         pt.mu = q.mu;
-                         pt.mu_bar = q.mu * std::pow(q.epsilon, 1.5);
-                         pt.slow = runSlowModel(q, q.epsilon, q.tau_end);
-                         pt.full =
-                             runFullModelAt(engines, q, sc2.spec.name + "-mu" + fmt("%g", q.mu),
-                                            q.epsilon, q.tau_end);
-                         runLine("sweep mu = " + fmt("%g", q.mu) + " slow", pt.slow);
-                         runLine("sweep mu = " + fmt("%g", q.mu) + " full", pt.full);
-                       }});
-    }
+// Part 5: the experiment's regime sequence over mu, both models at the rig's epsilon.
+void queueMuSweep(const ValidationPlan& plan, const std::vector<Scenario>& scenarios,
+                  const ValidationEngines& engines, ProgressLog& log, ValidationResults& res,
+                  std::vector<Task>& tasks) {
+  if (plan.sweep_mu.empty()) return;
+  const Scenario& sc = findScenario(scenarios, plan.sweep_scenario);
+  res.sweep_scenario = plan.sweep_scenario;
+  res.sweep_epsilon = sc.scaled.epsilon;
+  res.sweep_tau = sc.scaled.tau_end;
+  const ScaledParams& b = sc.scaled;
+  if (b.theta0.size() >= 2)
+    res.sweep_psi0 =
+        wrapToPi(std::atan2(b.theta0[0], b.thetadot0[0]) - std::atan2(b.theta0[1], b.thetadot0[1]));
+  res.sweep.resize(plan.sweep_mu.size());
+  for (size_t k = 0; k < plan.sweep_mu.size(); ++k) {
+    tasks.push_back({b.tau_end / b.epsilon, [&res, &plan, &engines, &log, scp = &sc, k] {
+                       FrictionSweepPoint& pt = res.sweep[k];
+                       ScaledParams q = scp->scaled;
+                       q.mu = plan.sweep_mu[k];
+                       pt.mu = q.mu;
+                       pt.mu_bar = q.mu * std::pow(q.epsilon, 1.5);
+                       pt.slow = runSlowModel(q, q.epsilon, q.tau_end);
+                       pt.full =
+                           runFullModelAt(engines, q, scp->spec.name + "-mu" + fmt("%g", q.mu),
+                                          q.epsilon, q.tau_end);
+                       log.run("sweep mu = " + fmt("%g", q.mu) + " slow", pt.slow);
+                       log.run("sweep mu = " + fmt("%g", q.mu) + " full", pt.full);
+                     }});
   }
+}
 
-  std::vector<size_t> order = identity(tasks.size());
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t b) { return tasks[a].cost > tasks[b].cost; });
-  parallelFor(jobs, order, [&](size_t k) { tasks[k].run(); });
-
-  // what needs every run of a scenario
+// Part 3 once every run is in: the order of convergence and its check.
+void finishConvergence(const ValidationPlan& plan, ProgressLog& log, ValidationResults& res) {
   for (auto& cv : res.convergence) {
     cv.complete =
         std::all_of(cv.runs_complete.begin(), cv.runs_complete.end(), [](int b) { return b != 0; });
@@ -637,8 +660,13 @@ ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Sc
     cv.order = positive && errs.size() >= 2 ? fitOrder(cv.eps, errs)
                                             : std::numeric_limits<double>::quiet_NaN();
     cv.pass = cv.complete && cv.order >= plan.order_lo && cv.order <= plan.order_hi;
-    say("convergence " + cv.name + ": order " + fmt("%.3f", cv.order) + (cv.pass ? "" : "  FAIL"));
+    log.say("convergence " + cv.name + ": order " + fmt("%.3f", cv.order) +
+            (cv.pass ? "" : "  FAIL"));
   }
+}
+
+// Part 4 once every run is in: the distances of the final states, as run and exchanged.
+void finishRegimes(const std::vector<Scenario>& scenarios, ValidationResults& res) {
   for (auto& rc : res.regimes) {
     const bool identical = identicalPair(findScenario(scenarios, rc.name).scaled);
     for (const ModelRun& full : rc.full) {
@@ -653,6 +681,33 @@ ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Sc
                                 finalStatesAgree(full, rc.slow, dm));
     }
   }
+}
+
+}  // namespace
+
+ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Scenario>& scenarios,
+                                const ValidationEngines& engines,
+                                const std::function<void(const std::string&)>& progress, int jobs) {
+  const Clock::time_point t0 = Clock::now();
+  ProgressLog log(progress);
+  ValidationResults res;
+  res.plan = plan;
+  runBetas(plan, engines, log, jobs, res);
+  runPaperScenarios(scenarios, log, res);
+
+  // 3-5: every full-model run is a task of one pool, the longest first; the slow flow runs
+  // alongside (cheap)
+  std::vector<Task> tasks;
+  queueConvergence(plan, scenarios, engines, log, res, tasks);
+  queueRegimes(plan, scenarios, engines, log, res, tasks);
+  queueMuSweep(plan, scenarios, engines, log, res, tasks);
+  std::vector<size_t> order = identity(tasks.size());
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return tasks[a].cost > tasks[b].cost; });
+  parallelFor(jobs, order, [&](size_t k) { tasks[k].run(); });
+
+  finishConvergence(plan, log, res);
+  finishRegimes(scenarios, res);
   res.wall_seconds = secondsSince(t0);
   return res;
 }

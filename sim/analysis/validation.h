@@ -21,8 +21,8 @@
 #include "contact/simbody/driven_coulomb.h"  // the harness's result type (header only)
 #include "models/rig.h"
 #include "models/scaling.h"
-#include "sim/record/envelope.h"
 #include "sim/analysis/regime.h"
+#include "sim/record/envelope.h"
 #include "sim/record/run_report.h"
 
 namespace metrosync {
@@ -191,9 +191,7 @@ struct RegimeComparison {  // part 4
   std::vector<bool> mirror_agree;
 };
 
-// One friction value of part 5 (both models at mu): not the sweep command's point
-// (sim/analysis/sweep.h SweepPoint), which is one cell of a regime map.
-struct FrictionSweepPoint {  // part 5
+struct FrictionSweepPoint {  // part 5: one friction value, both models
   double mu = 0.0, mu_bar = 0.0;
   ModelRun slow, full;
 };

@@ -316,12 +316,16 @@ const RegimeComparison* findRegimes(const ValidationResults& r, const std::strin
 
 // ---- report.md ----------------------------------------------------------------------------------
 
-std::string validationReportMarkdown(const ValidationResults& r, const ReportContext& ctx,
-                                     const std::vector<std::string>& plots) {
-  auto has = [&](const std::string& png) {
-    return std::find(plots.begin(), plots.end(), png) != plots.end();
-  };
-  std::ostringstream md;
+namespace {
+
+// ---- report.md, one function per section ---------------------------------------------------
+
+bool hasPlot(const std::vector<std::string>& plots, const std::string& png) {
+  return std::find(plots.begin(), plots.end(), png) != plots.end();
+}
+
+// the title, the command that regenerates the report, the rigs and the engine
+void mdHeader(std::ostream& md, const ValidationResults& r, const ReportContext& ctx) {
   const ValidationPlan& plan = r.plan;
 
   md << "# Validation: the full model against the asymptotics\n\n"
@@ -338,8 +342,11 @@ std::string validationReportMarkdown(const ValidationResults& r, const ReportCon
      << "The full model is the " << ctx.engine << " engine at its default accuracy ("
      << shortSci(ScaledRigInput{}.accuracy) << "); the slow flow is integrated at rtol "
      << shortSci(SlowFlowOptions{}.rtol) << ".\n\n";
+}
 
-  // ---- summary
+// one row per part
+void mdSummary(std::ostream& md, const ValidationResults& r) {
+  const ValidationPlan& plan = r.plan;
   double beta_max = 0, s_lo = INFINITY, s_hi = 0;
   bool betas_pass = !r.betas.empty();
   for (const auto& b : r.betas) {
@@ -394,8 +401,10 @@ std::string validationReportMarkdown(const ValidationResults& r, const ReportCon
        << "<br>full model: " << sequenceText(regimeSequence(r.sweep, true)) << " |\n";
   md << "\nChecks failed: " << r.failedChecks()
      << "; runs that stopped early: " << r.incompleteRuns() << ".\n\n";
+}
 
-  // ---- part 1
+// part 1: beta1, beta2 against the Coulomb element
+void mdBetas(std::ostream& md, const ValidationResults& r, const std::vector<std::string>& plots) {
   md << "## 1. β₁, β₂ against the full model's Coulomb element\n\n"
      << "The Simbody Coulomb element of the full model (`contact/simbody/coulomb_element.h`: its "
         "witness, `resolveSwitch` and `settleAtRest`), on a unit mass with unit friction bound, "
@@ -422,9 +431,11 @@ std::string validationReportMarkdown(const ValidationResults& r, const ReportCon
   }
   md << "\n0 switches: the platform stays stuck (s ≤ 1); 4: stick-slip (slip, stick, slip back, "
         "stick); 2: pure slip, reversing twice per period (s > s_b).\n\n";
-  if (has("betas.png")) md << "![β₁, β₂: closed forms and the element](betas.png)\n\n";
+  if (hasPlot(plots, "betas.png")) md << "![β₁, β₂: closed forms and the element](betas.png)\n\n";
+}
 
-  // ---- part 2
+// part 2: the paper's eight simulations
+void mdScenarios(std::ostream& md, const ValidationResults& r) {
   md << "## 2. The paper's eight simulations, from the slow flow\n\n"
      << "Each shipped `paper/` rig run with the slow flow to its own τ ("
      << (r.scenarios.empty() ? std::string("–") : fmt("%g", r.scenarios.front().slow.tau_end))
@@ -445,8 +456,12 @@ std::string validationReportMarkdown(const ValidationResults& r, const ReportCon
        << stateText(s.slow.final()) << " | " << checks << " |\n";
   }
   md << "\n";
+}
 
-  // ---- part 3
+// part 3: convergence in epsilon
+void mdConvergence(std::ostream& md, const ValidationResults& r,
+                   const std::vector<std::string>& plots) {
+  const ValidationPlan& plan = r.plan;
   md << "## 3. Convergence in ε\n\n"
      << "Every scenario's scaled parameters and start, the full model at ε = ";
   for (size_t k = 0; k < plan.convergence_eps.size(); ++k)
@@ -472,173 +487,204 @@ std::string validationReportMarkdown(const ValidationResults& r, const ReportCon
        << num(last.max_dpsi, 4) << " | " << passText(c.pass) << " |\n";
   }
   md << "\n";
-  if (has("convergence.png")) md << "![envelope error against ε, log-log](convergence.png)\n\n";
+  if (hasPlot(plots, "convergence.png"))
+    md << "![envelope error against ε, log-log](convergence.png)\n\n";
+}
 
-  // ---- part 4
-  if (!r.regimes.empty()) {
-    md << "## 4. Where the asymptotics fail\n\n"
-       << "The final regime (SPEC rules on the last 10% of the run) of each scenario from the "
-          "full model at the rig's own ε (";
-    {
-      std::vector<std::string> own;
-      for (const auto& rc : r.regimes)
-        if (!rc.full.empty()) {
-          const std::string e = epsLabel(rc.full[0].epsilon);
-          if (std::find(own.begin(), own.end(), e) == own.end()) own.push_back(e);
-        }
-      for (size_t k = 0; k < own.size(); ++k) md << (k ? ", " : "") << own[k];
-    }
-    md << ")";
-    for (size_t k = 1; k < plan.regime_eps.size(); ++k) md << ", " << fmt("%g", plan.regime_eps[k]);
-    md << ", next to the slow flow's, over the τ window shown (long enough for the slow flow's "
-          "final regime). d: the distance between the final states (as in part 3). ✓: same "
-          "regime and, for a settled state with a metronome alive, d ≤ "
-       << fmt("%g", kAgreeDistance)
-       << "; ↔: the same, once the full model's two metronomes (identical but for their start) "
-          "are exchanged; ✗: neither.\n\n| scenario | τ | slow flow |";
-    for (size_t k = 0; k < plan.regime_eps.size(); ++k)
-      md << " full, ε = " << (plan.regime_eps[k] > 0 ? fmt("%g", plan.regime_eps[k]) : "rig's")
-         << " |";
-    md << "\n| --- | --- | --- |";
-    for (size_t k = 0; k < plan.regime_eps.size(); ++k) md << " --- |";
-    md << "\n";
-    for (const auto& rc : r.regimes) {
-      md << "| " << rc.name << " | " << fmt("%g", rc.tau_end) << " | **" << regimeText(rc.slow)
-         << "**<br>" << stateText(rc.slow.final()) << " |";
-      for (size_t k = 0; k < rc.full.size(); ++k) {
-        const ModelRun& f = rc.full[k];
-        md << " "
-           << (rc.agree[k]          ? "✓ "
-               : rc.mirror_agree[k] ? "↔ "
-                                    : "✗ ")
-           << "**" << regimeText(f) << "**<br>" << stateText(f.final())
-           << "<br>d = " << num(rc.distance[k], 3) << " |";
-      }
-      md << "\n";
-    }
-    md << "\n";
-    // the disagreements, in words
-    std::vector<std::string> lines;
+// part 4: the final regimes, full model against slow flow, as a table
+void mdRegimeTable(std::ostream& md, const ValidationResults& r) {
+  const ValidationPlan& plan = r.plan;
+  md << "## 4. Where the asymptotics fail\n\n"
+     << "The final regime (SPEC rules on the last 10% of the run) of each scenario from the "
+        "full model at the rig's own ε (";
+  {
+    std::vector<std::string> own;
     for (const auto& rc : r.regimes)
-      for (size_t k = 0; k < rc.full.size(); ++k) {
-        if (rc.agree[k]) continue;
-        const ModelRun& f = rc.full[k];
-        std::string line = "- **" + rc.name + "** at ε = " + epsLabel(regimeEps(rc, k)) + ": ";
-        if (f.verdict.regime != rc.slow.verdict.regime)
-          line += "the full model ends in " + regimeText(f) + " (" + stateText(f.final()) +
-                  "), the slow flow in " + regimeText(rc.slow) + " (" + stateText(rc.slow.final()) +
-                  ").";
-        else
-          line += "both " + regimeText(f) + ", but in different states: full " +
-                  stateText(f.final()) + ", slow " + stateText(rc.slow.final()) +
-                  " (d = " + num(rc.distance[k], 2) + ").";
-        if (rc.mirror_agree[k])
-          line +=
-              " With the full model's metronomes exchanged (they are identical but for their "
-              "start) the states agree, d = " +
-              num(rc.mirror_distance[k], 3) +
-              ": the small asymmetry of the start grew the other way.";
-        lines.push_back(line);
+      if (!rc.full.empty()) {
+        const std::string e = epsLabel(rc.full[0].epsilon);
+        if (std::find(own.begin(), own.end(), e) == own.end()) own.push_back(e);
       }
-    if (lines.empty()) {
-      md << "The full model agrees with the slow flow on every scenario at every ε.\n\n";
-    } else {
-      md << "Disagreements:\n\n";
-      for (const auto& l : lines) md << l << "\n";
-      md << "\n";
-    }
-    for (const RegimeComparison* rc : disagreementsToPlot(r)) {
-      const std::string png = pngNameFor(*rc);
-      if (has(png))
-        md << "![" << rc->name
-           << ": full model (solid) and slow flow (dashed) at ε = " << epsLabel(regimeEps(*rc, 0))
-           << "](" << png << ")\n\n";
-    }
+    for (size_t k = 0; k < own.size(); ++k) md << (k ? ", " : "") << own[k];
   }
+  md << ")";
+  for (size_t k = 1; k < plan.regime_eps.size(); ++k) md << ", " << fmt("%g", plan.regime_eps[k]);
+  md << ", next to the slow flow's, over the τ window shown (long enough for the slow flow's "
+        "final regime). d: the distance between the final states (as in part 3). ✓: same "
+        "regime and, for a settled state with a metronome alive, d ≤ "
+     << fmt("%g", kAgreeDistance)
+     << "; ↔: the same, once the full model's two metronomes (identical but for their start) "
+        "are exchanged; ✗: neither.\n\n| scenario | τ | slow flow |";
+  for (size_t k = 0; k < plan.regime_eps.size(); ++k)
+    md << " full, ε = " << (plan.regime_eps[k] > 0 ? fmt("%g", plan.regime_eps[k]) : "rig's")
+       << " |";
+  md << "\n| --- | --- | --- |";
+  for (size_t k = 0; k < plan.regime_eps.size(); ++k) md << " --- |";
+  md << "\n";
+  for (const auto& rc : r.regimes) {
+    md << "| " << rc.name << " | " << fmt("%g", rc.tau_end) << " | **" << regimeText(rc.slow)
+       << "**<br>" << stateText(rc.slow.final()) << " |";
+    for (size_t k = 0; k < rc.full.size(); ++k) {
+      const ModelRun& f = rc.full[k];
+      md << " "
+         << (rc.agree[k]          ? "✓ "
+             : rc.mirror_agree[k] ? "↔ "
+                                  : "✗ ")
+         << "**" << regimeText(f) << "**<br>" << stateText(f.final())
+         << "<br>d = " << num(rc.distance[k], 3) << " |";
+    }
+    md << "\n";
+  }
+  md << "\n";
+}
 
-  // ---- part 5
+// part 4: the disagreements, in words, and their plots
+void mdDisagreements(std::ostream& md, const ValidationResults& r,
+                     const std::vector<std::string>& plots) {
+  std::vector<std::string> lines;
+  for (const auto& rc : r.regimes)
+    for (size_t k = 0; k < rc.full.size(); ++k) {
+      if (rc.agree[k]) continue;
+      const ModelRun& f = rc.full[k];
+      std::string line = "- **" + rc.name + "** at ε = " + epsLabel(regimeEps(rc, k)) + ": ";
+      if (f.verdict.regime != rc.slow.verdict.regime)
+        line += "the full model ends in " + regimeText(f) + " (" + stateText(f.final()) +
+                "), the slow flow in " + regimeText(rc.slow) + " (" + stateText(rc.slow.final()) +
+                ").";
+      else
+        line += "both " + regimeText(f) + ", but in different states: full " +
+                stateText(f.final()) + ", slow " + stateText(rc.slow.final()) +
+                " (d = " + num(rc.distance[k], 2) + ").";
+      if (rc.mirror_agree[k])
+        line +=
+            " With the full model's metronomes exchanged (they are identical but for their "
+            "start) the states agree, d = " +
+            num(rc.mirror_distance[k], 3) +
+            ": the small asymmetry of the start grew the other way.";
+      lines.push_back(line);
+    }
+  if (lines.empty()) {
+    md << "The full model agrees with the slow flow on every scenario at every ε.\n\n";
+  } else {
+    md << "Disagreements:\n\n";
+    for (const auto& l : lines) md << l << "\n";
+    md << "\n";
+  }
+  for (const RegimeComparison* rc : disagreementsToPlot(r)) {
+    const std::string png = pngNameFor(*rc);
+    if (hasPlot(plots, png))
+      md << "![" << rc->name
+         << ": full model (solid) and slow flow (dashed) at ε = " << epsLabel(regimeEps(*rc, 0))
+         << "](" << png << ")\n\n";
+  }
+}
+
+// part 5: the experiment's regime sequence over mu, as a table
+void mdSweepTable(std::ostream& md, const ValidationResults& r) {
+  md << "## 5. The experiment's regime sequence over μ\n\n"
+     << "The paper's figure exp1, right panel (experiments started in phase): in-phase "
+        "synchronization at low μ, then metronome suppression, then oscillator death, then "
+        "antiphase synchronization and, at the highest μ, uncoupling (the platform barely "
+        "moves). Here both models run the rig `"
+     << r.sweep_scenario << "` (its scaled parameters: ψ₀ = " << fmt("%.4f", r.sweep_psi0)
+     << ", ε = " << fmt("%.4g", r.sweep_epsilon) << ", τ = " << fmt("%.1f", r.sweep_tau)
+     << ") with its friction μ replaced; μ̄ = μ ε^{3/2} is the physical coefficient";
+  std::string exp_mu;
+  for (const auto& rc : r.regimes)
+    if (rc.name.rfind("experiment-", 0) == 0 && rc.name.find("inphase") != std::string::npos)
+      exp_mu += (exp_mu.empty() ? "" : ", ") + rc.name + ": μ = " + fmt("%.3f", rc.slow.mu);
+  if (!exp_mu.empty()) md << " (the experiment's rigs: " << exp_mu << ")";
+  md << ". Platform: where it spends the last 10% (full model: the share of time stuck; slow "
+        "flow: the Coulomb regime of the final drive s = \\|Z\\|/μ); \"uncoupled\": alive over "
+        "a platform at rest.\n\n"
+     << "| μ | μ̄ | slow flow | full model, ε = " << fmt("%.4g", r.sweep_epsilon) << " |\n"
+     << "| --- | --- | --- | --- |\n";
+  for (const auto& p : r.sweep) {
+    auto cell = [](const ModelRun& m) {
+      std::string s = "**" + regimeText(m) + "**<br>" + stateText(m.final());
+      if (!m.platform.empty()) {
+        s += "<br>platform " + m.platform;
+        if (std::isfinite(m.platform_stuck_fraction) && m.platform == "stick-slip")
+          s += " (stuck " + fmt("%.1f", 100 * m.platform_stuck_fraction) + "%)";
+      }
+      return s;
+    };
+    md << "| " << fmt("%g", p.mu) << " | " << sci(p.mu_bar, 2) << " | " << cell(p.slow) << " | "
+       << cell(p.full) << " |\n";
+  }
+}
+
+// part 5: the sequences and what they say
+void mdSweepWords(std::ostream& md, const ValidationResults& r,
+                  const std::vector<std::string>& plots) {
+  const auto slow_seq = regimeSequence(r.sweep, false), full_seq = regimeSequence(r.sweep, true);
+  md << "\nThe sequences, collapsed:\n\n"
+     << "- paper (fig. exp1, right): in-phase → suppression → death → antiphase → uncoupled\n"
+     << "- slow flow: " << sequenceText(slow_seq) << "\n"
+     << "- full model: " << sequenceText(full_seq) << "\n\n";
+  md << "In words: the slow flow " << (followsPaperOrder(slow_seq) ? "does" : "does not")
+     << " go through in-phase, suppression and death in the paper's order; the full model "
+     << (followsPaperOrder(full_seq) ? "does" : "does not") << ". ";
+  const double s_sup = firstMuWith(r.sweep, false, Regime::Suppression),
+               f_sup = firstMuWith(r.sweep, true, Regime::Suppression);
+  const double s_death = firstMuWith(r.sweep, false, Regime::Death),
+               f_death = firstMuWith(r.sweep, true, Regime::Death);
+  auto at = [](double mu) { return std::isfinite(mu) ? "μ = " + fmt("%g", mu) : "never"; };
+  md << "Suppression first appears at " << at(s_sup) << " in the slow flow and " << at(f_sup)
+     << " in the full model; death at " << at(s_death) << " and " << at(f_death)
+     << ". At the highest μ tried (" << fmt("%g", r.sweep.back().mu) << ") the slow flow gives "
+     << sweepLabel(r.sweep.back().slow) << " and the full model " << sweepLabel(r.sweep.back().full)
+     << " (the paper: antiphase, then uncoupling). ";
+  if (const RegimeComparison* hi = findRegimes(r, "experiment-high-friction-inphase")) {
+    md << "The experiment's own high friction (μ = " << fmt("%.3f", hi->slow.mu)
+       << "; fig. exp3: death about 20 s after an in-phase start) gives " << regimeText(hi->slow)
+       << " in the slow flow";
+    if (!hi->full.empty()) md << " and " << regimeText(hi->full[0]) << " in the full model";
+    md << " at the rig's ε (part 4)";
+    std::vector<std::string> later;
+    if (hi->slow.verdict.regime != Regime::Death) later.push_back("the slow flow");
+    if (!hi->full.empty() && hi->full[0].verdict.regime != Regime::Death)
+      later.push_back("the full model");
+    if (!later.empty())
+      md << ": in " << (later.size() == 2 ? later[0] + " and " + later[1] : later[0])
+         << " death needs more friction than in the experiment";
+    md << ".";
+  }
+  // the highest friction: a still platform in the slow flow, not quite in the full model
+  const FrictionSweepPoint& top = r.sweep.back();
+  if (top.slow.platform == "stuck" && top.full.report.complete && top.full.platform != "stuck" &&
+      std::isfinite(top.full.platform_stuck_fraction) && !top.full.final().psi.empty())
+    md << " At μ = " << fmt("%g", top.mu)
+       << " the slow flow's platform never moves (\\|Z\\| < μ: the metronomes are uncoupled), "
+          "while the full model's is at rest "
+       << fmt("%.1f", 100 * top.full.platform_stuck_fraction)
+       << "% of the time: every escapement tick jumps a pendulum's velocity, and e1.1c turns "
+          "that into an impulse on the platform, which no finite friction force can hold; the "
+          "platform slides briefly at each tick, so the full model's metronomes never decouple "
+          "completely (ψ: "
+       << fmt("%.4f", r.sweep_psi0) << " at the start, "
+       << fmt("%.4f", wrapToPi(top.full.final().psi[0])) << " at the end; the slow flow's "
+       << fmt("%.4f", wrapToPi(top.slow.final().psi[0])) << ").";
+  md << "\n\n";
+  if (hasPlot(plots, "sweep.png")) md << "![final amplitudes against μ](sweep.png)\n\n";
+}
+
+}  // namespace
+
+std::string validationReportMarkdown(const ValidationResults& r, const ReportContext& ctx,
+                                     const std::vector<std::string>& plots) {
+  std::ostringstream md;
+  mdHeader(md, r, ctx);
+  mdSummary(md, r);
+  mdBetas(md, r, plots);
+  mdScenarios(md, r);
+  mdConvergence(md, r, plots);
+  if (!r.regimes.empty()) {
+    mdRegimeTable(md, r);
+    mdDisagreements(md, r, plots);
+  }
   if (!r.sweep.empty()) {
-    md << "## 5. The experiment's regime sequence over μ\n\n"
-       << "The paper's figure exp1, right panel (experiments started in phase): in-phase "
-          "synchronization at low μ, then metronome suppression, then oscillator death, then "
-          "antiphase synchronization and, at the highest μ, uncoupling (the platform barely "
-          "moves). Here both models run the rig `"
-       << r.sweep_scenario << "` (its scaled parameters: ψ₀ = " << fmt("%.4f", r.sweep_psi0)
-       << ", ε = " << fmt("%.4g", r.sweep_epsilon) << ", τ = " << fmt("%.1f", r.sweep_tau)
-       << ") with its friction μ replaced; μ̄ = μ ε^{3/2} is the physical coefficient";
-    std::string exp_mu;
-    for (const auto& rc : r.regimes)
-      if (rc.name.rfind("experiment-", 0) == 0 && rc.name.find("inphase") != std::string::npos)
-        exp_mu += (exp_mu.empty() ? "" : ", ") + rc.name + ": μ = " + fmt("%.3f", rc.slow.mu);
-    if (!exp_mu.empty()) md << " (the experiment's rigs: " << exp_mu << ")";
-    md << ". Platform: where it spends the last 10% (full model: the share of time stuck; slow "
-          "flow: the Coulomb regime of the final drive s = \\|Z\\|/μ); \"uncoupled\": alive over "
-          "a platform at rest.\n\n"
-       << "| μ | μ̄ | slow flow | full model, ε = " << fmt("%.4g", r.sweep_epsilon) << " |\n"
-       << "| --- | --- | --- | --- |\n";
-    for (const auto& p : r.sweep) {
-      auto cell = [](const ModelRun& m) {
-        std::string s = "**" + regimeText(m) + "**<br>" + stateText(m.final());
-        if (!m.platform.empty()) {
-          s += "<br>platform " + m.platform;
-          if (std::isfinite(m.platform_stuck_fraction) && m.platform == "stick-slip")
-            s += " (stuck " + fmt("%.1f", 100 * m.platform_stuck_fraction) + "%)";
-        }
-        return s;
-      };
-      md << "| " << fmt("%g", p.mu) << " | " << sci(p.mu_bar, 2) << " | " << cell(p.slow) << " | "
-         << cell(p.full) << " |\n";
-    }
-    const auto slow_seq = regimeSequence(r.sweep, false), full_seq = regimeSequence(r.sweep, true);
-    md << "\nThe sequences, collapsed:\n\n"
-       << "- paper (fig. exp1, right): in-phase → suppression → death → antiphase → uncoupled\n"
-       << "- slow flow: " << sequenceText(slow_seq) << "\n"
-       << "- full model: " << sequenceText(full_seq) << "\n\n";
-    md << "In words: the slow flow " << (followsPaperOrder(slow_seq) ? "does" : "does not")
-       << " go through in-phase, suppression and death in the paper's order; the full model "
-       << (followsPaperOrder(full_seq) ? "does" : "does not") << ". ";
-    const double s_sup = firstMuWith(r.sweep, false, Regime::Suppression),
-                 f_sup = firstMuWith(r.sweep, true, Regime::Suppression);
-    const double s_death = firstMuWith(r.sweep, false, Regime::Death),
-                 f_death = firstMuWith(r.sweep, true, Regime::Death);
-    auto at = [](double mu) { return std::isfinite(mu) ? "μ = " + fmt("%g", mu) : "never"; };
-    md << "Suppression first appears at " << at(s_sup) << " in the slow flow and " << at(f_sup)
-       << " in the full model; death at " << at(s_death) << " and " << at(f_death)
-       << ". At the highest μ tried (" << fmt("%g", r.sweep.back().mu) << ") the slow flow gives "
-       << sweepLabel(r.sweep.back().slow) << " and the full model "
-       << sweepLabel(r.sweep.back().full) << " (the paper: antiphase, then uncoupling). ";
-    if (const RegimeComparison* hi = findRegimes(r, "experiment-high-friction-inphase")) {
-      md << "The experiment's own high friction (μ = " << fmt("%.3f", hi->slow.mu)
-         << "; fig. exp3: death about 20 s after an in-phase start) gives " << regimeText(hi->slow)
-         << " in the slow flow";
-      if (!hi->full.empty()) md << " and " << regimeText(hi->full[0]) << " in the full model";
-      md << " at the rig's ε (part 4)";
-      std::vector<std::string> later;
-      if (hi->slow.verdict.regime != Regime::Death) later.push_back("the slow flow");
-      if (!hi->full.empty() && hi->full[0].verdict.regime != Regime::Death)
-        later.push_back("the full model");
-      if (!later.empty())
-        md << ": in " << (later.size() == 2 ? later[0] + " and " + later[1] : later[0])
-           << " death needs more friction than in the experiment";
-      md << ".";
-    }
-    // the highest friction: a still platform in the slow flow, not quite in the full model
-    const FrictionSweepPoint& top = r.sweep.back();
-    if (top.slow.platform == "stuck" && top.full.report.complete && top.full.platform != "stuck" &&
-        std::isfinite(top.full.platform_stuck_fraction) && !top.full.final().psi.empty())
-      md << " At μ = " << fmt("%g", top.mu)
-         << " the slow flow's platform never moves (\\|Z\\| < μ: the metronomes are uncoupled), "
-            "while the full model's is at rest "
-         << fmt("%.1f", 100 * top.full.platform_stuck_fraction)
-         << "% of the time: every escapement tick jumps a pendulum's velocity, and e1.1c turns "
-            "that into an impulse on the platform, which no finite friction force can hold; the "
-            "platform slides briefly at each tick, so the full model's metronomes never decouple "
-            "completely (ψ: "
-         << fmt("%.4f", r.sweep_psi0) << " at the start, "
-         << fmt("%.4f", wrapToPi(top.full.final().psi[0])) << " at the end; the slow flow's "
-         << fmt("%.4f", wrapToPi(top.slow.final().psi[0])) << ").";
-    md << "\n\n";
-    if (has("sweep.png")) md << "![final amplitudes against μ](sweep.png)\n\n";
+    mdSweepTable(md, r);
+    mdSweepWords(md, r, plots);
   }
   return md.str();
 }

@@ -16,7 +16,7 @@ struct ReportContext {
   std::string command;   // the exact command line that regenerates the report
   std::string rigs_dir;  // where the shipped rigs were read from
   std::string date;      // when the run ended (UTC, ISO 8601)
-  std::string engine;    // the full model's engine (sim/engines/engine.h registry name)
+  std::string engine;    // the full model's engine (sim/engines/engine.h)
 };
 
 // Consecutive sweep points with the same label, collapsed: the regime sequence over mu. The label
