@@ -345,59 +345,73 @@ nlohmann::json statusJson(const SweepManifest& m, long shard_points,
 
 namespace {
 
-int sweepImpl(const SweepOptions& opt) {
-  const Clock::time_point t_start = Clock::now();
+// The sweep's stages, top to bottom: plan (the grid and every point's rig, validated before any
+// file), resume (what the folder already holds), run (points on threads, rows appended as they
+// finish), finish (sorted regimes.csv, maps, sweep.json, the console summary).
+struct SweepPlan {
+  SweepGrid grid;
+  SweepShard shard;
+  std::string text;  // the rig's YAML
+  Rig base;
+  int n = 0;
+  std::vector<long> mine;  // this shard's grid indices
+  std::map<long, PointInput> inputs;
+  SweepManifest manifest;
+  std::string path, regimes_path;
+};
+
+SweepPlan planSweep(const SweepOptions& opt) {
   if (opt.jobs < 0) throw UsageError("--jobs " + std::to_string(opt.jobs) + ": must be >= 1");
   std::vector<SweepAxis> axes;
   for (const auto& v : opt.vary) axes.push_back(parseVary(v));
-  const SweepGrid grid(std::move(axes));
-  const SweepShard shard = opt.shard.empty() ? SweepShard{} : parseShard(opt.shard);
-
+  SweepPlan plan{SweepGrid(std::move(axes))};
+  plan.shard = opt.shard.empty() ? SweepShard{} : parseShard(opt.shard);
   // the rig, and every grid point's rig: a bad key or value stops here, before any file
-  const std::string text = readRigText(opt);
-  const Rig base = loadRigText(text, displayName(opt), opt.sets);
-  const int n = static_cast<int>(base.metronomes.size());
-  const std::vector<long> mine = shardIndices(grid, shard);
-  std::map<long, PointInput> inputs;
+  plan.text = readRigText(opt);
+  plan.base = loadRigText(plan.text, displayName(opt), opt.sets);
+  plan.n = static_cast<int>(plan.base.metronomes.size());
+  plan.mine = shardIndices(plan.grid, plan.shard);
   const Engine* engine = nullptr;  // the same at every point (no --vary names one)
-  for (long g = 0; g < grid.size(); ++g) {
-    PointInput in = loadPoint(text, opt, grid, g);
-    if (static_cast<int>(in.rig.metronomes.size()) != n)
+  for (long g = 0; g < plan.grid.size(); ++g) {
+    PointInput in = loadPoint(plan.text, opt, plan.grid, g);
+    if (static_cast<int>(in.rig.metronomes.size()) != plan.n)
       throw UsageError("--vary changes the number of metronomes at grid point " +
                        std::to_string(g));
     if (g == 0) engine = in.engine;
-    if (shard.contains(g)) inputs.emplace(g, std::move(in));
+    if (plan.shard.contains(g)) plan.inputs.emplace(g, std::move(in));
   }
+  SweepManifest& m = plan.manifest;
+  m.model = engine->model();
+  m.engine = engine->name();
+  m.rig_path = opt.rig_path;
+  m.rig_name = plan.base.name;
+  m.rig_text = plan.text;
+  m.sets = opt.sets;
+  m.metronomes = plan.n;
+  m.grid = plan.grid;
+  m.shard = plan.shard;
+  plan.path = opt.out.empty() ? defaultOutputDir(plan.base.name, "sweep") : opt.out;
+  plan.regimes_path = plan.path + "/regimes.csv";
+  return plan;
+}
 
-  SweepManifest manifest;
-  manifest.model = engine->model();
-  manifest.engine = engine->name();
-  manifest.rig_path = opt.rig_path;
-  manifest.rig_name = base.name;
-  manifest.rig_text = text;
-  manifest.sets = opt.sets;
-  manifest.metronomes = n;
-  manifest.grid = grid;
-  manifest.shard = shard;
-
-  // --resume: the same sweep, and what it already has
-  const std::string path = opt.out.empty() ? defaultOutputDir(base.name, "sweep") : opt.out;
-  const std::string regimes_path = path + "/regimes.csv";
+// --resume: the same sweep, and what it already has (this shard's rows only)
+RegimesTable resumeTable(const SweepOptions& opt, const SweepPlan& plan, bool& resuming) {
   RegimesTable table;
-  bool resuming = false;
+  resuming = false;
   if (opt.resume) {
-    const bool have_manifest = fs::exists(path + "/sweep.json");
-    if (have_manifest) {
+    const std::string& path = plan.path;
+    if (fs::exists(path + "/sweep.json")) {
       const SweepManifest old = SweepManifest::fromJson(readSweepJson(path + "/sweep.json"));
-      std::string diff = sweepDifference(old, manifest);
-      if (diff.empty() && (old.shard.k != shard.k || old.shard.n != shard.n))
-        diff = "it is shard " + old.shard.text() + ", not " + shard.text();
+      std::string diff = sweepDifference(old, plan.manifest);
+      if (diff.empty() && (old.shard.k != plan.shard.k || old.shard.n != plan.shard.n))
+        diff = "it is shard " + old.shard.text() + ", not " + plan.shard.text();
       if (!diff.empty())
         throw UsageError("--resume: " + path + " holds another sweep: " + diff +
                          " (resume it with its own command line, or choose another --out)");
-      table = readRegimesCsv(regimes_path, grid, n);
+      table = readRegimesCsv(plan.regimes_path, plan.grid, plan.n);
       resuming = true;
-    } else if (fs::exists(regimes_path)) {
+    } else if (fs::exists(plan.regimes_path)) {
       throw UsageError("--resume: " + path +
                        " has a regimes.csv but no sweep.json: cannot check "
                        "that it is this sweep");
@@ -406,97 +420,126 @@ int sweepImpl(const SweepOptions& opt) {
     }
   }
   for (auto it = table.lines.begin(); it != table.lines.end();) {  // rows of other shards
-    if (!shard.contains(it->first)) {
+    if (!plan.shard.contains(it->first)) {
       table.points.erase(it->first);
       it = table.lines.erase(it);
     } else {
       ++it;
     }
   }
-  std::vector<long> todo;
-  for (long g : mine)
-    if (!table.lines.count(g)) todo.push_back(g);
+  return table;
+}
 
-  // from here on files are written
-  installStopHandlers();
-  OutputDir dir = [&] {
-    try {
-      OutputDir d(path);
-      if (!resuming) removeStaleSweepOutputs(d);
-      return d;
-    } catch (const std::runtime_error& e) {
-      throw UsageError(std::string("--out: ") + e.what());
-    }
-  }();
-  for (const auto& w : table.warnings) std::cerr << "metrosync: warning: " << w << "\n";
-  std::map<long, std::string> lines = table.lines;
-  std::map<long, SweepPoint> points = table.points;
-  writeSweepJson(dir, statusJson(manifest, static_cast<long>(mine.size()), points, false));
+OutputDir openSweepDir(const std::string& path, bool resuming) {
+  try {
+    OutputDir d(path);
+    if (!resuming) removeStaleSweepOutputs(d);
+    return d;
+  } catch (const std::runtime_error& e) {
+    throw UsageError(std::string("--out: ") + e.what());
+  }
+}
 
+// What the run stage leaves: every point of this shard so far, in regimes.csv's text and as values.
+struct SweepRun {
+  std::map<long, std::string> lines;
+  std::map<long, SweepPoint> points;
+  long finished_now = 0;
+  int jobs = 1;
+};
+
+SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir,
+                  const RegimesTable& table, const std::vector<long>& todo, bool resuming) {
+  SweepRun run{table.lines, table.points};
+  writeSweepJson(dir,
+                 statusJson(plan.manifest, static_cast<long>(plan.mine.size()), run.points, false));
   const bool fresh = table.complete_bytes == 0;
-  RegimesAppender regimes(regimes_path, regimesHeader(grid, n), fresh, table.complete_bytes);
+  RegimesAppender regimes(plan.regimes_path, regimesHeader(plan.grid, plan.n), fresh,
+                          table.complete_bytes);
   const size_t timing_bytes = resuming ? wholeLinesBytes(timingsPath(dir)) : 0;
   RegimesAppender timings(timingsPath(dir), "index,wall_seconds", timing_bytes == 0, timing_bytes);
-
-  int jobs = opt.jobs > 0 ? opt.jobs : static_cast<int>(std::thread::hardware_concurrency());
-  jobs = std::max(1, jobs);
-  const bool show_progress = !opt.quiet && ::isatty(2);
-  Progress progress(show_progress, static_cast<long>(mine.size()),
-                    static_cast<long>(points.size()));
+  run.jobs = opt.jobs > 0 ? opt.jobs : static_cast<int>(std::thread::hardware_concurrency());
+  run.jobs = std::max(1, run.jobs);
+  Progress progress(!opt.quiet && ::isatty(2), static_cast<long>(plan.mine.size()),
+                    static_cast<long>(run.points.size()));
   const long stop_after = stopAfterHook();
-  long finished_now = 0;
-
   runSweepPoints(
-      todo, jobs, [&](long g) { return runPoint(inputs.at(g), g); },
+      todo, run.jobs, [&](long g) { return runPoint(plan.inputs.at(g), g); },
       [&](const SweepPoint& p) {
-        const std::string line = formatRegimesRow(grid, p);
+        const std::string line = formatRegimesRow(plan.grid, p);
         regimes.append(line);
         timings.append(std::to_string(p.index) + "," + fmt(p.wall_seconds, "%.6g"));
-        lines[p.index] = line;
-        points[p.index] = p;
+        run.lines[p.index] = line;
+        run.points[p.index] = p;
         progress.finished(!p.complete);
-        if (++finished_now == stop_after) std::_Exit(137);
+        if (++run.finished_now == stop_after) std::_Exit(137);
       },
       [] { return FileSink::stopRequested(); });
   progress.done();
   regimes.close();
   timings.close();
+  return run;
+}
+
+void printSweepSummary(const SweepPlan& plan, const SweepRun& run, const OutputDir& dir,
+                       const std::vector<std::string>& files, long failed, long before,
+                       double wall_s) {
+  const SweepShard& shard = plan.shard;
+  const int n = plan.n;
+  std::cout << "sweep of " << plan.base.name << " (" << modelTitle(plan.manifest.model) << ", " << n
+            << (n == 1 ? " metronome" : " metronomes") << "): " << gridText(plan.grid)
+            << (shard.n > 1 ? ", shard " + shard.text() + ": " + std::to_string(plan.mine.size()) +
+                                  " of them"
+                            : "")
+            << "; " << run.points.size() << " done (" << run.finished_now << " now, " << before
+            << " before), " << failed << " failed\n"
+            << "  regimes: " << countsText(run.points) << "\n"
+            << "  wall time " << fmt(wall_s, "%.3g") << " s on " << run.jobs
+            << (run.jobs == 1 ? " thread" : " threads") << "\n"
+            << "files: " << dir.path() << "/ (" << joined(files) << ")\n";
+}
+
+int sweepImpl(const SweepOptions& opt) {
+  const Clock::time_point t_start = Clock::now();
+  SweepPlan plan = planSweep(opt);
+  bool resuming = false;
+  const RegimesTable table = resumeTable(opt, plan, resuming);
+  std::vector<long> todo;
+  for (long g : plan.mine)
+    if (!table.lines.count(g)) todo.push_back(g);
+
+  // from here on files are written
+  installStopHandlers();
+  const OutputDir dir = openSweepDir(plan.path, resuming);
+  for (const auto& w : table.warnings) std::cerr << "metrosync: warning: " << w << "\n";
+  const SweepRun run = runSweep(opt, plan, dir, table, todo, resuming);
 
   const bool interrupted = FileSink::stopRequested();
-  const bool complete = points.size() == mine.size();
-  writeSortedRegimesCsv(regimes_path, grid, n, lines);
+  const bool complete = run.points.size() == plan.mine.size();
+  writeSortedRegimesCsv(plan.regimes_path, plan.grid, plan.n, run.lines);
   std::vector<std::string> files = {"regimes.csv", "timings.csv"};
-  for (const auto& f : plotSweepMaps(dir, grid, n, points, mapTitle(manifest))) files.push_back(f);
+  for (const auto& f : plotSweepMaps(dir, plan.grid, plan.n, run.points, mapTitle(plan.manifest)))
+    files.push_back(f);
   files.push_back("sweep.json");
-  nlohmann::json status = statusJson(manifest, static_cast<long>(mine.size()), points, complete);
-  status["jobs"] = jobs;
+  nlohmann::json status =
+      statusJson(plan.manifest, static_cast<long>(plan.mine.size()), run.points, complete);
+  status["jobs"] = run.jobs;
   status["wall_seconds"] = secondsSince(t_start);
-  status["points"]["run_now"] = finished_now;
+  status["points"]["run_now"] = run.finished_now;
   status["interrupted"] = interrupted;
   status["files"] = files;
   writeSweepJson(dir, status);
 
-  long failed = status["points"]["failed"].get<long>();
-  if (!opt.quiet) {
-    std::cout << "sweep of " << base.name << " (" << modelTitle(manifest.model) << ", " << n
-              << (n == 1 ? " metronome" : " metronomes") << "): " << gridText(grid)
-              << (shard.n > 1
-                      ? ", shard " + shard.text() + ": " + std::to_string(mine.size()) + " of them"
-                      : "")
-              << "; " << points.size() << " done (" << finished_now << " now, "
-              << (mine.size() - todo.size()) << " before), " << failed << " failed\n"
-              << "  regimes: " << countsText(points) << "\n"
-              << "  wall time " << fmt(secondsSince(t_start), "%.3g") << " s on " << jobs
-              << (jobs == 1 ? " thread" : " threads") << "\n"
-              << "files: " << dir.path() << "/ (" << joined(files) << ")\n";
-  }
+  const long failed = status["points"]["failed"].get<long>();
+  const long before = static_cast<long>(plan.mine.size() - todo.size());
+  if (!opt.quiet) printSweepSummary(plan, run, dir, files, failed, before, secondsSince(t_start));
   if (failed > 0)
     std::cerr << "metrosync: warning: " << failed
               << " grid points failed (regime 'failed', the reason in the message column of "
-              << regimes_path << ")\n";
+              << plan.regimes_path << ")\n";
   if (interrupted) {
-    std::cerr << "metrosync: error: interrupted by a signal with " << points.size() << " of "
-              << mine.size() << " points done; continue with the same command and --resume\n";
+    std::cerr << "metrosync: error: interrupted by a signal with " << run.points.size() << " of "
+              << plan.mine.size() << " points done; continue with the same command and --resume\n";
     return kSimulationFailed;
   }
   return kSuccess;
