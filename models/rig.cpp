@@ -2,7 +2,9 @@
 
 namespace metrosync {
 
-const char* toString(Units u) { return u == Units::Physical ? "physical" : "scaled"; }
+const char* toString(Units u) {
+  return u == Units::Physical ? "physical" : "scaled";
+}
 
 double Rig::totalMass() const {
   double m = platform.mass_kg;

@@ -13,8 +13,8 @@
 #include <set>
 #include <sstream>
 
-#include "sim/record/envelope.h"
 #include "sim/engines/simbody/simbody_engine.h"
+#include "sim/record/envelope.h"
 #include "tests/common/run_metrosync.h"
 
 namespace {
@@ -240,7 +240,8 @@ void expectSummary(const json& s, const std::string& model, int n, bool top_leve
   EXPECT_EQ(s["model"], model);
   EXPECT_TRUE(s["complete"].get<bool>()) << s.dump(2);
   EXPECT_FALSE(s.contains("failure"));
-  // N >= 3: the clusters' names of sim/analysis/regime.h (in-phase, clusters:3+2, suppressed:1;drift, ...)
+  // N >= 3: the clusters' names of sim/analysis/regime.h (in-phase, clusters:3+2,
+  // suppressed:1;drift, ...)
   const std::regex many(
       "(suppressed:[0-9]+;?)?(in-phase|phase-locked|drift|unsettled|"
       "clusters:[0-9x+]+)?");

@@ -14,10 +14,10 @@
 #include <sstream>
 
 #include "models/scaling.h"
-#include "sim/engines/slow_flow/slow_flow_engine.h"
-#include "sim/record/envelope.h"
 #include "sim/analysis/regime.h"
 #include "sim/analysis/sweep.h"
+#include "sim/engines/slow_flow/slow_flow_engine.h"
+#include "sim/record/envelope.h"
 #include "tools/report/sweep_maps.h"
 
 namespace metrosync {

@@ -1,5 +1,6 @@
 // One timed run of the full model on any engine, and its error against a reference run.
-//   engines: "simbody" (sim/engines/simbody/simbody_engine.h), "direct" (sim/engines/direct/direct_engine.h),
+//   engines: "simbody" (sim/engines/simbody/simbody_engine.h), "direct"
+//   (sim/engines/direct/direct_engine.h),
 //            "siconos" (tools/bench/siconos_peer.h, when built with Siconos)
 //   error:   on the envelope (max over rows of |A_i - A_i,ref| and of |psi_j - psi_j,ref| mod 2 pi,
 //            scaled units) and on the final state (max of |dxdot|, |dtheta_i|, |dthetadot_i|,

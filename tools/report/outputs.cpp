@@ -204,12 +204,10 @@ nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict)
   if (!verdict.reason.empty()) j["regime_reason"] = verdict.reason;
   j["final"] = {
       {"tau", report.final_row.tau}, {"A", report.final_row.A}, {"psi", report.final_row.psi}};
-  j["counts"] = {{"steps", report.counts.steps},
-                 {"escapements", report.counts.escapements},
-                 {"stick_slip", report.counts.stick_slip},
-                 {"slip_reversals", report.counts.slip_reversals},
-                 {"rhs_evals", report.counts.rhs_evals},
-                 {"events", report.counts.events}};
+  j["counts"] = {
+      {"steps", report.counts.steps},           {"escapements", report.counts.escapements},
+      {"stick_slip", report.counts.stick_slip}, {"slip_reversals", report.counts.slip_reversals},
+      {"rhs_evals", report.counts.rhs_evals},   {"events", report.counts.events}};
   j["wall_seconds"] = report.wall_seconds;
   j["complete"] = report.complete;
   if (!report.complete) j["failure"] = report.failure;

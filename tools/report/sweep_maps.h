@@ -1,5 +1,5 @@
-// The pictures of a sweep (PNG through gnuplot, as tools/report/plot.h): what a reader of the paper's
-// figure exp1 wants to see, computed.
+// The pictures of a sweep (PNG through gnuplot, as tools/report/plot.h): what a reader of the
+// paper's figure exp1 wants to see, computed.
 //   regimes.png     the regime of every grid point, one colour per regime, with a legend: a map
 //                   over the two varied keys (first --vary across, second up), or for one key a
 //                   strip of coloured cells along it
@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "tools/report/outputs.h"
 #include "sim/analysis/sweep.h"
+#include "tools/report/outputs.h"
 
 namespace metrosync {
 
