@@ -667,6 +667,82 @@ const Node& readMetronomeList(const Reader& top, const std::string& what) {
   return list;
 }
 
+// pendulum: mass, length, inertia (>= m L^2), damping or decay_rate (e1.1a)
+void readPhysicalPendulum(const Reader& m, MetronomeSpec& mt) {
+  const Reader p = m.map("pendulum", "mass, length and damping or decay_rate");
+  mt.pendulum_mass_kg = positive(p, "mass", "kg");
+  mt.length_m = positive(p, "length", "m, pivot to centre of mass");
+  const double point_inertia = mt.pendulum_mass_kg * mt.length_m * mt.length_m;
+  mt.inertia_kgm2 = point_inertia;
+  if (auto I = p.optNumber("inertia")) {
+    if (!(*I >= point_inertia * (1.0 - kInertiaSlack)))
+      p.bad("inertia",
+            "must be >= mass * length^2 = " + fmt(point_inertia) + " (parallel-axis theorem)");
+    mt.inertia_kgm2 = std::max(*I, point_inertia);
+  }
+  const bool has_damping = p.has("damping"), has_decay = p.has("decay_rate");
+  if (has_damping && has_decay) p.bad("decay_rate", "give damping or decay_rate, not both");
+  if (!has_damping && !has_decay)
+    p.missing("damping", "nu-bar in kg/s, or decay_rate in 1/s; damping: 0 for none");
+  if (has_damping) {
+    mt.damping_kg_s = nonNegative(p, "damping", *p.optNumber("damping"));
+  } else {
+    // theta-bar'' + (nu-bar L^2 / I) theta-bar' + ...: the amplitude decays at rate
+    // nu-bar L^2 / (2 I) (paper s3, beta = nu-bar / 2m for I = m L^2)
+    const double rate = nonNegative(p, "decay_rate", *p.optNumber("decay_rate"));
+    mt.damping_kg_s = 2.0 * rate * mt.inertia_kgm2 / (mt.length_m * mt.length_m);
+  }
+}
+
+// escapement: critical angle and impulse, or a steady amplitude that sets the impulse later
+// (`amplitude` keeps its reader until the scaled parameters are known)
+void readPhysicalEscapement(const Reader& m, MetronomeSpec& mt, std::optional<Reader>& amplitude) {
+  if (auto e = m.optMap("escapement")) {
+    mt.theta_c_rad = e->number("angle", "rad, the critical angle theta_c");
+    if (!(mt.theta_c_rad > 0 && mt.theta_c_rad < kPi)) e->bad("angle", "must be in (0, pi)");
+    const bool has_impulse = e->has("impulse"), has_amplitude = e->has("steady_amplitude");
+    if (has_impulse && has_amplitude)
+      e->bad("steady_amplitude", "give impulse or steady_amplitude, not both");
+    if (!has_impulse && !has_amplitude)
+      e->missing("impulse", "N m s per tick, or steady_amplitude in rad");
+    if (has_impulse) {
+      mt.impulse_Nms = nonNegative(*e, "impulse", *e->optNumber("impulse"));
+    } else {
+      // eq. A_star: A_star is the stable amplitude only if A_star >= sqrt(2) theta_c
+      const double A = *e->optNumber("steady_amplitude");
+      const double lowest = std::sqrt(2.0) * mt.theta_c_rad;
+      if (!(A >= lowest && A < kPi))
+        e->bad("steady_amplitude",
+               "must be in [sqrt(2) * angle, pi) = [" + fmt(lowest) +
+                   ", 3.14159) (below sqrt(2) * angle no impulse makes it the stable amplitude)");
+      if (!(mt.damping_kg_s > 0))
+        e->bad("steady_amplitude",
+               "needs damping > 0 (an undamped pendulum has no steady amplitude)");
+      amplitude = *e;
+    }
+  }
+}
+
+// steady_amplitude -> J by eq. J_estimate with the metronome's own scaled nu_i, theta_c,i,
+// then J-bar_i = eps J_i I_i sqrt(eps) omega0
+void impulsesFromSteadyAmplitudes(Rig& rig,
+                                  const std::vector<std::optional<Reader>>& amplitude_of) {
+  const ScaledParams sp = computeScaled(rig);
+  for (std::size_t i = 0; i < rig.metronomes.size(); ++i) {
+    if (!amplitude_of[i]) continue;
+    const Reader& e = *amplitude_of[i];
+    const double A = *e.optNumber("steady_amplitude") / sp.angle_scale;
+    double J = 0.0;
+    try {
+      J = impulseForAmplitude(sp.nu[i], A, sp.theta_c[i]);
+    } catch (const std::invalid_argument& err) {
+      e.bad("steady_amplitude", err.what());
+    }
+    MetronomeSpec& mt = rig.metronomes[i];
+    mt.impulse_Nms = sp.epsilon * sp.angle_scale * J * mt.inertia_kgm2 / sp.time_scale_s;
+  }
+}
+
 Rig buildPhysical(const Node& root, const Source& src, const std::string& fallback_name) {
   const Reader top(root, "", src);
   Rig rig;
@@ -698,54 +774,8 @@ Rig buildPhysical(const Node& root, const Source& src, const std::string& fallba
     mt.box_mass_kg =
         nonNegative(m, "box_mass", m.number("box_mass", "kg, the metronome without its pendulum"));
 
-    const Reader p = m.map("pendulum", "mass, length and damping or decay_rate");
-    mt.pendulum_mass_kg = positive(p, "mass", "kg");
-    mt.length_m = positive(p, "length", "m, pivot to centre of mass");
-    const double point_inertia = mt.pendulum_mass_kg * mt.length_m * mt.length_m;
-    mt.inertia_kgm2 = point_inertia;
-    if (auto I = p.optNumber("inertia")) {
-      if (!(*I >= point_inertia * (1.0 - kInertiaSlack)))
-        p.bad("inertia",
-              "must be >= mass * length^2 = " + fmt(point_inertia) + " (parallel-axis theorem)");
-      mt.inertia_kgm2 = std::max(*I, point_inertia);
-    }
-    const bool has_damping = p.has("damping"), has_decay = p.has("decay_rate");
-    if (has_damping && has_decay) p.bad("decay_rate", "give damping or decay_rate, not both");
-    if (!has_damping && !has_decay)
-      p.missing("damping", "nu-bar in kg/s, or decay_rate in 1/s; damping: 0 for none");
-    if (has_damping) {
-      mt.damping_kg_s = nonNegative(p, "damping", *p.optNumber("damping"));
-    } else {
-      // theta-bar'' + (nu-bar L^2 / I) theta-bar' + ...: the amplitude decays at rate
-      // nu-bar L^2 / (2 I) (paper s3, beta = nu-bar / 2m for I = m L^2)
-      const double rate = nonNegative(p, "decay_rate", *p.optNumber("decay_rate"));
-      mt.damping_kg_s = 2.0 * rate * mt.inertia_kgm2 / (mt.length_m * mt.length_m);
-    }
-
-    if (auto e = m.optMap("escapement")) {
-      mt.theta_c_rad = e->number("angle", "rad, the critical angle theta_c");
-      if (!(mt.theta_c_rad > 0 && mt.theta_c_rad < kPi)) e->bad("angle", "must be in (0, pi)");
-      const bool has_impulse = e->has("impulse"), has_amplitude = e->has("steady_amplitude");
-      if (has_impulse && has_amplitude)
-        e->bad("steady_amplitude", "give impulse or steady_amplitude, not both");
-      if (!has_impulse && !has_amplitude)
-        e->missing("impulse", "N m s per tick, or steady_amplitude in rad");
-      if (has_impulse) {
-        mt.impulse_Nms = nonNegative(*e, "impulse", *e->optNumber("impulse"));
-      } else {
-        // eq. A_star: A_star is the stable amplitude only if A_star >= sqrt(2) theta_c
-        const double A = *e->optNumber("steady_amplitude");
-        const double lowest = std::sqrt(2.0) * mt.theta_c_rad;
-        if (!(A >= lowest && A < kPi))
-          e->bad("steady_amplitude",
-                 "must be in [sqrt(2) * angle, pi) = [" + fmt(lowest) +
-                     ", 3.14159) (below sqrt(2) * angle no impulse makes it the stable amplitude)");
-        if (!(mt.damping_kg_s > 0))
-          e->bad("steady_amplitude",
-                 "needs damping > 0 (an undamped pendulum has no steady amplitude)");
-        amplitude_of[i] = *e;
-      }
-    }
+    readPhysicalPendulum(m, mt);
+    readPhysicalEscapement(m, mt, amplitude_of[i]);
 
     if (auto s = m.optMap("start")) {
       mt.start_angle_rad = s->optNumber("angle").value_or(0.0);
@@ -758,22 +788,7 @@ Rig buildPhysical(const Node& root, const Source& src, const std::string& fallba
   readSimulation(top, "duration", "s", rig.sim.t_end_s, rig.sim.accuracy, rig.sim.integrator,
                  rig.sim.sample_s);
 
-  // steady_amplitude -> J by eq. J_estimate with the metronome's own scaled nu_i, theta_c,i,
-  // then J-bar_i = eps J_i I_i sqrt(eps) omega0
-  const ScaledParams sp = computeScaled(rig);
-  for (std::size_t i = 0; i < rig.metronomes.size(); ++i) {
-    if (!amplitude_of[i]) continue;
-    const Reader& e = *amplitude_of[i];
-    const double A = *e.optNumber("steady_amplitude") / sp.angle_scale;
-    double J = 0.0;
-    try {
-      J = impulseForAmplitude(sp.nu[i], A, sp.theta_c[i]);
-    } catch (const std::invalid_argument& err) {
-      e.bad("steady_amplitude", err.what());
-    }
-    MetronomeSpec& mt = rig.metronomes[i];
-    mt.impulse_Nms = sp.epsilon * sp.angle_scale * J * mt.inertia_kgm2 / sp.time_scale_s;
-  }
+  impulsesFromSteadyAmplitudes(rig, amplitude_of);
   return rig;
 }
 
