@@ -159,7 +159,9 @@ void printRunSummary(const std::string& model, const LoadedRig& r, const RunRepo
     std::vector<double> e(rep.counts.escapements.begin(), rep.counts.escapements.end());
     std::cout << ", escapements " << fmtList(e, "%.0f");
   }
-  if (model == "full") std::cout << ", " << rep.counts.stick_slip << " stick-slip switches";
+  if (model == "full")
+    std::cout << ", " << rep.counts.stick_slip << " stick-slip switches, "
+              << rep.counts.slip_reversals << " slip reversals";
   std::cout << ", wall time " << fmt(rep.wall_seconds, "%.3g") << " s\n";
 }
 
