@@ -6,8 +6,8 @@ namespace metrosync {
 
 std::string StormGuard::why() const {
   std::ostringstream os;
-  os << "event storm: more than " << max_events_ << " events within " << window_ << " s ("
-     << window_periods_ << " fast periods)";
+  os << "event storm: more than " << max_events_ << " events within " << window_periods_
+     << " fast periods";
   return os.str();
 }
 

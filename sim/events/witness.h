@@ -7,6 +7,7 @@
 
 #include "contact/coulomb.h"
 #include "contact/escapement.h"
+#include "models/slow_flow.h"
 
 namespace metrosync {
 
@@ -49,6 +50,17 @@ struct PlatformWitness {
   static double value(const CoulombLaw& law, PlatformMode mode, double xdot, double holding) {
     if (mode == PlatformMode::Stuck) return law.stickMargin(holding);
     return static_cast<int>(mode) * xdot;
+  }
+};
+
+// A switching surface of the slow flow (models/slow_flow.h: an escapement's A_i = theta_c,i, the
+// platform's s = 1 and s = s_b): rises through zero when the flow passes to the other side of the
+// surface from the side `sw.positive` says it is on.
+struct SlowFlowSwitchWitness {
+  static constexpr Direction kDirection = Direction::Rising;
+  static double value(const SlowFlow& flow, const SlowFlowSwitch& sw,
+                      const std::complex<double>* z) {
+    return (sw.positive ? -1.0 : 1.0) * flow.switchValue(sw, z);
   }
 };
 

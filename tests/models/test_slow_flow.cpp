@@ -551,13 +551,13 @@ TEST(SlowFlowRun, StopsWithAReasonInsteadOfRunningForever) {
 }
 
 TEST(SlowFlowRun, AnEventStormEndsTheRun) {
-  // The storm guard (chattering or Zeno at a switch) with its threshold lowered to 2 switches
-  // within 1e6 time units: the second switch of f4.3 (mu = 0.3) must stop the run, reported,
-  // with the rows so far kept.
+  // The shared storm rule (sim/events/storm_guard.h) with its threshold lowered to more than one
+  // switch within 1e6 fast periods: the second switch of f4.3 (mu = 0.3) must stop the run,
+  // reported, with the rows so far kept.
   ScaledParams p = paperPair(0.7, 0.3, 2.8, 0.03);
   SlowFlowOptions opt;
   opt.tau_end = 300.0;
-  opt.storm_events = 2;
+  opt.storm_events = 1;
   opt.storm_window = 1e6;
   MemorySink sink;
   const RunReport r = runSlowFlow(p, opt, sink);
@@ -567,6 +567,25 @@ TEST(SlowFlowRun, AnEventStormEndsTheRun) {
   ASSERT_FALSE(sink.envelope.empty());
   EXPECT_LT(sink.envelope.back().tau, 300.0 - 1.0);
   EXPECT_EQ(r.final_row.tau, sink.envelope.back().tau);
+}
+
+// Two identical metronomes decaying on a fixed platform (J below J_c) reach theta_c together:
+// their escapement switches cross 0 or 1 ulp of amplitude apart, inside one localization window
+// (sim/events/window.h). Both must be flipped there: a switch left unflipped at a restart point
+// past it is never seen again (its witness starts past zero), and that metronome would keep the
+// engaged formula below theta_c and part from the other by O(J).
+TEST(SlowFlowRun, SimultaneousSwitchesAreAllCrossedInTheirWindow) {
+  for (double a2 : {1.9, std::nextafter(1.9, 2.0)}) {
+    SCOPED_TRACE(a2);
+    const ScaledParams p = metronomes(FrictionLaw::Fixed, 0.0, {0.7, 0.7}, {1.0, 1.0}, {0.9, 0.9},
+                                      {0.0, 0.0}, {1.9, a2}, {0.3, 0.3});
+    const SlowRun r = run(p, 6.0);
+    ASSERT_TRUE(r.report.complete) << r.report.failure;
+    EXPECT_EQ(r.report.counts.events, 2);  // each escapement switches off once
+    EXPECT_LT(r.report.final_row.A[0], 0.9 * 0.5);
+    for (const EnvelopeRow& row : r.sink.envelope)
+      ASSERT_NEAR(row.A[1], row.A[0], 1e-12) << "tau " << row.tau;
+  }
 }
 
 TEST(SlowFlowRun, RejectsInconsistentParameters) {

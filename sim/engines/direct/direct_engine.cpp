@@ -30,6 +30,7 @@
 #include "sim/events/resolver.h"
 #include "sim/events/sample_schedule.h"
 #include "sim/events/storm_guard.h"
+#include "sim/events/window.h"
 #include "sim/events/witness.h"
 #include "sim/ode/rk_stepper.h"
 #include "sim/ode/root_find.h"
@@ -69,12 +70,9 @@ struct Witness {
   int side = 0;       // Tick: +1 or -1
 };
 
-// A crossing found in the current step: the bracket of its root in th (fraction of the step).
-struct Crossing {
-  int witness = 0;
-  Bracket th;
-  bool forced = false;  // a slip that could not get going: stopped a sixteenth into the step
-};
+// A crossing found in the current step (sim/events/window.h); `forced` marks a slip that could
+// not get going: stopped a sixteenth into the step.
+using Crossing = WindowCrossing;
 
 // The run: a stepper, the witnesses, and the shared resolver acting on the event state through
 // this class's EventSystem side (the state vector ev_y_ and the platform mode).
@@ -468,22 +466,10 @@ void DirectRun::findCrossings() {
     if (auto c = detect(w)) found_.push_back(*c);
 }
 
-// Brackets the crossings to a few ulps, earliest first; the window ends at the earliest upper end
-// (a crossing that starts after it cannot be earlier and needs no bracketing).
+// The window (sim/events/window.h): every crossing bracketed, the end at the earliest.
 double DirectRun::locateWindow() {
-  std::sort(found_.begin(), found_.end(),
-            [](const Crossing& a, const Crossing& b) { return a.th.lo < b.th.lo; });
-  double th_e = 2.0;
-  for (Crossing& c : found_) {
-    if (c.th.lo >= th_e) break;
-    if (!c.forced && c.th.hi > c.th.lo) {
-      const Witness& w = witnesses_[c.witness];
-      auto g = [&](double th) { return witnessAt(w, th); };
-      c.th = illinois(g, c.th.lo, g(c.th.lo), c.th.hi, g(c.th.hi));
-    }
-    th_e = std::min(th_e, c.th.hi);
-  }
-  return th_e;
+  return metrosync::locateWindow(found_,
+                                 [&](int w, double th) { return witnessAt(witnesses_[w], th); });
 }
 
 // The window's end state in ya_: the platform's witness decides whether it switches (a tick

@@ -8,12 +8,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <deque>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "sim/events/storm_guard.h"
+#include "sim/events/window.h"
 #include "sim/ode/rk_stepper.h"
-#include "sim/ode/root_find.h"
 
 namespace metrosync {
 namespace {
@@ -24,6 +25,7 @@ using cplx = std::complex<double>;
 // function that crosses 0 twice within 1/8 of a step is missed, which the step control makes
 // rare (the state moves by ~rtol^(1/5) of itself per step)
 constexpr int kSwitchSamples = 8;
+constexpr double kTwoPi = 6.283185307179586;
 // a step shorter than this (times max(1, tau)) cannot move tau in double precision any more
 constexpr double kMinStepRelative = 1e-14;
 // shrink factor after a step that produced a non-finite state (no error estimate to go by)
@@ -109,41 +111,16 @@ class RowWriter {
   EnvelopeRow last_;
 };
 
-// Fails the run when storm_events switches fall within storm_window * max(1, tau).
-class StormGuard {
- public:
-  explicit StormGuard(const SlowFlowOptions& opt) : opt_(opt) {}
-  // Records `count` switches at tau; the failure message, or empty.
-  std::string add(double tau, long count) {
-    for (long k = 0; k < count; ++k) recent_.push_back(tau);
-    while (static_cast<int>(recent_.size()) > opt_.storm_events) recent_.pop_front();
-    const double span = recent_.back() - recent_.front();
-    if (static_cast<int>(recent_.size()) < opt_.storm_events ||
-        span > opt_.storm_window * std::max(1.0, std::fabs(tau)))
-      return "";
-    return "slow flow: event storm (" + std::to_string(opt_.storm_events) + " switches within " +
-           fmtTau(span) + ") at tau = " + fmtTau(tau);
-  }
-
- private:
-  const SlowFlowOptions& opt_;
-  std::deque<double> recent_;
-};
-
 class SlowFlowRun {
  public:
   SlowFlowRun(const ScaledParams& p, const SlowFlowOptions& opt, RunSink& sink);
   RunReport run();
 
  private:
-  struct Crossing {
-    int fired = -1;      // the switch crossed first, -1: none
-    double tau = 0.0;    // where: the first point on its far side
-    double theta = 0.0;  // (tau - tau_) / h
-  };
-  std::string step(double& h);  // one attempted step; a failure message, or empty
-  Crossing firstCrossing(double h);
-  std::string crossSwitch(const Crossing& c, double h);
+  std::string step(double& h);                 // one attempted step; a failure message, or empty
+  double switchAt(int e, double th);           // switch e's witness on the dense output
+  std::optional<double> findWindow(double h);  // the window's end (fraction of the step)
+  std::string crossSwitches(double th_e, double h);
   void emitRowsUpTo(double tau_hi, double h);
   RunReport finish(const std::string& failure);
 
@@ -164,6 +141,7 @@ class SlowFlowRun {
   std::vector<double> y_;
   std::vector<cplx> z_;
   std::vector<std::vector<cplx>> samples_;  // the dense output at th = j / kSwitchSamples
+  std::vector<WindowCrossing> found_;
 };
 
 SlowFlowRun::SlowFlowRun(const ScaledParams& p, const SlowFlowOptions& opt, RunSink& sink)
@@ -173,7 +151,7 @@ SlowFlowRun::SlowFlowRun(const ScaledParams& p, const SlowFlowOptions& opt, RunS
       rhs_(flow_),
       stepper_(ode::rkTableau("dopri5"), 2 * static_cast<int>(flow_.active().size()), rhs_),
       rows_(flow_, p, sink),
-      storm_(opt),
+      storm_(kTwoPi * p.epsilon, opt.storm_events, opt.storm_window),  // a fast period in tau
       samples_(kSwitchSamples + 1) {
   checkOptions(p, opt);
   rep_.model = "slow";
@@ -241,9 +219,8 @@ std::string SlowFlowRun::step(double& h) {
   if (last_rejected_) h_next = std::min(h_next, h);  // no growth right after a rejection
   last_rejected_ = false;
   ++rep_.counts.steps;
-  const Crossing c = firstCrossing(h);
-  if (c.fired >= 0) {
-    const std::string failure = crossSwitch(c, h);
+  if (const std::optional<double> th_e = findWindow(h)) {
+    const std::string failure = crossSwitches(*th_e, h);
     h = std::max(h_next, kMinStepRelative * std::max(1.0, std::fabs(tau_)));
     return failure;
   }
@@ -258,82 +235,68 @@ std::string SlowFlowRun::step(double& h) {
   return "";
 }
 
-// The first switching function that changes sign in the attempted step: sampled on the dense
-// output, then bracketed to the last bits of tau by the Illinois method (sim/ode/root_find.h).
-SlowFlowRun::Crossing SlowFlowRun::firstCrossing(double h) {
-  Crossing first;
-  if (switches_.empty()) return first;
+double SlowFlowRun::switchAt(int e, double th) {
+  std::vector<double> yd(y_.size());
+  stepper_.interpolate(th, yd.data());
+  rhs_.unpack(yd.data(), z_);
+  return SlowFlowSwitchWitness::value(flow_, switches_[e], z_.data());
+}
+
+// The switches crossed in the attempted step (each witness sampled on the dense output, then
+// bracketed to the last bits by the shared window locator, sim/events/window.h); the window's
+// end, or nothing when none crossed.
+std::optional<double> SlowFlowRun::findWindow(double h) {
+  found_.clear();
+  if (switches_.empty()) return std::nullopt;
   std::vector<double> yd(y_.size());
   for (int j = 1; j <= kSwitchSamples; ++j) {
     stepper_.interpolate(static_cast<double>(j) / kSwitchSamples, yd.data());
     rhs_.unpack(yd.data(), samples_[j]);
   }
-  double theta_first = 2.0;
-  for (size_t e = 0; e < switches_.size(); ++e) {
-    const SlowFlowSwitch& sw = switches_[e];
-    const double sigma = sw.positive ? 1.0 : -1.0;
-    // beyond(tau) > 0 on the far side of the switch; <= 0 at the step's start (invariant)
-    auto beyond = [&](double tau) {
-      stepper_.interpolate((tau - tau_) / h, yd.data());
-      rhs_.unpack(yd.data(), z_);
-      return -sigma * flow_.switchValue(sw, z_.data());
+  rhs_.unpack(y_.data(), z_);
+  for (int e = 0; e < static_cast<int>(switches_.size()); ++e) {
+    auto sample = [&](int j) {
+      return SlowFlowSwitchWitness::value(flow_, switches_[e], samples_[j].data());
     };
-    double a = 0.0, fa = 0.0, b = -1.0, fb = 0.0;
-    for (int j = 1; j <= kSwitchSamples; ++j) {
-      const double v = -sigma * flow_.switchValue(sw, samples_[j].data());
-      const double th = static_cast<double>(j) / kSwitchSamples;
-      if (v > 0.0) {
-        b = th;
-        fb = v;
-        break;
-      }
-      a = th;
-      fa = v;
-    }
-    if (b < 0.0 || a >= theta_first) continue;
-    const ode::Bracket br = ode::illinois(beyond, tau_ + a * h, fa, tau_ + b * h, fb);
-    const double theta = (br.hi - tau_) / h;
-    if (theta < theta_first) {
-      theta_first = theta;
-      first = {static_cast<int>(e), br.hi, theta};
-    }
+    const double g0 = SlowFlowSwitchWitness::value(flow_, switches_[e], z_.data());
+    if (auto br = scanRising(sample, g0, kSwitchSamples)) found_.push_back({e, *br});
   }
-  return first;
+  if (found_.empty()) return std::nullopt;
+  return locateWindow(found_, [&](int e, double th) { return switchAt(e, th); });
 }
 
-// Rows up to the switch from this step's dense output, then a restart on its far side with the
-// switches flipped (every one the restart point lies beyond: simultaneous crossings).
-std::string SlowFlowRun::crossSwitch(const Crossing& c, double h) {
-  emitRowsUpTo(c.tau, h);
+// Rows up to the window from this step's dense output, then a restart at its end with every
+// switch flipped whose witness is past zero there (all the crossings of the window at once).
+std::string SlowFlowRun::crossSwitches(double th_e, double h) {
+  const double tau_e = tau_ + th_e * h;
+  emitRowsUpTo(tau_e, h);
   std::vector<double> yd(y_.size());
-  stepper_.interpolate(c.theta, yd.data());  // on the far side by construction
-  SlowFlowSwitch& sw = switches_[c.fired];
+  stepper_.interpolate(th_e, yd.data());  // the first switch is past zero here by construction
+  const int first = found_.front().witness;
   // a fresh step of the exact length is more accurate than the interpolant; keep it when it also
-  // lands on the far side (it differs from the interpolant by ~ the local error)
-  stepper_.attempt(c.theta * h);
+  // lands past the first switch (it differs from the interpolant by ~ the local error)
+  stepper_.attempt(th_e * h);
   rhs_.unpack(stepper_.y1(), z_);
-  const double sigma = sw.positive ? 1.0 : -1.0;
-  if (-sigma * flow_.switchValue(sw, z_.data()) > 0.0)
+  if (SlowFlowSwitchWitness::value(flow_, switches_[first], z_.data()) >= 0.0)
     std::copy(stepper_.y1(), stepper_.y1() + y_.size(), y_.begin());
   else
     y_ = yd;
-  tau_ = c.tau;
+  tau_ = tau_e;
   for (double v : y_)
     if (!std::isfinite(v)) return "slow flow: non-finite state at tau = " + fmtTau(tau_);
-  sw.positive = !sw.positive;
-  long flips = 1;
   rhs_.unpack(y_.data(), z_);
-  for (SlowFlowSwitch& other : switches_) {
-    const double value = flow_.switchValue(other, z_.data());
-    if ((other.positive && value < 0.0) || (!other.positive && value > 0.0)) {
-      other.positive = !other.positive;
+  long flips = 0;
+  for (int e = 0; e < static_cast<int>(switches_.size()); ++e) {
+    const double g = SlowFlowSwitchWitness::value(flow_, switches_[e], z_.data());
+    if (g > 0.0 || (e == first && g >= 0.0)) {
+      switches_[e].positive = !switches_[e].positive;
       ++flips;
     }
   }
   rhs_.modes = flow_.modesOf(switches_);
   rep_.counts.events += flips;
-  const std::string storm = storm_.add(tau_, flips);
-  if (!storm.empty()) return storm;
+  for (long k = 0; k < flips; ++k)
+    if (storm_.note(tau_)) return "slow flow: " + storm_.why() + ", at tau = " + fmtTau(tau_);
   stepper_.restart(tau_, y_.data());
   return "";
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "models/slow_flow.h"
+#include "sim/events/storm_guard.h"
 #include "sim/record/run_report.h"
 
 namespace metrosync {
@@ -13,10 +14,10 @@ struct SlowFlowOptions {
   double rtol = 1e-10;        // relative local error target
   double atol = 1e-12;        // absolute local error target
   long max_steps = 20000000;  // accepted + rejected steps; beyond it the run fails
-  // event storm (chattering, Zeno): storm_events switches within a tau span of storm_window
-  // (times max(1, tau)) fail the run
-  int storm_events = 50;
-  double storm_window = 1e-6;
+  // The shared storm rule (sim/events/storm_guard.h): more than storm_events switches while tau
+  // advances by less than storm_window fast periods (2 pi epsilon in tau) fail the run.
+  long storm_events = StormGuard::kMaxEvents;
+  double storm_window = StormGuard::kWindowPeriods;
 };
 
 // Integrates the slow flow from the scaled start with sim/ode's dopri5 stepper and emits envelope
