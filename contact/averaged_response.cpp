@@ -148,7 +148,7 @@ const char* toString(CoulombRegime r) {
     case CoulombRegime::StickSlip:
       return "stick-slip";
     case CoulombRegime::Slip:
-      return "slip";
+      return "slipping";
   }
   return "?";
 }

@@ -128,6 +128,85 @@ int periodicity(const std::vector<DrivenCoulombSwitch>& s, double tol, double& m
   return 0;
 }
 
+// One run of the driven element from rest at t = 0 (B sin 0 = 0: stuck), with Simbody's
+// Runge-Kutta-Merson at the measurement's accuracy.
+struct DrivenRun {
+  DrivenRun(double B, const DrivenCoulombOptions& opt) : h(B), integ(h.system) {
+    State s = h.system.getDefaultState();
+    h.element->settleAtRest(h.system, s);
+    integ.setAccuracy(opt.accuracy);
+    integ.setMaximumStepSize(maxStepFor(B));
+    ts = std::make_unique<TimeStepper>(h.system, integ);
+    ts->initialize(s);
+  }
+  Harness h;
+  RungeKuttaMersonIntegrator integ;
+  std::unique_ptr<TimeStepper> ts;
+};
+
+// The measured period: pass 1 runs from rest one drive period at a time until the switch
+// instants repeat (or the platform stays still for a whole period), and returns the start of each
+// smooth piece of that period, filling r's periodicity fields and t_end.
+std::vector<DrivenCoulombSwitch> measuredPeriod(double B, const DrivenCoulombOptions& opt,
+                                                DrivenCoulombMeasurement& r, double& t_end) {
+  DrivenRun run(B, opt);
+  for (int k = 1; k <= opt.max_periods; ++k) {
+    run.ts->stepTo(kTwoPi * k);
+    const auto& sw = run.h.switches();
+    // never moved since a whole period, or a whole period stopped since the last switch
+    const bool still =
+        sw.empty() ? k >= 2 : sw.back().mode == 0 && kTwoPi * k - sw.back().t > kTwoPi;
+    if (still) {
+      r.periodic = true;
+      r.periods = k - 1;
+      r.t_start = kTwoPi * (k - 1);
+      t_end = kTwoPi * k;
+      return {{r.t_start, 0}};
+    }
+    double mismatch = 0.0;
+    const int m = sw.empty() ? 0 : periodicity(sw, opt.periodic_tol, mismatch);
+    if (m > 0) {
+      const size_t first = sw.size() - m;  // the measured period starts at this switch
+      r.periodic = true;
+      r.period_mismatch = mismatch;
+      r.periods = k - 1;
+      r.t_start = sw[first].t;
+      t_end = r.t_start + kTwoPi;
+      r.switches.assign(sw.begin() + first, sw.end());
+      return r.switches;
+    }
+  }
+  return {};
+}
+
+// Pass 2: the same run again (deterministic), stopping at the Gauss nodes of every smooth piece
+// of the measured period to read the element's acceleration y''; returns the integrals of
+// y'' sin t and y'' cos t over the period.
+std::pair<double, double> driveIntegrals(double B, const DrivenCoulombOptions& opt,
+                                         const std::vector<DrivenCoulombSwitch>& pieces,
+                                         double t_end) {
+  std::vector<double> gx, gw;
+  gaussLegendre(opt.gauss_nodes, gx, gw);
+  double s_sin = 0.0, s_cos = 0.0;
+  DrivenRun run(B, opt);
+  for (size_t j = 0; j < pieces.size(); ++j) {
+    const double lo = pieces[j].t, hi = j + 1 < pieces.size() ? pieces[j + 1].t : t_end;
+    const double half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
+    // a piece this short contributes at most (B + 1) 1e-13 / (2 pi B) to either beta
+    if (!(half > 5e-14)) continue;
+    for (int g = 0; g < opt.gauss_nodes; ++g) {
+      const double t = mid + half * gx[g];
+      run.ts->stepTo(t);
+      State st = run.ts->getState();
+      run.h.system.realize(st, Stage::Acceleration);
+      const double ydd = run.h.slider.getOneUDot(st, MobilizerUIndex(0));
+      s_sin += half * gw[g] * ydd * std::sin(t);
+      s_cos += half * gw[g] * ydd * std::cos(t);
+    }
+  }
+  return {s_sin, s_cos};
+}
+
 }  // namespace
 
 DrivenCoulombMeasurement measureDrivenCoulomb(double B, const DrivenCoulombOptions& opt) {
@@ -136,100 +215,15 @@ DrivenCoulombMeasurement measureDrivenCoulomb(double B, const DrivenCoulombOptio
     throw std::invalid_argument("measureDrivenCoulomb: B must be finite and > 0");
   DrivenCoulombMeasurement r;
   r.B = B;
-
-  auto start = [&](Harness& h, std::unique_ptr<RungeKuttaMersonIntegrator>& integ,
-                   std::unique_ptr<TimeStepper>& ts) {
-    State s = h.system.getDefaultState();
-    h.element->settleAtRest(h.system, s);  // at rest at t = 0: B sin 0 = 0, so stuck
-    integ = std::make_unique<RungeKuttaMersonIntegrator>(h.system);
-    integ->setAccuracy(opt.accuracy);
-    integ->setMaximumStepSize(maxStepFor(B));
-    ts = std::make_unique<TimeStepper>(h.system, *integ);
-    ts->initialize(s);
-  };
-
-  // pass 1: run from rest, one drive period at a time, until the switch instants repeat
-  std::vector<DrivenCoulombSwitch> pieces;  // start of each smooth piece of the measured period
   double t_end = 0.0;
-  {
-    Harness h(B);
-    std::unique_ptr<RungeKuttaMersonIntegrator> integ;
-    std::unique_ptr<TimeStepper> ts;
-    start(h, integ, ts);
-    for (int k = 1; k <= opt.max_periods; ++k) {
-      ts->stepTo(kTwoPi * k);
-      const auto& sw = h.switches();
-      if (sw.empty()) {
-        // never moved: periodic once a whole period has passed stuck
-        if (k >= 2) {
-          r.periodic = true;
-          r.periods = k - 1;
-          r.t_start = kTwoPi * (k - 1);
-          t_end = kTwoPi * k;
-          pieces.push_back({r.t_start, 0});
-          break;
-        }
-        continue;
-      }
-      // a whole period since the last switch without any other: the platform stopped for good
-      if (sw.back().mode == 0 && kTwoPi * k - sw.back().t > kTwoPi) {
-        r.periodic = true;
-        r.periods = k - 1;
-        r.t_start = kTwoPi * (k - 1);
-        t_end = kTwoPi * k;
-        pieces.push_back({r.t_start, 0});
-        break;
-      }
-      double mismatch = 0.0;
-      const int m = periodicity(sw, opt.periodic_tol, mismatch);
-      if (m > 0) {
-        const size_t first = sw.size() - m;  // the measured period starts at this switch
-        r.periodic = true;
-        r.period_mismatch = mismatch;
-        r.periods = k - 1;
-        r.t_start = sw[first].t;
-        t_end = r.t_start + kTwoPi;
-        pieces.assign(sw.begin() + first, sw.end());
-        r.switches = pieces;
-        break;
-      }
-    }
-  }
-  if (!r.periodic) {
+  const std::vector<DrivenCoulombSwitch> pieces = measuredPeriod(B, opt, r, t_end);
+  if (r.periodic) {
+    const auto [s_sin, s_cos] = driveIntegrals(B, opt, pieces, t_end);
+    r.beta1 = s_sin / (kTwoPi * B);
+    r.beta2 = s_cos / (kTwoPi * B);
+  } else {
     r.beta1 = r.beta2 = std::nan("");
-    r.wall_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    return r;
   }
-
-  // pass 2: the same run again (deterministic), stopping at the Gauss nodes of every smooth piece
-  // of the measured period to read the element's acceleration y''
-  std::vector<double> gx, gw;
-  gaussLegendre(opt.gauss_nodes, gx, gw);
-  double s_sin = 0.0, s_cos = 0.0;
-  {
-    Harness h(B);
-    std::unique_ptr<RungeKuttaMersonIntegrator> integ;
-    std::unique_ptr<TimeStepper> ts;
-    start(h, integ, ts);
-    for (size_t j = 0; j < pieces.size(); ++j) {
-      const double lo = pieces[j].t, hi = j + 1 < pieces.size() ? pieces[j + 1].t : t_end;
-      const double half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
-      // a piece this short contributes at most (B + 1) 1e-13 / (2 pi B) to either beta
-      if (!(half > 5e-14)) continue;
-      for (int g = 0; g < opt.gauss_nodes; ++g) {
-        const double t = mid + half * gx[g];
-        ts->stepTo(t);
-        State st = ts->getState();
-        h.system.realize(st, Stage::Acceleration);
-        const double ydd = h.slider.getOneUDot(st, MobilizerUIndex(0));
-        s_sin += half * gw[g] * ydd * std::sin(t);
-        s_cos += half * gw[g] * ydd * std::cos(t);
-      }
-    }
-  }
-  r.beta1 = s_sin / (kTwoPi * B);
-  r.beta2 = s_cos / (kTwoPi * B);
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return r;
 }

@@ -59,18 +59,6 @@ double windowStart(double tau_end, double epsilon) {
   return RegimeWindow(tau_end, epsilon).tauStart();  // the regime's window (sim/analysis/regime.h)
 }
 
-std::string platformName(CoulombRegime r) {
-  switch (r) {
-    case CoulombRegime::Stuck:
-      return "stuck";
-    case CoulombRegime::StickSlip:
-      return "stick-slip";
-    case CoulombRegime::Slip:
-      return "slipping";
-  }
-  return "";
-}
-
 const Scenario& findScenario(const std::vector<Scenario>& all, const std::string& name) {
   for (const auto& s : all)
     if (s.spec.name == name) return s;
@@ -178,7 +166,7 @@ ModelRun runSlowModel(const ScaledParams& p, double epsilon, double tau_end) {
     std::complex<double> Z = f.A[0];
     for (size_t j = 1; j < f.A.size(); ++j) Z += std::polar(f.A[j], -f.psi[j - 1]);
     const double s = p.mu > 0 ? std::abs(Z) / p.mu : std::numeric_limits<double>::infinity();
-    run.platform = platformName(coulombRegime(s));
+    run.platform = toString(coulombRegime(s));
   }
   return run;
 }
@@ -298,43 +286,59 @@ double longestSuppression(const std::vector<EnvelopeRow>& envelope, double tc1, 
 
 }  // namespace
 
-std::vector<Check> paperChecks(PaperOutcome outcome, const ModelRun& slow, const ScaledParams& p) {
-  std::vector<Check> checks;
-  const RegimeVerdict& v = slow.verdict;
-  const EnvelopeRow& f = slow.final();
-  const std::string regime = toString(v.regime);
-  auto add = [&](const std::string& what, bool pass, const std::string& detail) {
-    checks.push_back({what, pass, detail});
-  };
-  auto regimeIs = [&](Regime r) {
-    add(std::string("regime is ") + toString(r), v.regime == r, "slow flow: " + regime);
-  };
-  if (f.A.size() != 2 || f.psi.size() != 1) {
-    add("two metronomes", false, std::to_string(f.A.size()) + " metronomes");
-    return checks;
+namespace {
+
+// The checks of one paper scenario on its slow-flow run, one method per kind of claim.
+class PaperChecker {
+ public:
+  PaperChecker(const ModelRun& slow, const ScaledParams& p)
+      : slow_(slow), v_(slow.verdict), f_(slow.final()), tc1_(p.theta_c[0]), tc2_(p.theta_c[1]) {
+    off_pi_ = std::abs(wrapToPi(f_.psi[0] - kPi));
+    range_ = v_.psi_range.empty() ? std::numeric_limits<double>::quiet_NaN() : v_.psi_range[0];
   }
-  const double tc1 = p.theta_c[0], tc2 = p.theta_c[1];
-  const double off_pi = std::abs(wrapToPi(f.psi[0] - kPi));
-  const double range =
-      v.psi_range.empty() ? std::numeric_limits<double>::quiet_NaN() : v.psi_range[0];
-  auto psiLine = [&] {
-    return "psi = " + fmt("%.4f", f.psi[0]) + ", |psi - pi| = " + fmt("%.4f", off_pi);
-  };
-  auto ampLine = [&] {
-    return "A = " + fmt("%.4f", f.A[0]) + ", " + fmt("%.4f", f.A[1]) +
-           " (theta_c = " + fmt("%.3g", tc1) + ")";
-  };
+
+  std::vector<Check> check(PaperOutcome outcome);
+
+ private:
+  void add(const std::string& what, bool pass, const std::string& detail) {
+    checks_.push_back({what, pass, detail});
+  }
+  void regimeIs(Regime r) {
+    add(std::string("regime is ") + toString(r), v_.regime == r,
+        std::string("slow flow: ") + toString(v_.regime));
+  }
+  std::string psiLine() const {
+    return "psi = " + fmt("%.4f", f_.psi[0]) + ", |psi - pi| = " + fmt("%.4f", off_pi_);
+  }
+  std::string ampLine() const {
+    return "A = " + fmt("%.4f", f_.A[0]) + ", " + fmt("%.4f", f_.A[1]) +
+           " (theta_c = " + fmt("%.3g", tc1_) + ")";
+  }
   // "stationary": a locked psi of the slow flow still creeps where it settles onto the edge of the
   // stuck family (f4.2: |Z| -> mu+, beta ~ (s - 1)^2, ~1e-5 over the window at tau = 300); 1e-3
   // catches a drift or a residual oscillation that the SPEC's 0.1 (sized for the full model's
   // rippling envelopes) would let through
-  auto stationary = [&] {
-    add("psi stationary: range over the last 10% < 1e-3 rad", range < 1e-3,
-        "range = " + fmt("%.2e", range) + " rad");
-  };
+  void stationary() {
+    add("psi stationary: range over the last 10% < 1e-3 rad", range_ < 1e-3,
+        "range = " + fmt("%.2e", range_) + " rad");
+  }
   // "near pi" is the SPEC's antiphase band (0.5 rad)
-  auto nearPi = [&] { add("psi close to pi: |psi - pi| <= 0.5", off_pi <= 0.5, psiLine()); };
+  void nearPi() { add("psi close to pi: |psi - pi| <= 0.5", off_pi_ <= 0.5, psiLine()); }
+  void suppressionFirst() {
+    // "a long time" against the amplitudes' relaxation time 2 / nu (~3): at least 50
+    const double longest = longestSuppression(slow_.envelope, tc1_, tc2_);
+    add("metronome 1 suppresses 2 for a long time first: >= 50 in tau", longest >= 50.0,
+        "longest suppression of 2 by 1: " + fmt("%.1f", longest) + " in tau");
+  }
 
+  const ModelRun& slow_;
+  const RegimeVerdict& v_;
+  const EnvelopeRow& f_;
+  double tc1_, tc2_, off_pi_ = 0.0, range_ = 0.0;
+  std::vector<Check> checks_;
+};
+
+std::vector<Check> PaperChecker::check(PaperOutcome outcome) {
   switch (outcome) {
     case PaperOutcome::None:
       break;
@@ -345,7 +349,7 @@ std::vector<Check> paperChecks(PaperOutcome outcome, const ModelRun& slow, const
       regimeIs(Regime::Antiphase);
       // the paper: "never actually converges to pi"; 0.05 rad is 5e7 times the slow flow's
       // accuracy and half the f4.2 start's distance from pi to spare
-      add("psi not at pi: |psi - pi| > 0.05", off_pi > 0.05, psiLine());
+      add("psi not at pi: |psi - pi| > 0.05", off_pi_ > 0.05, psiLine());
       stationary();
       break;
     case PaperOutcome::SuppressionNearAntiphase:
@@ -361,24 +365,30 @@ std::vector<Check> paperChecks(PaperOutcome outcome, const ModelRun& slow, const
       // alpha > 0 makes metronome 2 the faster one; 0.01 is far above the slow flow's accuracy
       // and far below the visible gap of the paper's figure
       add("the faster metronome (2) at the lower amplitude: A_1 - A_2 > 0.01",
-          f.A[0] - f.A[1] > 0.01, ampLine());
+          f_.A[0] - f_.A[1] > 0.01, ampLine());
       break;
     case PaperOutcome::FasterSuppressed:
       regimeIs(Regime::Suppression);
-      add("metronome 2 (faster) dead, metronome 1 alive", f.A[1] < tc2 && f.A[0] >= tc1, ampLine());
+      add("metronome 2 (faster) dead, metronome 1 alive", f_.A[1] < tc2_ && f_.A[0] >= tc1_,
+          ampLine());
       nearPi();
       stationary();
       break;
-    case PaperOutcome::SuppressionThenDeath: {
+    case PaperOutcome::SuppressionThenDeath:
       regimeIs(Regime::Death);
-      // "a long time" against the amplitudes' relaxation time 2 / nu (~3): at least 50
-      const double longest = longestSuppression(slow.envelope, tc1, tc2);
-      add("metronome 1 suppresses 2 for a long time first: >= 50 in tau", longest >= 50.0,
-          "longest suppression of 2 by 1: " + fmt("%.1f", longest) + " in tau");
+      suppressionFirst();
       break;
-    }
   }
-  return checks;
+  return checks_;
+}
+
+}  // namespace
+
+std::vector<Check> paperChecks(PaperOutcome outcome, const ModelRun& slow, const ScaledParams& p) {
+  const EnvelopeRow& f = slow.final();
+  if (f.A.size() != 2 || f.psi.size() != 1)
+    return {{"two metronomes", false, std::to_string(f.A.size()) + " metronomes"}};
+  return PaperChecker(slow, p).check(outcome);
 }
 
 // ---- plan ---------------------------------------------------------------------------------------
