@@ -24,7 +24,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // The shipped rigs: --rigs DIR, else yaml/rigs under the working directory, else next to the
-// executable (build directories sit in the source tree: <src>/build/metrosync).
+// executable (build directories sit in the source tree: <src>/build/metrosync), else where
+// `cmake --install` and the Debian package put them (<prefix>/share/metrosync/rigs beside
+// <prefix>/bin/metrosync).
 std::string findRigsDir(const std::string& given) {
   const std::string probe = shippedScenarios().front().file;
   auto ok = [&](const fs::path& d) {
@@ -42,12 +44,12 @@ std::string findRigsDir(const std::string& given) {
   if (!ec)
     for (fs::path d = exe.parent_path(); !d.empty() && d != d.root_path(); d = d.parent_path())
       candidates.push_back(d / "yaml/rigs");
+  if (!ec) candidates.push_back(exe.parent_path().parent_path() / "share/metrosync/rigs");
   for (const auto& c : candidates)
     if (ok(c)) return c.string();
-  throw UsageError(
-      "cannot find the shipped rigs (yaml/rigs/" + probe +
-      ") under the working directory or above the executable; run from the repository root or "
-      "give --rigs DIR");
+  throw UsageError("cannot find the shipped rigs (yaml/rigs/" + probe +
+                   ") under the working directory, above the executable or in its installation's "
+                   "share/metrosync/rigs; run from the repository root or give --rigs DIR");
 }
 
 std::string utcNow() {

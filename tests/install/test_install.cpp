@@ -1,0 +1,136 @@
+// `cmake --install` and the Debian package (tools/install/, docs/install.md): every file lands
+// where the docs say, the generated man page and completions list exactly the commands and options
+// the binary's own --help lists, the package declares its library dependencies, and the installed
+// binary works from its installed rigs, giving the same results as the build tree's.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <regex>
+#include <set>
+#include <string>
+
+#include "tests/common/run_metrosync.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using metrosync::testing_support::CommandResult;
+using metrosync::testing_support::scratchDir;
+using metrosync::testing_support::shellQuote;
+using metrosync::testing_support::slurp;
+
+// Runs a shell command; stdout and stderr together.
+CommandResult sh(const std::string& cmd) {
+  CommandResult r;
+  FILE* p = ::popen(("{ " + cmd + "; } 2>&1 </dev/null").c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int status = ::pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return r;
+}
+
+const fs::path kBuild = fs::path(METROSYNC_BINARY).parent_path();
+
+// The sub-commands the binary's --help lists (read here independently of tools/install).
+std::set<std::string> commandsOfHelp(const std::string& bin) {
+  const CommandResult help = sh(shellQuote(bin) + " --help");
+  std::set<std::string> commands;
+  const size_t at = help.out.find("Subcommands:");
+  if (at == std::string::npos) return commands;
+  std::regex line("\\n  ([a-z][a-z-]*) ");
+  const std::string rest = help.out.substr(at);
+  for (std::sregex_iterator it(rest.begin(), rest.end(), line), end; it != end; ++it)
+    commands.insert((*it)[1]);
+  return commands;
+}
+
+// The short result of a rig: `scale --json` (every scaled parameter) from one binary.
+std::string scaleJson(const std::string& bin, const std::string& rig) {
+  return sh(shellQuote(bin) + " scale --json " + shellQuote(rig)).out;
+}
+
+TEST(Install, PutsTheBinaryManPageCompletionsRigsAndDocsInPlace) {
+  const std::string prefix = scratchDir("install", "prefix");
+  const CommandResult inst =
+      sh("cmake --install " + shellQuote(kBuild.string()) + " --prefix " + shellQuote(prefix));
+  ASSERT_EQ(inst.code, 0) << inst.out;
+  const fs::path p(prefix);
+  const std::string bin = (p / "bin/metrosync").string();
+  ASSERT_TRUE(fs::is_regular_file(bin));
+  EXPECT_TRUE(fs::is_regular_file(p / "share/metrosync/rigs/experiment.yaml"));
+  EXPECT_TRUE(fs::is_regular_file(p / "share/doc/metrosync/README.md"));
+  EXPECT_TRUE(fs::is_regular_file(p / "share/doc/metrosync/docs/README.md"));
+
+  // completions: every sub-command of --help, in both shells' scripts
+  const std::set<std::string> commands = commandsOfHelp(bin);
+  ASSERT_GE(commands.size(), 5u);
+  const std::string bash = slurp((p / "share/bash-completion/completions/metrosync").string());
+  const std::string zsh = slurp((p / "share/zsh/vendor-completions/_metrosync").string());
+  for (const std::string& c : commands) {
+    EXPECT_NE(bash.find("    " + c + ") "), std::string::npos) << c;
+    EXPECT_NE(zsh.find("    " + c + ") "), std::string::npos) << c;
+  }
+  EXPECT_EQ(
+      sh("bash -n " + shellQuote((p / "share/bash-completion/completions/metrosync").string()))
+          .code,
+      0);
+
+  // the man page renders and has a section per sub-command
+  const fs::path man = p / "share/man/man1/metrosync.1.gz";
+  ASSERT_TRUE(fs::is_regular_file(man));
+  const CommandResult page = sh("MANWIDTH=100 man -l " + shellQuote(man.string()) + " | col -b");
+  ASSERT_EQ(page.code, 0) << page.out;
+  for (const std::string& c : commands)
+    EXPECT_NE(page.out.find("metrosync " + c), std::string::npos) << c;
+
+  // the installed binary on an installed rig equals the build tree's
+  const std::string rig = (p / "share/metrosync/rigs/experiment.yaml").string();
+  const std::string installed = scaleJson(bin, rig);
+  EXPECT_NE(installed.find("\"epsilon\""), std::string::npos) << installed;
+  EXPECT_EQ(installed, scaleJson(METROSYNC_BINARY, rig));
+}
+
+TEST(Install, DebianPackageDeclaresItsDependenciesAndRunsFromItsFiles) {
+  const std::string out = scratchDir("install", "deb", true);
+  const CommandResult pack =
+      sh("cd " + shellQuote(kBuild.string()) + " && cpack -G DEB -B " + shellQuote(out));
+  ASSERT_EQ(pack.code, 0) << pack.out;
+  std::string deb;
+  for (const auto& e : fs::directory_iterator(out))
+    if (e.path().extension() == ".deb") deb = e.path().string();
+  ASSERT_FALSE(deb.empty()) << pack.out;
+
+  const std::string depends = sh("dpkg-deb -f " + shellQuote(deb) + " Depends").out;
+  for (const char* lib : {"libsimbody", "libyaml-cpp", "libstdc++6", "gnuplot"})
+    EXPECT_NE(depends.find(lib), std::string::npos) << lib << " missing in: " << depends;
+
+  const std::string files = sh("dpkg-deb -c " + shellQuote(deb)).out;
+  for (const char* f : {"./usr/bin/metrosync", "./usr/share/man/man1/metrosync.1.gz",
+                        "./usr/share/bash-completion/completions/metrosync",
+                        "./usr/share/metrosync/rigs/experiment.yaml"})
+    EXPECT_NE(files.find(f), std::string::npos) << f;
+  // nothing outside /usr
+  std::regex entry("\\s(\\./[^\\s]*)");
+  for (std::sregex_iterator it(files.begin(), files.end(), entry), end; it != end; ++it) {
+    const std::string path = (*it)[1];
+    EXPECT_TRUE(path == "./" || path.rfind("./usr/", 0) == 0 || path == "./usr") << path;
+  }
+
+  // unpacked into a scratch root, its binary runs on its own rigs
+  const std::string root = out + "/root";
+  ASSERT_EQ(sh("dpkg -x " + shellQuote(deb) + " " + shellQuote(root)).code, 0);
+  const std::string bin = root + "/usr/bin/metrosync";
+  const std::string rig = root + "/usr/share/metrosync/rigs/experiment.yaml";
+  EXPECT_EQ(scaleJson(bin, rig), scaleJson(METROSYNC_BINARY, rig));
+  const CommandResult run =
+      sh(shellQuote(bin) + " run " + shellQuote(rig) +
+         " --set simulation.duration=5 --quiet --out " + shellQuote(out + "/run"));
+  EXPECT_EQ(run.code, 0) << run.out;
+  EXPECT_TRUE(fs::is_regular_file(out + "/run/summary.json"));
+}
+
+}  // namespace
