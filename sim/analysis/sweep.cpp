@@ -1,23 +1,15 @@
 #include "sim/analysis/sweep.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <exception>
-#include <fstream>
 #include <mutex>
 #include <set>
 #include <sstream>
 #include <thread>
-
-#include "sim/record/atomic_file.h"
 
 namespace metrosync {
 
@@ -68,64 +60,6 @@ std::optional<long> plainInteger(const std::string& text) {
   if (t.empty() || t.size() > 12 || t.find_first_not_of("0123456789") != std::string::npos)
     return std::nullopt;
   return std::stol(t);
-}
-
-std::string numberText(double v, const char* format) {
-  if (std::isnan(v)) return "nan";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
-// A CSV cell: quoted (quotes doubled) when it holds a separator, a quote or a line break; line
-// breaks become spaces so that every row is one line.
-std::string csvCell(std::string s) {
-  for (char& c : s)
-    if (c == '\n' || c == '\r') c = ' ';
-  if (s.find_first_of(",\"") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-// Splits one CSV line (RFC 4180 quotes); throws SweepInputError on an unterminated quote.
-std::vector<std::string> csvCells(const std::string& line) {
-  std::vector<std::string> cells;
-  std::string cur;
-  bool quoted = false, was_quoted = false;
-  for (size_t k = 0; k < line.size(); ++k) {
-    const char c = line[k];
-    if (quoted) {
-      if (c == '"' && k + 1 < line.size() && line[k + 1] == '"') {
-        cur += '"';
-        ++k;
-      } else if (c == '"') {
-        quoted = false;
-      } else {
-        cur += c;
-      }
-    } else if (c == '"' && cur.empty() && !was_quoted) {
-      quoted = was_quoted = true;
-    } else if (c == ',') {
-      cells.push_back(cur);
-      cur.clear();
-      was_quoted = false;
-    } else {
-      cur += c;
-    }
-  }
-  if (quoted) throw SweepInputError("unterminated quote");
-  cells.push_back(cur);
-  return cells;
-}
-
-double cellNumber(const std::string& cell, const std::string& column) {
-  if (cell == "nan") return std::numeric_limits<double>::quiet_NaN();
-  char* end = nullptr;
-  const double v = std::strtod(cell.c_str(), &end);
-  if (cell.empty() || end != cell.c_str() + cell.size())
-    throw SweepInputError(column + " = '" + cell + "' is not a number");
-  return v;
 }
 
 }  // namespace
@@ -306,234 +240,6 @@ double wrapToTwoPi(double angle_rad) {
   return w;
 }
 
-std::vector<std::string> regimesColumns(const SweepGrid& grid, int n) {
-  std::vector<std::string> c;
-  for (const auto& a : grid.axes()) c.push_back(a.key);
-  c.push_back("regime");
-  for (int i = 1; i <= n; ++i) c.push_back("A_" + std::to_string(i));
-  for (int j = 2; j <= n; ++j) c.push_back("psi_" + std::to_string(j));
-  for (const char* extra : {"r", "s", "clusters", "tau", "complete", "index", "message"})
-    c.push_back(extra);
-  return c;
-}
-
-std::string regimesHeader(const SweepGrid& grid, int n) {
-  std::string h;
-  for (const auto& c : regimesColumns(grid, n)) h += (h.empty() ? "" : ",") + csvCell(c);
-  return h;
-}
-
-std::string formatRegimesRow(const SweepGrid& grid, const SweepPoint& p) {
-  const std::vector<long> c = grid.coordinates(p.index);
-  std::string s;
-  for (size_t a = 0; a < c.size(); ++a) s += (a ? "," : "") + grid.axes()[a].texts[c[a]];
-  s += "," + csvCell(p.regime);
-  for (double v : p.A) s += "," + numberText(v, "%.12g");
-  for (double v : p.psi) s += "," + numberText(v, "%.12g");
-  s += "," + numberText(p.r, "%.12g");
-  s += "," + numberText(p.s, "%.12g");
-  s += "," + csvCell(p.clusters);
-  s += "," + numberText(p.tau, "%.10g");
-  s += p.complete ? ",1" : ",0";
-  s += "," + std::to_string(p.index);
-  s += "," + csvCell(p.message);
-  return s;
-}
-
-SweepPoint parseRegimesRow(const SweepGrid& grid, int n, const std::string& line) {
-  const std::vector<std::string> cells = csvCells(line);
-  const std::vector<std::string> cols = regimesColumns(grid, n);
-  if (cells.size() != cols.size())
-    throw SweepInputError(std::to_string(cells.size()) + " columns, expected " +
-                          std::to_string(cols.size()));
-  size_t k = 0;
-  const size_t nkeys = grid.axes().size();
-  std::vector<std::string> keys(cells.begin(), cells.begin() + nkeys);
-  k = nkeys;
-  SweepPoint p;
-  p.regime = cells[k++];
-  if (p.regime.empty()) throw SweepInputError("empty regime");
-  for (int i = 0; i < n; ++i, ++k) p.A.push_back(cellNumber(cells[k], cols[k]));
-  for (int j = 1; j < n; ++j, ++k) p.psi.push_back(cellNumber(cells[k], cols[k]));
-  p.r = cellNumber(cells[k], cols[k]);
-  ++k;
-  p.s = cellNumber(cells[k], cols[k]);
-  ++k;
-  p.clusters = cells[k++];
-  p.tau = cellNumber(cells[k], cols[k]);
-  ++k;
-  if (cells[k] != "0" && cells[k] != "1")
-    throw SweepInputError("complete = '" + cells[k] + "' is not 0 or 1");
-  p.complete = cells[k++] == "1";
-  const auto index = plainInteger(cells[k]);
-  if (!index || *index >= grid.size())
-    throw SweepInputError("index = '" + cells[k] + "' is not a point of the grid (0 to " +
-                          std::to_string(grid.size() - 1) + ")");
-  p.index = *index;
-  ++k;
-  p.message = cells[k];
-  const std::vector<long> c = grid.coordinates(p.index);
-  for (size_t a = 0; a < nkeys; ++a)
-    if (keys[a] != grid.axes()[a].texts[c[a]])
-      throw SweepInputError(grid.axes()[a].key + " = " + keys[a] + " is not the value of point " +
-                            std::to_string(p.index) + " (" + grid.axes()[a].texts[c[a]] + ")");
-  return p;
-}
-
-RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int n) {
-  RegimesTable t;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return t;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
-  const size_t last_newline = text.rfind('\n');
-  if (last_newline == std::string::npos) {  // not even a whole header: start afresh
-    if (!text.empty()) t.partial_lines = 1;
-    return t;
-  }
-  t.complete_bytes = last_newline + 1;
-  if (t.complete_bytes < text.size()) {
-    t.partial_lines = 1;
-    t.warnings.push_back(path + ": the last line was cut short (an interrupted write): dropped");
-  }
-  const size_t header_end = text.find('\n');
-  const std::string header = text.substr(0, header_end);
-  const std::string expected = regimesHeader(grid, n);
-  if (header != expected)
-    throw SweepInputError(path + ": its header is not this sweep's:\n  found    " + header +
-                          "\n  expected " + expected);
-  size_t pos = header_end + 1;
-  long lineno = 1;
-  while (pos < t.complete_bytes) {
-    const size_t end = text.find('\n', pos);
-    const std::string line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++lineno;
-    if (line.empty()) continue;
-    try {
-      SweepPoint p = parseRegimesRow(grid, n, line);
-      if (t.lines.count(p.index)) {
-        ++t.duplicate_lines;
-        continue;
-      }
-      t.lines[p.index] = line;
-      t.points[p.index] = std::move(p);
-    } catch (const SweepInputError& e) {
-      ++t.malformed_lines;
-      t.warnings.push_back(path + ":" + std::to_string(lineno) + ": " + e.what() +
-                           ": dropped (the point runs again)");
-    }
-  }
-  return t;
-}
-
-void writeSortedRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
-                           const std::map<long, std::string>& lines) {
-  AtomicFile f(path);
-  f.writeLine(regimesHeader(grid, n));
-  for (const auto& [index, line] : lines) f.writeLine(line);
-  f.commit();
-}
-
-RegimesAppender::RegimesAppender(const std::string& path, const std::string& header, bool fresh,
-                                 size_t keep_bytes)
-    : path_(path) {
-  fd_ =
-      ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | (fresh ? O_TRUNC : 0), 0644);
-  if (fd_ < 0) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-  if (fresh) {
-    append(header);
-  } else if (::ftruncate(fd_, static_cast<off_t>(keep_bytes)) != 0) {
-    const std::string why = std::strerror(errno);
-    close();
-    throw std::runtime_error("cannot cut " + path + " to its whole lines: " + why);
-  }
-}
-
-RegimesAppender::~RegimesAppender() {
-  close();
-}
-
-void RegimesAppender::append(const std::string& line) {
-  if (fd_ < 0) throw std::logic_error("append to a closed " + path_);
-  const std::string text = line + "\n";
-  size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t w = ::write(fd_, text.data() + done, text.size() - done);
-    if (w < 0 && errno == EINTR) continue;
-    if (w <= 0) throw std::runtime_error("cannot write " + path_ + ": " + std::strerror(errno));
-    done += static_cast<size_t>(w);
-  }
-}
-
-void RegimesAppender::close() {
-  if (fd_ >= 0) ::close(fd_);
-  fd_ = -1;
-}
-
-// ---- sweep.json ---------------------------------------------------------------------------------
-
-nlohmann::json SweepManifest::toJson() const {
-  return {{"command", merged ? "merge" : "sweep"},
-          {"version", metrosyncVersion()},
-          {"model", model},
-          {"engine", engine},
-          {"rig", {{"path", rig_path}, {"name", rig_name}, {"text", rig_text}}},
-          {"sets", sets},
-          {"metronomes", metronomes},
-          {"grid", grid.toJson()},
-          {"shard", {{"k", shard.k}, {"n", shard.n}}}};
-}
-
-SweepManifest SweepManifest::fromJson(const nlohmann::json& j) {
-  try {
-    SweepManifest m;
-    m.merged = j.at("command").get<std::string>() == "merge";
-    m.model = j.at("model").get<std::string>();
-    m.engine = j.at("engine").get<std::string>();
-    m.rig_path = j.at("rig").at("path").get<std::string>();
-    m.rig_name = j.at("rig").at("name").get<std::string>();
-    m.rig_text = j.at("rig").at("text").get<std::string>();
-    m.sets = j.at("sets").get<std::vector<std::string>>();
-    m.metronomes = j.at("metronomes").get<int>();
-    m.grid = SweepGrid::fromJson(j.at("grid"));
-    m.shard.k = j.at("shard").at("k").get<int>();
-    m.shard.n = j.at("shard").at("n").get<int>();
-    if (m.metronomes < 1 || m.shard.n < 1 || m.shard.k < 1 || m.shard.k > m.shard.n)
-      throw SweepInputError("metronomes or shard out of range");
-    return m;
-  } catch (const nlohmann::json::exception& e) {
-    throw SweepInputError(std::string("not a sweep manifest: ") + e.what());
-  }
-}
-
-std::string sweepDifference(const SweepManifest& a, const SweepManifest& b) {
-  if (a.model != b.model) return "the model differs (" + a.model + " / " + b.model + ")";
-  if (a.engine != b.engine) return "the engine differs (" + a.engine + " / " + b.engine + ")";
-  if (a.rig_text != b.rig_text) return "the rig differs (its text is not the same)";
-  if (a.sets != b.sets) return "the --set overrides differ";
-  if (a.metronomes != b.metronomes) return "the number of metronomes differs";
-  const auto &x = a.grid.axes(), &y = b.grid.axes();
-  if (x.size() != y.size()) return "the number of --vary differs";
-  for (size_t k = 0; k < x.size(); ++k) {
-    if (x[k].key != y[k].key) return "--vary " + x[k].key + " / --vary " + y[k].key;
-    if (x[k].texts != y[k].texts)
-      return "--vary " + x[k].key + "=" + x[k].spec + " / " + y[k].spec + ": other values";
-  }
-  return "";
-}
-
-nlohmann::json readSweepJson(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw SweepInputError(path + ": cannot read (not a sweep output directory?)");
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw SweepInputError(path + ": not valid JSON: " + e.what());
-  }
-}
-
 // ---- running ------------------------------------------------------------------------------------
 
 void runSweepPoints(const std::vector<long>& todo, int jobs,
@@ -570,36 +276,6 @@ void runSweepPoints(const std::vector<long>& todo, int jobs,
     for (auto& t : pool) t.join();
   }
   if (first_error) std::rethrow_exception(first_error);
-}
-
-std::string progressText(long done, long total, long failed, double rate_per_s, double eta_s,
-                         int width) {
-  char buf[160];
-  std::string eta = "ETA --:--";
-  if (eta_s >= 0 && std::isfinite(eta_s)) {
-    const long s = std::lround(eta_s);
-    if (s >= 3600)
-      std::snprintf(buf, sizeof buf, "ETA %ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
-    else
-      std::snprintf(buf, sizeof buf, "ETA %ld:%02ld", s / 60, s % 60);
-    eta = buf;
-  }
-  const double pct = total > 0 ? 100.0 * static_cast<double>(done) / total : 100.0;
-  std::string rate;
-  if (rate_per_s > 0 && std::isfinite(rate_per_s)) {
-    if (rate_per_s >= 1)
-      std::snprintf(buf, sizeof buf, "  %.3g points/s", rate_per_s);
-    else
-      std::snprintf(buf, sizeof buf, "  %.3g s/point", 1.0 / rate_per_s);
-    rate = buf;
-  }
-  std::snprintf(buf, sizeof buf, "  %ld/%ld  %3.0f%%", done, total, pct);
-  std::string tail = buf + rate + "  " + eta;
-  if (failed > 0) tail += "  " + std::to_string(failed) + " failed";
-  const int bar = std::max(10, width - static_cast<int>(tail.size()) - 2);
-  const int filled = total > 0 ? static_cast<int>(bar * static_cast<double>(done) / total) : bar;
-  return "[" + std::string(std::min(filled, bar), '#') +
-         std::string(bar - std::min(filled, bar), '-') + "]" + tail;
 }
 
 }  // namespace metrosync

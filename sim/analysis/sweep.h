@@ -1,8 +1,8 @@
 // Sweeps (SPEC section 2 `sweep`, section 3 regimes.csv): a grid of runs over one or two rig keys,
 // run in parallel, streamed to regimes.csv as points finish, resumable, and splittable into
 // shards that `merge` joins again. No model and no rig loader in here: the command
-// (tools/cli/sweep.cpp) says how one grid point runs; this file owns the grid, the file formats
-// and the scheduling.
+// (tools/cli/sweep.cpp) says how one grid point runs; this file owns the grid, the points and the
+// scheduling; tools/report/sweep_files.h writes and reads the files described below.
 //
 //   grid       --vary KEY=FROM:TO:COUNT, COUNT values from FROM to TO, both included (":open"
 //              after COUNT leaves TO out: [FROM, TO), for angles); FROM and TO may be written with
@@ -94,7 +94,7 @@ SweepShard parseShard(const std::string& text);
 // The grid indices of a shard, ascending.
 std::vector<long> shardIndices(const SweepGrid& grid, const SweepShard& shard);
 
-// ---- regimes.csv --------------------------------------------------------------------------------
+// ---- a point ------------------------------------------------------------------------------------
 
 // One grid point's outcome.
 struct SweepPoint {
@@ -116,78 +116,6 @@ struct SweepPoint {
 // psi wrapped to [0, 2 pi)
 double wrapToTwoPi(double angle_rad);
 
-std::vector<std::string> regimesColumns(const SweepGrid& grid, int n);
-std::string regimesHeader(const SweepGrid& grid, int n);
-// One line (no newline); the key columns are the axes' texts of the point.
-std::string formatRegimesRow(const SweepGrid& grid, const SweepPoint& p);
-// Reads a line written by formatRegimesRow (for a sweep of N metronomes); throws
-// SweepInputError when it is not one (wrong column count, bad number, index off the grid, key
-// values that are not the point's).
-SweepPoint parseRegimesRow(const SweepGrid& grid, int n, const std::string& line);
-
-// The rows of a regimes.csv: the line of each index (first one wins) and its parsed point.
-struct RegimesTable {
-  std::map<long, std::string> lines;
-  std::map<long, SweepPoint> points;
-  long partial_lines = 0;    // a last line cut short (kill -9 mid-write): dropped
-  long malformed_lines = 0;  // complete lines that do not parse: dropped (their points rerun)
-  long duplicate_lines = 0;  // an index seen again: dropped
-  std::vector<std::string> warnings;
-  size_t complete_bytes = 0;  // length of the file up to its last newline
-};
-// Reads `path`; throws SweepInputError when its header is not `regimesHeader(grid, n)`.
-// A missing file gives an empty table.
-RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int n);
-
-// Writes header + lines (ascending index) to `path` atomically.
-void writeSortedRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
-                           const std::map<long, std::string>& lines);
-
-// Appends whole lines to regimes.csv as points finish: one write(2) per line on an O_APPEND
-// descriptor, so that a kill at any moment leaves whole lines and at most one cut-off last line.
-class RegimesAppender {
- public:
-  // Creates `path` with `header` (fresh = true), or opens it for appending after cutting it to
-  // `keep_bytes` (drops a cut-off last line). Throws std::runtime_error.
-  RegimesAppender(const std::string& path, const std::string& header, bool fresh,
-                  size_t keep_bytes);
-  RegimesAppender(const RegimesAppender&) = delete;
-  RegimesAppender& operator=(const RegimesAppender&) = delete;
-  ~RegimesAppender();
-  void append(const std::string& line);  // line + '\n'; throws std::runtime_error
-  void close();
-
- private:
-  std::string path_;
-  int fd_ = -1;
-};
-
-// ---- sweep.json ---------------------------------------------------------------------------------
-
-struct SweepManifest {
-  std::string model;     // "slow" | "full"
-  std::string engine;    // "slowflow", or the full model's: "direct" | "simbody"
-  std::string rig_path;  // as given ("" = the built-in rig)
-  std::string rig_name;
-  std::string rig_text;           // the rig file's text: what was swept
-  std::vector<std::string> sets;  // --set, in order
-  int metronomes = 0;
-  SweepGrid grid;
-  SweepShard shard;
-  bool merged = false;  // written by merge
-
-  nlohmann::json toJson() const;
-  static SweepManifest fromJson(const nlohmann::json& j);  // throws SweepInputError
-};
-
-// Empty when `a` and `b` describe the same grid of runs (model, engine, rig text, --set, grid,
-// N), else
-// what differs.
-std::string sweepDifference(const SweepManifest& a, const SweepManifest& b);
-
-// Reads DIR/sweep.json; throws SweepInputError when it is missing or is not a sweep manifest.
-nlohmann::json readSweepJson(const std::string& path);
-
 // ---- running ------------------------------------------------------------------------------------
 
 // Runs run_point(g) for every g in `todo` (in that order of dispatch) on `jobs` threads. Each
@@ -198,10 +126,5 @@ void runSweepPoints(const std::vector<long>& todo, int jobs,
                     const std::function<std::optional<SweepPoint>(long)>& run_point,
                     const std::function<void(const SweepPoint&)>& finished,
                     const std::function<bool()>& stop);
-
-// "[#########-----------]  1234/10000  12%  35.2 points/s  ETA 4:09  3 failed", fitted to `width`
-// characters. eta_s < 0: unknown.
-std::string progressText(long done, long total, long failed, double rate_per_s, double eta_s,
-                         int width);
 
 }  // namespace metrosync

@@ -18,6 +18,7 @@
 #include "sim/analysis/sweep.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 #include "sim/record/envelope.h"
+#include "tools/report/sweep_files.h"
 #include "tools/report/sweep_maps.h"
 
 namespace metrosync {

@@ -26,6 +26,7 @@
 #include "tools/cli/engines.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
+#include "tools/report/sweep_files.h"
 #include "tools/report/sweep_maps.h"
 #include "yaml/rig_loader.h"
 
@@ -364,7 +365,8 @@ SweepPlan planSweep(const SweepOptions& opt) {
   if (opt.jobs < 0) throw UsageError("--jobs " + std::to_string(opt.jobs) + ": must be >= 1");
   std::vector<SweepAxis> axes;
   for (const auto& v : opt.vary) axes.push_back(parseVary(v));
-  SweepPlan plan{SweepGrid(std::move(axes))};
+  SweepPlan plan;
+  plan.grid = SweepGrid(std::move(axes));
   plan.shard = opt.shard.empty() ? SweepShard{} : parseShard(opt.shard);
   // the rig, and every grid point's rig: a bad key or value stops here, before any file
   plan.text = readRigText(opt);

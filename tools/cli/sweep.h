@@ -1,7 +1,7 @@
 // `metrosync sweep` and `metrosync merge` (SPEC section 2): regime maps over one or two rig keys,
-// run in parallel, resumable, in shards that merge joins. The grid, the files and the scheduling
-// are sim/analysis/sweep.h; the maps tools/report/sweep_maps.h; this is the command line and how
-// one point runs.
+// run in parallel, resumable, in shards that merge joins. The grid, the points and the scheduling
+// are sim/analysis/sweep.h, the files tools/report/sweep_files.h, the maps
+// tools/report/sweep_maps.h; this is the command line and how one point runs.
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -19,6 +19,7 @@
 
 #include "sim/analysis/sweep.h"
 #include "tools/report/outputs.h"
+#include "tools/report/sweep_files.h"
 
 namespace metrosync {
 
