@@ -1,7 +1,6 @@
 #include "sim/analysis/sweep.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -242,40 +241,61 @@ double wrapToTwoPi(double angle_rad) {
 
 // ---- running ------------------------------------------------------------------------------------
 
-void runSweepPoints(const std::vector<long>& todo, int jobs,
+void runSweepPoints(long grid_size, const std::function<bool(long)>& wanted, int jobs,
                     const std::function<std::optional<SweepPoint>(long)>& run_point,
                     const std::function<void(const SweepPoint&)>& finished,
                     const std::function<bool()>& stop) {
-  std::atomic<size_t> next{0};
-  std::atomic<bool> failed{false};
-  std::mutex lock;
+  std::mutex lock;  // guards next, finished() and the first error
+  long next = 0;
+  bool failed = false;
   std::exception_ptr first_error;
+  auto take = [&]() -> long {  // the next wanted index, or -1; under the lock
+    while (next < grid_size && !wanted(next)) ++next;
+    return next < grid_size ? next++ : -1;
+  };
   auto worker = [&] {
     try {
-      while (!failed && !stop()) {
-        const size_t k = next++;
-        if (k >= todo.size()) break;
-        std::optional<SweepPoint> p = run_point(todo[k]);
+      for (;;) {
+        long g;
+        {
+          std::lock_guard<std::mutex> l(lock);
+          if (failed || stop() || (g = take()) < 0) return;
+        }
+        std::optional<SweepPoint> p = run_point(g);
         if (!p) continue;
-        std::lock_guard<std::mutex> g(lock);
+        std::lock_guard<std::mutex> l(lock);
         if (!failed) finished(*p);
       }
     } catch (...) {
-      std::lock_guard<std::mutex> g(lock);
+      std::lock_guard<std::mutex> l(lock);
       if (!first_error) first_error = std::current_exception();
       failed = true;
     }
   };
-  const size_t threads =
-      std::max<size_t>(1, std::min<size_t>(static_cast<size_t>(std::max(jobs, 1)), todo.size()));
+  const int threads = std::max(1, jobs);
   if (threads == 1) {
     worker();
   } else {
     std::vector<std::thread> pool;
-    for (size_t t = 0; t < threads; ++t) pool.emplace_back(worker);
+    for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
     for (auto& t : pool) t.join();
   }
   if (first_error) std::rethrow_exception(first_error);
+}
+
+void runSweepPoints(const std::vector<long>& todo, int jobs,
+                    const std::function<std::optional<SweepPoint>(long)>& run_point,
+                    const std::function<void(const SweepPoint&)>& finished,
+                    const std::function<bool()>& stop) {
+  runSweepPoints(
+      static_cast<long>(todo.size()), [](long) { return true; },
+      std::min<long>(std::max(jobs, 1), std::max<long>(1, static_cast<long>(todo.size()))),
+      [&](long k) { return run_point(todo[k]); }, finished, stop);
+}
+
+long shardSize(const SweepGrid& grid, const SweepShard& shard) {
+  const long first = shard.k - 1;  // g = first, first + n, ...
+  return grid.size() > first ? (grid.size() - 1 - first) / shard.n + 1 : 0;
 }
 
 }  // namespace metrosync

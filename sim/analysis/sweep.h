@@ -91,8 +91,11 @@ struct SweepShard {
 // "K/N" with 1 <= K <= N; throws SweepInputError.
 SweepShard parseShard(const std::string& text);
 
-// The grid indices of a shard, ascending.
+// The grid indices of a shard, ascending (tests; a sweep never lists them: shardSize and
+// SweepShard::contains cost nothing per point).
 std::vector<long> shardIndices(const SweepGrid& grid, const SweepShard& shard);
+// How many grid points the shard holds.
+long shardSize(const SweepGrid& grid, const SweepShard& shard);
 
 // ---- a point ------------------------------------------------------------------------------------
 
@@ -118,10 +121,16 @@ double wrapToTwoPi(double angle_rad);
 
 // ---- running ------------------------------------------------------------------------------------
 
-// Runs run_point(g) for every g in `todo` (in that order of dispatch) on `jobs` threads. Each
-// result is handed to `finished` under a lock, in completion order; run_point returns nullopt for
-// a point that was interrupted (not recorded). No new point starts once stop() is true.
+// Runs run_point(g) for every g < grid_size with wanted(g) (dispatched in ascending order) on
+// `jobs` threads. Each result is handed to `finished` under a lock, in completion order;
+// run_point returns nullopt for a point that was interrupted (not recorded). No new point starts once stop() is true.
 // Exceptions from run_point or finished stop the sweep and are rethrown (the first one).
+// The indices are handed out one at a time, so memory does not grow with the grid.
+void runSweepPoints(long grid_size, const std::function<bool(long)>& wanted, int jobs,
+                    const std::function<std::optional<SweepPoint>(long)>& run_point,
+                    const std::function<void(const SweepPoint&)>& finished,
+                    const std::function<bool()>& stop);
+// ... for the indices of `todo`, in that order.
 void runSweepPoints(const std::vector<long>& todo, int jobs,
                     const std::function<std::optional<SweepPoint>(long)>& run_point,
                     const std::function<void(const SweepPoint&)>& finished,

@@ -240,11 +240,12 @@ TEST(SweepCli, BadCommandLinesExitTwoAndWriteNothing) {
     EXPECT_EQ(r.err.rfind("metrosync: error: ", 0), 0u) << r.err;
     EXPECT_FALSE(fs::exists(out)) << c.args;
   }
-  // a bad value in the middle of the grid stops it before any point runs
+  // a bad value at the grid's end stops it before any point runs (the grid is checked at its
+  // corners, tools/cli/sweep.cpp checkGrid: the loader's checks are ranges)
   const Result mid = metrosync("sweep " + shellQuote(rig) +
                                " --vary metronomes.1.start.A=1:-1:5 --out " + d + "/out");
   EXPECT_EQ(mid.code, 2) << mid.err;
-  EXPECT_NE(mid.err.find("metronomes.1.start.A=-0.5"), std::string::npos) << mid.err;
+  EXPECT_NE(mid.err.find("metronomes.1.start.A=-1"), std::string::npos) << mid.err;
   EXPECT_FALSE(fs::exists(d + "/out"));
   // --resume of another sweep: refused, and the directory left as it was
   ASSERT_EQ(metrosync("sweep " + shellQuote(rig) + " --vary platform.friction.mu=0:1:3 -q --out " +

@@ -225,6 +225,19 @@ std::optional<SweepPoint> runPoint(const PointInput& in, long g) {
   return p;
 }
 
+// A grid point that could not even be loaded (checkGrid loads only the grid's corners): failed,
+// with the loader's message, and the sweep goes on.
+SweepPoint unloadablePoint(long g, int n, const std::string& why) {
+  SweepPoint p;
+  p.index = g;
+  p.complete = false;
+  p.regime = "failed";
+  p.message = why;
+  p.A.assign(n, std::nan(""));
+  p.psi.assign(n > 0 ? n - 1 : 0, std::nan(""));
+  return p;
+}
+
 // ---- progress on a terminal --------------------------------------------------------------------
 
 class Progress {
@@ -355,11 +368,36 @@ struct SweepPlan {
   std::string text;  // the rig's YAML
   Rig base;
   int n = 0;
-  std::vector<long> mine;  // this shard's grid indices
-  std::map<long, PointInput> inputs;
+  long mine = 0;  // how many grid points this shard holds (SweepShard::contains says which)
   SweepManifest manifest;
   std::string path, regimes_path;
 };
+
+// The grid checked in bounded time, before any file: the point at every corner of the grid and
+// at each axis's every end (the rig loader's checks are ranges, so a value inside an axis that
+// passes at both its ends passes everywhere; the mass and size budgets grow with a value
+// monotonically). The points in between are loaded when they run; a point that fails there after
+// all is recorded as failed with the loader's message and the sweep goes on. Returns the engine,
+// the same at every point (no --vary names one).
+const Engine* checkGrid(const SweepPlan& plan, const SweepOptions& opt) {
+  const std::vector<SweepAxis>& axes = plan.grid.axes();
+  std::set<long> probes;
+  for (long corner = 0; corner < (1L << axes.size()); ++corner) {
+    long g = 0;
+    for (size_t a = 0; a < axes.size(); ++a)
+      g = g * axes[a].count + ((corner >> (axes.size() - 1 - a)) & 1 ? axes[a].count - 1 : 0);
+    probes.insert(g);
+  }
+  const Engine* engine = nullptr;
+  for (long g : probes) {
+    const PointInput in = loadPoint(plan.text, opt, plan.grid, g);
+    if (static_cast<int>(in.rig.metronomes.size()) != plan.n)
+      throw UsageError("--vary changes the number of metronomes at grid point " +
+                       std::to_string(g));
+    if (!engine) engine = in.engine;
+  }
+  return engine;
+}
 
 SweepPlan planSweep(const SweepOptions& opt) {
   if (opt.jobs < 0) throw UsageError("--jobs " + std::to_string(opt.jobs) + ": must be >= 1");
@@ -372,16 +410,8 @@ SweepPlan planSweep(const SweepOptions& opt) {
   plan.text = readRigText(opt);
   plan.base = loadRigText(plan.text, displayName(opt), opt.sets);
   plan.n = static_cast<int>(plan.base.metronomes.size());
-  plan.mine = shardIndices(plan.grid, plan.shard);
-  const Engine* engine = nullptr;  // the same at every point (no --vary names one)
-  for (long g = 0; g < plan.grid.size(); ++g) {
-    PointInput in = loadPoint(plan.text, opt, plan.grid, g);
-    if (static_cast<int>(in.rig.metronomes.size()) != plan.n)
-      throw UsageError("--vary changes the number of metronomes at grid point " +
-                       std::to_string(g));
-    if (g == 0) engine = in.engine;
-    if (plan.shard.contains(g)) plan.inputs.emplace(g, std::move(in));
-  }
+  plan.mine = shardSize(plan.grid, plan.shard);
+  const Engine* engine = checkGrid(plan, opt);
   SweepManifest& m = plan.manifest;
   m.model = engine->model();
   m.engine = engine->name();
@@ -450,11 +480,24 @@ struct SweepRun {
   int jobs = 1;
 };
 
+// One point of the plan: its rig loaded here, in the worker, so that no list of the grid's rigs
+// is ever held.
+std::optional<SweepPoint> runGridPoint(const SweepPlan& plan, const SweepOptions& opt, long g) {
+  std::optional<PointInput> in;
+  try {
+    in = loadPoint(plan.text, opt, plan.grid, g);
+  } catch (const std::exception& e) {
+    return unloadablePoint(g, plan.n, e.what());
+  }
+  if (static_cast<int>(in->rig.metronomes.size()) != plan.n)
+    return unloadablePoint(g, plan.n, "--vary changes the number of metronomes here");
+  return runPoint(*in, g);
+}
+
 SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir,
-                  const RegimesTable& table, const std::vector<long>& todo, bool resuming) {
+                  const RegimesTable& table, bool resuming) {
   SweepRun run{table.lines, table.points};
-  writeSweepJson(dir,
-                 statusJson(plan.manifest, static_cast<long>(plan.mine.size()), run.points, false));
+  writeSweepJson(dir, statusJson(plan.manifest, plan.mine, run.points, false));
   const bool fresh = table.complete_bytes == 0;
   RegimesAppender regimes(plan.regimes_path, regimesHeader(plan.grid, plan.n), fresh,
                           table.complete_bytes);
@@ -462,11 +505,11 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
   RegimesAppender timings(timingsPath(dir), "index,wall_seconds", timing_bytes == 0, timing_bytes);
   run.jobs = opt.jobs > 0 ? opt.jobs : static_cast<int>(std::thread::hardware_concurrency());
   run.jobs = std::max(1, run.jobs);
-  Progress progress(!opt.quiet && ::isatty(2), static_cast<long>(plan.mine.size()),
-                    static_cast<long>(run.points.size()));
+  Progress progress(!opt.quiet && ::isatty(2), plan.mine, static_cast<long>(run.points.size()));
   const long stop_after = stopAfterHook();
   runSweepPoints(
-      todo, run.jobs, [&](long g) { return runPoint(plan.inputs.at(g), g); },
+      plan.grid.size(), [&](long g) { return plan.shard.contains(g) && !table.lines.count(g); },
+      run.jobs, [&](long g) { return runGridPoint(plan, opt, g); },
       [&](const SweepPoint& p) {
         const std::string line = formatRegimesRow(plan.grid, p);
         regimes.append(line);
@@ -490,9 +533,9 @@ void printSweepSummary(const SweepPlan& plan, const SweepRun& run, const OutputD
   const int n = plan.n;
   std::cout << "sweep of " << plan.base.name << " (" << modelTitle(plan.manifest.model) << ", " << n
             << (n == 1 ? " metronome" : " metronomes") << "): " << gridText(plan.grid)
-            << (shard.n > 1 ? ", shard " + shard.text() + ": " + std::to_string(plan.mine.size()) +
-                                  " of them"
-                            : "")
+            << (shard.n > 1
+                    ? ", shard " + shard.text() + ": " + std::to_string(plan.mine) + " of them"
+                    : "")
             << "; " << run.points.size() << " done (" << run.finished_now << " now, " << before
             << " before), " << failed << " failed\n"
             << "  regimes: " << countsText(run.points) << "\n"
@@ -506,25 +549,21 @@ int sweepImpl(const SweepOptions& opt) {
   SweepPlan plan = planSweep(opt);
   bool resuming = false;
   const RegimesTable table = resumeTable(opt, plan, resuming);
-  std::vector<long> todo;
-  for (long g : plan.mine)
-    if (!table.lines.count(g)) todo.push_back(g);
 
   // from here on files are written
   installStopHandlers();
   const OutputDir dir = openSweepDir(plan.path, resuming);
   for (const auto& w : table.warnings) std::cerr << "metrosync: warning: " << w << "\n";
-  const SweepRun run = runSweep(opt, plan, dir, table, todo, resuming);
+  const SweepRun run = runSweep(opt, plan, dir, table, resuming);
 
   const bool interrupted = FileSink::stopRequested();
-  const bool complete = run.points.size() == plan.mine.size();
+  const bool complete = static_cast<long>(run.points.size()) == plan.mine;
   writeSortedRegimesCsv(plan.regimes_path, plan.grid, plan.n, run.lines);
   std::vector<std::string> files = {"regimes.csv", "timings.csv"};
   for (const auto& f : plotSweepMaps(dir, plan.grid, plan.n, run.points, mapTitle(plan.manifest)))
     files.push_back(f);
   files.push_back("sweep.json");
-  nlohmann::json status =
-      statusJson(plan.manifest, static_cast<long>(plan.mine.size()), run.points, complete);
+  nlohmann::json status = statusJson(plan.manifest, plan.mine, run.points, complete);
   status["jobs"] = run.jobs;
   status["wall_seconds"] = secondsSince(t_start);
   status["points"]["run_now"] = run.finished_now;
@@ -533,7 +572,7 @@ int sweepImpl(const SweepOptions& opt) {
   writeSweepJson(dir, status);
 
   const long failed = status["points"]["failed"].get<long>();
-  const long before = static_cast<long>(plan.mine.size() - todo.size());
+  const long before = static_cast<long>(table.lines.size());
   if (!opt.quiet) printSweepSummary(plan, run, dir, files, failed, before, secondsSince(t_start));
   if (failed > 0)
     std::cerr << "metrosync: warning: " << failed
@@ -541,7 +580,7 @@ int sweepImpl(const SweepOptions& opt) {
               << plan.regimes_path << ")\n";
   if (interrupted) {
     std::cerr << "metrosync: error: interrupted by a signal with " << run.points.size() << " of "
-              << plan.mine.size() << " points done; continue with the same command and --resume\n";
+              << plan.mine << " points done; continue with the same command and --resume\n";
     return kSimulationFailed;
   }
   return kSuccess;

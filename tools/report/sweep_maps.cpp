@@ -241,6 +241,7 @@ std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& gr
                                        const std::string& title) {
   std::vector<std::string> written;
   if (grid.size() == 0 || n < 1 || points.empty()) return written;  // nothing to draw
+  if (grid.size() > kMaxMapCells) return written;                   // more cells than pixels
   const std::vector<size_t> axes = drawnAxes(grid);
   const bool map2d = axes.size() > 1;
   const std::vector<long> order = scanOrder(grid, axes);

@@ -26,7 +26,13 @@ namespace metrosync {
 // The file names the maps may have (for removing stale ones).
 const std::vector<std::string>& sweepMapNames();
 
-// Draws the maps into `dir`; returns the names of the files written.
+// A grid of more points than this gets no maps: the pictures are ~1000 pixels across, so a finer
+// grid cannot be seen, and its gnuplot data (~60 bytes a cell) would cost more memory than the
+// sweep itself (whose memory grows with the points done, not with the grid).
+constexpr long kMaxMapCells = 1000000;
+
+// Draws the maps into `dir` (none for a grid over kMaxMapCells); returns the names of the files
+// written.
 std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& grid, int n,
                                        const std::map<long, SweepPoint>& points,
                                        const std::string& title);
