@@ -434,7 +434,7 @@ RegimesTable resumeTable(const SweepOptions& opt, const SweepPlan& plan, bool& r
   if (opt.resume) {
     const std::string& path = plan.path;
     if (fs::exists(path + "/sweep.json")) {
-      const SweepManifest old = SweepManifest::fromJson(readSweepJson(path + "/sweep.json"));
+      const SweepManifest old = readSweepManifest(path);
       std::string diff = sweepDifference(old, plan.manifest);
       if (diff.empty() && (old.shard.k != plan.shard.k || old.shard.n != plan.shard.n))
         diff = "it is shard " + old.shard.text() + ", not " + plan.shard.text();
@@ -595,14 +595,15 @@ int mergeImpl(const SweepOptions& opt) {
   std::map<long, SweepPoint> points;
   std::map<long, std::string> source;
   for (const auto& d : opt.dirs) {
-    const SweepManifest m = SweepManifest::fromJson(readSweepJson(d + "/sweep.json"));
+    const SweepManifest m = readSweepManifest(d);
     if (!ref) {
       ref = m;
       ref_dir = d;
     } else if (const std::string diff = sweepDifference(*ref, m); !diff.empty()) {
       throw UsageError("merge: " + d + " is not the same sweep as " + ref_dir + ": " + diff);
     }
-    const RegimesTable t = readRegimesCsv(d + "/regimes.csv", ref->grid, ref->metronomes);
+    const RegimesTable t = readRegimesCsv(d + "/regimes.csv", ref->grid, ref->metronomes,
+                                          "merge leaves the point out");
     for (const auto& w : t.warnings) std::cerr << "metrosync: warning: " << w << "\n";
     for (const auto& [g, line] : t.lines) {
       auto it = lines.find(g);

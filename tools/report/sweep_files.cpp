@@ -165,7 +165,8 @@ SweepPoint parseRegimesRow(const SweepGrid& grid, int n, const std::string& line
   return p;
 }
 
-RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int n) {
+RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
+                            const std::string& dropped) {
   RegimesTable t;
   std::ifstream in(path, std::ios::binary);
   if (!in) return t;
@@ -206,8 +207,8 @@ RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int 
       t.points[p.index] = std::move(p);
     } catch (const SweepInputError& e) {
       ++t.malformed_lines;
-      t.warnings.push_back(path + ":" + std::to_string(lineno) + ": " + e.what() +
-                           ": dropped (the point runs again)");
+      t.warnings.push_back(path + ":" + std::to_string(lineno) + ": " + e.what() + ": dropped (" +
+                           dropped + ")");
     }
   }
   return t;
@@ -316,6 +317,16 @@ nlohmann::json readSweepJson(const std::string& path) {
     return nlohmann::json::parse(in);
   } catch (const nlohmann::json::exception& e) {
     throw SweepInputError(path + ": not valid JSON: " + e.what());
+  }
+}
+
+SweepManifest readSweepManifest(const std::string& dir) {
+  const std::string path = dir + "/sweep.json";
+  try {
+    return SweepManifest::fromJson(readSweepJson(path));
+  } catch (const SweepInputError& e) {
+    const std::string what = e.what();
+    throw SweepInputError(what.rfind(path, 0) == 0 ? what : path + ": " + what);
   }
 }
 

@@ -34,8 +34,10 @@ struct RegimesTable {
   size_t complete_bytes = 0;  // length of the file up to its last newline
 };
 // Reads `path`; throws SweepInputError when its header is not `regimesHeader(grid, n)`.
-// A missing file gives an empty table.
-RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int n);
+// A missing file gives an empty table. `dropped` says in the warnings what becomes of a point
+// whose line is dropped ("the point runs again" for --resume; merge runs nothing).
+RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
+                            const std::string& dropped = "the point runs again");
 
 // Writes header + lines (ascending index) to `path` atomically.
 void writeSortedRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
@@ -82,6 +84,9 @@ struct SweepManifest {
 // N), else
 // what differs.
 std::string sweepDifference(const SweepManifest& a, const SweepManifest& b);
+
+// DIR/sweep.json as a manifest; every error names the file.
+SweepManifest readSweepManifest(const std::string& dir);
 
 // Reads DIR/sweep.json; throws SweepInputError when it is missing or is not a sweep manifest.
 nlohmann::json readSweepJson(const std::string& path);
