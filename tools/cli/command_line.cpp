@@ -1,0 +1,148 @@
+#include "tools/cli/command_line.h"
+
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include "sim/record/atomic_file.h"
+#include "tools/cli/engines.h"
+#include "yaml/rig_loader.h"
+
+namespace metrosync::cli {
+
+namespace {
+
+// RIG, --set, --out, --quiet: shared by run and compare (scale has no --out).
+void addRigOptions(CLI::App* cmd, Options& opt, bool with_out) {
+  cmd->add_option("RIG", opt.rig_path,
+                  "rig file (YAML, SPEC section 1); default: the built-in rig, the paper's "
+                  "experiment (two Wittner metronomes on low-friction rollers, started near "
+                  "antiphase)");
+  cmd->add_option("--set", opt.sets,
+                  "override a rig key, e.g. --set platform.friction.mu=0.3, "
+                  "--set metronomes.1.start.phi=3.54 (list indices from 0); repeatable")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  if (with_out) {
+    cmd->add_option("--out", opt.out,
+                    "output directory (default: runs/<rig name>-<command>); metrosync's own "
+                    "output files already there are replaced")
+        ->type_name("DIR");
+    cmd->add_option("--max-output", opt.max_output,
+                    "refuse a run that would write more than BYTES (estimated from the run's "
+                    "length and simulation.sample; docs/rig-limits.md)")
+        ->type_name("BYTES")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    cmd->add_flag("-q,--quiet", opt.quiet,
+                  "no summary on stdout (errors and warnings still go "
+                  "to stderr)");
+  }
+}
+
+const char* kExitCodes =
+    "Exit codes: 0 success; 2 bad command line or rig (nothing written); 3 the simulation failed "
+    "(files written so far kept, summary.json says complete: false); 1 anything else.";
+
+}  // namespace
+
+void configureApp(CLI::App& app) {
+  app.description(
+      "metrosync: coupled metronomes on a platform with Coulomb (dry) friction - the full "
+      "model (a Simbody multibody system with stick-slip and escapement events) and the "
+      "slow flow of the two-timescale analysis.");
+  app.name("metrosync");
+  app.set_version_flag("--version", metrosyncVersion());
+  app.require_subcommand(1);
+  app.footer(kExitCodes);
+}
+
+namespace {
+
+CLI::App* addRunCommand(CLI::App& app, Options& opt) {
+  CLI::App* run = app.add_subcommand("run", "simulate a rig: envelope, regime, plots");
+  addRigOptions(run, opt, true);
+  run->add_option("--model", opt.model,
+                  "full: the governing equations, integrated exactly (stick-slip and escapement "
+                  "events); slow: the slow flow (default: the --engine's model, else full)")
+      ->check(CLI::IsMember({"full", "slow"}));
+  // the registry checks --engine (and its model) with the rig, so that the message can say why
+  run->add_option("--engine", opt.engine, anyEngineHelp());
+  run->footer(
+      "Integrators of the full model (rig key simulation.integrator, e.g. --set "
+      "simulation.integrator=verner76): " +
+      integratorHelp() +
+      ". Accuracy: simulation.accuracy (relative local error target, default 1e-8).\n"
+      "Files in --out DIR: trajectory.csv (full model), envelope.csv, envelope.png, "
+      "summary.json.\n" +
+      kExitCodes);
+  return run;
+}
+
+CLI::App* addCompareCommand(CLI::App& app, Options& opt) {
+  CLI::App* compare = app.add_subcommand(
+      "compare", "run the full model and the slow flow on one rig and compare their envelopes");
+  addRigOptions(compare, opt, true);
+  compare->add_option("--engine", opt.engine, fullEngineHelp());
+  compare->footer(
+      "Files in --out DIR: trajectory.csv, envelope_full.csv, envelope_slow.csv, comparison.csv "
+      "(tau, A_i full/slow, psi_j full/slow), comparison.png, summary.json (top-level keys: the "
+      "full model; models.full, models.slow: each model; comparison: max |dA_i|, max |dpsi_j| "
+      "modulo 2 pi).\n" +
+      std::string(kExitCodes));
+  return compare;
+}
+
+CLI::App* addScaleCommand(CLI::App& app, Options& opt) {
+  CLI::App* scale = app.add_subcommand("scale", "print the scaled parameters of a rig");
+  addRigOptions(scale, opt, false);
+  scale->add_flag("--json", opt.json,
+                  "exactly one JSON object: epsilon, mu (or c), nu, J, theta_c, alpha, zeta, "
+                  "A_star, time_scale");
+  scale->footer(kExitCodes);
+  return scale;
+}
+
+// The handler's outcome as an exit code: every error printed as "metrosync: error: ...".
+int exitCodeOf(const std::function<int()>& handler) {
+  try {
+    return handler();
+  } catch (const RigError& e) {
+    std::cerr << "metrosync: error: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const UsageError& e) {
+    std::cerr << "metrosync: error: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "metrosync: error: " << e.what() << "\n";
+    return kOtherError;
+  } catch (...) {
+    std::cerr << "metrosync: error: unexpected failure\n";
+    return kOtherError;
+  }
+}
+
+}  // namespace
+
+std::vector<Command> addRigCommands(CLI::App& app, Options& opt) {
+  return {{addRunCommand(app, opt), [&opt] { return runCommand(opt); }},
+          {addCompareCommand(app, opt), [&opt] { return compareCommand(opt); }},
+          {addScaleCommand(app, opt), [&opt] { return scaleCommand(opt); }}};
+}
+
+int runCommandLine(CLI::App& app, const std::vector<Command>& commands, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version exit 0 through here; every parse error is a bad command line
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::cerr << "metrosync: error: " << e.what() << "\n"
+              << "Run 'metrosync --help' (or 'metrosync COMMAND --help') for usage.\n";
+    return kBadInput;
+  }
+  for (const Command& c : commands)
+    if (c.app->parsed()) return exitCodeOf(c.handler);
+  return kBadInput;
+}
+
+}  // namespace metrosync::cli
