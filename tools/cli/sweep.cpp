@@ -24,6 +24,7 @@
 #include "sim/analysis/sweep.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/engines.h"
+#include "tools/report/folder_lock.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
 #include "tools/report/sweep_files.h"
@@ -547,12 +548,19 @@ void printSweepSummary(const SweepPlan& plan, const SweepRun& run, const OutputD
 int sweepImpl(const SweepOptions& opt) {
   const Clock::time_point t_start = Clock::now();
   SweepPlan plan = planSweep(opt);
+  // the folder's lock before reading what it holds (a folder in use: exit 2, nothing written)
+  std::optional<FolderLock> lock;
+  if (fs::is_directory(plan.path)) lock.emplace(plan.path, "metrosync sweep");
   bool resuming = false;
   const RegimesTable table = resumeTable(opt, plan, resuming);
 
   // from here on files are written
   installStopHandlers();
   const OutputDir dir = openSweepDir(plan.path, resuming);
+  if (!lock) lock.emplace(plan.path, "metrosync sweep");
+  if (!lock->takenOver().empty())
+    std::cerr << "metrosync: note: took over the lock of " << plan.path
+              << " from an ended process (" << lock->takenOver() << ")\n";
   for (const auto& w : table.warnings) std::cerr << "metrosync: warning: " << w << "\n";
   const SweepRun run = runSweep(opt, plan, dir, table, resuming);
 
@@ -586,6 +594,24 @@ int sweepImpl(const SweepOptions& opt) {
   return kSuccess;
 }
 
+// Do two paths name one folder (both existing)?
+bool sameFolder(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  return fs::equivalent(a, b, ec) && !ec;
+}
+
+// No source given twice: the same folder under two names, or two folders holding the same shard.
+void checkMergeSources(const SweepOptions& opt, const std::vector<SweepShard>& shards) {
+  for (size_t i = 0; i < opt.dirs.size(); ++i)
+    for (size_t j = i + 1; j < opt.dirs.size(); ++j) {
+      if (sameFolder(opt.dirs[i], opt.dirs[j]))
+        throw UsageError("merge: " + opt.dirs[j] + " is given twice (also as " + opt.dirs[i] + ")");
+      if (shards[i].n > 1 && shards[i].k == shards[j].k && shards[i].n == shards[j].n)
+        throw UsageError("merge: shard " + shards[i].text() + " is given twice: " + opt.dirs[i] +
+                         " and " + opt.dirs[j]);
+    }
+}
+
 int mergeImpl(const SweepOptions& opt) {
   if (opt.dirs.empty()) throw UsageError("merge: give the sweep output directories to join");
   // every manifest and every row first: nothing is written unless they all belong together
@@ -594,8 +620,10 @@ int mergeImpl(const SweepOptions& opt) {
   std::map<long, std::string> lines;
   std::map<long, SweepPoint> points;
   std::map<long, std::string> source;
+  std::vector<SweepShard> shards;
   for (const auto& d : opt.dirs) {
     const SweepManifest m = readSweepManifest(d);
+    shards.push_back(m.shard);
     if (!ref) {
       ref = m;
       ref_dir = d;
@@ -615,6 +643,7 @@ int mergeImpl(const SweepOptions& opt) {
       source.emplace(g, d);
     }
   }
+  checkMergeSources(opt, shards);
   SweepManifest merged = *ref;
   merged.merged = true;
   merged.shard = SweepShard{};
@@ -622,6 +651,12 @@ int mergeImpl(const SweepOptions& opt) {
   const int n = merged.metronomes;
 
   const std::string path = opt.out.empty() ? defaultOutputDir(merged.rig_name, "merge") : opt.out;
+  for (const auto& d : opt.dirs)
+    if (sameFolder(path, d))
+      throw UsageError("merge: --out " + path + " is one of the sources (" + d +
+                       "): merging into it would replace that shard's files; choose another --out");
+  std::optional<FolderLock> lock;
+  if (fs::is_directory(path)) lock.emplace(path, "metrosync merge");
   OutputDir dir = [&] {
     try {
       OutputDir d(path);
@@ -631,6 +666,7 @@ int mergeImpl(const SweepOptions& opt) {
       throw UsageError(std::string("--out: ") + e.what());
     }
   }();
+  if (!lock) lock.emplace(path, "metrosync merge");
   writeSortedRegimesCsv(dir.file("regimes.csv"), grid, n, lines);
   std::vector<std::string> files = {"regimes.csv"};
   for (const auto& f : plotSweepMaps(dir, grid, n, points, mapTitle(merged))) files.push_back(f);
@@ -739,6 +775,8 @@ int sweepCommand(const SweepOptions& opt) {
     return sweepImpl(opt);
   } catch (const SweepInputError& e) {
     throw UsageError(e.what());
+  } catch (const FolderLockedError& e) {
+    throw UsageError(e.what());
   }
 }
 
@@ -746,6 +784,8 @@ int mergeCommand(const SweepOptions& opt) {
   try {
     return mergeImpl(opt);
   } catch (const SweepInputError& e) {
+    throw UsageError(e.what());
+  } catch (const FolderLockedError& e) {
     throw UsageError(e.what());
   }
 }
