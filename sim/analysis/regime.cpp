@@ -189,6 +189,27 @@ std::vector<double> RegimeWindow::psiRange() const {
 }
 
 namespace {
+// The phase rules on the judged psi_j (every metronome alive): drift, in-phase, antiphase,
+// phase-locked, or unsettled with the reason.
+Regime phaseRegime(const RegimeRules& r, const EnvelopeRow& last, const std::vector<double>& range,
+                   const std::vector<size_t>& judged, std::string& reason) {
+  bool drift = false, settled = true, in_phase = true, antiphase = true;
+  for (size_t k : judged) {
+    drift = drift || range[k] > r.drift_rad;
+    settled = settled && range[k] < r.settled_rad;
+    in_phase = in_phase && std::fabs(wrapToPi(last.psi[k])) <= r.in_phase_rad;
+    antiphase = antiphase && std::fabs(wrapToPi(last.psi[k] - kPi)) <= r.antiphase_rad;
+  }
+  if (drift) return Regime::Drift;
+  if (settled && in_phase) return Regime::InPhase;
+  if (settled && antiphase) return Regime::Antiphase;
+  if (settled) return Regime::PhaseLocked;
+  reason = "the phase differences still move over the window (range up to " +
+           fmtNumber(*std::max_element(range.begin(), range.end())) + " rad; settled needs < " +
+           fmtNumber(r.settled_rad) + ", drift > " + fmtNumber(r.drift_rad) + ")";
+  return Regime::Unsettled;
+}
+
 std::string tooShortReason(const RegimeWindow& w) {
   return "the run is shorter than " + fmtNumber(w.rules().min_periods) +
          " fast periods (tau_end = " + fmtNumber(w.tauEnd()) + " < " +
@@ -265,22 +286,8 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
     for (size_t j = 1; j < n; ++j)
       if (!isLocked(j) && j - 1 < last.psi.size()) judged.push_back(j - 1);
   if (judged.empty()) return named(Regime::Alive);
-  bool drift = false, settled = true, in_phase = true, antiphase = true;
-  for (size_t k : judged) {
-    drift = drift || v.psi_range[k] > r.drift_rad;
-    settled = settled && v.psi_range[k] < r.settled_rad;
-    in_phase = in_phase && std::fabs(wrapToPi(last.psi[k])) <= r.in_phase_rad;
-    antiphase = antiphase && std::fabs(wrapToPi(last.psi[k] - kPi)) <= r.antiphase_rad;
-  }
-  if (drift) return named(Regime::Drift);
-  if (settled && in_phase) return named(Regime::InPhase);
-  if (settled && antiphase) return named(Regime::Antiphase);
-  if (settled) return named(Regime::PhaseLocked);
-  v.reason = "the phase differences still move over the window (range up to " +
-             fmtNumber(*std::max_element(v.psi_range.begin(), v.psi_range.end())) +
-             " rad; settled needs < " + fmtNumber(r.settled_rad) + ", drift > " +
-             fmtNumber(r.drift_rad) + ")";
-  return named(Regime::Unsettled);
+  const Regime phase = phaseRegime(r, last, v.psi_range, judged, v.reason);
+  return named(phase);
 }
 
 RegimeVerdict classifyRegime(const std::vector<EnvelopeRow>& rows, double tau_end, double epsilon,

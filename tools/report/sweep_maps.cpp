@@ -236,49 +236,51 @@ std::string regimeMapScript(const std::string& data_path, const std::string& png
   return s.str();
 }
 
-std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& grid, int n,
-                                       const std::map<long, SweepPoint>& points,
-                                       const std::string& title) {
-  std::vector<std::string> written;
-  if (grid.size() == 0 || n < 1 || points.empty()) return written;  // nothing to draw
-  if (grid.size() > kMaxMapCells) return written;                   // more cells than pixels
-  const std::vector<size_t> axes = drawnAxes(grid);
-  const bool map2d = axes.size() > 1;
-  const std::vector<long> order = scanOrder(grid, axes);
+namespace {
+
+// What every picture of one sweep shares.
+struct MapFrame {
+  const OutputDir& dir;
+  const SweepGrid& grid;
+  std::vector<size_t> axes;  // the drawn axes
+  bool map2d = false;
+  std::vector<long> order;  // scan order, -1 between rows
+  std::string title;
+};
+
+// regimes.png: "x y R G B" cells (2-D; white where not run), or "x rgb" (1-D; -1 not run)
+bool drawRegimeMap(const MapFrame& f, const std::map<long, SweepPoint>& points) {
   const std::vector<std::string> legend = regimeLegendOrder(points);
-
-  // regimes.png: "x y R G B" cells (2-D; white where not run), or "x rgb" (1-D; -1 not run)
-  {
-    std::ostringstream d;
-    for (long g : order) {
-      if (g < 0) {
-        d << "\n";
-        continue;
-      }
-      const SweepPoint* p = pointAt(points, g);
-      const long rgb = p ? rgbOf(regimeColour(p->regime, legend)) : (map2d ? 0xffffff : -1);
-      d << cellPosition(grid, axes, g);
-      if (map2d)
-        d << " " << ((rgb >> 16) & 255) << " " << ((rgb >> 8) & 255) << " " << (rgb & 255) << "\n";
-      else
-        d << " " << rgb << "\n";
-    }
-    if (drawPng(dir, "regimes.png", d.str(), [&](const std::string& data, const std::string& png) {
-          return regimeMapScript(data, png, grid, legend, title + " - regimes");
-        }))
-      written.push_back("regimes.png");
-  }
-
-  // the values: "x [y] A_1..A_N psi_2..psi_N r log10(s)" (NaN where not run or failed)
   std::ostringstream d;
-  bool any_drive = false;
-  for (long g : order) {
+  for (long g : f.order) {
     if (g < 0) {
       d << "\n";
       continue;
     }
     const SweepPoint* p = pointAt(points, g);
-    d << cellPosition(grid, axes, g);
+    const long rgb = p ? rgbOf(regimeColour(p->regime, legend)) : (f.map2d ? 0xffffff : -1);
+    d << cellPosition(f.grid, f.axes, g);
+    if (f.map2d)
+      d << " " << ((rgb >> 16) & 255) << " " << ((rgb >> 8) & 255) << " " << (rgb & 255) << "\n";
+    else
+      d << " " << rgb << "\n";
+  }
+  return drawPng(f.dir, "regimes.png", d.str(),
+                 [&](const std::string& data, const std::string& png) {
+                   return regimeMapScript(data, png, f.grid, legend, f.title + " - regimes");
+                 });
+}
+
+// The values: "x [y] A_1..A_N psi_2..psi_N r log10(s)" (NaN where not run or failed).
+std::string valuesData(const MapFrame& f, int n, const std::map<long, SweepPoint>& points) {
+  std::ostringstream d;
+  for (long g : f.order) {
+    if (g < 0) {
+      d << "\n";
+      continue;
+    }
+    const SweepPoint* p = pointAt(points, g);
+    d << cellPosition(f.grid, f.axes, g);
     for (int i = 0; i < n; ++i)
       d << " " << num(shown(p, p && i < static_cast<int>(p->A.size()) ? p->A[i] : NAN));
     for (int j = 0; j + 1 < n; ++j)
@@ -288,52 +290,57 @@ std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& gr
     const double s = p ? p->s : NAN;
     d << " " << num(shown(p, std::isnan(s) ? NAN : std::max(-2.0, std::min(2.0, std::log10(s)))))
       << "\n";
-    any_drive = any_drive || (p && !std::isnan(p->s));
   }
-  const std::string values = d.str();
-  const int first_value = map2d ? 3 : 2;  // gnuplot column of A_1
+  return d.str();
+}
 
-  // one picture of up to four quantities: maps (2-D) or lines against the key (1-D)
-  struct Quantity {
-    std::string label;
-    int column;
-  };
-  const bool any_complete =
-      std::any_of(points.begin(), points.end(), [](const auto& kv) { return kv.second.complete; });
-  auto picture = [&](const std::string& name, const std::vector<Quantity>& qs,
-                     const std::string& palette, const std::string& range, bool angle) {
-    if (qs.empty() || !any_complete) return;  // every point failed: no value to draw
-    auto script = [&](const std::string& data, const std::string& png) {
-      std::ostringstream s;
-      const int panels = map2d ? static_cast<int>(qs.size()) : 1;
-      s << header(png, 1100, map2d ? (panels > 2 ? 950 : 520) : 480) << axisSettings(grid, axes);
-      if (map2d) {
-        s << "set multiplot layout " << panelLayout(panels) << " title "
-          << quote(title + " - " + name.substr(0, name.size() - 4)) << " noenhanced\n"
-          << palette << "set cbrange " << range << "\n";
-        if (angle) s << piTics("cb", 0.0, 2 * kPi);
-        for (const auto& q : qs)
-          s << "set title " << quote(q.label) << "\nplot " << quote(data)
-            << " using 1:2:" << q.column << " with image notitle\n";
-        s << "unset multiplot\n";
-      } else {
-        s << "set title " << quote(title + " - " + name.substr(0, name.size() - 4))
-          << " noenhanced\nset key outside right top\nset grid\nset yrange " << range << "\n";
-        if (angle) s << piTics("y", 0.0, 2 * kPi);
-        std::string plot;
-        const char* const colours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7"};
-        for (size_t k = 0; k < qs.size(); ++k)
-          plot += (plot.empty() ? "plot " : ", \\\n     ") + quote(data) +
-                  " using 1:" + std::to_string(qs[k].column) +
-                  (angle ? " with points pt 7 ps 0.6" : " with linespoints pt 7 ps 0.5") +
-                  " lc rgb '" + colours[k % 4] + "' title " + quote(qs[k].label);
-        s << plot << "\n";
-      }
-      s << "set output\n";
-      return s.str();
-    };
-    if (drawPng(dir, name, values, script)) written.push_back(name);
-  };
+// One picture of up to four quantities (gnuplot columns of the values data).
+struct Quantity {
+  std::string label;
+  int column;
+};
+struct Picture {
+  std::string name;  // file name
+  std::vector<Quantity> qs;
+  std::string palette, range;
+  bool angle = false;  // a phase in [0, 2 pi): pi tics, points not lines
+};
+
+// Maps (2-D) or lines against the key (1-D).
+std::string pictureScript(const MapFrame& f, const Picture& pic, const std::string& data,
+                          const std::string& png) {
+  std::ostringstream s;
+  const int panels = f.map2d ? static_cast<int>(pic.qs.size()) : 1;
+  const std::string title = f.title + " - " + pic.name.substr(0, pic.name.size() - 4);
+  s << header(png, 1100, f.map2d ? (panels > 2 ? 950 : 520) : 480) << axisSettings(f.grid, f.axes);
+  if (f.map2d) {
+    s << "set multiplot layout " << panelLayout(panels) << " title " << quote(title)
+      << " noenhanced\n"
+      << pic.palette << "set cbrange " << pic.range << "\n";
+    if (pic.angle) s << piTics("cb", 0.0, 2 * kPi);
+    for (const auto& q : pic.qs)
+      s << "set title " << quote(q.label) << "\nplot " << quote(data) << " using 1:2:" << q.column
+        << " with image notitle\n";
+    s << "unset multiplot\n";
+  } else {
+    s << "set title " << quote(title) << " noenhanced\nset key outside right top\nset grid\n"
+      << "set yrange " << pic.range << "\n";
+    if (pic.angle) s << piTics("y", 0.0, 2 * kPi);
+    std::string plot;
+    const char* const colours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7"};
+    for (size_t k = 0; k < pic.qs.size(); ++k)
+      plot += (plot.empty() ? "plot " : ", \\\n     ") + quote(data) +
+              " using 1:" + std::to_string(pic.qs[k].column) +
+              (pic.angle ? " with points pt 7 ps 0.6" : " with linespoints pt 7 ps 0.5") +
+              " lc rgb '" + colours[k % 4] + "' title " + quote(pic.qs[k].label);
+    s << plot << "\n";
+  }
+  s << "set output\n";
+  return s.str();
+}
+
+// The pictures of the values: amplitudes, phases, order parameter (N >= 3), drive (Coulomb).
+std::vector<Picture> valuePictures(int n, int first_value, bool any_drive) {
   std::vector<Quantity> amps, phases;
   for (int i = 0; i < std::min(n, kMaxPanels); ++i)
     amps.push_back({"A_" + std::to_string(i + 1), first_value + i});
@@ -343,18 +350,52 @@ std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& gr
       "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', 4 '#fde725')\n";
   // hue around the circle: psi = 0 and 2 pi get the same colour
   const std::string cyclic = "set palette model HSV defined (0 0 0.75 0.95, 1 1 0.75 0.95)\n";
-  picture("amplitudes.png", amps, viridis, "[0:*]", false);
-  picture("phases.png", phases, cyclic, "[0:2*pi]", true);
-  if (n >= 3)
-    picture("order.png", {{"r = |Σ A_j e^{iφ_j}| / Σ A_j", first_value + 2 * n - 1}}, viridis,
-            "[0:1]", false);
   // where the platform sticks (s < 1: blue) and the metronomes are uncoupled
   const std::string diverging = "set palette defined (-2 '#2166ac', 0 '#f7f7f7', 2 '#b2182b')\n";
+  std::vector<Picture> pics = {{"amplitudes.png", amps, viridis, "[0:*]", false},
+                               {"phases.png", phases, cyclic, "[0:2*pi]", true}};
+  if (n >= 3)
+    pics.push_back({"order.png",
+                    {{"r = |Σ A_j e^{iφ_j}| / Σ A_j", first_value + 2 * n - 1}},
+                    viridis,
+                    "[0:1]",
+                    false});
   if (any_drive)
-    picture("drive.png",
-            {{"log_{10} s,  s = |Σ A_j e^{iφ_j}| / μ  (s < 1: the platform sticks)",
-              first_value + 2 * n}},
-            diverging, "[-2:2]", false);
+    pics.push_back({"drive.png",
+                    {{"log_{10} s,  s = |Σ A_j e^{iφ_j}| / μ  (s < 1: the platform sticks)",
+                      first_value + 2 * n}},
+                    diverging,
+                    "[-2:2]",
+                    false});
+  return pics;
+}
+
+}  // namespace
+
+std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& grid, int n,
+                                       const std::map<long, SweepPoint>& points,
+                                       const std::string& title) {
+  std::vector<std::string> written;
+  if (grid.size() == 0 || n < 1 || points.empty()) return written;  // nothing to draw
+  if (grid.size() > kMaxMapCells) return written;                   // more cells than pixels
+  MapFrame f{dir, grid, drawnAxes(grid), false, {}, title};
+  f.map2d = f.axes.size() > 1;
+  f.order = scanOrder(grid, f.axes);
+  if (drawRegimeMap(f, points)) written.push_back("regimes.png");
+  const bool any_complete =
+      std::any_of(points.begin(), points.end(), [](const auto& kv) { return kv.second.complete; });
+  if (!any_complete) return written;  // every point failed: no value to draw
+  const bool any_drive = std::any_of(points.begin(), points.end(),
+                                     [](const auto& kv) { return !std::isnan(kv.second.s); });
+  const std::string values = valuesData(f, n, points);
+  const int first_value = f.map2d ? 3 : 2;  // gnuplot column of A_1
+  for (const Picture& pic : valuePictures(n, first_value, any_drive)) {
+    if (pic.qs.empty()) continue;
+    auto script = [&](const std::string& data, const std::string& png) {
+      return pictureScript(f, pic, data, png);
+    };
+    if (drawPng(dir, pic.name, values, script)) written.push_back(pic.name);
+  }
   return written;
 }
 
