@@ -304,15 +304,25 @@ int compareCommand(const Options& opt) {
   return code;
 }
 
-int scaleCommand(const Options& opt) {
+namespace {
+LoadedRig loadForScale(const Options& opt) {
   Options no_output = opt;  // scale writes no file: no output limit
   no_output.max_output = HUGE_VAL;
-  const LoadedRig r = loadAndCheck(no_output, "");
+  return loadAndCheck(no_output, "");
+}
+}  // namespace
+
+int scaleCommand(const Options& opt) {
+  const LoadedRig r = loadForScale(opt);
   if (opt.json)
     std::cout << r.scaled_json.dump(2) << "\n";
   else
     std::cout << scaleText(r.rig, r.scaled);
   return kSuccess;
+}
+
+std::string scaledJsonText(const Options& opt) {
+  return loadForScale(opt).scaled_json.dump(2);
 }
 
 }  // namespace metrosync::cli

@@ -33,6 +33,8 @@ struct Options {
 int runCommand(const Options& opt);
 int compareCommand(const Options& opt);
 int scaleCommand(const Options& opt);
+// What `scale --json` prints, as text (the Python module's Rig.scaled()).
+std::string scaledJsonText(const Options& opt);
 
 // Installs SIGINT/SIGTERM handlers that ask the running simulation to stop (files are kept and
 // marked incomplete); a second signal kills the process as usual.

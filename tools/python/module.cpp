@@ -1,0 +1,98 @@
+// The C++ side of the Python module `metrosync` (tools/python/metrosync/__init__.py is the API):
+// the CLI's own commands, called in-process with the interpreter's lock released, so that a result
+// from Python is the CLI's result to the last bit (docs/python.md).
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <signal.h>
+
+#include <string>
+#include <vector>
+
+#include "sim/record/atomic_file.h"
+#include "tools/cli/commands.h"
+#include "tools/report/outputs.h"
+#include "yaml/rig_loader.h"
+
+namespace py = pybind11;
+namespace cli = metrosync::cli;
+
+namespace {
+
+// The process's SIGINT/SIGTERM handlers (Python's own) put back after a command, which installs
+// metrosync's (a signal asks the running simulation to stop, keeping its rows).
+class SignalHandlersKept {
+ public:
+  SignalHandlersKept() {
+    ::sigaction(SIGINT, nullptr, &int_);
+    ::sigaction(SIGTERM, nullptr, &term_);
+  }
+  ~SignalHandlersKept() {
+    ::sigaction(SIGINT, &int_, nullptr);
+    ::sigaction(SIGTERM, &term_, nullptr);
+  }
+
+ private:
+  struct sigaction int_ {
+  }, term_{};
+};
+
+cli::Options options(const std::string& rig_path, const std::vector<std::string>& sets,
+                     const std::string& out, const std::string& model, const std::string& engine) {
+  cli::Options o;
+  o.rig_path = rig_path;
+  o.sets = sets;
+  o.out = out;
+  o.quiet = true;
+  o.model = model;
+  o.engine = engine;
+  return o;
+}
+
+// Runs `run` or `compare` into `out`; returns the CLI's exit code (0, or 3: the simulation
+// failed). A bad rig or command raises RigError with the CLI's message; a stop request (Ctrl-C)
+// raises KeyboardInterrupt once the command has ended and kept its files.
+int runCommand(const std::string& command, const std::string& rig_path,
+               const std::vector<std::string>& sets, const std::string& out,
+               const std::string& model, const std::string& engine) {
+  const cli::Options o = options(rig_path, sets, out, model, engine);
+  int code = 0;
+  {
+    py::gil_scoped_release release;
+    SignalHandlersKept keep;
+    metrosync::FileSink::clearStopRequest();
+    code = command == "compare" ? cli::compareCommand(o) : cli::runCommand(o);
+  }
+  if (metrosync::FileSink::stopRequested()) {
+    metrosync::FileSink::clearStopRequest();
+    throw py::error_already_set([] {
+      PyErr_SetNone(PyExc_KeyboardInterrupt);
+      return py::error_already_set();
+    }());
+  }
+  return code;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_metrosync, m) {
+  m.doc() = "metrosync's C++ core (use the package `metrosync`)";
+  static py::exception<metrosync::RigError> rig_error(m, "RigError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const metrosync::RigError& e) {
+      PyErr_SetString(rig_error.ptr(), e.what());
+    } catch (const cli::UsageError& e) {
+      PyErr_SetString(rig_error.ptr(), e.what());
+    }
+  });
+  m.def("run_command", &runCommand, py::arg("command"), py::arg("rig_path"), py::arg("sets"),
+        py::arg("out"), py::arg("model") = "", py::arg("engine") = "");
+  m.def(
+      "scaled_json",
+      [](const std::string& rig_path, const std::vector<std::string>& sets) {
+        return cli::scaledJsonText(options(rig_path, sets, "", "", ""));
+      },
+      py::arg("rig_path"), py::arg("sets"));
+  m.def("version", [] { return std::string(metrosync::metrosyncVersion()); });
+}

@@ -1,0 +1,44 @@
+# The Python module `metrosync` (docs/python.md), built when pybind11 and Debian's Python 3 are
+# found: build/python/metrosync/ holds the package (its .py files copied, _metrosync compiled in),
+# importable with PYTHONPATH=build/python; `cmake --install` puts it in Debian's dist-packages.
+# Debian's /usr/bin/python3 is preferred: the python3 first on PATH may be another interpreter
+# without numpy (a pyenv one), and the module must match the interpreter that imports it.
+if(EXISTS /usr/bin/python3 AND NOT Python_EXECUTABLE)
+  set(Python_EXECUTABLE /usr/bin/python3)
+endif()
+find_package(Python COMPONENTS Interpreter Development.Module QUIET)
+find_package(pybind11 CONFIG QUIET)
+if(NOT (Python_FOUND AND pybind11_FOUND))
+  message(STATUS "Python module: not built (needs pybind11-dev and python3-dev)")
+  return()
+endif()
+set(METROSYNC_PYTHON_DIR ${CMAKE_BINARY_DIR}/python)
+# NO_EXTRAS: no link-time optimization of the whole of metrosync into the module (minutes)
+pybind11_add_module(_metrosync NO_EXTRAS ${CMAKE_SOURCE_DIR}/tools/python/module.cpp)
+target_include_directories(_metrosync PRIVATE ${CMAKE_SOURCE_DIR})
+target_link_libraries(_metrosync PRIVATE metrosync_tools_cli)
+metrosync_simbody_target(_metrosync)
+set_target_properties(_metrosync PROPERTIES LIBRARY_OUTPUT_DIRECTORY
+                                            ${METROSYNC_PYTHON_DIR}/metrosync)
+file(GLOB metrosync_py CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tools/python/metrosync/*.py)
+foreach(f ${metrosync_py})
+  get_filename_component(name ${f} NAME)
+  configure_file(${f} ${METROSYNC_PYTHON_DIR}/metrosync/${name} COPYONLY)
+endforeach()
+
+# pytest (Debian python3-pytest) after the C++ tests: tests/python
+add_test(NAME python_api
+         COMMAND ${Python_EXECUTABLE} -m pytest -q -p no:cacheprovider ${CMAKE_SOURCE_DIR}/tests/python)
+set_tests_properties(python_api PROPERTIES
+  ENVIRONMENT "PYTHONPATH=${METROSYNC_PYTHON_DIR};METROSYNC_BINARY=$<TARGET_FILE:metrosync>;METROSYNC_SOURCE_DIR=${CMAKE_SOURCE_DIR}"
+  LABELS slow TIMEOUT 900)
+
+execute_process(COMMAND ${Python_EXECUTABLE} -c
+                        "import sysconfig; print(sysconfig.get_path('platlib', 'deb_system'))"
+                OUTPUT_VARIABLE metrosync_site OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+if(NOT metrosync_site)
+  set(metrosync_site lib/python3/dist-packages)
+endif()
+string(REGEX REPLACE "^/usr/(local/)?" "" metrosync_site "${metrosync_site}")
+install(TARGETS _metrosync LIBRARY DESTINATION ${metrosync_site}/metrosync)
+install(FILES ${metrosync_py} DESTINATION ${metrosync_site}/metrosync)
