@@ -40,6 +40,18 @@ RkStepper::RkStepper(const RkTableau& tableau, int dim, OdeRhs& rhs)
     dense_p_.insert(dense_p_.end(), tab_.p[j].begin(), tab_.p[j].end());
   }
   w_.assign(dense_stage_.size(), 0.0);
+  // degree-major copies for stageWeights, zero-padded to kPadRows rows when they fit: p_rq, and
+  // (q + 1) p_rq for the rate
+  const int rows = static_cast<int>(dense_stage_.size()), deg = tab_.dense_degree;
+  padded_rows_ = rows <= kPadRows ? kPadRows : rows;
+  dense_pt_.assign(static_cast<size_t>(padded_rows_) * deg, 0.0);
+  dense_rate_pt_ = dense_pt_;
+  for (int r = 0; r < rows; ++r)
+    for (int q = 0; q < deg; ++q) {
+      const double v = dense_p_[static_cast<size_t>(r) * deg + q];
+      dense_pt_[static_cast<size_t>(q) * padded_rows_ + r] = v;
+      dense_rate_pt_[static_cast<size_t>(q) * padded_rows_ + r] = (q + 1) * v;
+    }
 }
 
 void RkStepper::setTolerances(double rtol, std::vector<double> atol) {
@@ -167,22 +179,21 @@ void RkStepper::ensureStages() {
 namespace {
 
 // w_r = scale * sum_q p_rq th^(q+1) (value) or sum_q (q + 1) p_rq th^q (rate), by Horner's rule
-// with the degree known at compile time
-template <int D>
-void hornerRows(const double* __restrict p, int rows, double th, double scale, bool rate,
+// with the degree and the (padded) row count known at compile time. The rows are the inner loop
+// (the coefficients stored degree-major, pt[q * R + r], zero-padded to R rows, and for the rate
+// pre-multiplied by q + 1), so that the compiler vectorizes across rows; each row's arithmetic
+// is the same sequence of operations as a row-wise Horner, so the weights are the same to the
+// last bit.
+template <int D, int R>
+void hornerRows(const double* __restrict pt, int rows, double th, double scale, bool rate,
                 double* __restrict w) {
-  for (int r = 0; r < rows; ++r, p += D) {
-    double acc;
-    if (rate) {
-      acc = D * p[D - 1];
-      for (int q = D - 2; q >= 0; --q) acc = acc * th + (q + 1) * p[q];
-    } else {
-      acc = p[D - 1];
-      for (int q = D - 2; q >= 0; --q) acc = acc * th + p[q];
-      acc *= scale;
-    }
-    w[r] = acc;
-  }
+  double acc[R];
+  for (int r = 0; r < R; ++r) acc[r] = pt[(D - 1) * R + r];
+  for (int q = D - 2; q >= 0; --q)
+    for (int r = 0; r < R; ++r) acc[r] = acc[r] * th + pt[q * R + r];
+  if (!rate)
+    for (int r = 0; r < R; ++r) acc[r] *= scale;
+  for (int r = 0; r < rows; ++r) w[r] = acc[r];
 }
 
 }  // namespace
@@ -191,20 +202,22 @@ void RkStepper::stageWeights(double th, bool rate) {
   ensureStages();
   const int rows = static_cast<int>(dense_stage_.size());
   const double scale = h_ * th;
-  const double* p = dense_p_.data();
+  const double* p = rate ? dense_rate_pt_.data() : dense_pt_.data();
   double* w = w_.data();
-  switch (tab_.dense_degree) {
-    case 4:
-      return hornerRows<4>(p, rows, th, scale, rate, w);
-    case 6:
-      return hornerRows<6>(p, rows, th, scale, rate, w);
-    case 7:
-      return hornerRows<7>(p, rows, th, scale, rate, w);
+  if (padded_rows_ == kPadRows) {
+    switch (tab_.dense_degree) {
+      case 4:
+        return hornerRows<4, kPadRows>(p, rows, th, scale, rate, w);
+      case 6:
+        return hornerRows<6, kPadRows>(p, rows, th, scale, rate, w);
+      case 7:
+        return hornerRows<7, kPadRows>(p, rows, th, scale, rate, w);
+    }
   }
-  const int deg = tab_.dense_degree;
-  for (int r = 0; r < rows; ++r, p += deg) {
-    double acc = rate ? deg * p[deg - 1] : p[deg - 1];
-    for (int q = deg - 2; q >= 0; --q) acc = acc * th + (rate ? (q + 1) * p[q] : p[q]);
+  const int deg = tab_.dense_degree, stride = padded_rows_;
+  for (int r = 0; r < rows; ++r) {
+    double acc = p[static_cast<size_t>(deg - 1) * stride + r];
+    for (int q = deg - 2; q >= 0; --q) acc = acc * th + p[static_cast<size_t>(q) * stride + r];
     w[r] = rate ? acc : scale * acc;
   }
 }

@@ -85,6 +85,11 @@ class RkStepper {
   Weights b_, e_;                 // nonzero b_l, e_l
   std::vector<int> dense_stage_;  // stages with a nonzero row of p, (rows)
   std::vector<double> dense_p_;   // their rows of p, (rows x degree)
+  // p and (q + 1) p, (degree x padded_rows_): rows padded with zeros to a fixed count, so that
+  // the interpolant's weights are one fixed-size vector loop per degree
+  static constexpr int kPadRows = 16;
+  int padded_rows_ = kPadRows;
+  std::vector<double> dense_pt_, dense_rate_pt_;
   double t_ = 0.0, h_ = 0.0;
   std::vector<double> y_, y1_, tmp_;
   std::vector<double> k_;  // (dense_stages x dim), stage-major; k_0 = f(y)
