@@ -1,9 +1,11 @@
 #include "sim/ode/rk_stepper.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace metrosync::ode {
 
@@ -59,14 +61,43 @@ void RkStepper::setTolerances(double rtol, std::vector<double> atol) {
   atol_ = std::move(atol);
 }
 
-void RkStepper::combine(const Weights& w, double h, double* __restrict out) const {
-  const double* __restrict y = y_.data();
-  for (int k = 0; k < dim_; ++k) out[k] = y[k];
-  for (const auto& [l, wl] : w) {
-    const double hw = h * wl;
-    const double* __restrict kl = stage(l);
-    for (int k = 0; k < dim_; ++k) out[k] += hw * kl[k];
+namespace {
+
+// out = y + sum_t hw_t ks_t with the term count known at compile time: one pass over the
+// components (vectorized), the terms added in the same order as a stage-by-stage sum, so the
+// result is the same to the last bit.
+template <int T>
+void combineTerms(const double* __restrict y, const double* const* ks, const double* hw, int dim,
+                  double* __restrict out) {
+  for (int k = 0; k < dim; ++k) {
+    double acc = y[k];
+    for (int t = 0; t < T; ++t) acc += hw[t] * ks[t][k];
+    out[k] = acc;
   }
+}
+
+using CombineFn = void (*)(const double*, const double* const*, const double*, int, double*);
+
+template <int... T>
+constexpr std::array<CombineFn, sizeof...(T)> combineTable(std::integer_sequence<int, T...>) {
+  return {&combineTerms<T>...};
+}
+
+constexpr int kMaxTerms = 16;  // the most nonzero weights of any row (verner76: 15)
+constexpr auto kCombine = combineTable(std::make_integer_sequence<int, kMaxTerms + 1>{});
+
+}  // namespace
+
+void RkStepper::combine(const Weights& w, double h, double* __restrict out) const {
+  const int terms = static_cast<int>(w.size());
+  if (terms > kMaxTerms) throw std::logic_error("RkStepper::combine: too many terms");
+  const double* ks[kMaxTerms];
+  double hw[kMaxTerms];
+  for (int t = 0; t < terms; ++t) {
+    ks[t] = stage(w[t].first);
+    hw[t] = h * w[t].second;
+  }
+  kCombine[terms](y_.data(), ks, hw, dim_, out);
 }
 
 void RkStepper::restart(double t, const double* y) {
@@ -90,14 +121,20 @@ double RkStepper::attempt(double h) {
   rhs_.eval(y1_.data(), stage(s - 1));
   evals_ += s - 1;
   // error norm: the worst component relative to its tolerance, or the root mean square
+  // the embedded difference sum_l e_l k_l, stage by stage (vectorized over the components; per
+  // component the same sums in the same order as one component at a time)
+  double* __restrict diff = tmp_.data();
+  for (int k = 0; k < dim_; ++k) diff[k] = 0.0;
+  for (const auto& [l, el] : e_) {
+    const double* __restrict kl = stage(l);
+    for (int k = 0; k < dim_; ++k) diff[k] += el * kl[k];
+  }
   double err = 0.0, sum = 0.0;
   int counted = 0;
   for (int k = 0; k < dim_; ++k) {
     if (atol_[k] < 0) continue;
-    double e = 0.0;
-    for (const auto& [l, el] : e_) e += el * stage(l)[k];
     const double sc = atol_[k] + rtol_ * std::max(std::abs(y_[k]), std::abs(y1_[k]));
-    const double r = std::abs(h * e) / sc;
+    const double r = std::abs(h * diff[k]) / sc;
     if (!(r <= err)) err = r;  // a NaN wins: a step that produced one is never accepted
     sum += r * r;
     ++counted;
