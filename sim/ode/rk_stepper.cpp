@@ -276,21 +276,26 @@ double RkStepper::componentRate(int k, double th) {
 }
 
 void RkStepper::interpolate(double th, double* __restrict out) {
+  interpolateRange(th, 0, dim_, out);
+}
+
+void RkStepper::interpolateRange(double th, int first, int count, double* __restrict out) {
+  const double* __restrict y = y_.data() + first;
+  double* __restrict o = out + first;
   if (th == 0.0) {
-    std::copy(y_.begin(), y_.end(), out);
+    std::copy(y, y + count, o);
     return;
   }
   if (th == 1.0) {
-    std::copy(y1_.begin(), y1_.end(), out);
+    std::copy(y1_.data() + first, y1_.data() + first + count, o);
     return;
   }
   stageWeights(th, false);
-  const double* __restrict y = y_.data();
-  for (int k = 0; k < dim_; ++k) out[k] = y[k];
+  for (int k = 0; k < count; ++k) o[k] = y[k];
   for (size_t r = 0; r < dense_stage_.size(); ++r) {
     const double w = w_[r];
-    const double* __restrict kj = stage(dense_stage_[r]);
-    for (int k = 0; k < dim_; ++k) out[k] += w * kj[k];
+    const double* __restrict kj = stage(dense_stage_[r]) + first;
+    for (int k = 0; k < count; ++k) o[k] += w * kj[k];
   }
 }
 

@@ -58,6 +58,8 @@ class RkStepper {
   // Dense output at t0 + th h, th in [0, 1]: the whole state, one component, or the time
   // derivative of one component's interpolant.
   void interpolate(double th, double* __restrict out);
+  // components [first, first + count) only, into out[first ...] (the same bits as interpolate)
+  void interpolateRange(double th, int first, int count, double* __restrict out);
   double component(int k, double th);
   double componentRate(int k, double th);
 
