@@ -45,7 +45,7 @@ RkStepper::RkStepper(const RkTableau& tableau, int dim, OdeRhs& rhs)
   // degree-major copies for stageWeights, zero-padded to kPadRows rows when they fit: p_rq, and
   // (q + 1) p_rq for the rate
   const int rows = static_cast<int>(dense_stage_.size()), deg = tab_.dense_degree;
-  padded_rows_ = rows <= kPadRows ? kPadRows : rows;
+  padded_rows_ = rows <= kPadRowsSmall ? kPadRowsSmall : (rows <= kPadRows ? kPadRows : rows);
   dense_pt_.assign(static_cast<size_t>(padded_rows_) * deg, 0.0);
   dense_rate_pt_ = dense_pt_;
   for (int r = 0; r < rows; ++r)
@@ -241,10 +241,10 @@ void RkStepper::stageWeights(double th, bool rate) {
   const double scale = h_ * th;
   const double* p = rate ? dense_rate_pt_.data() : dense_pt_.data();
   double* w = w_.data();
+  if (padded_rows_ == kPadRowsSmall && tab_.dense_degree == 4)
+    return hornerRows<4, kPadRowsSmall>(p, rows, th, scale, rate, w);
   if (padded_rows_ == kPadRows) {
     switch (tab_.dense_degree) {
-      case 4:
-        return hornerRows<4, kPadRows>(p, rows, th, scale, rate, w);
       case 6:
         return hornerRows<6, kPadRows>(p, rows, th, scale, rate, w);
       case 7:

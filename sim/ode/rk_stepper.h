@@ -89,7 +89,7 @@ class RkStepper {
   std::vector<double> dense_p_;   // their rows of p, (rows x degree)
   // p and (q + 1) p, (degree x padded_rows_): rows padded with zeros to a fixed count, so that
   // the interpolant's weights are one fixed-size vector loop per degree
-  static constexpr int kPadRows = 16;
+  static constexpr int kPadRowsSmall = 8, kPadRows = 16;  // dopri5: 7 stages; Verner's: 12, 16
   int padded_rows_ = kPadRows;
   std::vector<double> dense_pt_, dense_rate_pt_;
   double t_ = 0.0, h_ = 0.0;
