@@ -42,7 +42,7 @@ def time_at(fr, err):
 
 def main(paths):
     scenes = []
-    for path in paths:
+    for path in (p for p in paths if not p.endswith("-equal-error.csv")):
         with open(path) as f:
             rows = list(csv.DictReader(f))
         if rows:
