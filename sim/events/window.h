@@ -53,6 +53,10 @@ double locateWindow(std::vector<WindowCrossing>& found, Value&& value) {
     if (c.th.lo >= th_e) break;
     if (!c.forced && c.th.hi > c.th.lo) {
       auto g = [&](double th) { return value(c.witness, th); };
+      // still below zero at the window's end found so far: a bracket holds one sign change (the
+      // engines' detection assumes it), so this root lies after th_e and cannot move it; skip
+      // the bracketing (tens of interpolations; with N metronomes most steps end at an event)
+      if (th_e < c.th.hi && g(th_e) < 0) continue;
       c.th = ode::illinois(g, c.th.lo, g(c.th.lo), c.th.hi, g(c.th.hi));
     }
     th_e = std::min(th_e, c.th.hi);

@@ -1,9 +1,11 @@
 #include "sim/ode/rk_stepper.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace metrosync::ode {
 
@@ -40,6 +42,18 @@ RkStepper::RkStepper(const RkTableau& tableau, int dim, OdeRhs& rhs)
     dense_p_.insert(dense_p_.end(), tab_.p[j].begin(), tab_.p[j].end());
   }
   w_.assign(dense_stage_.size(), 0.0);
+  // degree-major copies for stageWeights, zero-padded to kPadRows rows when they fit: p_rq, and
+  // (q + 1) p_rq for the rate
+  const int rows = static_cast<int>(dense_stage_.size()), deg = tab_.dense_degree;
+  padded_rows_ = rows <= kPadRowsSmall ? kPadRowsSmall : (rows <= kPadRows ? kPadRows : rows);
+  dense_pt_.assign(static_cast<size_t>(padded_rows_) * deg, 0.0);
+  dense_rate_pt_ = dense_pt_;
+  for (int r = 0; r < rows; ++r)
+    for (int q = 0; q < deg; ++q) {
+      const double v = dense_p_[static_cast<size_t>(r) * deg + q];
+      dense_pt_[static_cast<size_t>(q) * padded_rows_ + r] = v;
+      dense_rate_pt_[static_cast<size_t>(q) * padded_rows_ + r] = (q + 1) * v;
+    }
 }
 
 void RkStepper::setTolerances(double rtol, std::vector<double> atol) {
@@ -47,14 +61,43 @@ void RkStepper::setTolerances(double rtol, std::vector<double> atol) {
   atol_ = std::move(atol);
 }
 
-void RkStepper::combine(const Weights& w, double h, double* __restrict out) const {
-  const double* __restrict y = y_.data();
-  for (int k = 0; k < dim_; ++k) out[k] = y[k];
-  for (const auto& [l, wl] : w) {
-    const double hw = h * wl;
-    const double* __restrict kl = stage(l);
-    for (int k = 0; k < dim_; ++k) out[k] += hw * kl[k];
+namespace {
+
+// out = y + sum_t hw_t ks_t with the term count known at compile time: one pass over the
+// components (vectorized), the terms added in the same order as a stage-by-stage sum, so the
+// result is the same to the last bit.
+template <int T>
+void combineTerms(const double* __restrict y, const double* const* ks, const double* hw, int dim,
+                  double* __restrict out) {
+  for (int k = 0; k < dim; ++k) {
+    double acc = y[k];
+    for (int t = 0; t < T; ++t) acc += hw[t] * ks[t][k];
+    out[k] = acc;
   }
+}
+
+using CombineFn = void (*)(const double*, const double* const*, const double*, int, double*);
+
+template <int... T>
+constexpr std::array<CombineFn, sizeof...(T)> combineTable(std::integer_sequence<int, T...>) {
+  return {&combineTerms<T>...};
+}
+
+constexpr int kMaxTerms = 16;  // the most nonzero weights of any row (verner76: 15)
+constexpr auto kCombine = combineTable(std::make_integer_sequence<int, kMaxTerms + 1>{});
+
+}  // namespace
+
+void RkStepper::combine(const Weights& w, double h, double* __restrict out) const {
+  const int terms = static_cast<int>(w.size());
+  if (terms > kMaxTerms) throw std::logic_error("RkStepper::combine: too many terms");
+  const double* ks[kMaxTerms];
+  double hw[kMaxTerms];
+  for (int t = 0; t < terms; ++t) {
+    ks[t] = stage(w[t].first);
+    hw[t] = h * w[t].second;
+  }
+  kCombine[terms](y_.data(), ks, hw, dim_, out);
 }
 
 void RkStepper::restart(double t, const double* y) {
@@ -78,14 +121,20 @@ double RkStepper::attempt(double h) {
   rhs_.eval(y1_.data(), stage(s - 1));
   evals_ += s - 1;
   // error norm: the worst component relative to its tolerance, or the root mean square
+  // the embedded difference sum_l e_l k_l, stage by stage (vectorized over the components; per
+  // component the same sums in the same order as one component at a time)
+  double* __restrict diff = tmp_.data();
+  for (int k = 0; k < dim_; ++k) diff[k] = 0.0;
+  for (const auto& [l, el] : e_) {
+    const double* __restrict kl = stage(l);
+    for (int k = 0; k < dim_; ++k) diff[k] += el * kl[k];
+  }
   double err = 0.0, sum = 0.0;
   int counted = 0;
   for (int k = 0; k < dim_; ++k) {
     if (atol_[k] < 0) continue;
-    double e = 0.0;
-    for (const auto& [l, el] : e_) e += el * stage(l)[k];
     const double sc = atol_[k] + rtol_ * std::max(std::abs(y_[k]), std::abs(y1_[k]));
-    const double r = std::abs(h * e) / sc;
+    const double r = std::abs(h * diff[k]) / sc;
     if (!(r <= err)) err = r;  // a NaN wins: a step that produced one is never accepted
     sum += r * r;
     ++counted;
@@ -167,22 +216,21 @@ void RkStepper::ensureStages() {
 namespace {
 
 // w_r = scale * sum_q p_rq th^(q+1) (value) or sum_q (q + 1) p_rq th^q (rate), by Horner's rule
-// with the degree known at compile time
-template <int D>
-void hornerRows(const double* __restrict p, int rows, double th, double scale, bool rate,
+// with the degree and the (padded) row count known at compile time. The rows are the inner loop
+// (the coefficients stored degree-major, pt[q * R + r], zero-padded to R rows, and for the rate
+// pre-multiplied by q + 1), so that the compiler vectorizes across rows; each row's arithmetic
+// is the same sequence of operations as a row-wise Horner, so the weights are the same to the
+// last bit.
+template <int D, int R>
+void hornerRows(const double* __restrict pt, int rows, double th, double scale, bool rate,
                 double* __restrict w) {
-  for (int r = 0; r < rows; ++r, p += D) {
-    double acc;
-    if (rate) {
-      acc = D * p[D - 1];
-      for (int q = D - 2; q >= 0; --q) acc = acc * th + (q + 1) * p[q];
-    } else {
-      acc = p[D - 1];
-      for (int q = D - 2; q >= 0; --q) acc = acc * th + p[q];
-      acc *= scale;
-    }
-    w[r] = acc;
-  }
+  double acc[R];
+  for (int r = 0; r < R; ++r) acc[r] = pt[(D - 1) * R + r];
+  for (int q = D - 2; q >= 0; --q)
+    for (int r = 0; r < R; ++r) acc[r] = acc[r] * th + pt[q * R + r];
+  if (!rate)
+    for (int r = 0; r < R; ++r) acc[r] *= scale;
+  for (int r = 0; r < rows; ++r) w[r] = acc[r];
 }
 
 }  // namespace
@@ -191,20 +239,22 @@ void RkStepper::stageWeights(double th, bool rate) {
   ensureStages();
   const int rows = static_cast<int>(dense_stage_.size());
   const double scale = h_ * th;
-  const double* p = dense_p_.data();
+  const double* p = rate ? dense_rate_pt_.data() : dense_pt_.data();
   double* w = w_.data();
-  switch (tab_.dense_degree) {
-    case 4:
-      return hornerRows<4>(p, rows, th, scale, rate, w);
-    case 6:
-      return hornerRows<6>(p, rows, th, scale, rate, w);
-    case 7:
-      return hornerRows<7>(p, rows, th, scale, rate, w);
+  if (padded_rows_ == kPadRowsSmall && tab_.dense_degree == 4)
+    return hornerRows<4, kPadRowsSmall>(p, rows, th, scale, rate, w);
+  if (padded_rows_ == kPadRows) {
+    switch (tab_.dense_degree) {
+      case 6:
+        return hornerRows<6, kPadRows>(p, rows, th, scale, rate, w);
+      case 7:
+        return hornerRows<7, kPadRows>(p, rows, th, scale, rate, w);
+    }
   }
-  const int deg = tab_.dense_degree;
-  for (int r = 0; r < rows; ++r, p += deg) {
-    double acc = rate ? deg * p[deg - 1] : p[deg - 1];
-    for (int q = deg - 2; q >= 0; --q) acc = acc * th + (rate ? (q + 1) * p[q] : p[q]);
+  const int deg = tab_.dense_degree, stride = padded_rows_;
+  for (int r = 0; r < rows; ++r) {
+    double acc = p[static_cast<size_t>(deg - 1) * stride + r];
+    for (int q = deg - 2; q >= 0; --q) acc = acc * th + p[static_cast<size_t>(q) * stride + r];
     w[r] = rate ? acc : scale * acc;
   }
 }
@@ -226,21 +276,26 @@ double RkStepper::componentRate(int k, double th) {
 }
 
 void RkStepper::interpolate(double th, double* __restrict out) {
+  interpolateRange(th, 0, dim_, out);
+}
+
+void RkStepper::interpolateRange(double th, int first, int count, double* __restrict out) {
+  const double* __restrict y = y_.data() + first;
+  double* __restrict o = out + first;
   if (th == 0.0) {
-    std::copy(y_.begin(), y_.end(), out);
+    std::copy(y, y + count, o);
     return;
   }
   if (th == 1.0) {
-    std::copy(y1_.begin(), y1_.end(), out);
+    std::copy(y1_.data() + first, y1_.data() + first + count, o);
     return;
   }
   stageWeights(th, false);
-  const double* __restrict y = y_.data();
-  for (int k = 0; k < dim_; ++k) out[k] = y[k];
+  for (int k = 0; k < count; ++k) o[k] = y[k];
   for (size_t r = 0; r < dense_stage_.size(); ++r) {
     const double w = w_[r];
-    const double* __restrict kj = stage(dense_stage_[r]);
-    for (int k = 0; k < dim_; ++k) out[k] += w * kj[k];
+    const double* __restrict kj = stage(dense_stage_[r]) + first;
+    for (int k = 0; k < count; ++k) o[k] += w * kj[k];
   }
 }
 

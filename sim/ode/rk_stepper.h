@@ -58,6 +58,8 @@ class RkStepper {
   // Dense output at t0 + th h, th in [0, 1]: the whole state, one component, or the time
   // derivative of one component's interpolant.
   void interpolate(double th, double* __restrict out);
+  // components [first, first + count) only, into out[first ...] (the same bits as interpolate)
+  void interpolateRange(double th, int first, int count, double* __restrict out);
   double component(int k, double th);
   double componentRate(int k, double th);
 
@@ -85,6 +87,11 @@ class RkStepper {
   Weights b_, e_;                 // nonzero b_l, e_l
   std::vector<int> dense_stage_;  // stages with a nonzero row of p, (rows)
   std::vector<double> dense_p_;   // their rows of p, (rows x degree)
+  // p and (q + 1) p, (degree x padded_rows_): rows padded with zeros to a fixed count, so that
+  // the interpolant's weights are one fixed-size vector loop per degree
+  static constexpr int kPadRowsSmall = 8, kPadRows = 16;  // dopri5: 7 stages; Verner's: 12, 16
+  int padded_rows_ = kPadRows;
+  std::vector<double> dense_pt_, dense_rate_pt_;
   double t_ = 0.0, h_ = 0.0;
   std::vector<double> y_, y1_, tmp_;
   std::vector<double> k_;  // (dense_stages x dim), stage-major; k_0 = f(y)

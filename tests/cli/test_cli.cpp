@@ -323,6 +323,29 @@ TEST(CliRun, SlowFlowWritesNoTrajectoryAndReplacesAnOlderRun) {
   expectNoTemporaryFiles(dir);
 }
 
+// --no-plot: the same files without the PNG (and without the gnuplot child). The default run's
+// PNG is checked too, so that the test fails if plotting were off anyway; it needs gnuplot.
+TEST(CliRun, NoPlotWritesNoPng) {
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "gnuplot not on PATH: no run writes a PNG";
+  const std::string dir = scratch("noplot");
+  ASSERT_EQ(
+      metrosync("run --quiet --set simulation.duration=2 --out " + quoted(dir + "/plot")).code, 0);
+  EXPECT_TRUE(fs::exists(dir + "/plot/envelope.png"));
+  for (const char* cmd : {"run", "compare"}) {
+    const std::string out = dir + "/" + cmd;
+    const Result r = metrosync(
+        std::string(cmd) + " --quiet --no-plot --set simulation.duration=2 --out " + quoted(out));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(out + "/summary.json")) << cmd;
+    for (const auto& name : listDir(out))
+      EXPECT_NE(fs::path(name).extension(), ".png") << cmd << " wrote " << name;
+    const json s = readJson(out + "/summary.json");
+    for (const auto& f : s["files"])
+      EXPECT_EQ(f.get<std::string>().find(".png"), std::string::npos) << f;
+  }
+}
+
 TEST(CliRun, ScaledRigThreeMetronomes) {
   const std::string dir = scratch("three");
   std::string text = scaledRig(8, 0.2);

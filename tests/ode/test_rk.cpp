@@ -163,6 +163,41 @@ TEST(RkStepper, InterpolantHasItsOrder) {
   }
 }
 
+// Two pendulums side by side (dimension 4): the engine's witnesses read one component of the
+// interpolant (component), the event starts from the whole state (interpolate), the envelope
+// samples read a range (interpolateRange); all three must agree to the last bit.
+struct TwoPendulums : OdeRhs {
+  void eval(const double* y, double* dy) override {
+    dy[0] = y[2];
+    dy[1] = y[3];
+    dy[2] = -std::sin(y[0]);
+    dy[3] = -2.0 * std::sin(y[1]) - 0.1 * y[3];
+  }
+};
+
+TEST(RkStepper, ComponentRangeAndWholeStateInterpolantsAgreeBitForBit) {
+  for (const std::string& name : kMethods) {
+    TwoPendulums f;
+    RkStepper st(rkTableau(name), 4, f);
+    st.setTolerances(1e-6, {1e-6, 1e-6, 1e-6, 1e-6});
+    const double y0[4] = {2.0, -0.5, 0.0, 0.3};
+    st.restart(0.0, y0);
+    st.attempt(0.3);
+    for (double th : {0.0, 0.013, 0.37, 0.5, 0.999, 1.0}) {
+      double whole[4], range[4] = {-7, -7, -7, -7};
+      st.interpolate(th, whole);
+      st.interpolateRange(th, 1, 2, range);
+      for (int k = 0; k < 4; ++k) EXPECT_EQ(st.component(k, th), whole[k]) << name << " " << k;
+      EXPECT_EQ(range[1], whole[1]) << name << " th " << th;
+      EXPECT_EQ(range[2], whole[2]) << name << " th " << th;
+      EXPECT_EQ(range[0], -7.0) << name << ": written outside the range";
+      EXPECT_EQ(range[3], -7.0) << name << ": written outside the range";
+    }
+    // and the interpolant is not trivially the start state: at th = 1 it is the step's end
+    EXPECT_NE(st.component(0, 0.5), y0[0]);
+  }
+}
+
 TEST(RkStepper, InitialStepSizeIsAcceptedAndScalesWithTheTolerance) {
   // Hairer's starting step aims at a local error ~ 0.01 of the target: the first attempt must be
   // accepted, and a 1e5 times tighter tolerance must shrink it by about 1e5^(1/(order+1)) ..

@@ -37,6 +37,9 @@ void addRigOptions(CLI::App* cmd, Options& opt, bool with_out) {
     cmd->add_flag("-q,--quiet", opt.quiet,
                   "no summary on stdout (errors and warnings still go "
                   "to stderr)");
+    cmd->add_flag("--no-plot", opt.no_plot,
+                  "write no plot (the CSV and JSON files only; saves the plotting child "
+                  "process, most of a short run's time)");
   }
 }
 

@@ -207,7 +207,8 @@ int runCommand(const Options& opt) {
   const RegimeVerdict verdict = judge(report, sink, r);
 
   std::vector<std::string> files = sink.fileNames();
-  if (plotEnvelope(dir, "envelope.png", sink.plotRows(), r.scaled.theta_c,
+  if (!opt.no_plot &&
+      plotEnvelope(dir, "envelope.png", sink.plotRows(), r.scaled.theta_c,
                    r.rig.name + " - " + modelTitle(model) + " - " + regimeName(verdict)))
     files.push_back("envelope.png");
   files.push_back("summary.json");
@@ -262,10 +263,10 @@ int compareCommand(const Options& opt) {
   std::vector<std::string> files = full_sink.fileNames();
   for (const auto& f : slow_sink.fileNames()) files.push_back(f);
   files.push_back("comparison.csv");
-  if (plotComparison(dir, "comparison.png", full_sink.plotRows(), slow_sink.plotRows(),
-                     r.scaled.theta_c,
-                     r.rig.name + " - full model (solid) " + regimeName(v_full) +
-                         ", slow flow (dashed) " + regimeName(v_slow)))
+  if (!opt.no_plot && plotComparison(dir, "comparison.png", full_sink.plotRows(),
+                                     slow_sink.plotRows(), r.scaled.theta_c,
+                                     r.rig.name + " - full model (solid) " + regimeName(v_full) +
+                                         ", slow flow (dashed) " + regimeName(v_slow)))
     files.push_back("comparison.png");
   files.push_back("summary.json");
 

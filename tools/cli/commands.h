@@ -22,9 +22,10 @@ struct Options {
   std::vector<std::string> sets;  // --set KEY=VALUE, in order
   std::string out;                // --out DIR; empty: runs/<rig name>-<command>
   bool quiet = false;
-  std::string model;   // run: full | slow; empty: the engine's model, full when no --engine
-  std::string engine;  // run, compare: a registry name (sim/engines/engine.h); empty: default
-  bool json = false;   // scale
+  bool no_plot = false;  // run, compare: --no-plot, no PNG (and no gnuplot child process)
+  std::string model;     // run: full | slow; empty: the engine's model, full when no --engine
+  std::string engine;    // run, compare: a registry name (sim/engines/engine.h); empty: default
+  bool json = false;     // scale
   double max_output = kDefaultMaxOutputBytes;  // --max-output BYTES (yaml/rig_limits.h)
 };
 

@@ -390,7 +390,12 @@ void DirectRun::recordEnvelope(const double* y, double t) {
 void DirectRun::emitSamplesBefore(double t_limit, bool inclusive) {
   const double t0 = stepper_.t(), h = stepper_.h();
   schedule_->takeDue(t_limit, inclusive, [&](double ts, bool row, bool env) {
-    stepper_.interpolate(std::clamp((ts - t0) / h, 0.0, 1.0), ya_.data());
+    const double th = std::clamp((ts - t0) / h, 0.0, 1.0);
+    // an envelope sample needs the angles and rates only (2N of the 2N + 4 components)
+    if (row)
+      stepper_.interpolate(th, ya_.data());
+    else
+      stepper_.interpolateRange(th, lay_.theta(0), 2 * lay_.n, ya_.data());
     if (row) recordTrajectory(ya_.data(), ts);
     if (env) recordEnvelope(ya_.data(), ts);
   });
