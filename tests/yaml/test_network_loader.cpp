@@ -212,3 +212,25 @@ TEST(NetworkLoader, SinglePlatformCommandsRefuseARealNetwork) {
 
 }  // namespace
 }  // namespace metrosync
+
+namespace metrosync {
+namespace {
+
+TEST(NetworkLoader, ShippedNetworkRigsLoad) {
+  const std::string dir = std::string(METROSYNC_SOURCE_DIR) + "/yaml/rigs/";
+  const Network swings = loadNetworkFile(dir + "two-swings.yaml");
+  ASSERT_EQ(swings.platforms.size(), 2u);
+  EXPECT_EQ(swings.platforms[0].rig.metronomes.size(), 15u);
+  EXPECT_EQ(swings.platforms[1].rig.metronomes.size(), 15u);
+  // the swing as a ground spring: k = M_total g / L_s with L_s = 0.5 m (the file's estimate)
+  EXPECT_NEAR(swings.platforms[0].rig.platform.spring_N_m,
+              swings.platforms[0].rig.totalMass() * 9.81 / 0.5, 0.5);
+  const Network boards = loadNetworkFile(dir + "two-boards-rollers.yaml");
+  EXPECT_EQ(boards.couplings.size(), 1u);
+  const Network one = loadNetworkFile(dir + "board-on-springs.yaml");
+  EXPECT_TRUE(one.isSingleRig());
+  EXPECT_GT(one.toSingleRig().platform.spring_N_m, 0.0);
+}
+
+}  // namespace
+}  // namespace metrosync
