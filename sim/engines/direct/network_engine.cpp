@@ -232,6 +232,9 @@ std::optional<double> NetworkRun::locate(const std::vector<double>& g0,
     if (w.tick && !armed(w)) continue;
     if (!crossed(Direction::Rising, g0[i], g1[i])) continue;
     auto f = [&](double th) {
+      if (w.tick)  // one component of the dense output: O(1), whatever the network's size
+        return TickWitness{w.index, w.side}.value(eq_.escapement(w.index),
+                                                  stepper_.component(lay_.theta(w.index), th));
       stepper_.interpolate(th, scratch_.data());
       return witnessValue(w, scratch_.data(), eq_.holdingForces(scratch_.data(), modes_));
     };
