@@ -293,7 +293,7 @@ std::vector<std::string> plotNetwork(const OutputDir& dir, const NetworkFiles& f
     s << "set terminal pngcairo size 1000,600\nset output '" << png << "'\n"
       << "set title '" << title << " - phase relative to its platform' noenhanced\n"
       << "set xlabel 'tau'\nset ylabel 'metronome'\nset cbrange [-pi:pi]\n"
-      << "set palette defined (-3.1416 'blue', 0 'white', 3.1416 'red')\nunset key\n"
+      << "set palette model HSV functions gray, 1, 0.9\nunset key\n"  // cyclic: -pi = pi
       << "set yrange [0.5:" << net.numMetronomes() + 0.5 << "]\n"
       << "plot '" << data << "' using 1:2:3 with points pt 5 ps 0.4 palette\n";
     return s.str();
