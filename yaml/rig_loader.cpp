@@ -970,15 +970,8 @@ Node rootWithOverrides(const std::string& yaml_text, const Source& src) {
 Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
                 const std::vector<std::string>& overrides, const LoadOptions& options) {
   const Source src(display_name, overrides);
-  const Node root = rootWithOverrides(yaml_text, src);
-
-  // units decide the schema
-  const Reader top(root, "", src);
-  if (!top.has("units")) top.missing("units", "physical or scaled");
-  const std::optional<Units> units = unitsOf(root);
-  if (!units) top.bad("units", "must be physical or scaled");
-
-  checkShape(root, schemaOf(*units), &otherSchemaOf(*units), *units, "", src);
+  const Node root = checkedRigTree(yaml_text, RigSource{display_name, overrides});
+  const std::optional<Units> units = unitsOf(root);  // checked: units decide the schema
   const std::string stem = stemOf(display_name);
   if (const Node* platforms = root.find("platforms")) {
     // a network (docs/networks.md): one platform on the table, uncoupled, is today's rig

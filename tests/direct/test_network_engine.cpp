@@ -46,6 +46,16 @@ std::string network(const std::string& platforms, const std::string& couplings, 
          "simulation: {duration: " + num(duration) + ", accuracy: " + num(accuracy) + "}\n";
 }
 
+// Two frictionless boards (a: two metronomes, b: one) joined by a spring and a damper.
+Network frictionlessPair(const std::string& a_metronomes, const std::string& b_metronomes,
+                         double duration, double accuracy) {
+  const std::string a = platform("a", "{law: none}", "", a_metronomes);
+  const std::string b = platform("b", "{law: none}", "", b_metronomes);
+  return loadNetworkText(
+      network(a + b, "couplings:\n  - {between: [a, b], k: 5.0, c: 0.01}\n", duration, accuracy),
+      "pair.yaml");
+}
+
 struct LastSample : NetworkSink {
   std::vector<std::vector<double>> rows;
   void sample(double, const std::vector<double>& y, const std::vector<PlatformMode>&) override {
@@ -87,11 +97,8 @@ TEST(NetworkEngine, ZeroCouplingDecouplesIntoSinglePlatformRuns) {
 }
 
 TEST(NetworkEngine, MomentumIsExactAcrossEveryImpulse) {
-  const std::string a =
-      platform("a", "{law: none}", "", metronome(0.3, 1.0) + metronome(-0.2, 0.5));
-  const std::string b = platform("b", "{law: none}", "", metronome(0.1, -2.0));
-  const Network net = loadNetworkText(
-      network(a + b, "couplings:\n  - {between: [a, b], k: 5.0, c: 0.01}\n", 1.0, 1e-10), "m.yaml");
+  const Network net = frictionlessPair(metronome(0.3, 1.0) + metronome(-0.2, 0.5),
+                                       metronome(0.1, -2.0), 1.0, 1e-10);
   const network::NetworkEquations eq(net);
   const network::Layout lay = eq.layout();
   std::vector<double> y(lay.dim(), 0.0);
@@ -111,11 +118,8 @@ TEST(NetworkEngine, MomentumIsExactAcrossEveryImpulse) {
 }
 
 TEST(NetworkEngine, FrictionlessNetworkConservesMomentumAndClosesItsLedger) {
-  const std::string a =
-      platform("a", "{law: none}", "", metronome(0.785, 0.0) + metronome(-0.5, 0.3));
-  const std::string b = platform("b", "{law: none}", "", metronome(0.6, -0.2));
-  const Network net = loadNetworkText(
-      network(a + b, "couplings:\n  - {between: [a, b], k: 5.0, c: 0.01}\n", 5.0, 1e-12), "m.yaml");
+  const Network net = frictionlessPair(metronome(0.785, 0.0) + metronome(-0.5, 0.3),
+                                       metronome(0.6, -0.2), 5.0, 1e-12);
   LastSample sink;
   const NetworkRunReport rep = runNetworkDirect(net, sink);
   ASSERT_TRUE(rep.complete) << rep.failure;
