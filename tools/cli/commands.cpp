@@ -15,7 +15,6 @@
 #include "sim/analysis/regime.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/network_run.h"
-#include "tools/cli/network_run.h"
 #include "tools/report/comparison_csv.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
