@@ -35,6 +35,7 @@
 #include <utility>
 
 #include "models/scaling.h"
+#include "yaml/rig_build.h"
 #include "yaml/rig_tree.h"
 #include "yaml/utf8.h"
 
@@ -172,28 +173,51 @@ SchemaPtr simulationSchema(const char* duration_key) {
                 {"sample", number()}});
 }
 
+SchemaPtr physicalMetronomeSchema() {
+  return mapOf(
+      {{"name", text()},
+       {"box_mass", number()},
+       {"pendulum", mapOf({{"mass", number()},
+                           {"length", number()},
+                           {"inertia", number()},
+                           {"damping", number()},
+                           {"decay_rate", number()}})},
+       {"escapement",
+        mapOf({{"angle", number()}, {"impulse", number()}, {"steady_amplitude", number()}})},
+       {"start", mapOf({{"angle", number()}, {"rate", number()}})},
+       {"locked", boolean()}});
+}
+SchemaPtr platformStartSchema() {
+  return mapOf({{"x", number()}, {"v", number()}});
+}
+
+// A network of platforms (docs/networks.md): `platforms` and `couplings` instead of `platform`,
+// `metronomes` and `start`; physical units only.
+SchemaPtr networkPlatformSchema() {
+  return mapOf({{"name", text()},
+                {"mass", number()},
+                {"friction", frictionSchema()},
+                {"spring", mapOf({{"k", number()}, {"c", number()}})},
+                {"on", text()},
+                {"metronomes", listOf(physicalMetronomeSchema())},
+                {"start", platformStartSchema()}});
+}
+SchemaPtr couplingSchema() {
+  return mapOf({{"between", listOf(text())}, {"k", number()}, {"c", number()}});
+}
+
 const Schema& physicalSchema() {
-  static const SchemaPtr s = mapOf(
-      {{"units", text()},
-       {"name", text()},
-       {"gravity", number()},
-       {"platform", mapOf({{"mass", number()},
-                           {"friction", frictionSchema()},
-                           {"spring", mapOf({{"k", number()}})}})},
-       {"metronomes", listOf(mapOf({{"name", text()},
-                                    {"box_mass", number()},
-                                    {"pendulum", mapOf({{"mass", number()},
-                                                        {"length", number()},
-                                                        {"inertia", number()},
-                                                        {"damping", number()},
-                                                        {"decay_rate", number()}})},
-                                    {"escapement", mapOf({{"angle", number()},
-                                                          {"impulse", number()},
-                                                          {"steady_amplitude", number()}})},
-                                    {"start", mapOf({{"angle", number()}, {"rate", number()}})},
-                                    {"locked", boolean()}}))},
-       {"start", mapOf({{"x", number()}, {"v", number()}})},
-       {"simulation", simulationSchema("duration")}});
+  static const SchemaPtr s = mapOf({{"units", text()},
+                                    {"name", text()},
+                                    {"gravity", number()},
+                                    {"platform", mapOf({{"mass", number()},
+                                                        {"friction", frictionSchema()},
+                                                        {"spring", mapOf({{"k", number()}})}})},
+                                    {"metronomes", listOf(physicalMetronomeSchema())},
+                                    {"start", platformStartSchema()},
+                                    {"platforms", listOf(networkPlatformSchema())},
+                                    {"couplings", listOf(couplingSchema())},
+                                    {"simulation", simulationSchema("duration")}});
   return *s;
 }
 
@@ -743,7 +767,12 @@ void impulsesFromSteadyAmplitudes(Rig& rig,
   }
 }
 
-Rig buildPhysical(const Node& root, const Source& src, const std::string& fallback_name) {
+// platform_path and metronomes_path name the platform and its metronomes in messages: "platform"
+// and "metronomes" in a single-platform rig, "platforms.I" and "platforms.I.metronomes" for a
+// platform of a network (whose tree is given in the single-platform form, see buildNetworkRig).
+Rig buildPhysical(const Node& root, const Source& src, const std::string& fallback_name,
+                  const std::string& platform_path = "platform",
+                  const std::string& metronomes_path = "metronomes") {
   const Reader top(root, "", src);
   Rig rig;
   rig.units = Units::Physical;
@@ -754,7 +783,8 @@ Rig buildPhysical(const Node& root, const Source& src, const std::string& fallba
   }
 
   // platform
-  const Reader platform = top.map("platform", "the board's mass and its friction law");
+  if (!top.has("platform")) top.missing("platform", "the board's mass and its friction law");
+  const Reader platform(*top.find("platform"), platform_path, src);
   rig.platform.mass_kg = positive(platform, "mass", "the board's mass in kg");
   const Friction fr = readFriction(platform, Units::Physical);
   rig.platform.law = fr.law;
@@ -768,7 +798,7 @@ Rig buildPhysical(const Node& root, const Source& src, const std::string& fallba
   const Node& list = readMetronomeList(top, "a list of metronomes, each with box_mass, pendulum");
   std::vector<std::optional<Reader>> amplitude_of(list.seq.size());
   for (std::size_t i = 0; i < list.seq.size(); ++i) {
-    const Reader m(list.seq[i], "metronomes." + std::to_string(i), src);
+    const Reader m(list.seq[i], metronomes_path + "." + std::to_string(i), src);
     MetronomeSpec mt;
     mt.name = optName(m).value_or(std::to_string(i + 1));
     mt.box_mass_kg =
@@ -940,16 +970,18 @@ Node rootWithOverrides(const std::string& yaml_text, const Source& src) {
 Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
                 const std::vector<std::string>& overrides, const LoadOptions& options) {
   const Source src(display_name, overrides);
-  const Node root = rootWithOverrides(yaml_text, src);
-
-  // units decide the schema
-  const Reader top(root, "", src);
-  if (!top.has("units")) top.missing("units", "physical or scaled");
-  const std::optional<Units> units = unitsOf(root);
-  if (!units) top.bad("units", "must be physical or scaled");
-
-  checkShape(root, schemaOf(*units), &otherSchemaOf(*units), *units, "", src);
+  const Node root = checkedRigTree(yaml_text, RigSource{display_name, overrides});
+  const std::optional<Units> units = unitsOf(root);  // checked: units decide the schema
   const std::string stem = stemOf(display_name);
+  if (const Node* platforms = root.find("platforms")) {
+    // a network (docs/networks.md): one platform on the table, uncoupled, is today's rig
+    const Network net = buildNetwork(root, RigSource{display_name, overrides}, stem, options);
+    if (net.isSingleRig()) return net.toSingleRig();
+    src.fail(platforms->at, "platforms: a network of " + std::to_string(net.platforms.size()) +
+                                " platforms and " + std::to_string(net.couplings.size()) +
+                                " coupling(s); this command takes a single platform (a network "
+                                "runs with `metrosync run --engine direct`, see docs/networks.md)");
+  }
   const Rig rig =
       *units == Units::Physical ? buildPhysical(root, src, stem) : buildScaled(root, src, stem);
   try {
@@ -979,6 +1011,42 @@ std::optional<double> rigNumber(const std::string& yaml_text, const std::string&
   if (n->kind != Node::Kind::Scalar || !parseNumber(n->scalar))
     throw RigError(display_name + ": " + key + " is not a number");
   return parseNumber(n->scalar);
+}
+
+Node checkedRigTree(const std::string& yaml_text, const RigSource& rs) {
+  const Source src(rs.display_name, rs.overrides);
+  const Node root = rootWithOverrides(yaml_text, src);
+  const Reader top(root, "", src);
+  if (!top.has("units")) top.missing("units", "physical or scaled");
+  const std::optional<Units> units = unitsOf(root);
+  if (!units) top.bad("units", "must be physical or scaled");
+  checkShape(root, schemaOf(*units), &otherSchemaOf(*units), *units, "", src);
+  return root;
+}
+
+std::string rigStem(const std::string& display_name) {
+  return stemOf(display_name);
+}
+
+void failAt(const RigSource& src, const Where& at, const std::string& what) {
+  Source(src.display_name, src.overrides).fail(at, what);
+}
+
+std::optional<double> parseRigNumber(const std::string& scalar) {
+  return parseNumber(scalar);
+}
+
+Rig buildNetworkPlatformRig(const Node& root, const RigSource& rs, const std::string& fallback_name,
+                            const std::string& platform_path, const LoadOptions& options) {
+  const Source src(rs.display_name, rs.overrides);
+  const Rig rig =
+      buildPhysical(root, src, fallback_name, platform_path, platform_path + ".metronomes");
+  try {
+    checkPlan(root, rig, src, options);
+  } catch (const std::invalid_argument& e) {  // computeScaled on a rig it cannot scale
+    src.fail(root.at, platform_path + ": " + e.what());
+  }
+  return rig;
 }
 
 Rig loadRigFile(const std::string& path, const std::vector<std::string>& overrides,

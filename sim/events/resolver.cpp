@@ -26,6 +26,13 @@ WindowOutcome EventResolver::resolve(EventSystem& sys, bool platform_reported) {
   return out;
 }
 
+WindowOutcome EventResolver::settleAfterSupportImpulse(EventSystem& sys) {
+  WindowOutcome out;
+  modeAfterImpulse(sys, sys.mode(), out);
+  coulombRule(sys, out);
+  return out;
+}
+
 void EventResolver::rearm(int j, double theta) {
   for (int side : {-1, 1}) {
     char& a = armed_[2 * j + (side > 0)];

@@ -59,6 +59,11 @@ class EventResolver {
   // Is the tick of pendulum j on `side` armed (its witness may report)?
   bool armed(int j, int side) const { return armed_[2 * j + (side > 0)]; }
 
+  // A platform whose support moved under it (a network of platforms: an impulse on the platform
+  // it rests on changed its slip velocity): its mode after that impulse, as after its own ticks
+  // (step 2, micro-slips stopped plastically), then the Coulomb rule (step 3).
+  WindowOutcome settleAfterSupportImpulse(EventSystem& sys);
+
   // The platform's mode at the start: at xdot == 0 the law's mode at rest (a "slip" row if it
   // breaks free at once: the start is not counted as a switch), otherwise a slip its way.
   PlatformMode settleAtStart(EventSystem& sys) const;

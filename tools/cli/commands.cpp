@@ -14,6 +14,7 @@
 #include "sim/analysis/compare.h"
 #include "sim/analysis/regime.h"
 #include "tools/cli/engines.h"
+#include "tools/cli/network_run.h"
 #include "tools/report/comparison_csv.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
@@ -195,6 +196,7 @@ void installStopHandlers() {
 }
 
 int runCommand(const Options& opt) {
+  if (isNetworkRun(opt)) return runNetworkCommand(opt);  // docs/networks.md
   LoadedRig r = loadAndCheck(opt, opt.model);
   const std::string model = r.engine->model();
   installStopHandlers();  // before any file exists, so that no signal can leave a bare .part

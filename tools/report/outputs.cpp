@@ -57,6 +57,7 @@ const std::vector<std::string>& OutputDir::outputNames() {
   static const std::vector<std::string> names = {
       "trajectory.csv", "envelope.csv", "envelope_full.csv", "envelope_slow.csv",
       "comparison.csv", "summary.json", "envelope.png",      "comparison.png",
+      "order.csv",      "order.png",    "raster.png",  // a network's (docs/networks.md)
   };
   return names;
 }

@@ -1,0 +1,35 @@
+#include "models/network.h"
+
+namespace metrosync {
+
+int Network::numMetronomes() const {
+  int n = 0;
+  for (const NetworkPlatform& p : platforms) n += static_cast<int>(p.rig.metronomes.size());
+  return n;
+}
+
+double Network::carriedMass(int p) const {
+  double m = platforms[p].rig.totalMass();
+  for (int q = 0; q < static_cast<int>(platforms.size()); ++q)
+    if (platforms[q].on == p) m += carriedMass(q);
+  return m;
+}
+
+int Network::firstMetronome(int p) const {
+  int n = 0;
+  for (int q = 0; q < p; ++q) n += static_cast<int>(platforms[q].rig.metronomes.size());
+  return n;
+}
+
+bool Network::isSingleRig() const {
+  return platforms.size() == 1 && couplings.empty() && platforms[0].on < 0 &&
+         platforms[0].spring_c_Ns_m == 0.0;
+}
+
+Rig Network::toSingleRig() const {
+  Rig rig = platforms.at(0).rig;
+  rig.name = name;
+  return rig;
+}
+
+}  // namespace metrosync

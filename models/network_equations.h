@@ -1,0 +1,100 @@
+// The full model (e1.1a-c) for a network of platforms (models/network.h, docs/networks.md) in
+// minimal coordinates, physical units: each platform's absolute position x_p and one angle per
+// swinging pendulum. In absolute coordinates platforms share no inertia, so the mass matrix is
+// block-diagonal with one arrow per platform,
+//   [[M_p, c_p^T], [c_p, diag(I_p)]],  c_j = m_j L_j cos theta_j,  M_p = rig.totalMass(),
+// and each arrow is solved in O(its pendulums) by its Schur complement Meff_p = M_p - sum c_j^2/I_j
+// exactly as for one platform (models/minimal_equations.h). Platforms interact through forces only:
+//   ground spring and damper  -k_p x_p - c_p xdot_p  (a platform on the table)
+//   couplings                 -k (x_a - x_b) - c (xdot_a - xdot_b) on a, the opposite on b
+//   friction of the contact under p (the table, or the platform p rests on): F_p(u_p), u_p = xdot_p
+//     - xdot_below, on p, and -F_p on the platform below; Coulomb's bound is mu-bar_p g times the
+//     mass p carries (eq. frictionlaw on each contact).
+// A stuck Coulomb contact holds u_p' = 0 with a holding force lambda_p: several stuck contacts give
+// one small linear system for the lambdas (contacts x contacts; platforms are few).
+// A fixed platform keeps its x = xdot = 0 entries but has no equation (it never moves).
+//
+// State y: x_p, xdot_p for every platform (file order), theta_j then thetadot_j for every swinging
+// pendulum (file order over the network), then three quadratures of the energy ledger: the work of
+// the pivot dampers, of friction, and of the ground and coupling dampers (J).
+#pragma once
+
+#include <vector>
+
+#include "contact/escapement.h"
+#include "contact/platform_friction.h"
+#include "models/minimal_equations.h"
+#include "models/network.h"
+
+namespace metrosync::network {
+
+struct Layout {
+  int platforms = 0, n = 0;  // platforms, swinging pendulums
+  int x(int p) const { return 2 * p; }
+  int v(int p) const { return 2 * p + 1; }
+  int theta(int j) const { return 2 * platforms + j; }
+  int omega(int j) const { return 2 * platforms + n + j; }
+  int dampingWork() const { return 2 * platforms + 2 * n; }
+  int frictionWork() const { return dampingWork() + 1; }
+  int damperWork() const { return dampingWork() + 2; }
+  int dim() const { return dampingWork() + 3; }
+};
+
+struct Block {
+  bool moves = false;         // not fixed
+  int below = -1;             // the platform it rests on; -1: the table
+  double mass = 0.0;          // M_p (kg): the board with its metronomes
+  double k = 0.0, c = 0.0;    // ground spring (N/m) and damper (N s/m)
+  PlatformFriction friction;  // the contact under it
+  int first = 0, count = 0;   // its swinging pendulums: [first, first + count)
+};
+
+class NetworkEquations {
+ public:
+  explicit NetworkEquations(const Network& net);
+
+  const Layout& layout() const { return lay_; }
+  int numPlatforms() const { return lay_.platforms; }
+  const Block& block(int p) const { return blocks_[p]; }
+  const direct::PendulumConstants& pendulum(int j) const { return pend_[j]; }
+  Escapement escapement(int j) const { return {pend_[j].theta_c, pend_[j].impulse}; }
+  // platform p's contact is Coulomb and currently stuck in `modes`
+  bool stuck(int p, const std::vector<PlatformMode>& modes) const;
+  // u_p = xdot_p - xdot_below (the contact's slip velocity)
+  double slipVelocity(const double* y, int p) const;
+
+  // dy/dt with the contacts in `modes` (Coulomb contacts only: Stuck holds u_p' = 0).
+  void rhs(const double* y, const std::vector<PlatformMode>& modes, double* dy) const;
+  // The holding force lambda_p of every stuck contact (0 for the others), on y.
+  std::vector<double> holdingForces(const double* y, const std::vector<PlatformMode>& modes) const;
+
+  // A generalized impulse: pin[j] on pendulum j's pin (N m s), contact[p] on platform p and its
+  // opposite on the platform below (N s), every platform free (dry friction gives no impulse).
+  // Returns the kinetic energy jump (J).
+  double applyImpulse(double* y, const std::vector<double>& pin,
+                      const std::vector<double>& contact) const;
+  // The slip velocity change of contact p per unit impulse on it: 1/Meff_p + 1/Meff_below.
+  double contactMobility(const double* y, int p) const;
+  // Horizontal momentum sum_p (M_p xdot_p + sum_j c_j thetadot_j) (N s).
+  double momentum(const double* y) const;
+  // Kinetic + potential energy (J): gravity as in minimal_equations.h, every spring's energy.
+  double energy(const double* y) const;
+
+ private:
+  // Schur pass of platform p: Meff_p, and G_p (every force on x_p but friction, after eliminating
+  // its pendulums' accelerations); stores c_j, r_j.
+  void schur(const double* y, int p, double& meff, double& g) const;
+  // Meff_p and the free accelerations of every platform (friction of slipping/smooth contacts in),
+  // then the stuck contacts' lambdas solved in; a[p] the final accelerations.
+  void accelerations(const double* y, const std::vector<PlatformMode>& modes,
+                     std::vector<double>& a, std::vector<double>* lambda) const;
+  double inverseMass(const double* y, int p) const;
+
+  Layout lay_;
+  std::vector<Block> blocks_;
+  std::vector<direct::PendulumConstants> pend_;
+  std::vector<Coupling> couplings_;
+  mutable std::vector<double> c_, r_, meff_;
+};
+
+}  // namespace metrosync::network

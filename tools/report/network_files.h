@@ -1,0 +1,50 @@
+// The output files of a network run (docs/networks.md), streamed sample by sample:
+//   trajectory.csv  t, then per platform x_NAME,xdot_NAME,platform_NAME (file order), then
+//                   theta_i,thetadot_i numbered 1..N over the whole network (file order)
+//   envelope.csv    tau,A_1..A_N,psi_2..psi_N,r in that numbering (scaled, as a single rig's)
+//   order.csv       tau,r_NAME,Phi_NAME,...,r,Phi (Kuramoto, sim/analysis/order_parameter.h)
+// and what summary.json adds: per platform its regime (the single-platform classifier on its own
+// metronomes), its metronomes' global numbers and final r; the network's label and final r.
+// Scales (tau, scaled A) are those of the network's first swinging metronome.
+#pragma once
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "models/network.h"
+#include "sim/engines/direct/network_engine.h"
+#include "tools/report/outputs.h"
+
+namespace metrosync {
+
+class NetworkFiles : public NetworkSink {
+ public:
+  NetworkFiles(const OutputDir& dir, const Network& net);
+  ~NetworkFiles() override;
+  void sample(double t, const std::vector<double>& y,
+              const std::vector<PlatformMode>& modes) override;
+  void commit();
+  std::vector<std::string> fileNames() const;
+  // summary.json's network part: `platforms`, `network`, the counts and the ledger
+  nlohmann::json summary(const NetworkRunReport& report) const;
+  // the time series for the plots: tau, then r per platform and overall, one row per sample
+  const std::vector<std::vector<double>>& orderRows() const { return order_rows_; }
+  // per sample: tau and each swinging metronome's phase relative to its platform's mean phase
+  const std::vector<std::vector<double>>& rasterRows() const { return raster_rows_; }
+
+ private:
+  void keepForPlots(const std::vector<double>& order, const std::vector<double>& raster);
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::vector<std::vector<double>> order_rows_, raster_rows_;
+};
+
+// The plots of a network run: order.png (r per platform and overall against tau) and raster.png
+// (metronome against tau, colour = phase relative to its platform's mean). Returns the files made
+// (none when gnuplot is missing).
+std::vector<std::string> plotNetwork(const OutputDir& dir, const NetworkFiles& files,
+                                     const Network& net, const std::string& title);
+
+}  // namespace metrosync
