@@ -123,9 +123,9 @@ double wrapToTwoPi(double angle_rad);
 
 // Runs run_point(g) for every g < grid_size with wanted(g) (dispatched in ascending order) on
 // `jobs` threads. Each result is handed to `finished` under a lock, in completion order;
-// run_point returns nullopt for a point that was interrupted (not recorded). No new point starts once stop() is true.
-// Exceptions from run_point or finished stop the sweep and are rethrown (the first one).
-// The indices are handed out one at a time, so memory does not grow with the grid.
+// run_point returns nullopt for a point that was interrupted (not recorded). No new point starts
+// once stop() is true. Exceptions from run_point or finished stop the sweep and are rethrown (the
+// first one). The indices are handed out one at a time, so memory does not grow with the grid.
 void runSweepPoints(long grid_size, const std::function<bool(long)>& wanted, int jobs,
                     const std::function<std::optional<SweepPoint>(long)>& run_point,
                     const std::function<void(const SweepPoint&)>& finished,

@@ -326,8 +326,8 @@ TEST(CliRun, SlowFlowWritesNoTrajectoryAndReplacesAnOlderRun) {
 // --no-plot: the same files without the PNG (and without the gnuplot child). The default run's
 // PNG is checked too, so that the test fails if plotting were off anyway; it needs gnuplot.
 TEST(CliRun, NoPlotWritesNoPng) {
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
-    GTEST_SKIP() << "gnuplot not on PATH: no run writes a PNG";
+  ASSERT_EQ(std::system("command -v gnuplot > /dev/null 2>&1"), 0)
+      << "gnuplot not on PATH (tools/setup.sh installs gnuplot-nox): no run could write a PNG";
   const std::string dir = scratch("noplot");
   ASSERT_EQ(
       metrosync("run --quiet --set simulation.duration=2 --out " + quoted(dir + "/plot")).code, 0);

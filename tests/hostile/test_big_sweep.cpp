@@ -18,7 +18,8 @@ namespace {
 TEST(HostileSweep, TenMillionPointsStartAtOnceInBoundedMemory) {
   const std::string out = testing_support::scratchDir("hostile", "bigsweep");
   testing_support::RunIn in;
-  in.env = shellQuote(sourceDir() + "/tests/hostile/run_limited.sh") + " timeout --preserve-status -s INT 2";
+  in.env = shellQuote(sourceDir() + "/tests/hostile/run_limited.sh") +
+           " timeout --preserve-status -s INT 2";
   // 3162 x 3162 = 9 998 244 points of the slow flow, over friction and the start's phase
   const CommandResult r =
       runMetrosync("sweep " + shellQuote(sourceDir() + "/yaml/rigs/experiment-scaled.yaml") +
