@@ -23,10 +23,11 @@ namespace {
 using namespace metrosync::continuation;
 using Cd = std::complex<double>;
 
-// A located fold, for --fold.
+// A located fold or Hopf point, for --fold.
 struct FoldSeed {
   int reference;
   BranchPoint at;
+  CurveKind kind;
 };
 
 ContinueOptions& options() {
@@ -198,8 +199,9 @@ void foldCurves(const ContinueOptions& opt, double from2, const std::vector<Fold
   result.param2 = opt.fold_key;
   for (const FoldSeed& f : folds) {
     const int n = static_cast<int>(f.at.y.size()) - 1;
+    const auto follow = f.kind == CurveKind::Fold ? continueFold : continueHopf;
     result.fold_curves.push_back(
-        continueFold(paramsAt2(opt), f.reference, f.at.y.head(n), f.at.p(), from2, f.at.region, s));
+        follow(paramsAt2(opt), f.reference, f.at.y.head(n), f.at.p(), from2, f.at.region, s));
   }
 }
 
@@ -227,12 +229,29 @@ bool alreadyFollowed(const ContinuationResult& r, const std::vector<double>& A,
   return false;
 }
 
-void record(const SlowFlowProblem& prob, const std::vector<Branch>& branches,
+// Whether a cycle from the Hopf point at parameter p is already in r (the same Hopf point found
+// on another branch, or again from the other side).
+bool cycleFollowed(const ContinuationResult& r, double p) {
+  constexpr double kSameHopf = 1e-7;  // Hopf points are located to ~1e-11 in the parameter
+  for (const ResultCycle& c : r.cycles)
+    if (std::abs(c.hopf_value - p) <= kSameHopf * std::max(1.0, std::abs(p))) return true;
+  return false;
+}
+
+void record(const ContinueOptions& opt, const SlowFlowProblem& prob,
+            const std::vector<Branch>& branches, const ContinuationSettings& settings,
             ContinuationResult& result, std::vector<FoldSeed>& folds) {
   appendBranches(prob, branches, result);
   for (const Branch& b : branches)
-    for (const Bifurcation& e : b.special)
-      if (e.type == BifurcationType::Fold) folds.push_back({prob.reference(), e.point});
+    for (const Bifurcation& e : b.special) {
+      if (e.type == BifurcationType::Fold)
+        folds.push_back({prob.reference(), e.point, CurveKind::Fold});
+      if (e.type != BifurcationType::Hopf) continue;
+      folds.push_back({prob.reference(), e.point, CurveKind::Hopf});
+      if (opt.no_cycles || cycleFollowed(result, e.point.p())) continue;
+      result.cycles.push_back(followSlowFlowCycle(prob, e.point, settings));
+      result.cycles.back().id = static_cast<int>(result.cycles.size()) - 1;
+    }
 }
 
 void followAll(const ContinueOptions& opt, const ScaledParams& sp, double from,
@@ -252,8 +271,8 @@ void followAll(const ContinueOptions& opt, const ScaledParams& sp, double from,
     // the largest amplitude as the reference: z_r real stays regular while z_r does not vanish
     const std::vector<Cd> z = prob.unpack(x);
     const SlowFlowProblem mine(paramsAt(opt), from, largest(z));
-    record(mine, continueFrom(mine.system(), mine.pack(z, prob.omega(x)), from, settings), result,
-           folds);
+    record(opt, mine, continueFrom(mine.system(), mine.pack(z, prob.omega(x)), from, settings),
+           settings, result, folds);
   }
 }
 
@@ -290,14 +309,18 @@ CLI::App* addContinueCommand(CLI::App& app) {
   c->add_flag("--all", opt.all, "every locked state at the start value (Newton from a grid)");
   c->add_option("--out", opt.out, "output directory (default runs/<rig name>-continue)");
   c->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
+  c->add_flag("--no-cycles", opt.no_cycles,
+              "do not follow the limit cycle born at each Hopf point (cycles.csv)");
   CLI::Option* fold = c->add_option("--fold", opt.fold_key,
-                                    "a second rig key: continue every fold found in KEY and KEY2 "
-                                    "(from KEY2's value in the rig) -> fold_curve.csv, .png");
+                                    "a second rig key: continue every fold and Hopf point found in "
+                                    "KEY in (KEY, KEY2), from KEY2's value in the rig -> "
+                                    "fold_curve.csv, hopf_curve.csv, fold_curve.png");
   c->add_option("--to2", opt.to2, "KEY2's other end (with --fold)")->needs(fold);
   fold->needs("--to2");
   c->footer(
-      "Files in --out DIR: branches.csv, bifurcations.json, branches.png, summary.json; with "
-      "--fold also fold_curve.csv, fold_curve.png (see "
+      "Files in --out DIR: branches.csv, bifurcations.json, branches.png, cycles.csv, "
+      "summary.json; with "
+      "--fold also fold_curve.csv, hopf_curve.csv, fold_curve.png (see "
       "docs/continuation.md).\nExit codes: 0 success; 2 bad command line or rig (nothing "
       "written); 1 anything else.");
   return c;
@@ -322,7 +345,7 @@ int continueCommand() {
     const SlowFlowProblem prob(paramsAt(opt), from, largest(z));
     const auto x = solveLocked(prob, prob.pack(z, prob.omegaGuess(from, z)), from);
     if (!x) throw UsageError("Newton does not converge to a locked state from " + result.start);
-    record(prob, continueFrom(prob.system(), *x, from, settings), result, folds);
+    record(opt, prob, continueFrom(prob.system(), *x, from, settings), settings, result, folds);
   }
   if (!opt.fold_key.empty()) foldCurves(opt, from2, folds, result);
   const OutputDir dir(outDir(opt, rig));

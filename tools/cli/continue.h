@@ -22,8 +22,9 @@ struct ContinueOptions {
   bool all = false;               // --all: every locked state at the start value
   std::string out;                // --out DIR; empty: runs/<rig name>-continue
   bool quiet = false;
-  std::string fold_key;  // --fold KEY2: continue each fold in KEY and KEY2
-  double to2 = 0.0;      // --to2 VALUE: KEY2's other end (it starts at the rig's value)
+  bool no_cycles = false;  // --no-cycles
+  std::string fold_key;    // --fold KEY2: continue each fold in KEY and KEY2
+  double to2 = 0.0;        // --to2 VALUE: KEY2's other end (it starts at the rig's value)
 };
 
 // Adds the `continue` subcommand; its options land in a static ContinueOptions.

@@ -10,6 +10,9 @@
 
 namespace metrosync {
 
+using continuation::CurveKind;
+using continuation::FoldCurve;
+
 namespace {
 
 using continuation::ContinuationResult;
@@ -97,27 +100,59 @@ std::string foldPlotScript(const ContinuationResult& r, const std::string& data,
   g << "set terminal pngcairo size 900,700 font ',11'\n"
     << "set output '" << png << "'\n"
     << "set grid\nset key outside right\n"
-    << "set title 'fold curves: where locked states are born or die' noenhanced\n"
+    << "set title 'fold curves (solid): locked states born or die; Hopf curves (dashed): they "
+    << "start to oscillate' noenhanced\n"
     << "set xlabel '" << r.param << "' noenhanced\nset ylabel '" << r.param2 << "' noenhanced\n"
-    << "plot for [i=0:" << r.fold_curves.size() - 1 << "] '" << data
-    << "' index i using 1:2 with lines lw 2 title sprintf('fold %d', i)\n";
+    << "plot ";
+  int folds = 0, hopfs = 0;
+  for (size_t i = 0; i < r.fold_curves.size(); ++i) {
+    const bool fold = r.fold_curves[i].kind == CurveKind::Fold;
+    g << (i ? ", " : "") << "'" << data << "' index " << i << " using 1:2 with lines lw 2 dt "
+      << (fold ? 1 : 2) << " title '" << (fold ? "fold " : "Hopf ") << (fold ? folds++ : hopfs++)
+      << "'";
+  }
+  g << "\n";
   return g.str();
 }
 
 }  // namespace
 
-std::string foldCurveCsv(const ContinuationResult& r) {
+std::string foldCurveCsv(const ContinuationResult& r, CurveKind kind) {
+  const bool hopf = kind == CurveKind::Hopf;
   std::ostringstream c;
-  c << "fold," << r.param << "," << r.param2;
+  c << toString(kind) << "," << r.param << "," << r.param2;
   for (int i = 1; i <= r.metronomes; ++i) c << ",A_" << i;
   for (int j = 2; j <= r.metronomes; ++j) c << ",psi_" << j;
-  c << "\n";
-  for (size_t f = 0; f < r.fold_curves.size(); ++f)
-    for (const auto& q : r.fold_curves[f].points) {
-      c << f << "," << num(q.p1) << "," << num(q.p2);
+  c << (hopf ? ",omega\n" : "\n");
+  int id = 0;
+  for (const FoldCurve& curve : r.fold_curves) {
+    if (curve.kind != kind) continue;
+    for (const auto& q : curve.points) {
+      c << id << "," << num(q.p1) << "," << num(q.p2);
       for (double a : q.A) c << "," << num(a);
       for (double p : q.psi) c << "," << num(p);
+      if (hopf) c << "," << num(q.frequency);
       c << "\n";
+    }
+    ++id;
+  }
+  return c.str();
+}
+
+std::string cyclesCsv(const ContinuationResult& r) {
+  std::ostringstream c;
+  c << "cycle," << r.param << ",period";
+  for (int i = 1; i <= r.metronomes; ++i) c << ",A_" << i << "_min,A_" << i << "_max";
+  for (int j = 2; j <= r.metronomes; ++j) c << ",psi_" << j << "_min,psi_" << j << "_max";
+  c << ",stable,max_multiplier\n";
+  for (const auto& cycle : r.cycles)
+    for (const auto& q : cycle.points) {
+      c << cycle.id << "," << num(q.value) << "," << num(q.period);
+      for (size_t i = 0; i < q.A_min.size(); ++i)
+        c << "," << num(q.A_min[i]) << "," << num(q.A_max[i]);
+      for (size_t j = 0; j < q.psi_min.size(); ++j)
+        c << "," << num(q.psi_min[j]) << "," << num(q.psi_max[j]);
+      c << "," << (q.stable ? 1 : 0) << "," << num(q.max_multiplier) << "\n";
     }
   return c.str();
 }
@@ -172,15 +207,27 @@ nlohmann::json continuationSummaryJson(const ContinuationResult& r, const std::s
                       {"from", r.from},         {"to", r.to},
                       {"start", r.start},       {"branches", branches},
                       {"bifurcations", counts}, {"complete", true}};
+  nlohmann::json cycles = nlohmann::json::array();
+  for (const auto& c : r.cycles)
+    cycles.push_back({{"cycle", c.id},
+                      {"hopf_value", c.hopf_value},
+                      {"frequency", jnum(c.frequency)},
+                      {"points", c.points.size()},
+                      {"end", c.end},
+                      {"stability_changes", c.changes}});
+  j["cycles"] = cycles;
   if (!r.param2.empty()) {
-    nlohmann::json curves = nlohmann::json::array();
-    for (size_t f = 0; f < r.fold_curves.size(); ++f)
-      curves.push_back({{"fold", f},
-                        {"points", r.fold_curves[f].points.size()},
-                        {"end_backward", r.fold_curves[f].end_backward},
-                        {"end_forward", r.fold_curves[f].end_forward}});
+    nlohmann::json curves[2] = {nlohmann::json::array(), nlohmann::json::array()};
+    for (const FoldCurve& curve : r.fold_curves) {
+      nlohmann::json& list = curves[curve.kind == CurveKind::Fold ? 0 : 1];
+      list.push_back({{toString(curve.kind), list.size()},
+                      {"points", curve.points.size()},
+                      {"end_backward", curve.end_backward},
+                      {"end_forward", curve.end_forward}});
+    }
     j["param2"] = r.param2;
-    j["fold_curves"] = curves;
+    j["fold_curves"] = curves[0];
+    j["hopf_curves"] = curves[1];
   }
   return j;
 }
@@ -189,13 +236,16 @@ std::vector<std::string> writeContinuation(const OutputDir& dir, const Continuat
                                            const std::string& rig_name) {
   writeFileAtomically(dir.file("branches.csv"), branchesCsv(r));
   writeFileAtomically(dir.file("bifurcations.json"), bifurcationsJson(r).dump(2) + "\n");
-  std::vector<std::string> written = {"branches.csv", "bifurcations.json"};
+  writeFileAtomically(dir.file("cycles.csv"), cyclesCsv(r));
+  std::vector<std::string> written = {"branches.csv", "bifurcations.json", "cycles.csv"};
   if (drawPng(dir, "branches.png", plotData(r),
               [&](const std::string& d, const std::string& p) { return diagramScript(r, d, p); }))
     written.push_back("branches.png");
   if (!r.param2.empty()) {
-    writeFileAtomically(dir.file("fold_curve.csv"), foldCurveCsv(r));
+    writeFileAtomically(dir.file("fold_curve.csv"), foldCurveCsv(r, CurveKind::Fold));
+    writeFileAtomically(dir.file("hopf_curve.csv"), foldCurveCsv(r, CurveKind::Hopf));
     written.push_back("fold_curve.csv");
+    written.push_back("hopf_curve.csv");
     std::ostringstream d;
     for (const auto& curve : r.fold_curves) {
       for (const auto& q : curve.points) d << num(q.p1) << " " << num(q.p2) << "\n";

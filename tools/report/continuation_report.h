@@ -25,7 +25,10 @@
 namespace metrosync {
 
 std::string branchesCsv(const continuation::ContinuationResult& r);
-std::string foldCurveCsv(const continuation::ContinuationResult& r);
+// cycles.csv: per point of each Hopf point's limit cycle, its period and extremes.
+std::string cyclesCsv(const continuation::ContinuationResult& r);
+// fold_curve.csv (kind Fold) or hopf_curve.csv (kind Hopf, with the frequency omega).
+std::string foldCurveCsv(const continuation::ContinuationResult& r, continuation::CurveKind kind);
 nlohmann::json bifurcationsJson(const continuation::ContinuationResult& r);
 nlohmann::json continuationSummaryJson(const continuation::ContinuationResult& r,
                                        const std::string& rig_name);

@@ -1,19 +1,26 @@
 #include "sim/analysis/continuation/fold_curve.h"
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <stdexcept>
 
 #include "sim/analysis/continuation/arclength.h"
+#include "sim/analysis/continuation/bialternate.h"
 #include "sim/analysis/continuation/derivatives.h"
 
 namespace metrosync::continuation {
 
 namespace {
 
-// The fold system's acceptance level: g's difference Jacobian has errors ~1e-10 and the outer
+// The curve system's acceptance level: g's difference Jacobian has errors ~1e-10 and the outer
 // Newton differentiates it again, so 1e-9 is what it reaches reliably.
 constexpr double kFoldTolerance = 1e-9;
+// A Hopf pair whose imaginary part falls below this (relative to the largest eigenvalue) has
+// turned real: the curve has passed a Bogdanov-Takens point. Far above the ~1e-9 noise of the
+// difference Jacobian, far below the frequencies of the slow flow's Hopf points (~0.1-3).
+constexpr double kRealPair = 1e-6;
 
 // One SlowFlowProblem (in p1) per value of p2, kept while the continuation needs it.
 class Family {
@@ -38,11 +45,11 @@ class Family {
   mutable std::map<double, std::unique_ptr<SlowFlowProblem>> cache_;
 };
 
-// The bordered matrix [F_x b; c^T 0] and its solution's last component g.
-double foldFunction(const Mat& Fx, const Vec& b, const Vec& c) {
-  const int n = static_cast<int>(Fx.rows());
+// The bordered matrix [M b; c^T 0] and its solution's last component g.
+double borderedFunction(const Mat& S, const Vec& b, const Vec& c) {
+  const int n = static_cast<int>(S.rows());
   Mat M = Mat::Zero(n + 1, n + 1);
-  M.topLeftCorner(n, n) = Fx;
+  M.topLeftCorner(n, n) = S;
   M.col(n).head(n) = b;
   M.row(n).head(n) = c.transpose();
   Vec rhs = Vec::Zero(n + 1);
@@ -50,27 +57,65 @@ double foldFunction(const Mat& Fx, const Vec& b, const Vec& c) {
   return M.fullPivLu().solve(rhs)(n);
 }
 
+// The matrix that is singular on the curve: F_x (fold) or 2A (.) I (Hopf).
+Mat singularMatrix(CurveKind kind, const SlowFlowProblem& prob, const Vec& x, double p1,
+                   const Region& region) {
+  if (kind == CurveKind::Fold) return jacobianX(prob.system(), x, p1, region);
+  return bialternateProduct(prob.reducedJacobian(x, p1, region));
+}
+
+// Hopf: w of the eigenvalue pair nearest the imaginary axis (0 when that pair is real).
+double hopfFrequency(const SlowFlowProblem& prob, const Vec& x, double p1, const Region& region) {
+  const CVec ev = prob.reducedJacobian(x, p1, region).eigenvalues();
+  if (ev.size() == 0) return 0.0;
+  Eigen::Index k = 0;
+  ev.real().cwiseAbs().minCoeff(&k);
+  const double scale = std::max(1.0, ev.cwiseAbs().maxCoeff());
+  return std::abs(ev(k).imag()) > kRealPair * scale ? std::abs(ev(k).imag()) : 0.0;
+}
+
+FoldCurve continueCurve(CurveKind kind, const ParamsAt2& params, int reference, const Vec& x0,
+                        double p1_0, double p2_0, const Region& region,
+                        const ContinuationSettings& s);
+
 }  // namespace
+
+const char* toString(CurveKind k) {
+  return k == CurveKind::Fold ? "fold" : "hopf";
+}
 
 FoldCurve continueFold(const ParamsAt2& params, int reference, const Vec& x0, double p1_0,
                        double p2_0, const Region& region, const ContinuationSettings& s) {
+  return continueCurve(CurveKind::Fold, params, reference, x0, p1_0, p2_0, region, s);
+}
+
+FoldCurve continueHopf(const ParamsAt2& params, int reference, const Vec& x0, double p1_0,
+                       double p2_0, const Region& region, const ContinuationSettings& s) {
+  return continueCurve(CurveKind::Hopf, params, reference, x0, p1_0, p2_0, region, s);
+}
+
+namespace {
+
+FoldCurve continueCurve(CurveKind kind, const ParamsAt2& params, int reference, const Vec& x0,
+                        double p1_0, double p2_0, const Region& region,
+                        const ContinuationSettings& s) {
   auto family = std::make_shared<Family>(params, p1_0, reference);
-  const ContinuationSystem& base = family->at(p2_0).system();
-  const int n = base.n;
-  // the null vectors of F_x at the starting fold
-  const Mat Fx0 = jacobianX(base, x0, p1_0, region);
-  Eigen::JacobiSVD<Mat> svd(Fx0, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Vec b = svd.matrixU().col(n - 1), c = svd.matrixV().col(n - 1);
+  const int n = family->at(p2_0).system().n;
+  // the null vectors of the singular matrix at the starting point
+  const Mat S0 = singularMatrix(kind, family->at(p2_0), x0, p1_0, region);
+  Eigen::JacobiSVD<Mat> svd(S0, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const int k = static_cast<int>(S0.rows());
+  const Vec b = svd.matrixU().col(k - 1), c = svd.matrixV().col(k - 1);
 
   ContinuationSystem sys;
   sys.n = n + 1;  // (x, p1)
-  // the fold's region held throughout (no borders: the curve is cut where it leaves the region)
-  sys.residual = [family, b, c, n, region](const Vec& y, double p2, const Region&) {
-    const ContinuationSystem& f = family->at(p2).system();
+  // the start's region held throughout (no borders: the curve is cut where it leaves the region)
+  sys.residual = [family, b, c, n, region, kind](const Vec& y, double p2, const Region&) {
+    const SlowFlowProblem& prob = family->at(p2);
     const Vec x = y.head(n);
     Vec out(n + 1);
-    out.head(n) = f.residual(x, y(n), region);
-    out(n) = foldFunction(jacobianX(f, x, y(n), region), b, c);
+    out.head(n) = prob.system().residual(x, y(n), region);
+    out(n) = borderedFunction(singularMatrix(kind, prob, x, y(n), region), b, c);
     return out;
   };
   sys.eigenvalues = [](const Vec&, double, const Region&) { return CVec(); };
@@ -80,6 +125,7 @@ FoldCurve continueFold(const ParamsAt2& params, int reference, const Vec& x0, do
   Vec y0(n + 1);
   y0 << x0, p1_0;
   FoldCurve curve;
+  curve.kind = kind;
   ContinuationSettings inner = s;
   inner.max_branches = 1;
   const std::vector<Branch> branches = continueFrom(sys, y0, p2_0, inner);
@@ -88,22 +134,34 @@ FoldCurve continueFold(const ParamsAt2& params, int reference, const Vec& x0, do
   // the points inside the region, from the start outwards both ways
   const auto& pts = branches[0].points;
   auto inside = [&](const BranchPoint& q) {
-    return regionAt(family->at(q.p()).system(), q.y.head(n), q.y(n)) == region;
+    const SlowFlowProblem& prob = family->at(q.p());
+    if (regionAt(prob.system(), q.y.head(n), q.y(n)) != region) return false;
+    return kind == CurveKind::Fold || hopfFrequency(prob, q.y.head(n), q.y(n), region) > 0;
   };
   size_t start = 0;
   while (start < pts.size() && pts[start].p() != p2_0) ++start;
   size_t lo = start, hi = start;
   while (lo > 0 && inside(pts[lo - 1])) --lo;
   while (hi + 1 < pts.size() && inside(pts[hi + 1])) ++hi;
-  if (lo > 0) curve.end_backward = "leaves the fold's region (a border of the vector field)";
-  if (hi + 1 < pts.size())
-    curve.end_forward = "leaves the fold's region (a border of the vector field)";
-  for (size_t k = lo; k <= hi && k < pts.size(); ++k) {
-    const SlowFlowProblem& prob = family->at(pts[k].p());
-    const Vec x = pts[k].y.head(n);
-    curve.points.push_back({pts[k].y(n), pts[k].p(), prob.amplitudes(x), prob.phaseDifferences(x)});
+  auto why = [&](const BranchPoint& q) {
+    const SlowFlowProblem& prob = family->at(q.p());
+    if (regionAt(prob.system(), q.y.head(n), q.y(n)) != region)
+      return std::string("leaves the start's region (a border of the vector field)");
+    return std::string(
+        "the pair +-i w turns real (a Bogdanov-Takens point; beyond it a neutral saddle)");
+  };
+  if (lo > 0) curve.end_backward = why(pts[lo - 1]);
+  if (hi + 1 < pts.size()) curve.end_forward = why(pts[hi + 1]);
+  for (size_t q = lo; q <= hi && q < pts.size(); ++q) {
+    const SlowFlowProblem& prob = family->at(pts[q].p());
+    const Vec x = pts[q].y.head(n);
+    const double w = kind == CurveKind::Hopf ? hopfFrequency(prob, x, pts[q].y(n), region) : 0.0;
+    curve.points.push_back(
+        {pts[q].y(n), pts[q].p(), prob.amplitudes(x), prob.phaseDifferences(x), w});
   }
   return curve;
 }
+
+}  // namespace
 
 }  // namespace metrosync::continuation

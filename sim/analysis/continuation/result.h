@@ -8,6 +8,7 @@
 
 #include "sim/analysis/continuation/branch.h"
 #include "sim/analysis/continuation/fold_curve.h"
+#include "sim/analysis/continuation/slow_flow_cycles.h"
 #include "sim/analysis/continuation/slow_flow_problem.h"
 
 namespace metrosync::continuation {
@@ -49,7 +50,9 @@ struct ContinuationResult {
   std::vector<ResultPoint> points;
   std::vector<ResultSpecial> special;
   std::vector<ResultBranch> branches;
-  // --fold: the second key and the curve of each fold in (param, param2)
+  // the limit cycle born at each Hopf point (one per distinct Hopf point)
+  std::vector<ResultCycle> cycles;
+  // --fold: the second key and the curve of each fold and Hopf point in (param, param2)
   std::string param2;
   std::vector<FoldCurve> fold_curves;
 };

@@ -127,6 +127,10 @@ Vec SlowFlowProblem::borders(const Vec& x, double p) const {
 }
 
 CVec SlowFlowProblem::eigenvalues(const Vec& x, double p, const Region& r) const {
+  return reducedJacobian(x, p, r).eigenvalues();
+}
+
+Mat SlowFlowProblem::reducedJacobian(const Vec& x, double p, const Region& r) const {
   // G as a function of all 2m real coordinates (Re z_i, Im z_i), Omega and the region held
   const double om = omega(x);
   const std::vector<Cd> z0 = unpack(x);
@@ -149,54 +153,63 @@ CVec SlowFlowProblem::eigenvalues(const Vec& x, double p, const Region& r) const
     v(2 * k) = -zk.imag(), v(2 * k + 1) = zk.real();
   }
   const Mat J = jacobianOf(G, u);
-  if (v.norm() == 0) return J.eigenvalues();
+  if (v.norm() == 0) return J;
   // orthonormal basis [v/|v|, U]: in it J is block triangular, the rest is U^T J U
   const Mat Q = Eigen::HouseholderQR<Mat>(v.normalized()).householderQ();
   const Mat U = Q.rightCols(2 * m - 1);
-  return (U.transpose() * J * U).eigenvalues();
+  return U.transpose() * J * U;
 }
 
-// The reduced polar flow (A_i, phi_i - phi_r) near the Hopf point, for the Lyapunov coefficient.
-double SlowFlowProblem::lyapunov(const Vec& x, double p, const Region& r) const {
-  const std::vector<Cd> z0 = unpack(x);
-  const int m = static_cast<int>(unlocked_.size());
-  for (int i : unlocked_)
-    if (std::abs(z0[i]) == 0) return std::numeric_limits<double>::quiet_NaN();
-  const double phase_r = std::arg(z0[ref_]);
-  const int kr =
-      static_cast<int>(std::find(unlocked_.begin(), unlocked_.end(), ref_) - unlocked_.begin());
-  Vec y(2 * m);
-  for (int k = 0; k < m; ++k) {
-    y(k) = std::abs(z0[unlocked_[k]]);
-    y(m + k) = std::arg(z0[unlocked_[k]]) - phase_r;
+int SlowFlowProblem::referenceSlot() const {
+  return static_cast<int>(std::find(unlocked_.begin(), unlocked_.end(), ref_) - unlocked_.begin());
+}
+
+// (A_k for every unlocked k, then phi_k - phi_r for k != r): 2m - 1 coordinates.
+Vec SlowFlowProblem::polarState(const Vec& x) const {
+  const std::vector<Cd> z = unpack(x);
+  const int m = static_cast<int>(unlocked_.size()), kr = referenceSlot();
+  Vec y(2 * m - 1);
+  for (int k = 0, j = m; k < m; ++k) {
+    y(k) = std::abs(z[unlocked_[k]]);
+    if (k != kr) y(j++) = std::arg(z[unlocked_[k]]) - std::arg(z[ref_]);
   }
-  auto f = [&](const Vec& w) {
-    std::vector<Cd> z = z0;
-    for (int k = 0; k < m; ++k) z[unlocked_[k]] = std::polar(w(k), w(m + k));
-    const std::vector<Cd> dz = slowFlowRhs(params(p), modes(r), z);
-    Vec out(2 * m);
-    for (int k = 0; k < m; ++k) {
-      const Cd e = std::polar(1.0, -w(m + k)) * dz[unlocked_[k]];
-      out(k) = e.real();
-      out(m + k) = e.imag() / w(k);
-    }
-    const double dphi_r = out(m + kr);
-    for (int k = 0; k < m; ++k) out(m + k) -= dphi_r;
-    return out;
-  };
-  // drop the reference's phase (identically 0): the reduced flow has 2m - 1 coordinates
-  auto keep = [&](const Vec& full) {
-    Vec red(2 * m - 1);
-    for (int i = 0, j = 0; i < 2 * m; ++i)
-      if (i != m + kr) red(j++) = full(i);
-    return red;
-  };
-  auto expand = [&](const Vec& red) {
-    Vec full(2 * m);
-    for (int i = 0, j = 0; i < 2 * m; ++i) full(i) = i == m + kr ? 0.0 : red(j++);
-    return full;
-  };
-  return firstLyapunovCoefficient([&](const Vec& w) { return keep(f(expand(w))); }, keep(y));
+  return y;
+}
+
+Vec SlowFlowProblem::fromPolar(const Vec& y) const {
+  std::vector<Cd> z(n_, Cd(0.0));
+  const int m = static_cast<int>(unlocked_.size()), kr = referenceSlot();
+  for (int k = 0, j = m; k < m; ++k) z[unlocked_[k]] = std::polar(y(k), k == kr ? 0.0 : y(j++));
+  return pack(z, 0.0);
+}
+
+Vec SlowFlowProblem::polarRates(const Vec& y, double p, const Region& r) const {
+  const int m = static_cast<int>(unlocked_.size()), kr = referenceSlot();
+  std::vector<Cd> z(n_, Cd(0.0));
+  std::vector<double> phase(m, 0.0);
+  for (int k = 0, j = m; k < m; ++k) {
+    phase[k] = k == kr ? 0.0 : y(j++);
+    z[unlocked_[k]] = std::polar(y(k), phase[k]);
+  }
+  const std::vector<Cd> dz = slowFlowRhs(params(p), modes(r), z);
+  // dA/dtau = Re(e^{-i phi} dz), dphi/dtau = Im(e^{-i phi} dz) / A, relative to the reference's
+  std::vector<double> dphi(m);
+  Vec out(2 * m - 1);
+  for (int k = 0; k < m; ++k) {
+    const Cd e = std::polar(1.0, -phase[k]) * dz[unlocked_[k]];
+    out(k) = e.real();
+    dphi[k] = e.imag() / y(k);
+  }
+  for (int k = 0, j = m; k < m; ++k)
+    if (k != kr) out(j++) = dphi[k] - dphi[kr];
+  return out;
+}
+
+// The reduced polar flow near the Hopf point, for the Lyapunov coefficient.
+double SlowFlowProblem::lyapunov(const Vec& x, double p, const Region& r) const {
+  for (const Cd& zi : unpack(x))
+    if (std::abs(zi) == 0) return std::numeric_limits<double>::quiet_NaN();
+  return firstLyapunovCoefficient([&](const Vec& w) { return polarRates(w, p, r); }, polarState(x));
 }
 
 double SlowFlowProblem::omegaGuess(double p, const std::vector<Cd>& z) const {

@@ -53,6 +53,16 @@ class SlowFlowProblem {
   double s(const Vec& x, double p) const;  // |Z| / mu (inf when mu = 0)
 
   SlowFlowModes modes(const Region& r) const;
+  // dG/dz (Omega held) on the quotient by the symmetry's direction i z: (2m - 1) x (2m - 1), the
+  // Jacobian of the reduced flow whose eigenvalues are the stability eigenvalues.
+  Mat reducedJacobian(const Vec& x, double p, const Region& r) const;
+
+  // The reduced polar flow (2m - 1 coordinates: A_k of every unlocked metronome, then the phases
+  // phi_k - phi_r of the others), whose fixed points are the locked states and whose periodic
+  // orbits are the slow flow's modulated (quasi-periodic) states. Singular where an A_k is 0.
+  Vec polarState(const Vec& x) const;
+  Vec fromPolar(const Vec& y) const;  // x with Omega = 0 (for borders and outputs)
+  Vec polarRates(const Vec& y, double p, const Region& r) const;
   const ScaledParams& params(double p) const;
 
  private:
@@ -60,6 +70,7 @@ class SlowFlowProblem {
   Vec borders(const Vec& x, double p) const;
   CVec eigenvalues(const Vec& x, double p, const Region& r) const;
   double lyapunov(const Vec& x, double p, const Region& r) const;
+  int referenceSlot() const;  // the reference's index among the unlocked
 
   ParamsAt params_at_;
   mutable std::map<double, ScaledParams> cache_;
