@@ -87,14 +87,19 @@ void halfPeriod(const std::vector<double>& c, double& slope, double& error) {
   error = std::sqrt(ssr / (n - 2) / sxx);
 }
 
-// The amplitude of a sinusoid of angular frequency w fitted to the samples in [t0 - hw, t0 + hw]
-// (centre fixed at 0 when !free_centre); NaN with too few samples.
-double windowAmplitude(const std::vector<double>& t, const std::vector<double>& d, double t0,
-                       double hw, double w, bool free_centre) {
+// A sinusoid a cos(s) + b sin(s) (+ c), s = w (t - t0), fitted to the samples in
+// [t0 - hw, t0 + hw] (centre fixed at 0 when !free_centre): its amplitude (NaN with too few
+// samples) and where it crosses its own centre nearest t0 (for a crossing window).
+struct WindowFit {
+  double amplitude = std::nan("");
+  double centre_crossing = 0.0;
+};
+WindowFit windowFit(const std::vector<double>& t, const std::vector<double>& d, double t0,
+                    double hw, double w, bool free_centre) {
   const auto lo = std::lower_bound(t.begin(), t.end(), t0 - hw) - t.begin();
   const auto hi = std::upper_bound(t.begin(), t.end(), t0 + hw) - t.begin();
   const int m = static_cast<int>(hi - lo), cols = free_centre ? 3 : 2;
-  if (m < kMinWindowSamples) return std::nan("");
+  if (m < kMinWindowSamples) return {};
   Eigen::MatrixXd a(m, cols);
   Eigen::VectorXd b(m);
   for (int k = 0; k < m; ++k) {
@@ -105,7 +110,26 @@ double windowAmplitude(const std::vector<double>& t, const std::vector<double>& 
     b(k) = d[lo + k];
   }
   const Eigen::VectorXd p = a.colPivHouseholderQr().solve(b);
-  return std::hypot(p(0), p(1));
+  // the extremum is at s = atan2(b, a); the crossing a quarter period away, within (-pi/2, pi/2]
+  double s = std::atan2(p(1), p(0)) + kPi / 2;
+  s -= kPi * std::ceil(s / kPi - 0.5);
+  return {std::hypot(p(0), p(1)), t0 + s / w};
+}
+
+// One fit per half-cycle: Peak windows halfway between crossings, Crossing windows at the
+// crossings (inside the record by a full window); t_s of a Crossing swing is the fitted middle.
+std::vector<Swing> fitWindows(const std::vector<double>& t, const std::vector<double>& v,
+                              const std::vector<double>& c, double half, bool peak) {
+  const double w = kPi / half, hw = (peak ? kPeakHalfWidth : kCrossingHalfWidth) * half;
+  std::vector<Swing> out;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    if (peak && k + 1 >= c.size()) break;
+    const double t0 = peak ? 0.5 * (c[k] + c[k + 1]) : c[k];
+    if (!peak && (t0 - hw < t.front() || t0 + hw > t.back())) continue;
+    const WindowFit f = windowFit(t, v, t0, hw, w, !peak);
+    if (std::isfinite(f.amplitude)) out.push_back({peak ? t0 : f.centre_crossing, f.amplitude});
+  }
+  return out;
 }
 
 }  // namespace
@@ -123,20 +147,20 @@ Swings findSwings(const std::vector<double>& t_s, const std::vector<double>& y,
   const std::vector<double>& c = out.crossings_s;
   if (c.size() < 2) return out;
   halfPeriod(c, out.half_period_s, out.half_period_error_s);
-  const double half = out.half_period_s, w = kPi / half;
-  const bool peak = window == SwingWindow::Peak;
-  const double hw = (peak ? kPeakHalfWidth : kCrossingHalfWidth) * half;
-  // Peak: the extrema halfway between crossings; Crossing: the crossings themselves, inside the
-  // record by a full window
-  std::vector<double> centres;
-  for (std::size_t k = 0; k < c.size(); ++k) {
-    if (peak && k + 1 < c.size()) centres.push_back(0.5 * (c[k] + c[k + 1]));
-    if (!peak && c[k] - hw >= t.front() && c[k] + hw <= t.back()) centres.push_back(c[k]);
+  if (window == SwingWindow::Peak) {
+    out.swings = fitWindows(t, v, c, out.half_period_s, true);
+    return out;
   }
-  for (double t0 : centres) {
-    const double a = windowAmplitude(t, v, t0, hw, w, !peak);
-    if (std::isfinite(a)) out.swings.push_back({t0, a});
+  // Crossing: the centre moves (Coulomb friction), so the median's crossings are off the
+  // half-cycles' middles by an amount that grows as the swing shrinks; each window's own fit says
+  // where its middle is: the period again from those, then the final fits there
+  std::vector<double> middles;
+  for (const Swing& sw : fitWindows(t, v, c, out.half_period_s, false)) middles.push_back(sw.t_s);
+  if (middles.size() >= 2) {
+    out.crossings_s = middles;
+    halfPeriod(middles, out.half_period_s, out.half_period_error_s);
   }
+  out.swings = fitWindows(t, v, out.crossings_s, out.half_period_s, false);
   return out;
 }
 
