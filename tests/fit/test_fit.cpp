@@ -66,9 +66,10 @@ void writeText(const std::string& path, const std::string& text) {
   std::ofstream(path) << text;
 }
 
-// The model's theta columns of `rig_yaml` (with `sets`) every 10 ms, plus N(0, kNoiseRad) noise.
+// The model's theta columns of `rig_yaml` (with `sets`) every 10 ms (every `stride` x 10 ms),
+// plus N(0, kNoiseRad) noise; a fraction `lost` of the cells left empty (frames a tracker lost).
 std::string noisyData(const std::string& rig_yaml, const std::vector<std::string>& sets,
-                      unsigned seed) {
+                      unsigned seed, int stride = 1, double lost = 0.0) {
   Rig rig = loadRigText(rig_yaml, "rig.yaml", sets);
   rig.sim.sample_s = kSampleS;
   MemorySink sink;
@@ -76,15 +77,20 @@ std::string noisyData(const std::string& rig_yaml, const std::vector<std::string
   EXPECT_TRUE(rep.complete) << rep.failure;
   std::mt19937 gen(seed);
   std::normal_distribution<double> noise(0.0, kNoiseRad);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
   const std::size_t n = rig.metronomes.size();
   std::ostringstream os;
   os.precision(12);
   os << "t";
   for (std::size_t i = 0; i < n; ++i) os << ",theta_" << i + 1;
   os << "\n";
-  for (const auto& row : sink.trajectory) {
+  for (std::size_t k = 0; k < sink.trajectory.size(); k += stride) {
+    const std::vector<double>& row = sink.trajectory[k];
     os << row[0];
-    for (std::size_t i = 0; i < n; ++i) os << "," << row[3 + 2 * i] + noise(gen);
+    for (std::size_t i = 0; i < n; ++i) {
+      os << ",";
+      if (uniform(gen) >= lost) os << row[3 + 2 * i] + noise(gen);
+    }
     os << "\n";
   }
   return os.str();
@@ -127,6 +133,24 @@ TEST(Fit, RecoversTheBoardsFrictionAndADecayRateWithinItsStatedUncertainty) {
     EXPECT_NEAR(j["rms"].get<double>(), kNoiseRad, 0.1 * kNoiseRad);
     EXPECT_EQ(j["correlation"].size(), 2u);
   }
+}
+
+// A camera at 33 fps that lost 10% of the frames: the same recovery.
+TEST(Fit, MissingSamplesAndALowFrameRate) {
+  const std::string dir = scratchDir("fit", "camera", true);
+  const std::string data = noisyData(kPairRig, {}, 21, 3, 0.1);
+  EXPECT_NE(data.find(",,"), std::string::npos);  // some cells are empty
+  const nlohmann::json j =
+      fit(dir, data,
+          "--free platform.friction.mu --free metronomes.0.pendulum.decay_rate "
+          "--set platform.friction.mu=9.75e-4 --set metronomes.0.pendulum.decay_rate=0.4");
+  const double m = j["values"]["platform.friction.mu"],
+               sm = j["std_errors"]["platform.friction.mu"];
+  const double b = j["values"]["metronomes.0.pendulum.decay_rate"];
+  const double sb = j["std_errors"]["metronomes.0.pendulum.decay_rate"];
+  EXPECT_LT(std::abs(m - 6.5e-4), 3 * sm) << m << " +- " << sm;
+  EXPECT_LT(std::abs(b - 0.5), 3 * sb) << b << " +- " << sb;
+  EXPECT_NEAR(j["rms"].get<double>(), kNoiseRad, 0.1 * kNoiseRad);
 }
 
 // The fitted rig, run as is, reproduces the data: its angles are the data's to the noise level.

@@ -348,6 +348,75 @@ CLI::App* addMeasureCommand(CLI::App& app, MeasureOptions& opt) {
   return cmd;
 }
 
+namespace {
+
+// What the three experiments add to measure.json: each its own object and a --set line.
+struct Measurements {
+  nlohmann::json json;
+  nlohmann::json sets = nlohmann::json::array();
+  Estimate damping;  // metronome I's nu-bar: the free decay's, else the rig's
+  std::string damping_from = "rig";
+};
+
+void measureDecay(const MeasureOptions& opt, const Rig& rig, int i, Measurements& m) {
+  const std::string theta = "theta_" + std::to_string(i + 1);
+  const MeasuredData d = loadData(opt.decay, rig);
+  const FreeDecay f =
+      measured(opt.decay, [&] { return measureFreeDecay(d.t_s, columnOf(d, theta).values); });
+  m.damping = dampingFromDecayRate(rig, i, f.rate_per_s);
+  m.damping_from = "free decay";
+  const bool below = f.largest_amplitude < rig.metronomes[i].theta_c_rad;
+  if (!below)
+    std::cerr << "metrosync: warning: " << opt.decay << ": the largest swing, "
+              << fmt(f.largest_amplitude, "%.3g")
+              << " rad, reaches theta_c: the escapement ticks, the decay is not free\n";
+  m.json["free_decay"] = {{"file", opt.decay},
+                          {"column", theta},
+                          {"swings", f.swings},
+                          {"period_s", estimateJson(f.period_s)},
+                          {"decay_rate_per_s", estimateJson(f.rate_per_s)},
+                          {"damping_kg_s", estimateJson(m.damping)},
+                          {"nu", estimateJson(scaledNuFromDecayRate(rig, i, f.rate_per_s))},
+                          {"largest_amplitude_rad", f.largest_amplitude},
+                          {"below_theta_c", below}};
+  m.sets.push_back(keyOf(i, "pendulum.decay_rate=") + exactNumberText(f.rate_per_s.value));
+}
+
+void measureFriction(const MeasureOptions& opt, const Rig& rig, Measurements& m) {
+  const MeasuredData d = loadData(opt.friction, rig);
+  const LinearDecay l = measured(opt.friction, [&] {
+    return measureLinearDecay(d.t_s, columnOf(d, "x").values, rig.gravity_m_s2);
+  });
+  const double eps = computeScaled(rig).epsilon, k = 1.0 / (eps * std::sqrt(eps));
+  m.json["linear_decay"] = {{"file", opt.friction},
+                            {"column", "x"},
+                            {"swings", l.swings},
+                            {"period_s", estimateJson(l.period_s)},
+                            {"slope_m_per_s", estimateJson(l.slope_m_per_s)},
+                            {"mu_bar", estimateJson(l.mu_bar)},
+                            {"mu", estimateJson({k * l.mu_bar.value, k * l.mu_bar.std_error})}};
+  m.sets.push_back("platform.friction.mu=" + exactNumberText(l.mu_bar.value));
+}
+
+void measureSteady(const MeasureOptions& opt, const Rig& rig, int i, Measurements& m) {
+  const std::string theta = "theta_" + std::to_string(i + 1);
+  const MeasuredData d = loadData(opt.steady, rig);
+  const SteadyAmplitude a = measured(
+      opt.steady, [&] { return measureSteadyAmplitude(d.t_s, columnOf(d, theta).values); });
+  const Impulse J = measured(
+      opt.steady, [&] { return impulseFromSteadyAmplitude(rig, i, a.amplitude_rad, m.damping); });
+  m.json["steady_amplitude"] = {{"file", opt.steady},
+                                {"column", theta},
+                                {"swings", a.swings},
+                                {"amplitude_rad", estimateJson(a.amplitude_rad)},
+                                {"J", estimateJson(J.scaled)},
+                                {"impulse_Nms", estimateJson(J.impulse_Nms)},
+                                {"damping_from", m.damping_from}};
+  m.sets.push_back(keyOf(i, "escapement.impulse=") + exactNumberText(J.impulse_Nms.value));
+}
+
+}  // namespace
+
 int measureCommand(const MeasureOptions& opt) {
   if (opt.decay.empty() && opt.friction.empty() && opt.steady.empty())
     throw UsageError("measure: give at least one of --decay, --friction, --steady");
@@ -358,62 +427,13 @@ int measureCommand(const MeasureOptions& opt) {
   if (i >= static_cast<int>(rig.metronomes.size()))
     throw UsageError("--metronome " + std::to_string(opt.metronome) + ": the rig has " +
                      std::to_string(rig.metronomes.size()) + " metronomes");
-  const std::string theta = "theta_" + std::to_string(opt.metronome);
-  nlohmann::json out = {{"rig", name}, {"metronome", opt.metronome}};
-  nlohmann::json sets = nlohmann::json::array();
-  Estimate damping{rig.metronomes[i].damping_kg_s, 0.0};
-  std::string damping_from = "rig";
-  if (!opt.decay.empty()) {
-    const MeasuredData d = loadData(opt.decay, rig);
-    const FreeDecay f =
-        measured(opt.decay, [&] { return measureFreeDecay(d.t_s, columnOf(d, theta).values); });
-    damping = dampingFromDecayRate(rig, i, f.rate_per_s);
-    damping_from = "free decay";
-    const bool below = f.largest_amplitude < rig.metronomes[i].theta_c_rad;
-    if (!below)
-      std::cerr << "metrosync: warning: " << opt.decay << ": the largest swing, "
-                << fmt(f.largest_amplitude, "%.3g")
-                << " rad, reaches theta_c: the escapement ticks, the decay is not free\n";
-    out["free_decay"] = {{"file", opt.decay},
-                         {"column", theta},
-                         {"swings", f.swings},
-                         {"period_s", estimateJson(f.period_s)},
-                         {"decay_rate_per_s", estimateJson(f.rate_per_s)},
-                         {"damping_kg_s", estimateJson(damping)},
-                         {"nu", estimateJson(scaledNuFromDecayRate(rig, i, f.rate_per_s))},
-                         {"largest_amplitude_rad", f.largest_amplitude},
-                         {"below_theta_c", below}};
-    sets.push_back(keyOf(i, "pendulum.decay_rate=") + exactNumberText(f.rate_per_s.value));
-  }
-  if (!opt.friction.empty()) {
-    const MeasuredData d = loadData(opt.friction, rig);
-    const LinearDecay l = measured(opt.friction, [&] {
-      return measureLinearDecay(d.t_s, columnOf(d, "x").values, rig.gravity_m_s2);
-    });
-    const double eps = computeScaled(rig).epsilon, k = 1.0 / (eps * std::sqrt(eps));
-    out["linear_decay"] = {{"file", opt.friction},
-                           {"column", "x"},
-                           {"swings", l.swings},
-                           {"period_s", estimateJson(l.period_s)},
-                           {"slope_m_per_s", estimateJson(l.slope_m_per_s)},
-                           {"mu_bar", estimateJson(l.mu_bar)},
-                           {"mu", estimateJson({k * l.mu_bar.value, k * l.mu_bar.std_error})}};
-    sets.push_back("platform.friction.mu=" + exactNumberText(l.mu_bar.value));
-  }
-  if (!opt.steady.empty()) {
-    const MeasuredData d = loadData(opt.steady, rig);
-    const SteadyAmplitude a = measured(
-        opt.steady, [&] { return measureSteadyAmplitude(d.t_s, columnOf(d, theta).values); });
-    const Impulse J = measured(
-        opt.steady, [&] { return impulseFromSteadyAmplitude(rig, i, a.amplitude_rad, damping); });
-    out["steady_amplitude"] = {
-        {"file", opt.steady},          {"column", theta},
-        {"swings", a.swings},          {"amplitude_rad", estimateJson(a.amplitude_rad)},
-        {"J", estimateJson(J.scaled)}, {"impulse_Nms", estimateJson(J.impulse_Nms)},
-        {"damping_from", damping_from}};
-    sets.push_back(keyOf(i, "escapement.impulse=") + exactNumberText(J.impulse_Nms.value));
-  }
-  out["set"] = sets;
+  Measurements m;
+  m.json = {{"rig", name}, {"metronome", opt.metronome}};
+  m.damping = {rig.metronomes[i].damping_kg_s, 0.0};
+  if (!opt.decay.empty()) measureDecay(opt, rig, i, m);
+  if (!opt.friction.empty()) measureFriction(opt, rig, m);
+  if (!opt.steady.empty()) measureSteady(opt, rig, i, m);
+  m.json["set"] = m.sets;
   OutputDir dir = [&] {
     try {
       return OutputDir(opt.out.empty() ? defaultOutputDir(rig.name, "measure") : opt.out);
@@ -421,8 +441,8 @@ int measureCommand(const MeasureOptions& opt) {
       throw UsageError(std::string("--out: ") + e.what());
     }
   }();
-  writeFileAtomically(dir.file("measure.json"), out.dump(2) + "\n");
-  if (!opt.quiet) std::cout << out.dump(2) << "\n";
+  writeFileAtomically(dir.file("measure.json"), m.json.dump(2) + "\n");
+  if (!opt.quiet) std::cout << m.json.dump(2) << "\n";
   return kSuccess;
 }
 
