@@ -293,7 +293,7 @@ TEST(Fit, BadDataFilesAndKeysExit2WithTheLine) {
       {"text_key", "t,theta_1\n0,0.1\n0.01,0.1\n0.02,0.1\n", "platform.friction.law",
        "platform.friction.law is not a number"},
       {"unknown_key", "t,theta_1\n0,0.1\n0.01,0.1\n0.02,0.1\n", "platform.friction.nu",
-       "platform.friction.nu"},
+       "platform.friction.nu: unknown key (did you mean 'mu'?)"},
   };
   for (const BadCase& c : cases) {
     SCOPED_TRACE(c.name);

@@ -89,6 +89,10 @@ FreeParameter startOf(const std::string& key, const std::string& text, const Fit
   std::optional<double> v = rigNumber(text, opt.rig_path, opt.sets, key);
   from = "rig";
   if (!v) {
+    std::vector<std::string> probe = opt.sets;
+    probe.push_back(key + "=1");
+    if (lastSegment(key, 1) != "start")
+      loadRigText(text, opt.rig_path, probe);  // a typo gets the loader's "did you mean"
     if (lastSegment(key, 1) != "start")
       throw UsageError("--free " + key + ": the rig gives no value for it (free the key the rig " +
                        "gives: damping or decay_rate, impulse or steady_amplitude, as written " +
