@@ -288,6 +288,9 @@ int fitCommand(const FitOptions& opt) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(opt.data_path + ": " + e.what());
   }
+  if (!result.converged)
+    std::cerr << "metrosync: warning: the fit did not converge (" << result.solver_summary
+              << "): check the rig, the starting values and the residuals in fit.png\n";
   writeFitFiles(opt, text, rig, setup, result, ctx);
   return kSuccess;
 }

@@ -1,6 +1,7 @@
 #include "sim/analysis/fit/least_squares.h"
 
 #include <ceres/ceres.h>
+#include <glog/logging.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -99,6 +100,8 @@ ceres::Solver::Summary solve(const FitSetup& s, const Residuals& res, std::vecto
       problem.SetParameterLowerBound(blocks[b], 0, s.free[j].lower / s.free[j].scale);
     ++b;
   }
+  // Ceres reports through glog on stderr ("Terminating: ..."): the command says it its own way
+  FLAGS_minloglevel = google::GLOG_FATAL;
   ceres::Solver::Options o;
   o.linear_solver_type = ceres::DENSE_QR;
   o.max_num_iterations = s.max_iterations;
