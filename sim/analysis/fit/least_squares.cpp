@@ -107,11 +107,16 @@ ceres::Solver::Summary solve(const FitSetup& s, const Residuals& res, std::vecto
   o.max_num_iterations = s.max_iterations;
   o.function_tolerance = kFunctionTolerance;
   o.logging_type = ceres::SILENT;
+  // x holds the last accepted point even when the solve ends in FAILURE (a model that fails at a
+  // step's derivative), rather than going back to the start
+  o.update_state_every_iteration = true;
   ceres::Solve(o, &problem, &summary);
   return summary;
 }
 
-// Residuals at x and the central-difference Jacobian (all keys); throws when the model fails.
+// Residuals at x and the central-difference Jacobian (all keys); a side where the model fails
+// (a key at its bound) gives a one-sided difference. Throws when the model fails at x, or on
+// both sides of it.
 void jacobian(const Residuals& res, const std::vector<double>& x, int m, Eigen::VectorXd& r,
               Eigen::MatrixXd& J) {
   r.resize(m);
@@ -123,9 +128,16 @@ void jacobian(const Residuals& res, const std::vector<double>& x, int m, Eigen::
     std::vector<double> xp = x, xm = x;
     xp[j] += h;
     xm[j] -= h;
-    if (!res.eval(res.values(xp.data()), rp.data()) || !res.eval(res.values(xm.data()), rm.data()))
-      throw std::invalid_argument(res.lastError());
-    J.col(static_cast<int>(j)) = (rp - rm) / (2 * h);
+    const bool plus = res.eval(res.values(xp.data()), rp.data());
+    const bool minus = res.eval(res.values(xm.data()), rm.data());
+    if (!plus && !minus) throw std::invalid_argument(res.lastError());
+    const int c = static_cast<int>(j);
+    if (plus && minus)
+      J.col(c) = (rp - rm) / (2 * h);
+    else if (plus)
+      J.col(c) = (rp - r) / h;
+    else
+      J.col(c) = (r - rm) / h;
   }
 }
 
