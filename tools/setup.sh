@@ -13,6 +13,7 @@ shift || true
 
 packages=(cmake g++ make libsimbody-dev libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev
           libcli11-dev libgtest-dev libbenchmark-dev gnuplot-nox
+          libceres-dev  # metrosync fit (sim/analysis/fit)
           libboost-dev  # bench-only (tools/bench's Boost.Odeint peer, header-only)
           help2man dpkg-dev man-db  # the man page, the .deb's dependencies, and their tests
           pybind11-dev python3-dev python3-numpy python3-pytest)  # the Python module, its tests

@@ -58,6 +58,7 @@ const std::vector<std::string>& OutputDir::outputNames() {
       "trajectory.csv", "envelope.csv", "envelope_full.csv", "envelope_slow.csv",
       "comparison.csv", "summary.json", "envelope.png",      "comparison.png",
       "order.csv",      "order.png",    "raster.png",  // a network's (docs/networks.md)
+      "fitted.yaml",    "fit.json",     "fit.png",     "measure.json",  // docs/fit.md
   };
   return names;
 }

@@ -1,0 +1,39 @@
+// `metrosync fit RIG DATA.csv --free KEY ...` and `metrosync measure RIG --decay FILE ...`
+// (docs/fit.md): the rig's parameters from measured data -- by nonlinear least squares on the
+// full model or the slow flow, or by the paper's section-3 closed forms. Registered in
+// tools/metrosync.cpp.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+namespace metrosync::cli {
+
+struct FitOptions {
+  std::string rig_path, data_path;
+  std::vector<std::string> free;  // --free KEY, in order
+  std::vector<std::string> sets;  // --set KEY=VALUE, applied before fitting
+  std::string model = "full";     // --model full | slow
+  std::string out;                // --out DIR; empty: runs/<rig name>-fit
+  bool quiet = false, no_plot = false;
+};
+
+struct MeasureOptions {
+  std::string rig_path;
+  std::vector<std::string> sets;
+  std::string decay, friction, steady;  // the three experiments' data files (any of them)
+  int metronome = 1;                    // --metronome I: whose theta_I the decay and steady use
+  std::string out;                      // --out DIR; empty: runs/<rig name>-measure
+  bool quiet = false;
+};
+
+CLI::App* addFitCommand(CLI::App& app, FitOptions& opt);
+// 0 fitted; 2 bad command line, rig or data (nothing written); 3 the model fails at the start.
+int fitCommand(const FitOptions& opt);
+
+CLI::App* addMeasureCommand(CLI::App& app, MeasureOptions& opt);
+// 0 measured; 2 bad command line, rig or data, or data the closed forms cannot use.
+int measureCommand(const MeasureOptions& opt);
+
+}  // namespace metrosync::cli
