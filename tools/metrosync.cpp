@@ -2,6 +2,7 @@
 // (tools/cli/command_line.h maps outcomes to the SPEC section 5 exit codes).
 #include "tools/cli/command_line.h"
 #include "tools/cli/continue.h"
+#include "tools/cli/figures.h"
 #include "tools/cli/sweep.h"
 #include "tools/cli/validate.h"
 
@@ -12,6 +13,7 @@ int main(int argc, char** argv) {
   cli::Options opt;                   // run, compare, scale (tools/cli/commands.h)
   cli::SweepOptions sweep_opt;        // sweep and merge (tools/cli/sweep.h)
   cli::ValidateOptions validate_opt;  // tools/cli/validate.h
+  cli::FiguresOptions figures_opt;    // tools/cli/figures.h
   std::vector<cli::Command> commands = cli::addRigCommands(app, opt);
   const cli::SweepCommands sweep = cli::addSweepCommands(app, sweep_opt);
   commands.push_back({sweep.sweep, [&] { return cli::sweepCommand(sweep_opt); }});
@@ -19,5 +21,7 @@ int main(int argc, char** argv) {
   commands.push_back({cli::addValidateCommand(app, validate_opt),
                       [&] { return cli::validateCommand(validate_opt); }});
   commands.push_back({cli::addContinueCommand(app), [] { return cli::continueCommand(); }});
+  commands.push_back(
+      {cli::addFiguresCommand(app, figures_opt), [&] { return cli::figuresCommand(figures_opt); }});
   return cli::runCommandLine(app, commands, argc, argv);
 }
