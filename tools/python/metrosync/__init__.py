@@ -183,7 +183,10 @@ def _vary_text(key, spec):
     own text ("0:2pi:100:open")."""
     if isinstance(spec, str):
         return "%s=%s" % (key, spec)
-    if isinstance(spec, tuple) and len(spec) in (3, 4) and isinstance(spec[2], (int, np.integer)):
+    if isinstance(spec, tuple):  # a range; a list (or an array) lists the values
+        if len(spec) not in (3, 4) or float(spec[2]) != int(spec[2]):
+            raise RigError("vary %s: a tuple is (from, to, count[, 'open']) with a whole count; "
+                           "list the values in a list" % key)
         fields = [_value_text(float(spec[0])), _value_text(float(spec[1])), str(int(spec[2]))]
         if len(spec) == 4:
             if spec[3] != "open":
