@@ -2,6 +2,7 @@
 // (tools/cli/command_line.h maps outcomes to the SPEC section 5 exit codes).
 #include "tools/cli/command_line.h"
 #include "tools/cli/continue.h"
+#include "tools/cli/figures.h"
 #include "tools/cli/fit.h"
 #include "tools/cli/sweep.h"
 #include "tools/cli/validate.h"
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   cli::ValidateOptions validate_opt;  // tools/cli/validate.h
   cli::FitOptions fit_opt;            // tools/cli/fit.h
   cli::MeasureOptions measure_opt;
+  cli::FiguresOptions figures_opt;    // tools/cli/figures.h
   std::vector<cli::Command> commands = cli::addRigCommands(app, opt);
   const cli::SweepCommands sweep = cli::addSweepCommands(app, sweep_opt);
   commands.push_back({sweep.sweep, [&] { return cli::sweepCommand(sweep_opt); }});
@@ -25,5 +27,7 @@ int main(int argc, char** argv) {
   commands.push_back({cli::addFitCommand(app, fit_opt), [&] { return cli::fitCommand(fit_opt); }});
   commands.push_back(
       {cli::addMeasureCommand(app, measure_opt), [&] { return cli::measureCommand(measure_opt); }});
+  commands.push_back(
+      {cli::addFiguresCommand(app, figures_opt), [&] { return cli::figuresCommand(figures_opt); }});
   return cli::runCommandLine(app, commands, argc, argv);
 }

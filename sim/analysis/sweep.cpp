@@ -61,6 +61,28 @@ std::optional<long> plainInteger(const std::string& text) {
   return std::stol(t);
 }
 
+// "KEY=V1,V2,...": the values as listed (at least two, in any order), for the paper's runs
+// (mu = 0.2, 0.3, 0.4) and the Python module's vary=[...]. `a` holds the key and spec.
+SweepAxis listAxis(SweepAxis a, const std::string& text) {
+  for (const auto& item : split(a.spec, ',')) {
+    double v = 0.0;
+    try {
+      v = parseSweepNumber(item);
+    } catch (const SweepInputError& e) {
+      throw SweepInputError("--vary " + text + ": " + e.what());
+    }
+    a.texts.push_back(sweepValueText(v));
+    a.values.push_back(std::strtod(a.texts.back().c_str(), nullptr));
+  }
+  if (a.values.size() < 2 || static_cast<long>(a.values.size()) > kMaxAxisCount)
+    throw SweepInputError("--vary " + text + ": a list needs 2 to " +
+                          std::to_string(kMaxAxisCount) + " values (one value: V:V:1)");
+  a.count = static_cast<long>(a.values.size());
+  a.from = a.values.front();
+  a.to = a.values.back();
+  return a;
+}
+
 }  // namespace
 
 // ---- the grid -----------------------------------------------------------------------------------
@@ -114,6 +136,7 @@ SweepAxis parseVary(const std::string& text) {
   a.spec = text.substr(eq + 1);
   if (a.key.empty() || a.key.find_first_of(" \t:=") != std::string::npos)
     throw SweepInputError(usage + ": no key before '='");
+  if (a.spec.find(',') != std::string::npos) return listAxis(a, text);
   const std::vector<std::string> f = split(a.spec, ':');
   if (f.size() != 3 && f.size() != 4) throw SweepInputError(usage);
   try {

@@ -6,7 +6,8 @@
 //
 //   grid       --vary KEY=FROM:TO:COUNT, COUNT values from FROM to TO, both included (":open"
 //              after COUNT leaves TO out: [FROM, TO), for angles); FROM and TO may be written with
-//              pi ("2pi", "pi/2", "-0.5*pi"). Grid index g = i_1 * COUNT_2 + i_2: the first --vary
+//              pi ("2pi", "pi/2", "-0.5*pi"); --vary KEY=V1,V2,... lists the values (two or more,
+//              as given). Grid index g = i_1 * COUNT_2 + i_2: the first --vary
 //              is the slow (outer) one.
 //   shards     --shard K/N runs the points with g mod N == K - 1.
 //   regimes.csv  one line per point (SPEC 3): the varied keys' values as given to the rig, regime,
@@ -43,7 +44,7 @@ struct SweepInputError : std::runtime_error {
 
 struct SweepAxis {
   std::string key;   // rig key path, e.g. platform.friction.mu
-  std::string spec;  // FROM:TO:COUNT[:open] as given
+  std::string spec;  // FROM:TO:COUNT[:open] or V1,V2,... as given
   double from = 0.0, to = 0.0;
   long count = 0;
   bool open = false;               // TO left out
@@ -51,7 +52,7 @@ struct SweepAxis {
   std::vector<std::string> texts;  // (count x 1) the values as written to the rig and regimes.csv
 };
 
-// "KEY=FROM:TO:COUNT[:open]"; throws SweepInputError saying what is wrong.
+// "KEY=FROM:TO:COUNT[:open]" or "KEY=V1,V2,..."; throws SweepInputError saying what is wrong.
 SweepAxis parseVary(const std::string& text);
 
 // A number, or a multiple of pi: "1.5", "-2e-3", "pi", "2pi", "2*pi", "-pi/2", "0.5pi/3".

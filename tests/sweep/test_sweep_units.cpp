@@ -54,6 +54,20 @@ TEST(SweepVary, ParsesBothEndsIncludedAndTheOpenForm) {
   EXPECT_EQ(parseVary("k=1:-1:3").texts, (std::vector<std::string>{"1", "0", "-1"}));
 }
 
+TEST(SweepVary, ReadsAListOfValuesAsGiven) {
+  // the paper's three frictions, in the order given, and pi as in a range
+  const SweepAxis a = parseVary("platform.friction.mu=0.4,0.2,0.3");
+  EXPECT_EQ(a.count, 3);
+  EXPECT_EQ(a.texts, (std::vector<std::string>{"0.4", "0.2", "0.3"}));
+  EXPECT_EQ(a.values, (std::vector<double>{0.4, 0.2, 0.3}));
+  EXPECT_EQ(parseVary("x=0,pi").values[1], std::strtod(sweepValueText(kPi).c_str(), nullptr));
+  // the manifest keeps a list axis's values
+  const SweepGrid g = SweepGrid::fromJson(SweepGrid({a}).toJson());
+  EXPECT_EQ(g.axes()[0].texts, a.texts);
+  for (const char* bad : {"x=0.3,", "x=,1", "x=1,a", "x=1,2:3"})
+    EXPECT_THROW(parseVary(bad), SweepInputError) << bad;
+}
+
 TEST(SweepVary, ReadsMultiplesOfPi) {
   EXPECT_EQ(parseSweepNumber("pi"), kPi);
   EXPECT_EQ(parseSweepNumber("2pi"), 2 * kPi);

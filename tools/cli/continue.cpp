@@ -327,7 +327,10 @@ CLI::App* addContinueCommand(CLI::App& app) {
 }
 
 int continueCommand() {
-  const ContinueOptions& opt = options();
+  return continueCommand(options());
+}
+
+int continueCommand(const ContinueOptions& opt) {
   const double from = startValue(opt);
   const double from2 = opt.fold_key.empty() ? 0.0 : secondStart(opt);
   const Rig rig = loadWith(opt, {opt.param + "=" + fmt(from)});

@@ -33,5 +33,7 @@ CLI::App* addContinueCommand(CLI::App& app);
 // The exit code (SPEC 5); bad input throws RigError or UsageError (exit 2) before anything is
 // written.
 int continueCommand();
+// The same with the options given (the Python module's continue_).
+int continueCommand(const ContinueOptions& opt);
 
 }  // namespace metrosync::cli

@@ -568,8 +568,9 @@ int sweepImpl(const SweepOptions& opt) {
   const bool complete = static_cast<long>(run.points.size()) == plan.mine;
   writeSortedRegimesCsv(plan.regimes_path, plan.grid, plan.n, run.lines);
   std::vector<std::string> files = {"regimes.csv", "timings.csv"};
-  for (const auto& f : plotSweepMaps(dir, plan.grid, plan.n, run.points, mapTitle(plan.manifest)))
-    files.push_back(f);
+  if (!opt.no_plot)
+    for (const auto& f : plotSweepMaps(dir, plan.grid, plan.n, run.points, mapTitle(plan.manifest)))
+      files.push_back(f);
   files.push_back("sweep.json");
   nlohmann::json status = statusJson(plan.manifest, plan.mine, run.points, complete);
   status["jobs"] = run.jobs;
@@ -702,11 +703,12 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
   c.sweep
       ->add_option("--vary", opt.vary,
                    "a key and its values: COUNT values from FROM to TO, both included; ':open' "
-                   "leaves TO out ([FROM, TO), for angles). FROM, TO may use pi: "
+                   "leaves TO out ([FROM, TO), for angles); or the values listed, V1,V2,... "
+                   "(e.g. platform.friction.mu=0.2,0.3,0.4). Values may use pi: "
                    "--vary platform.friction.mu=0:0.8:41, --vary "
                    "metronomes.0.start.phi=0:2pi:100:open. Once or twice (the first across the "
                    "map, the second up)")
-      ->type_name("KEY=FROM:TO:COUNT[:open]")
+      ->type_name("KEY=FROM:TO:COUNT[:open]|V1,V2,..")
       ->required()
       ->allow_extra_args(false);
   c.sweep
@@ -741,6 +743,8 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
       ->type_name("DIR");
   c.sweep->add_flag("-q,--quiet", opt.quiet,
                     "no progress bar and no summary (errors and warnings still go to stderr)");
+  c.sweep->add_flag("--no-plot", opt.no_plot,
+                    "draw no maps (regimes.csv, sweep.json and timings.csv only)");
   c.sweep->footer(
       "Files in --out DIR: regimes.csv (one row per grid point, appended as points finish, "
       "sorted by grid index at the end: the varied keys, regime, A_1..A_N, psi_2..psi_N (final, "

@@ -23,35 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The shipped rigs: --rigs DIR, else yaml/rigs under the working directory, else next to the
-// executable (build directories sit in the source tree: <src>/build/metrosync), else where
-// `cmake --install` and the Debian package put them (<prefix>/share/metrosync/rigs beside
-// <prefix>/bin/metrosync).
-std::string findRigsDir(const std::string& given) {
-  const std::string probe = shippedScenarios().front().file;
-  auto ok = [&](const fs::path& d) {
-    std::error_code ec;
-    return fs::is_regular_file(d / probe, ec);
-  };
-  if (!given.empty()) {
-    if (!ok(given))
-      throw UsageError("--rigs " + given + ": not the shipped rigs (no " + probe + " in it)");
-    return given;
-  }
-  std::vector<fs::path> candidates = {fs::path("yaml/rigs")};
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec)
-    for (fs::path d = exe.parent_path(); !d.empty() && d != d.root_path(); d = d.parent_path())
-      candidates.push_back(d / "yaml/rigs");
-  if (!ec) candidates.push_back(exe.parent_path().parent_path() / "share/metrosync/rigs");
-  for (const auto& c : candidates)
-    if (ok(c)) return c.string();
-  throw UsageError("cannot find the shipped rigs (yaml/rigs/" + probe +
-                   ") under the working directory, above the executable or in its installation's "
-                   "share/metrosync/rigs; run from the repository root or give --rigs DIR");
-}
-
 std::string utcNow() {
   const std::time_t t = std::time(nullptr);
   std::tm tm{};
@@ -121,6 +92,37 @@ const Engine& validationEngine(const std::string& requested) {
   }
 }
 
+}  // namespace
+
+// The shipped rigs: --rigs DIR, else yaml/rigs under the working directory, else next to the
+// executable (build directories sit in the source tree: <src>/build/metrosync), else where
+// `cmake --install` and the Debian package put them (<prefix>/share/metrosync/rigs beside
+// <prefix>/bin/metrosync).
+std::string findRigsDir(const std::string& given) {
+  const std::string probe = shippedScenarios().front().file;
+  auto ok = [&](const fs::path& d) {
+    std::error_code ec;
+    return fs::is_regular_file(d / probe, ec);
+  };
+  if (!given.empty()) {
+    if (!ok(given))
+      throw UsageError("--rigs " + given + ": not the shipped rigs (no " + probe + " in it)");
+    return given;
+  }
+  std::vector<fs::path> candidates = {fs::path("yaml/rigs")};
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec)
+    for (fs::path d = exe.parent_path(); !d.empty() && d != d.root_path(); d = d.parent_path())
+      candidates.push_back(d / "yaml/rigs");
+  if (!ec) candidates.push_back(exe.parent_path().parent_path() / "share/metrosync/rigs");
+  for (const auto& c : candidates)
+    if (ok(c)) return c.string();
+  throw UsageError("cannot find the shipped rigs (yaml/rigs/" + probe +
+                   ") under the working directory, above the executable or in its installation's "
+                   "share/metrosync/rigs; run from the repository root or give --rigs DIR");
+}
+
 // The shipped scenarios' scaled parameters; a bad rig throws RigError naming its file.
 std::vector<Scenario> loadScenarios(const std::string& rigs_dir) {
   std::vector<Scenario> scenarios;
@@ -137,8 +139,6 @@ std::vector<Scenario> loadScenarios(const std::string& rigs_dir) {
   }
   return scenarios;
 }
-
-}  // namespace
 
 int validateCommand(const ValidateOptions& opt) {
   const std::string rigs_dir = findRigsDir(opt.rigs);

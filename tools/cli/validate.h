@@ -5,6 +5,9 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
+
+#include "sim/analysis/validation.h"
 
 namespace metrosync::cli {
 
@@ -23,5 +26,13 @@ CLI::App* addValidateCommand(CLI::App& app, ValidateOptions& opt);
 // Runs it: exit 0 when every check passes, 1 when a check fails (the report says which), 3 when a
 // simulation stopped early (the report is still written), 2 for a bad command line.
 int validateCommand(const ValidateOptions& opt);
+
+// The shipped rigs' directory: `given`, else yaml/rigs under the working directory, else above
+// the executable, else its installation's share/metrosync/rigs. Throws UsageError.
+std::string findRigsDir(const std::string& given);
+
+// The shipped scenarios (shippedScenarios()) loaded from `rigs_dir` and scaled; a bad rig throws
+// RigError naming its file.
+std::vector<Scenario> loadScenarios(const std::string& rigs_dir);
 
 }  // namespace metrosync::cli

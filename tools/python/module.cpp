@@ -5,11 +5,14 @@
 #include <pybind11/stl.h>
 #include <signal.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "sim/record/atomic_file.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/continue.h"
+#include "tools/cli/sweep.h"
 #include "tools/report/outputs.h"
 #include "yaml/rig_loader.h"
 
@@ -43,24 +46,23 @@ cli::Options options(const std::string& rig_path, const std::vector<std::string>
   o.sets = sets;
   o.out = out;
   o.quiet = true;
+  o.no_plot = true;  // the module reads the CSV and JSON files; `out` keeps them
   o.model = model;
   o.engine = engine;
   return o;
 }
 
-// Runs `run` or `compare` into `out`; returns the CLI's exit code (0, or 3: the simulation
-// failed). A bad rig or command raises RigError with the CLI's message; a stop request (Ctrl-C)
+// Runs a command with the interpreter's lock released and Python's signal handlers put back
+// afterwards; returns its exit code. A stop request (Ctrl-C: the command's own SIGINT handler)
 // raises KeyboardInterrupt once the command has ended and kept its files.
-int runCommand(const std::string& command, const std::string& rig_path,
-               const std::vector<std::string>& sets, const std::string& out,
-               const std::string& model, const std::string& engine) {
-  const cli::Options o = options(rig_path, sets, out, model, engine);
+template <class Command>
+int released(Command command) {
   int code = 0;
   {
     py::gil_scoped_release release;
     SignalHandlersKept keep;
     metrosync::FileSink::clearStopRequest();
-    code = command == "compare" ? cli::compareCommand(o) : cli::runCommand(o);
+    code = command();
   }
   if (metrosync::FileSink::stopRequested()) {
     metrosync::FileSink::clearStopRequest();
@@ -70,6 +72,55 @@ int runCommand(const std::string& command, const std::string& rig_path,
     }());
   }
   return code;
+}
+
+// Runs `run` or `compare` into `out`; returns the CLI's exit code (0, or 3: the simulation
+// failed). A bad rig or command raises RigError with the CLI's message.
+int runCommand(const std::string& command, const std::string& rig_path,
+               const std::vector<std::string>& sets, const std::string& out,
+               const std::string& model, const std::string& engine) {
+  const cli::Options o = options(rig_path, sets, out, model, engine);
+  return released(
+      [&] { return command == "compare" ? cli::compareCommand(o) : cli::runCommand(o); });
+}
+
+// `metrosync sweep` into `out` (no maps unless `plot`); the exit code.
+int sweepCommand(const std::string& rig_path, const std::vector<std::string>& sets,
+                 const std::vector<std::string>& vary, const std::string& out,
+                 const std::string& model, const std::string& engine, int jobs, bool plot) {
+  cli::SweepOptions o;
+  o.rig_path = rig_path;
+  o.sets = sets;
+  o.vary = vary;
+  o.out = out;
+  o.quiet = true;
+  o.no_plot = !plot;
+  o.model = model;
+  o.engine = engine;
+  o.jobs = jobs;
+  return released([&] { return cli::sweepCommand(o); });
+}
+
+// `metrosync continue` into `out`; the exit code.
+int continueCommand(const std::string& rig_path, const std::vector<std::string>& sets,
+                    const std::string& param, double to, const std::string& out,
+                    std::optional<double> from, const std::string& start, double step,
+                    int max_points, bool all, const std::string& fold, double to2) {
+  cli::ContinueOptions o;
+  o.rig_path = rig_path;
+  o.sets = sets;
+  o.param = param;
+  o.to = to;
+  o.from = from;
+  o.start = start;
+  o.step = step;
+  o.max_points = max_points;
+  o.all = all;
+  o.fold_key = fold;
+  o.to2 = to2;
+  o.out = out;
+  o.quiet = true;
+  return released([&] { return cli::continueCommand(o); });
 }
 
 }  // namespace
@@ -88,6 +139,13 @@ PYBIND11_MODULE(_metrosync, m) {
   });
   m.def("run_command", &runCommand, py::arg("command"), py::arg("rig_path"), py::arg("sets"),
         py::arg("out"), py::arg("model") = "", py::arg("engine") = "");
+  m.def("sweep_command", &sweepCommand, py::arg("rig_path"), py::arg("sets"), py::arg("vary"),
+        py::arg("out"), py::arg("model") = "", py::arg("engine") = "", py::arg("jobs") = 0,
+        py::arg("plot") = false);
+  m.def("continue_command", &continueCommand, py::arg("rig_path"), py::arg("sets"),
+        py::arg("param"), py::arg("to"), py::arg("out"), py::arg("from_") = std::nullopt,
+        py::arg("start") = "", py::arg("step") = 0.0, py::arg("max_points") = 500,
+        py::arg("all") = false, py::arg("fold") = "", py::arg("to2") = 0.0);
   m.def(
       "scaled_json",
       [](const std::string& rig_path, const std::vector<std::string>& sets) {

@@ -33,6 +33,21 @@ set_tests_properties(python_api PROPERTIES
   ENVIRONMENT "PYTHONPATH=${METROSYNC_PYTHON_DIR};METROSYNC_BINARY=$<TARGET_FILE:metrosync>;METROSYNC_SOURCE_DIR=${CMAKE_SOURCE_DIR}"
   LABELS slow TIMEOUT 900)
 
+# The notebooks of docs/notebooks/ executed into build/notebooks/ (Debian jupyter-nbconvert,
+# python3-ipykernel, python3-matplotlib, python3-pandas): a failing cell fails the test. Each runs
+# in well under a minute (the notebooks say how long).
+foreach(nb paper-figures classroom)
+  string(REPLACE "-" "_" nb_test ${nb})
+  add_test(NAME notebook_${nb_test}
+           COMMAND ${Python_EXECUTABLE} -m nbconvert --to notebook --execute
+                   --ExecutePreprocessor.timeout=300 --ExecutePreprocessor.kernel_name=python3
+                   --output-dir ${CMAKE_BINARY_DIR}/notebooks
+                   ${CMAKE_SOURCE_DIR}/docs/notebooks/${nb}.ipynb)
+  set_tests_properties(notebook_${nb_test} PROPERTIES
+    ENVIRONMENT "PYTHONPATH=${METROSYNC_PYTHON_DIR};METROSYNC_SOURCE_DIR=${CMAKE_SOURCE_DIR};PYDEVD_DISABLE_FILE_VALIDATION=1"
+    LABELS slow TIMEOUT 600)
+endforeach()
+
 execute_process(COMMAND ${Python_EXECUTABLE} -c
                         "import sysconfig; print(sysconfig.get_path('platlib', 'deb_system'))"
                 OUTPUT_VARIABLE metrosync_site OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
