@@ -416,6 +416,7 @@ ValidationPlan defaultValidationPlan(bool quick) {
   plan.sweep_mu = quick ? std::vector<double>{0.02, 0.1, 0.3, 0.5, 0.8, 2.0}
                         : std::vector<double>{0.02, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5,
                                               0.6,  0.7,  0.8, 1.0,  1.5, 2.0,  3.0, 6.0};
+  plan.bifurcations = paperBifurcationFamilies(quick);
   return plan;
 }
 
@@ -427,6 +428,8 @@ int ValidationResults::failedChecks() const {
   for (const auto& s : scenarios)
     for (const auto& c : s.checks) n += !c.pass;
   for (const auto& c : convergence) n += !c.pass;
+  for (const auto& f : bifurcations)
+    for (const auto& p : f.points) n += !p.pass;
   return n;
 }
 
@@ -455,8 +458,6 @@ bool finalStatesAgree(const ModelRun& full, const ModelRun& slow, double distanc
       return true;  // death (no state left), drift and unsettled (no state to compare)
   }
 }
-
-namespace {
 
 // Runs task(k) for k in `order` on `jobs` threads (dynamic: each takes the next index when it
 // is free, so long tasks listed first balance best). The first exception is rethrown at the end.
@@ -493,8 +494,6 @@ std::vector<size_t> identity(size_t n) {
   for (size_t k = 0; k < n; ++k) v[k] = k;
   return v;
 }
-
-}  // namespace
 
 EnvelopeRow exchangedPair(const EnvelopeRow& row) {
   if (row.A.size() != 2 || row.psi.size() != 1) return row;
@@ -718,6 +717,10 @@ ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Sc
 
   finishConvergence(plan, log, res);
   finishRegimes(scenarios, res);
+  if (!plan.bifurcations.empty()) {
+    log.say("bifurcations of the slow flow (continuation, slow-flow checks, full-model brackets)");
+    res.bifurcations = runBifurcationFamilies(plan.bifurcations, scenarios, engines, jobs);
+  }
   res.wall_seconds = secondsSince(t0);
   return res;
 }

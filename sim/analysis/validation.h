@@ -22,6 +22,7 @@
 #include "models/rig.h"
 #include "models/scaling.h"
 #include "sim/analysis/regime.h"
+#include "sim/analysis/validation_bifurcations.h"
 #include "sim/record/envelope.h"
 #include "sim/record/run_report.h"
 
@@ -146,6 +147,8 @@ struct ValidationPlan {
   // part 5: the scenario's rig (its own epsilon and tau) with mu replaced
   std::string sweep_scenario = "experiment-low-friction-inphase";
   std::vector<double> sweep_mu;
+  // part 6: the slow flow's bifurcations (sim/analysis/validation_bifurcations.h)
+  std::vector<BifurcationFamilySpec> bifurcations;
 };
 
 // The full plan (`metrosync validate`) or the quick one (`--quick`).
@@ -205,6 +208,7 @@ struct ValidationResults {
   std::string sweep_scenario;
   double sweep_epsilon = 0.0, sweep_tau = 0.0, sweep_psi0 = 0.0;  // of the sweep's base rig
   std::vector<FrictionSweepPoint> sweep;
+  std::vector<BifurcationFamilyResult> bifurcations;  // part 6
   double wall_seconds = 0.0;
 
   int failedChecks() const;    // betas, paper regimes, convergence orders
@@ -222,6 +226,12 @@ bool finalStatesAgree(const ModelRun& full, const ModelRun& slow, double distanc
 EnvelopeRow exchangedPair(const EnvelopeRow& row);
 // Two metronomes that differ by nothing but their start (the exchange is a symmetry).
 bool identicalPair(const ScaledParams& p);
+
+// Runs task(k) for k in `order` on `jobs` threads (dynamic: each takes the next index when it is
+// free, so long tasks listed first balance best). The first exception is rethrown at the end.
+void parallelFor(int jobs, const std::vector<size_t>& order,
+                 const std::function<void(size_t)>& task);
+std::vector<size_t> identity(size_t n);  // 0, 1, .., n - 1
 
 // Runs the plan on the scenarios (which must include every one the plan names). `progress`
 // receives one line per run (from one thread at a time). The runs are independent: `jobs`

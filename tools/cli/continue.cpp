@@ -201,7 +201,7 @@ void foldCurves(const ContinueOptions& opt, double from2, const std::vector<Fold
     const int n = static_cast<int>(f.at.y.size()) - 1;
     const auto follow = f.kind == CurveKind::Fold ? continueFold : continueHopf;
     result.fold_curves.push_back(
-        follow(paramsAt2(opt), f.reference, f.at.y.head(n), f.at.p(), from2, f.at.region, s));
+        follow(paramsAt2(opt), f.reference, f.at.y.head(n), f.at.p(), from2, f.at.region, s, {}));
   }
 }
 
@@ -285,7 +285,82 @@ void printSummary(const ContinuationResult& r, const std::string& dir) {
   std::cout << "files in " << dir << "\n";
 }
 
+// Whether a curve of `kind` in `curves` passes within kSameCurve of (p1, p2) (interpolated
+// between consecutive points bracketing p2).
+bool onACurve(const std::vector<FoldCurve>& curves, CurveKind kind, double p1, double p2,
+              double span1) {
+  constexpr double kSameCurve = 1e-3;  // of key1's range: far above a curve's interpolation error
+  for (const FoldCurve& c : curves) {
+    if (c.kind != kind) continue;
+    for (size_t k = 1; k < c.points.size(); ++k) {
+      const FoldCurvePoint &a = c.points[k - 1], &b = c.points[k];
+      if ((a.p2 - p2) * (b.p2 - p2) > 0 || a.p2 == b.p2) continue;
+      const double w = (p2 - a.p2) / (b.p2 - a.p2);
+      if (std::abs(a.p1 + w * (b.p1 - a.p1) - p1) < kSameCurve * span1) return true;
+    }
+  }
+  return false;
+}
+
+// The fold and Hopf points found in key1 at key2 = v2 (every locked state at lo1 followed).
+std::vector<FoldSeed> pointsInRow(ContinueOptions o, const std::string& key2, double v2,
+                                  double lo1) {
+  o.sets.push_back(key2 + "=" + fmt(v2));
+  const ScaledParams sp = computeScaled(loadWith(o, {o.param + "=" + fmt(lo1)}));
+  ContinuationResult result;
+  std::vector<FoldSeed> seeds;
+  try {
+    followAll(o, sp, lo1, settingsFor(o, lo1), result, seeds);
+  } catch (const UsageError&) {
+    return {};  // no locked state in this row
+  }
+  return seeds;
+}
+
 }  // namespace
+
+void checkBoundaryKeys(const std::string& rig_path, const std::vector<std::string>& sets,
+                       const std::string& key1, double lo1, double hi1, const std::string& key2,
+                       double lo2, double hi2) {
+  ContinueOptions o;
+  o.rig_path = rig_path, o.sets = sets;
+  o.param = key1, o.from = lo1, o.to = hi1;
+  startValue(o);  // key1 must change the slow flow
+  o.param = key2, o.from = lo2, o.to = hi2;
+  startValue(o);  // and key2
+}
+
+std::vector<FoldCurve> boundaryCurves(const std::string& rig_path,
+                                      const std::vector<std::string>& sets, const std::string& key1,
+                                      double lo1, double hi1, const std::string& key2, double lo2,
+                                      double hi2) {
+  checkBoundaryKeys(rig_path, sets, key1, lo1, hi1, key2, lo2, hi2);
+  ContinueOptions o;
+  o.rig_path = rig_path, o.sets = sets, o.param = key1, o.from = lo1, o.to = hi1;
+  o.all = true, o.no_cycles = true, o.fold_key = key2, o.to2 = hi2;
+  ContinuationSettings s2;
+  s2.p_min = std::min(lo2, hi2), s2.p_max = std::max(lo2, hi2);
+  // the curve's arclength is mostly in key1 and the state (O(1)), not only key2's span
+  constexpr double kCurveStep = 0.005, kCurveStepMax = 0.05;
+  s2.step = std::max((s2.p_max - s2.p_min) / 100, kCurveStep);
+  s2.step_max = std::max((s2.p_max - s2.p_min) / 25, kCurveStepMax);
+  // the curves a little past the map's edges in key1 (so that they reach them), not beyond
+  constexpr double kRangeMargin = 0.05;
+  const double margin = kRangeMargin * std::abs(hi1 - lo1);
+  const P1Range range{std::min(lo1, hi1) - margin, std::max(lo1, hi1) + margin};
+  std::vector<FoldCurve> curves;
+  for (double f : {1.0 / 6, 0.5, 5.0 / 6}) {
+    const double v2 = lo2 + f * (hi2 - lo2);
+    for (const FoldSeed& seed : pointsInRow(o, key2, v2, lo1)) {
+      if (onACurve(curves, seed.kind, seed.at.p(), v2, std::abs(hi1 - lo1))) continue;
+      const int n = static_cast<int>(seed.at.y.size()) - 1;
+      const auto follow = seed.kind == CurveKind::Fold ? continueFold : continueHopf;
+      curves.push_back(follow(paramsAt2(o), seed.reference, seed.at.y.head(n), seed.at.p(), v2,
+                              seed.at.region, s2, range));
+    }
+  }
+  return curves;
+}
 
 CLI::App* addContinueCommand(CLI::App& app) {
   ContinueOptions& opt = options();

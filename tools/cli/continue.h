@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/analysis/continuation/fold_curve.h"
+
 namespace metrosync::cli {
 
 struct ContinueOptions {
@@ -33,6 +35,22 @@ CLI::App* addContinueCommand(CLI::App& app);
 // The exit code (SPEC 5); bad input throws RigError or UsageError (exit 2) before anything is
 // written.
 int continueCommand();
+
+// The fold and Hopf curves of the slow flow in (key1, key2) over [lo1, hi1] x [lo2, hi2]: the
+// computed boundaries of a slow sweep map (`sweep --boundaries`). At three rows of key2 (1/6, 1/2
+// and 5/6 of its range) every locked state Newton finds at key1 = lo1 (as `continue --all`) is
+// followed in key1; every fold and Hopf point found is followed in key2 across its range, unless
+// a curve already found passes through it. Throws UsageError for a key the slow flow ignores.
+// The checks of boundaryCurves alone (before a sweep writes anything): UsageError for a key that
+// does not change the slow flow or a range of zero width.
+void checkBoundaryKeys(const std::string& rig_path, const std::vector<std::string>& sets,
+                       const std::string& key1, double lo1, double hi1, const std::string& key2,
+                       double lo2, double hi2);
+std::vector<continuation::FoldCurve> boundaryCurves(const std::string& rig_path,
+                                                    const std::vector<std::string>& sets,
+                                                    const std::string& key1, double lo1, double hi1,
+                                                    const std::string& key2, double lo2,
+                                                    double hi2);
 // The same with the options given (the Python module's continue_).
 int continueCommand(const ContinueOptions& opt);
 

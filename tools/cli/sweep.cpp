@@ -23,6 +23,7 @@
 #include "sim/analysis/regime.h"
 #include "sim/analysis/sweep.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/continue.h"
 #include "tools/cli/engines.h"
 #include "tools/report/folder_lock.h"
 #include "tools/report/outputs.h"
@@ -400,6 +401,34 @@ const Engine* checkGrid(const SweepPlan& plan, const SweepOptions& opt) {
   return engine;
 }
 
+// --boundaries: a slow-flow map over two ranges (the curves are drawn in its plane).
+void checkBoundaries(const SweepOptions& opt, const SweepPlan& plan) {
+  const std::vector<SweepAxis>& axes = plan.grid.axes();
+  if (plan.manifest.model != "slow")
+    throw UsageError(
+        "--boundaries: the fold and Hopf curves are the slow flow's; use --model slow");
+  if (axes.size() != 2 || !axes[0].values.size() || axes[0].count < 2 || axes[1].count < 2)
+    throw UsageError("--boundaries: needs a map over two keys (two --vary of 2 or more values)");
+  for (const SweepAxis& a : axes)
+    if (a.spec.find(':') == std::string::npos)
+      throw UsageError("--boundaries: --vary " + a.key + "=" + a.spec +
+                       ": give a range FROM:TO:COUNT (the curves are continuous in both keys)");
+  try {
+    checkBoundaryKeys(opt.rig_path, opt.sets, axes[0].key, axes[0].values.front(),
+                      axes[0].values.back(), axes[1].key, axes[1].values.front(),
+                      axes[1].values.back());
+  } catch (const UsageError& e) {
+    throw UsageError(std::string("--boundaries: ") + e.what());
+  }
+}
+
+// The fold and Hopf curves over the map's two ranges (boundaryCurves, tools/cli/continue.h).
+std::vector<continuation::FoldCurve> mapBoundaries(const SweepOptions& opt, const SweepPlan& plan) {
+  const SweepAxis &x = plan.grid.axes()[0], &y = plan.grid.axes()[1];
+  return boundaryCurves(opt.rig_path, opt.sets, x.key, x.values.front(), x.values.back(), y.key,
+                        y.values.front(), y.values.back());
+}
+
 SweepPlan planSweep(const SweepOptions& opt) {
   if (opt.jobs < 0) throw UsageError("--jobs " + std::to_string(opt.jobs) + ": must be >= 1");
   std::vector<SweepAxis> axes;
@@ -425,6 +454,7 @@ SweepPlan planSweep(const SweepOptions& opt) {
   m.shard = plan.shard;
   plan.path = opt.out.empty() ? defaultOutputDir(plan.base.name, "sweep") : opt.out;
   plan.regimes_path = plan.path + "/regimes.csv";
+  if (opt.boundaries) checkBoundaries(opt, plan);
   return plan;
 }
 
@@ -568,8 +598,16 @@ int sweepImpl(const SweepOptions& opt) {
   const bool complete = static_cast<long>(run.points.size()) == plan.mine;
   writeSortedRegimesCsv(plan.regimes_path, plan.grid, plan.n, run.lines);
   std::vector<std::string> files = {"regimes.csv", "timings.csv"};
+  std::vector<continuation::FoldCurve> curves;
+  if (opt.boundaries && complete && !interrupted) {
+    curves = mapBoundaries(opt, plan);
+    writeFileAtomically(dir.file("boundaries.csv"),
+                        boundariesCsv(curves, plan.grid.axes()[0].key, plan.grid.axes()[1].key));
+    files.push_back("boundaries.csv");
+  }
   if (!opt.no_plot)
-    for (const auto& f : plotSweepMaps(dir, plan.grid, plan.n, run.points, mapTitle(plan.manifest)))
+    for (const auto& f :
+         plotSweepMaps(dir, plan.grid, plan.n, run.points, mapTitle(plan.manifest), curves))
       files.push_back(f);
   files.push_back("sweep.json");
   nlohmann::json status = statusJson(plan.manifest, plan.mine, run.points, complete);
@@ -578,6 +616,7 @@ int sweepImpl(const SweepOptions& opt) {
   status["points"]["run_now"] = run.finished_now;
   status["interrupted"] = interrupted;
   status["files"] = files;
+  if (opt.boundaries) status["boundaries"] = boundariesJson(curves);
   writeSweepJson(dir, status);
 
   const long failed = status["points"]["failed"].get<long>();
@@ -743,6 +782,9 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
       ->type_name("DIR");
   c.sweep->add_flag("-q,--quiet", opt.quiet,
                     "no progress bar and no summary (errors and warnings still go to stderr)");
+  c.sweep->add_flag("--boundaries", opt.boundaries,
+                    "with --model slow over two ranges: the slow flow's fold and Hopf curves "
+                    "(continuation) over the regime map, boundaries.csv");
   c.sweep->add_flag("--no-plot", opt.no_plot,
                     "draw no maps (regimes.csv, sweep.json and timings.csv only)");
   c.sweep->footer(

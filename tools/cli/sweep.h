@@ -16,10 +16,11 @@ struct SweepOptions {
   std::vector<std::string> vary;  // --vary KEY=FROM:TO:COUNT[:open] or KEY=V1,V2,.. (first: across)
   std::string out;                // --out DIR; empty: runs/<rig name>-sweep (-merge)
   bool quiet = false;
-  bool no_plot = false;  // sweep: --no-plot, no maps
-  std::string model;     // slow | full; empty: the --engine's model, else slow
-  std::string engine;    // a registry name (sim/engines/engine.h); empty: the model's default
-  int jobs = 0;          // worker threads; 0: the number of cores
+  bool no_plot = false;     // sweep: --no-plot, no maps
+  bool boundaries = false;  // sweep: --boundaries, the slow flow's fold and Hopf curves
+  std::string model;        // slow | full; empty: the --engine's model, else slow
+  std::string engine;       // a registry name (sim/engines/engine.h); empty: the model's default
+  int jobs = 0;             // worker threads; 0: the number of cores
   bool resume = false;
   std::string shard;              // "K/N"; empty: the whole grid
   std::vector<std::string> dirs;  // merge: the sweep output directories to join

@@ -174,8 +174,8 @@ std::string header(const std::string& png, int width, int height) {
 }  // namespace
 
 const std::vector<std::string>& sweepMapNames() {
-  static const std::vector<std::string> names = {"regimes.png", "amplitudes.png", "phases.png",
-                                                 "order.png", "drive.png"};
+  static const std::vector<std::string> names = {"boundaries.csv", "regimes.png", "amplitudes.png",
+                                                 "phases.png",     "order.png",   "drive.png"};
   return names;
 }
 
@@ -208,9 +208,63 @@ std::string regimeColour(const std::string& name, const std::vector<std::string>
   return "#808080";
 }
 
+namespace {
+
+// The curves as a gnuplot datablock ($boundaries, one index per curve) and their plot clauses.
+std::string boundaryBlock(const std::vector<continuation::FoldCurve>& curves) {
+  std::ostringstream b;
+  b << "$boundaries << EOD\n";
+  for (const auto& c : curves) {
+    for (const auto& q : c.points) b << num(q.p1) << " " << num(q.p2) << "\n";
+    b << "\n\n";
+  }
+  b << "EOD\n";
+  return b.str();
+}
+
+std::string boundaryPlot(const std::vector<continuation::FoldCurve>& curves) {
+  std::string plot;
+  bool fold_titled = false, hopf_titled = false;
+  for (size_t i = 0; i < curves.size(); ++i) {
+    const bool fold = curves[i].kind == continuation::CurveKind::Fold;
+    bool& titled = fold ? fold_titled : hopf_titled;
+    plot += ", \\\n     $boundaries index " + std::to_string(i) +
+            " using 1:2 with lines lc rgb 'black' lw 2.5 dt " + (fold ? "1" : "2") +
+            (titled ? " notitle"
+             : fold ? " title 'fold curve'"
+                    : " title 'Hopf curve'");
+    titled = true;
+  }
+  return plot;
+}
+
+}  // namespace
+
+std::string boundariesCsv(const std::vector<continuation::FoldCurve>& curves,
+                          const std::string& key1, const std::string& key2) {
+  std::ostringstream c;
+  c << "curve,type," << key1 << "," << key2 << "\n";
+  for (size_t i = 0; i < curves.size(); ++i)
+    for (const auto& q : curves[i].points)
+      c << i << "," << toString(curves[i].kind) << "," << num(q.p1) << "," << num(q.p2) << "\n";
+  return c.str();
+}
+
+nlohmann::json boundariesJson(const std::vector<continuation::FoldCurve>& curves) {
+  nlohmann::json list = nlohmann::json::array();
+  for (size_t i = 0; i < curves.size(); ++i)
+    list.push_back({{"curve", i},
+                    {"type", toString(curves[i].kind)},
+                    {"points", curves[i].points.size()},
+                    {"end_backward", curves[i].end_backward},
+                    {"end_forward", curves[i].end_forward}});
+  return list;
+}
+
 std::string regimeMapScript(const std::string& data_path, const std::string& png_path,
                             const SweepGrid& grid, const std::vector<std::string>& legend,
-                            const std::string& title) {
+                            const std::string& title,
+                            const std::vector<continuation::FoldCurve>& boundaries) {
   const std::vector<size_t> axes = drawnAxes(grid);
   const bool map2d = axes.size() > 1;
   std::ostringstream s;
@@ -222,7 +276,9 @@ std::string regimeMapScript(const std::string& data_path, const std::string& png
     << axisSettings(grid, axes);
   std::string plot;
   if (map2d) {
+    if (!boundaries.empty()) s << boundaryBlock(boundaries);
     plot = "plot " + quote(data_path) + " using 1:2:3:4:5 with rgbimage notitle";
+    plot += boundaryPlot(boundaries);
   } else {
     const AxisRange r = axisRange(grid.axes()[axes[0]]);
     s << "set yrange [0:1]\nunset ytics\n";
@@ -249,7 +305,8 @@ struct MapFrame {
 };
 
 // regimes.png: "x y R G B" cells (2-D; white where not run), or "x rgb" (1-D; -1 not run)
-bool drawRegimeMap(const MapFrame& f, const std::map<long, SweepPoint>& points) {
+bool drawRegimeMap(const MapFrame& f, const std::map<long, SweepPoint>& points,
+                   const std::vector<continuation::FoldCurve>& boundaries) {
   const std::vector<std::string> legend = regimeLegendOrder(points);
   std::ostringstream d;
   for (long g : f.order) {
@@ -265,10 +322,10 @@ bool drawRegimeMap(const MapFrame& f, const std::map<long, SweepPoint>& points) 
     else
       d << " " << rgb << "\n";
   }
-  return drawPng(f.dir, "regimes.png", d.str(),
-                 [&](const std::string& data, const std::string& png) {
-                   return regimeMapScript(data, png, f.grid, legend, f.title + " - regimes");
-                 });
+  return drawPng(
+      f.dir, "regimes.png", d.str(), [&](const std::string& data, const std::string& png) {
+        return regimeMapScript(data, png, f.grid, legend, f.title + " - regimes", boundaries);
+      });
 }
 
 // The values: "x [y] A_1..A_N psi_2..psi_N r log10(s)" (NaN where not run or failed).
@@ -374,14 +431,15 @@ std::vector<Picture> valuePictures(int n, int first_value, bool any_drive) {
 
 std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& grid, int n,
                                        const std::map<long, SweepPoint>& points,
-                                       const std::string& title) {
+                                       const std::string& title,
+                                       const std::vector<continuation::FoldCurve>& boundaries) {
   std::vector<std::string> written;
   if (grid.size() == 0 || n < 1 || points.empty()) return written;  // nothing to draw
   if (grid.size() > kMaxMapCells) return written;                   // more cells than pixels
   MapFrame f{dir, grid, drawnAxes(grid), false, {}, title};
   f.map2d = f.axes.size() > 1;
   f.order = scanOrder(grid, f.axes);
-  if (drawRegimeMap(f, points)) written.push_back("regimes.png");
+  if (drawRegimeMap(f, points, boundaries)) written.push_back("regimes.png");
   const bool any_complete =
       std::any_of(points.begin(), points.end(), [](const auto& kv) { return kv.second.complete; });
   if (!any_complete) return written;  // every point failed: no value to draw

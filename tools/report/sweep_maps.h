@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/analysis/continuation/fold_curve.h"
 #include "sim/analysis/sweep.h"
 #include "tools/report/outputs.h"
 #include "tools/report/sweep_files.h"
@@ -33,9 +34,18 @@ constexpr long kMaxMapCells = 1000000;
 
 // Draws the maps into `dir` (none for a grid over kMaxMapCells); returns the names of the files
 // written.
+// `boundaries` (sweep --boundaries): fold and Hopf curves in the plane of the first two axes,
+// drawn over the regime map (folds solid, Hopf curves dashed).
 std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& grid, int n,
                                        const std::map<long, SweepPoint>& points,
-                                       const std::string& title);
+                                       const std::string& title,
+                                       const std::vector<continuation::FoldCurve>& boundaries = {});
+
+// boundaries.csv: `curve,type,KEY1,KEY2`, one row per point of each curve in order along it.
+std::string boundariesCsv(const std::vector<continuation::FoldCurve>& curves,
+                          const std::string& key1, const std::string& key2);
+// sweep.json's `boundaries`: [{curve, type, points, end_backward, end_forward}].
+nlohmann::json boundariesJson(const std::vector<continuation::FoldCurve>& curves);
 
 // The colour of a regime name (#rrggbb): fixed for the SPEC names and `failed`, from a palette in
 // the order given for the others. `names` are the regimes present, in legend order.
@@ -45,6 +55,7 @@ std::string regimeColour(const std::string& name, const std::vector<std::string>
 // The gnuplot script of the regime map (exposed for tests).
 std::string regimeMapScript(const std::string& data_path, const std::string& png_path,
                             const SweepGrid& grid, const std::vector<std::string>& legend,
-                            const std::string& title);
+                            const std::string& title,
+                            const std::vector<continuation::FoldCurve>& boundaries = {});
 
 }  // namespace metrosync

@@ -8,6 +8,7 @@
 #include "contact/averaged_response.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 #include "tools/report/plot.h"
+#include "tools/report/validation_bifurcations_report.h"
 
 namespace metrosync {
 
@@ -399,6 +400,15 @@ void mdSummary(std::ostream& md, const ValidationResults& r) {
     md << "| 5. the experiment's regime sequence over μ | slow flow: "
        << sequenceText(regimeSequence(r.sweep, false))
        << "<br>full model: " << sequenceText(regimeSequence(r.sweep, true)) << " |\n";
+  if (!r.bifurcations.empty()) {
+    int located = 0, pass = 0;
+    for (const auto& f : r.bifurcations)
+      for (const auto& p : f.points) located += 1, pass += p.pass;
+    md << "| 6. bifurcations of the slow flow (continuation) | " << located
+       << " folds and Hopf points located on " << r.bifurcations.size() << " families; " << pass
+       << " confirmed by slow-flow runs on both sides: " << passText(pass == located && located > 0)
+       << " |\n";
+  }
   md << "\nChecks failed: " << r.failedChecks()
      << "; runs that stopped early: " << r.incompleteRuns() << ".\n\n";
 }
@@ -686,6 +696,7 @@ std::string validationReportMarkdown(const ValidationResults& r, const ReportCon
     mdSweepTable(md, r);
     mdSweepWords(md, r, plots);
   }
+  mdBifurcations(md, r.bifurcations);
   return md.str();
 }
 
@@ -766,6 +777,7 @@ nlohmann::json validationJson(const ValidationResults& r, const ReportContext& c
   for (const auto& p : r.sweep)
     j["sweep"].push_back(
         {{"mu", p.mu}, {"mu_bar", p.mu_bar}, {"slow", runJson(p.slow)}, {"full", runJson(p.full)}});
+  if (!r.bifurcations.empty()) j["bifurcations"] = validationBifurcationsJson(r.bifurcations);
   return j;
 }
 

@@ -21,6 +21,9 @@ constexpr double kFoldTolerance = 1e-9;
 // turned real: the curve has passed a Bogdanov-Takens point. Far above the ~1e-9 noise of the
 // difference Jacobian, far below the frequencies of the slow flow's Hopf points (~0.1-3).
 constexpr double kRealPair = 1e-6;
+// A curve whose last point is this close to an edge of p1's range (relative to the range) was
+// stopped by it: the arclength steps near the edge shrink to ~1e-9 before the corrector gives up.
+constexpr double kRangeEdge = 1e-3;
 
 // One SlowFlowProblem (in p1) per value of p2, kept while the continuation needs it.
 class Family {
@@ -76,7 +79,7 @@ double hopfFrequency(const SlowFlowProblem& prob, const Vec& x, double p1, const
 
 FoldCurve continueCurve(CurveKind kind, const ParamsAt2& params, int reference, const Vec& x0,
                         double p1_0, double p2_0, const Region& region,
-                        const ContinuationSettings& s);
+                        const ContinuationSettings& s, P1Range range);
 
 }  // namespace
 
@@ -85,20 +88,22 @@ const char* toString(CurveKind k) {
 }
 
 FoldCurve continueFold(const ParamsAt2& params, int reference, const Vec& x0, double p1_0,
-                       double p2_0, const Region& region, const ContinuationSettings& s) {
-  return continueCurve(CurveKind::Fold, params, reference, x0, p1_0, p2_0, region, s);
+                       double p2_0, const Region& region, const ContinuationSettings& s,
+                       P1Range range) {
+  return continueCurve(CurveKind::Fold, params, reference, x0, p1_0, p2_0, region, s, range);
 }
 
 FoldCurve continueHopf(const ParamsAt2& params, int reference, const Vec& x0, double p1_0,
-                       double p2_0, const Region& region, const ContinuationSettings& s) {
-  return continueCurve(CurveKind::Hopf, params, reference, x0, p1_0, p2_0, region, s);
+                       double p2_0, const Region& region, const ContinuationSettings& s,
+                       P1Range range) {
+  return continueCurve(CurveKind::Hopf, params, reference, x0, p1_0, p2_0, region, s, range);
 }
 
 namespace {
 
 FoldCurve continueCurve(CurveKind kind, const ParamsAt2& params, int reference, const Vec& x0,
                         double p1_0, double p2_0, const Region& region,
-                        const ContinuationSettings& s) {
+                        const ContinuationSettings& s, P1Range range) {
   auto family = std::make_shared<Family>(params, p1_0, reference);
   const int n = family->at(p2_0).system().n;
   // the null vectors of the singular matrix at the starting point
@@ -110,10 +115,12 @@ FoldCurve continueCurve(CurveKind kind, const ParamsAt2& params, int reference, 
   ContinuationSystem sys;
   sys.n = n + 1;  // (x, p1)
   // the start's region held throughout (no borders: the curve is cut where it leaves the region)
-  sys.residual = [family, b, c, n, region, kind](const Vec& y, double p2, const Region&) {
+  sys.residual = [family, b, c, n, region, kind, range](const Vec& y, double p2, const Region&) {
     const SlowFlowProblem& prob = family->at(p2);
     const Vec x = y.head(n);
     Vec out(n + 1);
+    // outside p1's range the corrector fails, so the step control stops the curve at its edge
+    if (y(n) < range.lo || y(n) > range.hi) return Vec(Vec::Constant(n + 1, std::nan("")));
     out.head(n) = prob.system().residual(x, y(n), region);
     out(n) = borderedFunction(singularMatrix(kind, prob, x, y(n), region), b, c);
     return out;
@@ -145,6 +152,8 @@ FoldCurve continueCurve(CurveKind kind, const ParamsAt2& params, int reference, 
   while (hi + 1 < pts.size() && inside(pts[hi + 1])) ++hi;
   auto why = [&](const BranchPoint& q) {
     const SlowFlowProblem& prob = family->at(q.p());
+    if (q.y(n) <= range.lo || q.y(n) >= range.hi)
+      return std::string("leaves the first key's range");
     if (regionAt(prob.system(), q.y.head(n), q.y(n)) != region)
       return std::string("leaves the start's region (a border of the vector field)");
     return std::string(
@@ -159,6 +168,15 @@ FoldCurve continueCurve(CurveKind kind, const ParamsAt2& params, int reference, 
     curve.points.push_back(
         {pts[q].y(n), pts[q].p(), prob.amplitudes(x), prob.phaseDifferences(x), w});
   }
+  // an end stopped by p1's range (the corrector fails just past it) says so
+  const double edge = kRangeEdge * (range.hi - range.lo);
+  auto atEdge = [&](const FoldCurvePoint& q) {
+    return std::isfinite(edge) && (q.p1 - range.lo < edge || range.hi - q.p1 < edge);
+  };
+  if (!curve.points.empty() && atEdge(curve.points.front()))
+    curve.end_backward = "reaches the edge of the first key's range";
+  if (!curve.points.empty() && atEdge(curve.points.back()))
+    curve.end_forward = "reaches the edge of the first key's range";
   return curve;
 }
 

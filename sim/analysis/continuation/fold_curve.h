@@ -11,6 +11,7 @@
 // Bogdanov-Takens point: beyond it the same equation describes a neutral saddle, not a Hopf point).
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -37,11 +38,17 @@ struct FoldCurve {
   std::string end_backward, end_forward;
 };
 
+// p1 held inside [lo, hi]: the curve ends where it leaves (a map's range, sweep --boundaries).
+struct P1Range {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+};
+
 // From the fold (x, p1) found at p2 = p2_0 (region: its region), over p2 in [s.p_min, s.p_max].
 FoldCurve continueFold(const ParamsAt2& params, int reference, const Vec& x, double p1, double p2_0,
-                       const Region& region, const ContinuationSettings& s);
+                       const Region& region, const ContinuationSettings& s, P1Range range = {});
 // The same for a Hopf point (x, p1) found at p2 = p2_0.
 FoldCurve continueHopf(const ParamsAt2& params, int reference, const Vec& x, double p1, double p2_0,
-                       const Region& region, const ContinuationSettings& s);
+                       const Region& region, const ContinuationSettings& s, P1Range range = {});
 
 }  // namespace metrosync::continuation
