@@ -1,5 +1,6 @@
 // metrosync: the command line (SPEC section 2). Every sub-command is registered with its handler
 // (tools/cli/command_line.h maps outcomes to the SPEC section 5 exit codes).
+#include "tools/cli/animate.h"
 #include "tools/cli/command_line.h"
 #include "tools/cli/continue.h"
 #include "tools/cli/sweep.h"
@@ -12,6 +13,7 @@ int main(int argc, char** argv) {
   cli::Options opt;                   // run, compare, scale (tools/cli/commands.h)
   cli::SweepOptions sweep_opt;        // sweep and merge (tools/cli/sweep.h)
   cli::ValidateOptions validate_opt;  // tools/cli/validate.h
+  cli::AnimateOptions animate_opt;    // tools/cli/animate.h
   std::vector<cli::Command> commands = cli::addRigCommands(app, opt);
   const cli::SweepCommands sweep = cli::addSweepCommands(app, sweep_opt);
   commands.push_back({sweep.sweep, [&] { return cli::sweepCommand(sweep_opt); }});
@@ -19,5 +21,7 @@ int main(int argc, char** argv) {
   commands.push_back({cli::addValidateCommand(app, validate_opt),
                       [&] { return cli::validateCommand(validate_opt); }});
   commands.push_back({cli::addContinueCommand(app), [] { return cli::continueCommand(); }});
+  commands.push_back(
+      {cli::addAnimateCommand(app, animate_opt), [&] { return cli::animateCommand(animate_opt); }});
   return cli::runCommandLine(app, commands, argc, argv);
 }

@@ -1,0 +1,47 @@
+// The motion `metrosync animate` draws (docs/animate.md): one run of the full model, sampled at
+// the frame times. The run's trajectory rows are put on the frame grid (simulation.sample set to
+// the frame interval, rows interpolated from the engine's dense output, as every trajectory.csv
+// row is); a frame whose time falls between two rows (a --from off the grid) is the cubic Hermite
+// interpolant of the two rows' values and rates. Nothing is stepped twice. Ticks come from the
+// engine's events (one platform) or from the angles crossing theta_c outwards between samples
+// (networks); amplitudes from the envelope rows (one platform) or from the samples (networks,
+// as their envelope.csv).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "models/network.h"
+#include "models/rig.h"
+#include "sim/engines/engine.h"
+#include "tools/report/animation_scene.h"
+
+namespace metrosync::cli {
+
+// Times in the rig's physical seconds (a scaled rig: its scaled time t).
+struct AnimationRequest {
+  double from = 0.0, to = 0.0;
+  double speed = 1.0;  // seconds of motion per second of video
+  double fps = 30.0;
+  int width = 1280, height = 720;
+  std::string title;
+
+  double frameInterval() const { return speed / fps; }
+  // frames = fps (to - from) / speed, rounded; frame k is at from + k * frameInterval()
+  long frameCount() const;
+};
+
+struct AnimationTrack {
+  animation::Scene scene;
+  std::vector<animation::FrameState> frames;  // frameCount() of them when complete
+  bool complete = true;
+  std::string failure;  // why the run stopped early
+};
+
+// One platform, on `engine` (a full-model engine); the rig's duration and sample are replaced.
+AnimationTrack trackRig(Rig rig, const Engine& engine, const AnimationRequest& request);
+
+// A network, on the direct engine.
+AnimationTrack trackNetwork(Network net, const AnimationRequest& request);
+
+}  // namespace metrosync::cli
