@@ -53,7 +53,7 @@ double hermite(double a, double da, double b, double db, double h, double s) {
 class FrameGrid {
  public:
   explicit FrameGrid(const AnimationRequest& r)
-      : from_(r.from), dt_(r.frameInterval()), n_(r.frameCount()) {}
+      : dt_(r.frameInterval()), first_(r.firstFrameIndex()), n_(r.frameCount()) {}
 
   void add(const Snapshot& s, std::vector<FrameState>& out) {
     while (next_ < n_ && timeOf(next_) <= s.t) {
@@ -63,7 +63,8 @@ class FrameGrid {
     prev_ = s;
     have_ = true;
   }
-  double timeOf(long k) const { return from_ + static_cast<double>(k) * dt_; }
+  // as the engines' sample times (sim/events/sample_schedule.h), bit for bit
+  double timeOf(long k) const { return static_cast<double>(first_ + k) * dt_; }
 
  private:
   static FrameState at(const Snapshot& s, double t) {
@@ -85,8 +86,8 @@ class FrameGrid {
     return f;
   }
 
-  double from_, dt_;
-  long n_, next_ = 0;
+  double dt_;
+  long first_, n_, next_ = 0;
   bool have_ = false;
   Snapshot prev_;
 };
@@ -141,6 +142,10 @@ void addMetronomes(Scene& sc, animation::ScenePlatform& plat, const Rig& rig) {
 
 long AnimationRequest::frameCount() const {
   return std::lround((to - from) * fps / speed);
+}
+
+long AnimationRequest::firstFrameIndex() const {
+  return std::lround(from / frameInterval());
 }
 
 // --- one platform -------------------------------------------------------------------------

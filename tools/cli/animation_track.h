@@ -1,11 +1,12 @@
 // The motion `metrosync animate` draws (docs/animate.md): one run of the full model, sampled at
-// the frame times. The run's trajectory rows are put on the frame grid (simulation.sample set to
-// the frame interval, rows interpolated from the engine's dense output, as every trajectory.csv
-// row is); a frame whose time falls between two rows (a --from off the grid) is the cubic Hermite
-// interpolant of the two rows' values and rates. Nothing is stepped twice. Ticks come from the
-// engine's events (one platform) or from the angles crossing theta_c outwards between samples
-// (networks); amplitudes from the envelope rows (one platform) or from the samples (networks,
-// as their envelope.csv).
+// the frame times. The frames are the run's trajectory rows: simulation.sample is set to the frame
+// interval dt = speed / fps, so the engine takes a row at every k dt from its dense output (as
+// every trajectory.csv row), and frame k is at (round(from / dt) + k) dt, bit for bit a row's
+// time. Nothing is stepped twice. (A frame that fell between two rows would be the cubic Hermite
+// interpolant of their values and rates; the engines of this build never leave one there.) Ticks
+// come from the engine's events (one platform) or from the angles crossing theta_c outwards between
+// samples (networks); amplitudes from the envelope rows (one platform) or from the samples
+// (networks, as their envelope.csv).
 #pragma once
 
 #include <string>
@@ -27,8 +28,10 @@ struct AnimationRequest {
   std::string title;
 
   double frameInterval() const { return speed / fps; }
-  // frames = fps (to - from) / speed, rounded; frame k is at from + k * frameInterval()
+  // frames = fps (to - from) / speed, rounded; frame k is at
+  // (firstFrameIndex() + k) * frameInterval(): `from` rounded to the frame grid
   long frameCount() const;
+  long firstFrameIndex() const;
 };
 
 struct AnimationTrack {

@@ -193,7 +193,7 @@ void drawCoupling(cairo_t* cr, const SceneLayout& lay, const FrameState& st,
   spring(cr, x0, y0, x1, y1, 0.6 * std::max(a.thickness, b.thickness), 7);
 }
 
-void drawClock(cairo_t* cr, const Scene& s, const FrameState& st) {
+void drawClock(cairo_t* cr, const Scene& s, const SceneLayout& lay, const FrameState& st) {
   const double H = s.height, size = 0.035 * H, tau = st.t * s.tau_per_s;
   setColor(cr, kInk);
   text(cr, 0.02 * H, 0.055 * H, 0.04 * H, s.title, true);
@@ -201,9 +201,11 @@ void drawClock(cairo_t* cr, const Scene& s, const FrameState& st) {
   if (s.physical) clock = "t = " + fmt("%7.2f", st.t) + " s    " + clock;
   text(cr, 0.02 * H, 0.10 * H, size, clock);
   if (!s.physical) return;
-  // a stopwatch dial: the hand turns once a minute
-  const double cx = 0.55 * s.width, cy = 0.065 * H, r = 0.045 * H, a = 2 * kPi * st.t / 60.0;
+  // a stopwatch dial in the stage's top right corner: the hand turns once a minute
+  const double r = 0.05 * H, cx = lay.stage.x + lay.stage.w - 1.2 * r, cy = lay.stage.y + 1.2 * r;
+  const double a = 2 * kPi * st.t / 60.0;
   cairo_set_line_width(cr, 1.5);
+  cairo_new_path(cr);
   cairo_arc(cr, cx, cy, r, 0, 2 * kPi);
   cairo_stroke(cr);
   for (int k = 0; k < 12; ++k) {
@@ -304,7 +306,7 @@ void drawFrame(cairo_surface_t* target, const Scene& s, const SceneLayout& lay,
   for (const SceneCoupling& c : s.couplings) drawCoupling(cr, lay, st, c);
   for (std::size_t i = 0; i < s.metronomes.size(); ++i)
     drawMetronome(cr, s, lay, st, static_cast<int>(i));
-  drawClock(cr, s, st);
+  drawClock(cr, s, lay, st);
   drawTraces(cr, s, lay, st);
   drawLegend(cr, s, lay);
   cairo_destroy(cr);
