@@ -100,7 +100,8 @@ std::string displayName(const AnimateOptions& opt) {
   return opt.rig.rig_path.empty() ? "<default rig>" : opt.rig.rig_path;
 }
 
-std::string speedText(double speed) {
+std::string speedText(double speed, bool physical) {
+  if (!physical) return "tau " + fmt(speed, "%.3g") + " per second of video";
   return speed == 1.0 ? "real time" : "x" + fmt(speed, "%.3g") + " speed";
 }
 
@@ -130,7 +131,8 @@ CLI::App* addAnimateCommand(CLI::App& app, AnimateOptions& opt) {
   cmd->add_option("--engine", opt.rig.engine, fullEngineHelp());
   cmd->add_flag("-q,--quiet", opt.rig.quiet, "no progress bar and no summary");
   cmd->footer(
-      "Frames: fps * (to - from) / speed, at from + k * speed / fps. Exit codes: 0 success; 2 bad "
+      "Frames: fps * (to - from) / speed of them, at the instants k * speed / fps from --from "
+      "(rounded to that grid): each is a row of the run's trajectory. Exit codes: 0 success; 2 bad "
       "command line or rig, ffmpeg missing, or built without Cairo (nothing written); 3 the "
       "simulation failed (nothing written); 1 anything else.");
   return cmd;
@@ -221,7 +223,7 @@ AnimationTrack simulate(const AnimateOptions& opt, AnimationRequest& req, std::s
     rig_name = net.name;
     setTimes(opt, net.sim.t_end_s, 1.0, req);
     req.title = net.name + " - network of " + std::to_string(net.platforms.size()) +
-                " platforms - " + speedText(opt.speed);
+                " platforms - " + speedText(opt.speed, true);
     return trackNetwork(net, req);
   }
   const Rig rig = o.rig_path.empty() ? defaultRig(o.sets, loadOptions())
@@ -233,7 +235,7 @@ AnimationTrack simulate(const AnimateOptions& opt, AnimationRequest& req, std::s
   // a scaled rig's times are in tau: t = tau / epsilon (its time_scale is 1)
   setTimes(opt, physical ? rig.sim.t_end_s : sp.tau_end,
            physical ? 1.0 : sp.time_scale_s / sp.epsilon, req);
-  req.title = rig.name + " - " + engine.name() + " - " + speedText(opt.speed);
+  req.title = rig.name + " - " + engine.name() + " - " + speedText(opt.speed, physical);
   return trackRig(rig, engine, req);
 }
 

@@ -92,7 +92,8 @@ void drawSupport(cairo_t* cr, const ScenePlatform& p, const SceneLayout::Board& 
 }
 
 void drawGroundSpring(cairo_t* cr, const SceneLayout::Board& b, double dx) {
-  const double post_x = b.left - 0.04 * b.width, y = b.top + 0.5 * b.thickness;
+  // the post stands beyond the board's largest excursion (tools/report/animation_scene.cpp)
+  const double post_x = b.left - 0.075 * b.width, y = b.top + 0.5 * b.thickness;
   setColor(cr, kInk);
   cairo_set_line_width(cr, 3);
   cairo_move_to(cr, post_x, b.base_y);

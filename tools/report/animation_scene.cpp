@@ -12,8 +12,9 @@ namespace {
 // which is 1.5 above the board) and needs kSlotUnits of board (its needle swings ~2 u each side).
 constexpr double kSlotUnits = 4.2;
 constexpr double kHeightUnits = 5.6;  // metronome, board, rollers, and a deck above
-// The platforms' largest excursion may take this fraction of the stage's width.
-constexpr double kMotionFraction = 0.07;
+// The platforms' largest excursion may take this fraction of the stage's width (less than the
+// gap of 7% of a board's range on each side, where a ground spring's post stands).
+constexpr double kMotionFraction = 0.05;
 
 int depthOf(const Scene& s, int p) {
   int d = 0;

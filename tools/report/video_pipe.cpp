@@ -60,7 +60,7 @@ VideoPipe::VideoPipe(const VideoSpec& spec) : spec_(spec) {
       args.push_back(a);
     args.push_back(palette_);
   } else {
-    for (const char* a : {"-c:v", "libx264", "-preset", "veryfast", "-crf", "23", "-pix_fmt",
+    for (const char* a : {"-c:v", "libx264", "-preset", "ultrafast", "-crf", "23", "-pix_fmt",
                           "yuv420p", "-movflags", "+faststart", "-f", "mp4"})
       args.push_back(a);
     args.push_back(temp_);
