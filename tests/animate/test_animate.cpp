@@ -60,10 +60,20 @@ std::size_t filesIn(const std::string& dir) {
   return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir), {}));
 }
 
-TEST(Animate, BuiltWithCairo) {
-  // CI installs libcairo2-dev (tools/setup.sh): a build without it would skip every drawing test
-  EXPECT_TRUE(cli::animationAvailable());
+#if !METROSYNC_HAVE_CAIRO
+
+// A build without Cairo (CI has it: tools/setup.sh installs libcairo2-dev): the command is there,
+// says it is unavailable, exits 2 and writes nothing.
+TEST(Animate, SaysItIsUnavailableWithoutCairo) {
+  EXPECT_FALSE(cli::animationAvailable());
+  const std::string dir = scratchDir("animate", "nocairo");
+  const auto r = runMetrosync("animate --to 1 --out " + shellQuote(dir + "/v.mp4"));
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("animate is unavailable"), std::string::npos) << r.err;
+  EXPECT_EQ(filesIn(dir), 0u);
 }
+
+#else
 
 struct VideoCase {
   std::string rig, ext, options;
@@ -125,6 +135,8 @@ TEST(Animate, BadInputExitsTwoWithNothingWritten) {
   EXPECT_NE(r.err.find("ffmpeg not found"), std::string::npos) << r.err;
   EXPECT_EQ(filesIn(dir), 0u);
 }
+
+#endif  // METROSYNC_HAVE_CAIRO
 
 // The frames are the rows of a run sampled every frame interval, bit for bit (one run, no
 // re-stepping, no interpolation), also from a --from on or off the frame grid.

@@ -278,6 +278,8 @@ int animateCommand(const AnimateOptions& opt) {
               << fmt(static_cast<double>(tr.frames.size()) / req.fps, "%.2f")
               << " s of video (simulation " << fmt(sim_s, "%.2f") << " s, total "
               << fmt(all_s, "%.1f") << " s)\n";
+#else
+  (void)t0;  // not reached: animationAvailable() is false
 #endif
   return kSuccess;
 }
