@@ -11,10 +11,12 @@
 #include <map>
 #include <string>
 
+#include "sim/engines/direct/network_engine.h"
 #include "sim/engines/engine.h"
 #include "tests/common/run_metrosync.h"
 #include "tools/cli/animate.h"
 #include "tools/cli/animation_track.h"
+#include "yaml/network_loader.h"
 #include "yaml/rig_loader.h"
 #if METROSYNC_HAVE_CAIRO
 #include "tools/report/animation.h"
@@ -171,6 +173,37 @@ TEST(Animate, FramesAreTheRunsTrajectoryRows) {
       EXPECT_EQ(sink.trajectory[15 + k][3], later.frames[k].theta[0]);
     }
   }
+}
+
+// Every escapement impulse is flashed on the metronome that ticked: the ticks attributed from
+// one platform's event rows, and those detected between a network's samples, are the engines'
+// own counts.
+TEST(Animate, TicksAreTheEnginesTicks) {
+  cli::AnimationRequest req;
+  req.to = 3.0;
+  const Rig rig = defaultRig();
+  const cli::AnimationTrack tr = cli::trackRig(rig, *findEngine("direct"), req);
+  Rig same = rig;
+  same.sim.t_end_s = req.to;
+  same.sim.sample_s = req.frameInterval();
+  MemorySink sink;
+  const RunReport rep = findEngine("direct")->run(same, sink);
+  ASSERT_EQ(tr.ticks.size(), rep.counts.escapements.size());
+  for (std::size_t i = 0; i < tr.ticks.size(); ++i) {
+    EXPECT_GT(tr.ticks[i], 10) << i;
+    EXPECT_EQ(tr.ticks[i], rep.counts.escapements[i]) << i;
+  }
+
+  Network net = loadNetworkFile(kRigs + "two-boards-rollers.yaml");
+  const cli::AnimationTrack nt = cli::trackNetwork(net, req);
+  net.sim.t_end_s = req.to;
+  net.sim.sample_s = req.frameInterval();
+  struct Discard : NetworkSink {
+    void sample(double, const std::vector<double>&, const std::vector<PlatformMode>&) override {}
+  } discard;
+  const NetworkRunReport nrep = runNetworkDirect(net, discard);
+  ASSERT_EQ(nt.ticks.size(), nrep.ticks.size());
+  for (std::size_t i = 0; i < nt.ticks.size(); ++i) EXPECT_EQ(nt.ticks[i], nrep.ticks[i]) << i;
 }
 
 #if METROSYNC_HAVE_CAIRO

@@ -95,6 +95,8 @@ class FrameGrid {
 // The flashes (from the ticks), the traces drawn in each frame, the largest excursion.
 void finishFrames(AnimationTrack& tr, std::vector<Tick> ticks, const AnimationRequest& req) {
   std::sort(ticks.begin(), ticks.end(), [](const Tick& a, const Tick& b) { return a.t < b.t; });
+  tr.ticks.assign(tr.scene.metronomes.size(), 0);
+  for (const Tick& k : ticks) ++tr.ticks[k.i];
   const double fade = kFlashFrames * req.frameInterval();
   Scene& sc = tr.scene;
   std::size_t first = 0, trace = 0;
@@ -301,16 +303,19 @@ void NetworkTrackSink::sample(double t, const std::vector<double>& y,
   grid_.add(s, tr_.frames);
 }
 
-// A tick between two samples: |theta| passed theta_c outwards (the escapement's witness,
-// docs/events.md), dated by linear interpolation between the two samples.
+// A tick between two samples: side s theta passed theta_c outwards (the escapement's witness
+// s theta - theta_c rising, docs/events.md; through zero too, when a frame interval is a large
+// part of a swing), dated by linear interpolation between the two samples.
 void NetworkTrackSink::detectTicks(const Snapshot& s) {
   for (int j = 0; j < lay_.n && !prev_theta_.empty(); ++j) {
     const Escapement e = eq_.escapement(j);
     const int i = eq_.pendulum(j).rig_index;
-    const double a = std::abs(prev_theta_[i]), b = std::abs(s.theta[i]);
-    if (!e.active() || !(a < e.theta_c && b >= e.theta_c) || prev_theta_[i] * s.theta[i] < 0)
-      continue;
-    ticks.push_back({prev_t_ + (e.theta_c - a) / (b - a) * (s.t - prev_t_), i});
+    if (!e.active()) continue;
+    for (double side : {1.0, -1.0}) {
+      const double a = side * prev_theta_[i], b = side * s.theta[i];
+      if (a < e.theta_c && b >= e.theta_c)
+        ticks.push_back({prev_t_ + (e.theta_c - a) / (b - a) * (s.t - prev_t_), i});
+    }
   }
   prev_theta_ = s.theta;
   prev_t_ = s.t;

@@ -37,6 +37,7 @@ struct AnimationRequest {
 struct AnimationTrack {
   animation::Scene scene;
   std::vector<animation::FrameState> frames;  // frameCount() of them when complete
+  std::vector<long> ticks;  // (N) ticks flashed over the whole run [0, to], per metronome
   bool complete = true;
   std::string failure;  // why the run stopped early
 };
