@@ -1,5 +1,6 @@
 // metrosync: the command line (SPEC section 2). Every sub-command is registered with its handler
 // (tools/cli/command_line.h maps outcomes to the SPEC section 5 exit codes).
+#include "tools/cli/animate.h"
 #include "tools/cli/command_line.h"
 #include "tools/cli/continue.h"
 #include "tools/cli/figures.h"
@@ -17,6 +18,7 @@ int main(int argc, char** argv) {
   cli::FitOptions fit_opt;            // tools/cli/fit.h
   cli::MeasureOptions measure_opt;
   cli::FiguresOptions figures_opt;    // tools/cli/figures.h
+  cli::AnimateOptions animate_opt;    // tools/cli/animate.h
   std::vector<cli::Command> commands = cli::addRigCommands(app, opt);
   const cli::SweepCommands sweep = cli::addSweepCommands(app, sweep_opt);
   commands.push_back({sweep.sweep, [&] { return cli::sweepCommand(sweep_opt); }});
@@ -29,5 +31,7 @@ int main(int argc, char** argv) {
       {cli::addMeasureCommand(app, measure_opt), [&] { return cli::measureCommand(measure_opt); }});
   commands.push_back(
       {cli::addFiguresCommand(app, figures_opt), [&] { return cli::figuresCommand(figures_opt); }});
+  commands.push_back(
+      {cli::addAnimateCommand(app, animate_opt), [&] { return cli::animateCommand(animate_opt); }});
   return cli::runCommandLine(app, commands, argc, argv);
 }

@@ -1,0 +1,287 @@
+#include "tools/cli/animate.h"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "models/scaling.h"
+#include "tools/cli/animation_track.h"
+#include "tools/cli/engines.h"
+#include "tools/cli/network_run.h"
+#include "tools/report/outputs.h"
+#include "tools/report/plot.h"
+#include "tools/report/video_pipe.h"
+#include "yaml/network_loader.h"
+#include "yaml/rig_loader.h"
+#if METROSYNC_HAVE_CAIRO
+#include "tools/report/animation.h"
+#endif
+
+namespace metrosync::cli {
+
+namespace {
+
+// At most this many frames (an hour of video at 30 fps, 3.3 GB of raw frames per minute through
+// the pipe at 1280x720): a larger request is almost surely a mistake in --speed or --fps.
+constexpr long kMaxFrames = 108000;
+
+std::string fmt(double v, const char* f = "%.6g") {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+struct Output {
+  std::string path;
+  bool gif = false;
+};
+
+Output checkOutput(const AnimateOptions& opt, const std::string& rig_name) {
+  Output o;
+  o.path = opt.out.empty() ? defaultOutputDir(rig_name, "animate") + ".mp4" : opt.out;
+  std::string ext = std::filesystem::path(o.path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".mp4" && ext != ".gif")
+    throw UsageError("--out " + o.path + ": unknown extension '" + ext +
+                     "' (animate writes .mp4 or .gif)");
+  o.gif = ext == ".gif";
+  return o;
+}
+
+void parseSize(const AnimateOptions& opt, bool gif, AnimationRequest& req) {
+  req.width = gif ? 640 : 1280;
+  req.height = gif ? 360 : 720;
+  if (opt.size.empty()) return;
+  int w = 0, h = 0;
+  char tail = 0;
+  if (std::sscanf(opt.size.c_str(), "%dx%d%c", &w, &h, &tail) != 2 || w < 64 || h < 64 ||
+      w > 7680 || h > 4320 || w % 2 || h % 2)
+    throw UsageError("--size " + opt.size +
+                     ": expected WIDTHxHEIGHT, even numbers from 64x64 to 7680x4320");
+  req.width = w;
+  req.height = h;
+}
+
+// --speed, --fps, --from, --to in the rig's time unit, `unit` seconds (or scaled time) each.
+void setTimes(const AnimateOptions& opt, double duration, double unit, AnimationRequest& req) {
+  if (!(opt.speed > 0) || !std::isfinite(opt.speed))
+    throw UsageError("--speed " + fmt(opt.speed) + ": must be > 0");
+  const double to = std::isnan(opt.to) ? duration : opt.to;
+  if (!(opt.from >= 0)) throw UsageError("--from " + fmt(opt.from) + ": must be >= 0");
+  if (!(opt.from < to) || !std::isfinite(to))
+    throw UsageError("--from " + fmt(opt.from) + " --to " + fmt(to) +
+                     ": --from must be before --to");
+  req.from = opt.from * unit;
+  req.to = to * unit;
+  req.speed = opt.speed * unit;
+  const long frames = req.frameCount();
+  if (frames < 1 || frames > kMaxFrames)
+    throw UsageError("--fps " + fmt(req.fps) + " x (" + fmt(to) + " - " + fmt(opt.from) +
+                     ") / --speed " + fmt(opt.speed) + " = " + std::to_string(frames) +
+                     " frames: must be 1 to " + std::to_string(kMaxFrames));
+}
+
+LoadOptions loadOptions() {
+  LoadOptions lo;  // animate writes no trajectory: no output limit
+  for (const Engine* e : engines())
+    for (const std::string& n : e->integrators()) lo.integrators.push_back(n);
+  lo.integrator_help = "one of: " + integratorHelp();
+  return lo;
+}
+
+std::string displayName(const AnimateOptions& opt) {
+  return opt.rig.rig_path.empty() ? "<default rig>" : opt.rig.rig_path;
+}
+
+std::string speedText(double speed, bool physical) {
+  if (!physical) return "tau " + fmt(speed, "%.3g") + " per second of video";
+  return speed == 1.0 ? "real time" : "x" + fmt(speed, "%.3g") + " speed";
+}
+
+}  // namespace
+
+CLI::App* addAnimateCommand(CLI::App& app, AnimateOptions& opt) {
+  CLI::App* cmd = app.add_subcommand(
+      "animate", "draw the rig in motion (full model) into an MP4 or GIF video through ffmpeg");
+  cmd->add_option("RIG", opt.rig.rig_path,
+                  "rig file (YAML, SPEC section 1, or a network of platforms); default: the "
+                  "built-in rig");
+  cmd->add_option("--set", opt.rig.sets, "override a rig key, e.g. --set platform.friction.mu=0.3")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  cmd->add_option("--out", opt.out,
+                  "the video: FILE.mp4 (H.264) or FILE.gif (default: runs/<rig name>-animate.mp4)")
+      ->type_name("FILE");
+  cmd->add_option("--speed", opt.speed,
+                  "seconds of motion (a scaled rig: units of tau) per second of video")
+      ->capture_default_str();
+  cmd->add_option("--fps", opt.fps, "frames per second of video (default 30; GIF 20)");
+  cmd->add_option("--from", opt.from, "first instant drawn (s; a scaled rig: tau)")
+      ->capture_default_str();
+  cmd->add_option("--to", opt.to, "last instant (default: the rig's simulation.duration)");
+  cmd->add_option("--size", opt.size, "frame size (default 1280x720; GIF 640x360)")
+      ->type_name("WxH");
+  cmd->add_option("--engine", opt.rig.engine, fullEngineHelp());
+  cmd->add_flag("-q,--quiet", opt.rig.quiet, "no progress bar and no summary");
+  cmd->footer(
+      "Frames: fps * (to - from) / speed of them, at the instants k * speed / fps from --from "
+      "(rounded to that grid): each is a row of the run's trajectory. Exit codes: 0 success; 2 bad "
+      "command line or rig, ffmpeg missing, or built without Cairo (nothing written); 3 the "
+      "simulation failed (nothing written); 1 anything else.");
+  return cmd;
+}
+
+#if METROSYNC_HAVE_CAIRO
+
+bool animationAvailable() {
+  return true;
+}
+
+namespace {
+
+volatile sig_atomic_t g_stop = 0;
+extern "C" void onAnimateSignal(int) {
+  g_stop = 1;
+}
+
+// "[#####.....]  50%  900/1800 frames" redrawn in place on a terminal; elsewhere one line per
+// tenth of the frames.
+class Progress {
+ public:
+  Progress(long total, bool quiet) : total_(total), quiet_(quiet), tty_(::isatty(2)) {}
+  void update(long done) {
+    if (quiet_) return;
+    const int pct = static_cast<int>(100 * done / total_);
+    if (tty_ && pct != last_) {
+      const int bar = pct / 4;
+      std::fprintf(stderr, "\ranimate: [%s%s] %3d%% %ld/%ld frames", std::string(bar, '#').c_str(),
+                   std::string(25 - bar, '.').c_str(), pct, done, total_);
+      if (done == total_) std::fputc('\n', stderr);
+    } else if (!tty_ && pct / 10 != last_ / 10) {
+      std::fprintf(stderr, "animate: %3d%% (%ld/%ld frames)\n", pct / 10 * 10, done, total_);
+    }
+    last_ = pct;
+  }
+
+ private:
+  long total_;
+  bool quiet_, tty_;
+  int last_ = -1;
+};
+
+void render(const AnimationTrack& tr, const VideoSpec& spec, bool quiet) {
+  std::filesystem::path parent = std::filesystem::path(spec.path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+  if (ec) throw UsageError("--out " + spec.path + ": cannot create " + parent.string());
+  const animation::SceneLayout layout = animation::layoutScene(tr.scene);
+  animation::Surface surface(
+      cairo_image_surface_create(CAIRO_FORMAT_ARGB32, spec.width, spec.height));
+  g_stop = 0;
+  signal(SIGINT, onAnimateSignal);
+  signal(SIGTERM, onAnimateSignal);
+  signal(SIGPIPE, SIG_IGN);  // a dead ffmpeg is a write error, reported with its log
+  VideoPipe pipe(spec);
+  Progress progress(static_cast<long>(tr.frames.size()), quiet);
+  for (std::size_t k = 0; k < tr.frames.size(); ++k) {
+    if (g_stop) throw std::runtime_error("interrupted by a signal: no video written");
+    animation::drawFrame(surface.get(), tr.scene, layout, tr.frames[k]);
+    pipe.write(cairo_image_surface_get_data(surface.get()),
+               cairo_image_surface_get_stride(surface.get()));
+    progress.update(static_cast<long>(k + 1));
+  }
+  pipe.finish();
+}
+
+}  // namespace
+
+#else
+
+bool animationAvailable() {
+  return false;
+}
+
+#endif
+
+namespace {
+
+// The run and its frames: one platform on the chosen full-model engine, or a network.
+AnimationTrack simulate(const AnimateOptions& opt, AnimationRequest& req, std::string& rig_name) {
+  Options o = opt.rig;
+  o.max_output = HUGE_VAL;
+  if (isNetworkRun(o)) {
+    const Network net = loadNetworkFile(o.rig_path, o.sets, loadOptions());
+    if (!o.engine.empty() && o.engine != "direct")
+      throw UsageError("--engine " + o.engine + ": a network runs on the direct engine only");
+    rig_name = net.name;
+    setTimes(opt, net.sim.t_end_s, 1.0, req);
+    req.title = net.name + " - network of " + std::to_string(net.platforms.size()) +
+                " platforms - " + speedText(opt.speed, true);
+    return trackNetwork(net, req);
+  }
+  const Rig rig = o.rig_path.empty() ? defaultRig(o.sets, loadOptions())
+                                     : loadRigFile(o.rig_path, o.sets, loadOptions());
+  const Engine& engine = chooseEngine(o.engine, "full", rig, displayName(opt));
+  rig_name = rig.name;
+  const ScaledParams sp = computeScaled(rig);
+  const bool physical = rig.units == Units::Physical;
+  // a scaled rig's times are in tau: t = tau / epsilon (its time_scale is 1)
+  setTimes(opt, physical ? rig.sim.t_end_s : sp.tau_end,
+           physical ? 1.0 : sp.time_scale_s / sp.epsilon, req);
+  req.title = rig.name + " - " + engine.name() + " - " + speedText(opt.speed, physical);
+  return trackRig(rig, engine, req);
+}
+
+}  // namespace
+
+int animateCommand(const AnimateOptions& opt) {
+  if (!animationAvailable())
+    throw UsageError(
+        "animate is unavailable: this metrosync was built without Cairo (install "
+        "libcairo2-dev and configure again; docs/animate.md)");
+  const std::string ffmpeg = findExecutable("ffmpeg");
+  if (ffmpeg.empty())
+    throw UsageError(
+        "ffmpeg not found on PATH: animate encodes its video with ffmpeg (Debian "
+        "package ffmpeg)");
+  // the options first (a bad --out or --fps is said before the rig is read), then the run
+  Output out;
+  if (!opt.out.empty()) out = checkOutput(opt, "");
+  if (!std::isnan(opt.fps) && !(opt.fps > 0 && std::isfinite(opt.fps)))
+    throw UsageError("--fps " + fmt(opt.fps) + ": must be > 0");
+  AnimationRequest req;
+  req.fps = std::isnan(opt.fps) ? (out.gif ? 20.0 : 30.0) : opt.fps;
+  parseSize(opt, out.gif, req);
+  std::string rig_name;
+  const auto t0 = std::chrono::steady_clock::now();
+  const AnimationTrack tr = simulate(opt, req, rig_name);
+  out = checkOutput(opt, rig_name);
+  if (!tr.complete) {
+    std::cerr << "metrosync: error: full model: " << tr.failure
+              << "\nmetrosync: no video written\n";
+    return kSimulationFailed;
+  }
+#if METROSYNC_HAVE_CAIRO
+  const double sim_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  render(tr, {out.path, ffmpeg, req.width, req.height, req.fps, out.gif}, opt.rig.quiet);
+  const double all_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!opt.rig.quiet)
+    std::cout << out.path << ": " << tr.frames.size() << " frames, " << req.width << "x"
+              << req.height << ", " << fmt(req.fps) << " fps, "
+              << fmt(static_cast<double>(tr.frames.size()) / req.fps, "%.2f")
+              << " s of video (simulation " << fmt(sim_s, "%.2f") << " s, total "
+              << fmt(all_s, "%.1f") << " s)\n";
+#else
+  (void)t0;  // not reached: animationAvailable() is false
+#endif
+  return kSuccess;
+}
+
+}  // namespace metrosync::cli
