@@ -232,7 +232,7 @@ nlohmann::json NetworkFiles::summary(const NetworkRunReport& report) const {
                   {"r", m.last_all.r}};
   j["complete"] = report.complete;
   if (!report.complete) j["failure"] = report.failure;
-  j["engine"] = "direct";
+  j["engine"] = report.engine;
   j["integrator"] = report.integrator;
   j["counts"] = {{"steps", report.steps},           {"rhs_evals", report.rhs_evals},
                  {"events", report.events},         {"escapements", report.ticks},

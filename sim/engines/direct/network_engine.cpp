@@ -79,20 +79,6 @@ struct Witness {
   int side = 1;
 };
 
-// The rig the integrator choice and the scales are taken from: the first platform's, carrying
-// every swinging metronome of the network.
-Rig unionRig(const Network& net) {
-  Rig rig = net.platforms[0].rig;
-  rig.metronomes.clear();
-  for (const NetworkPlatform& p : net.platforms)
-    for (const MetronomeSpec& m : p.rig.metronomes)
-      if (!m.locked) rig.metronomes.push_back(m);
-  if (rig.metronomes.empty()) throw std::invalid_argument("the network has no swinging pendulum");
-  if (rig.platform.law == FrictionLaw::Fixed) rig.platform.law = FrictionLaw::None;
-  rig.platform.mass_kg = std::max(rig.platform.mass_kg, 1.0);  // scales only
-  return rig;
-}
-
 class NetworkRun {
  public:
   NetworkRun(const Network& net, NetworkSink& sink);
@@ -134,10 +120,10 @@ NetworkRun::NetworkRun(const Network& net, NetworkSink& sink)
       lay_(eq_.layout()),
       modes_(lay_.platforms, PlatformMode::Stuck),
       rhs_(eq_, modes_),
-      tab_(ode::rkTableau(net.sim.integrator.empty() ? defaultDirectIntegrator(unionRig(net))
+      tab_(ode::rkTableau(net.sim.integrator.empty() ? defaultDirectIntegrator(net.unionRig())
                                                      : net.sim.integrator)),
       stepper_(tab_, lay_.dim(), rhs_) {
-  const Rig scales = unionRig(net);
+  const Rig scales = net.unionRig();
   const ScaledParams sp = computeScaled(scales);
   period_ = kTwoPi * sp.time_scale_s;
   t_end_ = net.sim.t_end_s;
