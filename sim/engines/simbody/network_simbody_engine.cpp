@@ -292,8 +292,16 @@ void NetworkSimbodyRun::checkNewStep(Integrator& integ, Integrator::SuccessfulSt
     }
   }
   if (!against) return;
-  noteDiscontinuity(adv.getTime());
-  resolveWindow(adv);
+  // the samples inside the step first, from its interpolant (the stop restarts at its end)
+  for (double ts = next_sample_ * sample_dt_; ts <= adv.getTime() && ts <= t_end_;
+       ts = next_sample_ * sample_dt_) {
+    if (integ.getTime() < ts) integ.stepTo(ts, t_end_);
+    sample(integ.getState());
+    ++next_sample_;
+  }
+  State& end = integ.updAdvancedState();
+  noteDiscontinuity(end.getTime());
+  resolveWindow(end);
   integ.reinitialize(Stage::Model, false);
 }
 
@@ -404,6 +412,10 @@ NetworkRunReport NetworkSimbodyRun::run() {
   try {
     while (report_.complete && integ->getTime() < t_end_) {
       const double ts = next_sample_ * sample_dt_;
+      if (ts < integ->getTime()) {  // taken already (a sample at the end of a step)
+        ++next_sample_;
+        continue;
+      }
       const Integrator::SuccessfulStepStatus status = integ->stepTo(std::min(ts, t_end_), t_end_);
       if (integ->getAdvancedTime() > checked_until) {
         checkNewStep(*integ, status);
@@ -412,7 +424,7 @@ NetworkRunReport NetworkSimbodyRun::run() {
       }
       if (status == Integrator::ReachedEventTrigger) {
         handleTrigger(*integ);
-      } else if (integ->getTime() == ts && ts <= t_end_) {
+      } else if (integ->getTime() == next_sample_ * sample_dt_ && integ->getTime() <= t_end_) {
         sample(integ->getState());
         ++next_sample_;
       }
