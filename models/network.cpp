@@ -47,4 +47,14 @@ Rig Network::unionRig() const {
   return rig;
 }
 
+Rig Network::scalesRig() const {
+  Rig rig = platforms.at(0).rig;
+  rig.metronomes.clear();
+  for (const NetworkPlatform& p : platforms)
+    for (const MetronomeSpec& m : p.rig.metronomes)
+      if (!m.locked && rig.metronomes.empty()) rig.metronomes.push_back(m);
+  if (rig.platform.law == FrictionLaw::Fixed) rig.platform.law = FrictionLaw::None;
+  return rig;
+}
+
 }  // namespace metrosync

@@ -51,6 +51,9 @@ struct Network {
   // the first platform's, carrying every swinging metronome of the network (metronome 1 sets the
   // scales). Throws std::invalid_argument when the network has no swinging pendulum.
   Rig unionRig() const;
+  // The rig of the network's output scales (tau, scaled A in envelope.csv): the first platform
+  // with only the network's first swinging metronome.
+  Rig scalesRig() const;
 };
 
 }  // namespace metrosync
