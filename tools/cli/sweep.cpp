@@ -735,7 +735,7 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
   c.sweep
       ->add_option("--model", opt.model,
                    "slow: the slow flow; full: the full model (default: the --engine's model, "
-                   "else slow)")
+                   "else slow; full for a network of platforms, docs/networks.md)")
       ->check(CLI::IsMember({"slow", "full"}));
   c.sweep->add_option("--engine", opt.engine, anyEngineHelp());
   c.sweep
