@@ -146,6 +146,39 @@ TEST(NetworkSimbody, StackThatSlipsConservesMomentumAndClosesItsLedger) {
   EXPECT_GT(rep.ledger.friction_out_J, 0.0);
 }
 
+TEST(NetworkSimbody, StackStuckThroughoutIsOnePlatformWithBoth) {
+  // `top` on `base` with a friction that never lets go: the pair is one board of both masses
+  // carrying all three metronomes (the single-platform Simbody engine)
+  // (the base sticks and slips: while both contacts stick, their holding forces come from one
+  // solve)
+  const std::string base = platform("base", "{law: coulomb, mu: 0.005}", "",
+                                    metronome(0.785, 0.0) + metronome(-0.785, 0.25));
+  const std::string top =
+      platform("top", "{law: coulomb, mu: 1.0e4}", "    on: base\n", metronome(0.5, -0.3, 0.03));
+  const Network net = loadNetworkText(network(base + top, "", 3.0, 1e-12), "stack.yaml");
+  Samples sink;
+  const NetworkRunReport rep = runNetworkSimbody(net, sink);
+  ASSERT_TRUE(rep.complete) << rep.failure;
+  Rig both = net.platforms[0].rig;
+  both.platform.mass_kg += net.platforms[1].rig.platform.mass_kg;
+  for (const MetronomeSpec& m : net.platforms[1].rig.metronomes) both.metronomes.push_back(m);
+  MemorySink one;
+  const RunReport single = runFullModel(both, one);
+  ASSERT_TRUE(single.complete) << single.failure;
+  EXPECT_EQ(rep.stick_slip, single.counts.stick_slip);
+  EXPECT_GT(rep.stick_slip, 0);
+  const std::vector<double>& row = single.final_trajectory_row;
+  const network::Layout lay = network::NetworkEquations(net).layout();
+  EXPECT_NEAR(rep.final_state[lay.x(0)], row[1], kAgree);
+  EXPECT_NEAR(rep.final_state[lay.x(1)], row[1], kAgree);  // the top never slipped
+  EXPECT_NEAR(rep.final_state[lay.v(0)], row[2], kAgree);
+  EXPECT_NEAR(rep.final_state[lay.v(1)], row[2], kAgree);
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_NEAR(rep.final_state[lay.theta(j)], row[3 + 2 * j], kAgree) << j;
+    EXPECT_NEAR(rep.final_state[lay.omega(j)], row[4 + 2 * j], kAgree) << j;
+  }
+}
+
 TEST(NetworkSimbody, StackAgreesWithTheDirectEngine) {
   // both contacts Coulomb (often stuck together: holding forces from one solve), a third board
   // on a ground spring and damper, coupled to the base
@@ -168,6 +201,17 @@ TEST(NetworkSimbody, StackAgreesWithTheDirectEngine) {
   EXPECT_EQ(d.stick_slip, s.stick_slip);
   EXPECT_EQ(d.slip_reversals, s.slip_reversals);
   EXPECT_EQ(d.events, s.events);
+  // at every sample each stuck contact holds within its bound (a window that left one beyond it
+  // would keep it stuck for ever: its witness would never cross again)
+  const network::NetworkEquations eq(net);
+  for (const Samples* run : {&sd, &ss})
+    for (std::size_t r = 0; r < run->y.size(); ++r) {
+      const std::vector<double> h = eq.holdingForces(run->y[r].data(), run->modes[r]);
+      for (int p = 0; p < eq.numPlatforms(); ++p)
+        if (eq.stuck(p, run->modes[r]))
+          EXPECT_LT(std::abs(h[p]), eq.block(p).friction.coulomb.bound * (1 + 1e-9))
+              << "platform " << p << " t = " << run->t[r];
+    }
   // scaled units, as tests/direct/test_agreement.cpp
   const ScaledParams sp = computeScaled(net.unionRig());
   const double omega0 = 1.0 / sp.time_scale_s;

@@ -238,8 +238,10 @@ void NetworkRun::absorb(const WindowOutcome& out, int p) {
   for (int j : out.ticked) ++report_.ticks[eq_.pendulum(eq_.block(p).first + j).rig_index];
 }
 
-// Platforms whose slip velocity an impulse below them changed: stuck with a velocity, or slipping
-// against their mode.
+// Platforms whose contact the window's later changes left inconsistent: stuck with a velocity (an
+// impulse below them), stuck beyond the bound (another contact's switch or tick changed the
+// forces on it after its own rule was applied: left so, its witness would start below zero and
+// never cross), or slipping against their mode.
 void NetworkRun::settleSupports() {
   for (int pass = 0; pass < kSettlePassesPerPlatform * lay_.platforms; ++pass) {
     bool changed = false;
@@ -248,7 +250,9 @@ void NetworkRun::settleSupports() {
       if (!b.moves || !b.friction.setValued()) continue;
       const double u = eq_.slipVelocity(y_.data(), p);
       const bool off =
-          modes_[p] == PlatformMode::Stuck ? u != 0 : static_cast<int>(modes_[p]) * u <= 0;
+          modes_[p] == PlatformMode::Stuck
+              ? u != 0 || b.friction.coulomb.breaksFree(eq_.holdingForces(y_.data(), modes_)[p])
+              : static_cast<int>(modes_[p]) * u <= 0;
       if (!off) continue;
       const WindowOutcome out = resolvers_[p].settleAfterSupportImpulse(*views_[p]);
       absorb(out, p);

@@ -368,8 +368,9 @@ void NetworkSimbodyRun::resolveWindow(State& s) {
   ns_.system().realize(s, Stage::Acceleration);
 }
 
-// Contacts whose slip velocity an impulse on the platform below changed: stuck with a velocity,
-// or slipping against their mode.
+// Contacts the window's later changes left inconsistent (as the direct engine): stuck with a
+// velocity (an impulse below), stuck beyond the bound (another contact's switch or tick changed
+// the forces on it), or slipping against their mode.
 void NetworkSimbodyRun::settleSupports(State& s) {
   for (int pass = 0; pass < kSettlePassesPerPlatform * lay_.platforms; ++pass) {
     bool changed = false;
@@ -378,7 +379,11 @@ void NetworkSimbodyRun::settleSupports(State& s) {
       if (!c) continue;
       const double u = c->slipVelocity(s);
       const PlatformMode m = c->mode(s);
-      const bool off = m == PlatformMode::Stuck ? u != 0 : static_cast<int>(m) * u <= 0;
+      bool off = static_cast<int>(m) * u <= 0;
+      if (m == PlatformMode::Stuck) {
+        ns_.system().realize(s, Stage::Acceleration);
+        off = u != 0 || c->law().breaksFree(c->holdingForce(s));
+      }
       if (!off) continue;
       absorb(resolvers_[p].settleAfterSupportImpulse(*views_[p]), p);
       changed = true;
