@@ -1,7 +1,7 @@
 // `metrosync sweep` over a coupling of a network of platforms (docs/networks.md): the network's
 // label per grid point, checked against independent truth (two detuned metronomes on uncoupled
 // boards cannot lock; boards joined by a stiff spring are one board, whose two metronomes lock)
-// and against `metrosync run` of the same point; a 2-D map; resume and merge keep working.
+// and against `metrosync run` of the same point; a 2-D map; --resume after a kill.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -116,6 +116,20 @@ TEST(NetworkSweep, TwoKeysMakeAMapAndTheSlowFlowIsRefused) {
   EXPECT_EQ(slow.code, 2);
   EXPECT_NE(slow.err.find("a network of 2 platforms"), std::string::npos) << slow.err;
   EXPECT_FALSE(std::filesystem::exists(d + "/slow"));
+}
+
+TEST(NetworkSweep, ResumeAfterAKillGivesTheSameTable) {
+  const std::string d = scratchDir("netsweep", "resume", true);
+  const std::string args = "sweep " + shellQuote(pairRig(d)) +
+                           " --vary couplings.0.k=0:1000:4 --set simulation.duration=10 "
+                           "--jobs 1 -q --out ";
+  ASSERT_EQ(runMetrosync(args + shellQuote(d + "/whole")).code, 0);
+  testing_support::RunIn killed;
+  killed.env = "METROSYNC_SWEEP_STOP_AFTER=2";
+  EXPECT_EQ(runMetrosync(args + shellQuote(d + "/cut"), killed).code, 137);
+  EXPECT_EQ(rows(d + "/cut/regimes.csv").size(), 3u);  // the header and two points
+  ASSERT_EQ(runMetrosync(args + shellQuote(d + "/cut") + " --resume").code, 0);
+  EXPECT_EQ(slurp(d + "/cut/regimes.csv"), slurp(d + "/whole/regimes.csv"));
 }
 
 }  // namespace
