@@ -179,40 +179,45 @@ TEST(NetworkSimbody, StackStuckThroughoutIsOnePlatformWithBoth) {
   }
 }
 
-TEST(NetworkSimbody, StackAgreesWithTheDirectEngine) {
-  // both contacts Coulomb (often stuck together: holding forces from one solve), a third board
-  // on a ground spring and damper, coupled to the base
-  const std::string side =
-      "  - name: side\n    mass: 0.2\n    friction: {law: viscous, c: 0.02}\n"
-      "    spring: {k: 3.0, c: 0.01}\n    metronomes:\n" +
-      metronome(0.3, 0.1);
-  Network net = stack("{law: coulomb, mu: 6.5e-4}", 3.0, 1e-13, side,
-                      "couplings:\n  - {between: [base, side], k: 2.0, c: 0.005}\n");
-  Network net_direct = net;
+// At every sample each Coulomb contact is consistent with its mode: a stuck one holds within its
+// bound (left beyond it by a window, its witness would never cross again), a slipping one moves
+// its own way (friction never pushes a slip along: a reversal inside a step was missed).
+void expectConsistentContacts(const Network& net, const Samples& run) {
+  const network::NetworkEquations eq(net);
+  for (std::size_t r = 0; r < run.y.size(); ++r) {
+    const std::vector<double> h = eq.holdingForces(run.y[r].data(), run.modes[r]);
+    for (int p = 0; p < eq.numPlatforms(); ++p) {
+      if (!eq.block(p).moves || !eq.block(p).friction.setValued()) continue;
+      if (eq.stuck(p, run.modes[r]))
+        EXPECT_LT(std::abs(h[p]), eq.block(p).friction.coulomb.bound * (1 + 1e-9))
+            << "platform " << p << " t = " << run.t[r];
+      else
+        EXPECT_GE(static_cast<int>(run.modes[r][p]) * eq.slipVelocity(run.y[r].data(), p), 0.0)
+            << "platform " << p << " t = " << run.t[r];
+    }
+  }
+}
+
+// Both network engines on `net` (Simbody at `simbody_accuracy`, direct verner76 at 1e-12): the
+// counts exactly, every sample to 1e-8 in scaled units, every contact consistent.
+void expectEnginesAgree(const Network& net, double simbody_accuracy, long min_switches) {
+  Network net_simbody = net, net_direct = net;
+  net_simbody.sim.accuracy = simbody_accuracy;
+  net_simbody.sim.integrator.clear();
   net_direct.sim.accuracy = 1e-12;
   net_direct.sim.integrator = "verner76";
   Samples sd, ss;
   const NetworkRunReport d = runNetworkDirect(net_direct, sd);
-  const NetworkRunReport s = runNetworkSimbody(net, ss);
+  const NetworkRunReport s = runNetworkSimbody(net_simbody, ss);
   ASSERT_TRUE(d.complete) << d.failure;
   ASSERT_TRUE(s.complete) << s.failure;
-  EXPECT_GT(d.stick_slip, 10);
+  EXPECT_GE(d.stick_slip + d.slip_reversals, min_switches);
   EXPECT_EQ(d.ticks, s.ticks);
   EXPECT_EQ(d.stick_slip, s.stick_slip);
   EXPECT_EQ(d.slip_reversals, s.slip_reversals);
   EXPECT_EQ(d.events, s.events);
-  // at every sample each stuck contact holds within its bound (a window that left one beyond it
-  // would keep it stuck for ever: its witness would never cross again)
-  const network::NetworkEquations eq(net);
-  for (const Samples* run : {&sd, &ss})
-    for (std::size_t r = 0; r < run->y.size(); ++r) {
-      const std::vector<double> h = eq.holdingForces(run->y[r].data(), run->modes[r]);
-      for (int p = 0; p < eq.numPlatforms(); ++p)
-        if (eq.stuck(p, run->modes[r]))
-          EXPECT_LT(std::abs(h[p]), eq.block(p).friction.coulomb.bound * (1 + 1e-9))
-              << "platform " << p << " t = " << run->t[r];
-    }
-  // scaled units, as tests/direct/test_agreement.cpp
+  expectConsistentContacts(net, sd);
+  expectConsistentContacts(net, ss);
   const ScaledParams sp = computeScaled(net.unionRig());
   const double omega0 = 1.0 / sp.time_scale_s;
   const network::Layout lay = network::NetworkEquations(net).layout();
@@ -229,6 +234,37 @@ TEST(NetworkSimbody, StackAgreesWithTheDirectEngine) {
           << j;
     }
   }
+}
+
+TEST(NetworkSimbody, FixedPlatformsAgreeWithTheDirectEngine) {
+  // a board resting on a fixed one (its contact slips both ways, some slips reversing within a
+  // step of either engine after starting from rest), a free board coupled to both
+  const std::string wall = platform("wall", "{law: fixed}", "", metronome(0.785, 0.0));
+  const std::string top = platform("top", "{law: coulomb, mu: 0.003}", "    on: wall\n",
+                                   metronome(0.3, -2.0, 0.0227) + metronome(-0.5, 1.0));
+  const std::string free =
+      "  - name: free\n    mass: 0.2\n    friction: {law: none}\n"
+      "    start: {x: 0.01, v: 0.02}\n    metronomes:\n" +
+      metronome(0.6, 0.5, 0.023);
+  const Network net =
+      loadNetworkText(network(wall + top + free,
+                              "couplings:\n  - {between: [wall, free], k: 3.0, c: 0.01}\n"
+                              "  - {between: [top, free], k: 1.0}\n",
+                              4.0, 1e-12),
+                      "fixed.yaml");
+  expectEnginesAgree(net, 1e-13, 20);
+}
+
+TEST(NetworkSimbody, StackAgreesWithTheDirectEngine) {
+  // both contacts Coulomb (often stuck together: holding forces from one solve), a third board
+  // on a ground spring and damper, coupled to the base
+  const std::string side =
+      "  - name: side\n    mass: 0.2\n    friction: {law: viscous, c: 0.02}\n"
+      "    spring: {k: 3.0, c: 0.01}\n    metronomes:\n" +
+      metronome(0.3, 0.1);
+  const Network net = stack("{law: coulomb, mu: 6.5e-4}", 3.0, 1e-12, side,
+                            "couplings:\n  - {between: [base, side], k: 2.0, c: 0.005}\n");
+  expectEnginesAgree(net, 1e-13, 10);
 }
 
 }  // namespace

@@ -27,6 +27,9 @@ constexpr double kTwoPi = 6.283185307179586;
 constexpr double kMaxStepPeriods = 0.05;
 // The shortest step, relative to the run's time: below it the step size has underflowed.
 constexpr double kMinStepRelative = 1e-14;
+// Points of the dense output scanned for the reversal of a slip that started from rest within
+// the step (locate()).
+constexpr int kRestScan = 16;
 // Resolution passes per event window: each pass settles the platforms whose support moved; a
 // stack of P platforms needs at most P passes.
 constexpr int kSettlePassesPerPlatform = 2;
@@ -216,7 +219,6 @@ std::optional<double> NetworkRun::locate(const std::vector<double>& g0,
   for (std::size_t i = 0; i < witnesses_.size(); ++i) {
     const Witness& w = witnesses_[i];
     if (w.tick && !armed(w)) continue;
-    if (!crossed(Direction::Rising, g0[i], g1[i])) continue;
     auto f = [&](double th) {
       if (w.tick)  // one component of the dense output: O(1), whatever the network's size
         return TickWitness{w.index, w.side}.value(eq_.escapement(w.index),
@@ -224,7 +226,26 @@ std::optional<double> NetworkRun::locate(const std::vector<double>& g0,
       stepper_.interpolate(th, scratch_.data());
       return witnessValue(w, scratch_.data(), eq_.holdingForces(scratch_.data(), modes_));
     };
-    const ode::Bracket br = ode::illinois(f, 0.0, g0[i], 1.0, g1[i]);
+    double a = 0.0, ga = g0[i], b = 1.0, gb = g1[i];
+    if (!w.tick && g0[i] == 0 && g1[i] > 0) {
+      // a slip that started from rest (its witness exactly 0 at the step's start: no crossing)
+      // and runs against its mode at the step's end reversed inside the step: its crossing is
+      // bracketed on the dense output (within the first 1 / kRestScan of the step: taken there)
+      b = 1.0 / kRestScan;
+      gb = f(b);
+      for (int k = 1; k < kRestScan && !(ga < 0 && gb >= 0); ++k) {
+        a = b, ga = gb;
+        b = (k + 1.0) / kRestScan;
+        gb = k + 1 < kRestScan ? f(b) : g1[i];
+      }
+      if (!(ga < 0)) {
+        if (!earliest || 1.0 / kRestScan < *earliest) earliest = 1.0 / kRestScan;
+        continue;
+      }
+    } else if (!crossed(Direction::Rising, g0[i], g1[i])) {
+      continue;
+    }
+    const ode::Bracket br = ode::illinois(f, a, ga, b, gb);
     if (!earliest || br.hi < *earliest) earliest = br.hi;
   }
   return earliest;

@@ -40,6 +40,12 @@ namespace {
 // The longest step, in fast periods: the direct network engine's, so that a witness cannot cross
 // and return within one step (a tick witness stays above zero for about a tenth of a period).
 constexpr double kMaxStepPeriods = 0.05;
+// A step that ends with a slip running against its mode (it started from rest, where Simbody
+// reports no transition away from zero, and reversed inside the step) is redone from its start
+// with steps this many times smaller, at most kMaxRedoDepth times in a row; then the slip is
+// stopped at the step's end.
+constexpr double kRedoShrink = 8.0;
+constexpr int kMaxRedoDepth = 5;
 // Resolution passes per event window: each pass settles the platforms whose support moved; a
 // stack of P platforms needs at most P passes.
 constexpr int kSettlePassesPerPlatform = 2;
@@ -174,7 +180,10 @@ class NetworkSimbodyRun {
  private:
   State startState();
   std::unique_ptr<Integrator> makeRunIntegrator(const State& s0);
-  void checkNewStep(Integrator& integ, Integrator::SuccessfulStepStatus status);
+  // true when the step was redone (the integrator is back at the step's start)
+  bool checkNewStep(Integrator& integ, Integrator::SuccessfulStepStatus status);
+  bool slipAgainstMode(const State& s);
+  void redoStep(Integrator& integ);
   void handleTrigger(Integrator& integ);
   bool windowIsLive() const;
   void resolveWindow(State& s);
@@ -204,6 +213,11 @@ class NetworkSimbodyRun {
   double period_ = 1.0, sample_dt_ = 1.0, t_end_ = 0.0;
   long next_sample_ = 0;
   std::vector<double> y_;
+  // the last accepted step's end (a redo starts there) and the redo's state
+  State back_;
+  int redo_depth_ = 0;
+  double redo_until_ = -1.0;
+  long steps_base_ = 0, evals_base_ = 0;
 };
 
 NetworkSimbodyRun::NetworkSimbodyRun(const Network& net, NetworkSink& sink)
@@ -267,42 +281,72 @@ std::unique_ptr<Integrator> NetworkSimbodyRun::makeRunIntegrator(const State& s0
   return integ;
 }
 
-// A step just taken: its end re-arms the ticks whose pendulums are back inside; a slip found
-// running against its mode at a step end (it started from rest, where Simbody reports no
-// transition away from zero, and ended inside the step) is resolved there.
-void NetworkSimbodyRun::checkNewStep(Integrator& integ, Integrator::SuccessfulStepStatus status) {
-  State& adv = integ.updAdvancedState();
-  for (int k = 0; k < adv.getNY(); ++k)
-    if (!std::isfinite(adv.getY()[k])) {
-      fail(adv.getTime(), "the state is not finite");
-      return;
-    }
-  for (int p = 0; p < lay_.platforms; ++p) {
-    const network::Block& b = eq_.block(p);
-    for (int j = 0; j < b.count; ++j) resolvers_[p].rearm(j, ns_.theta(adv, b.first + j));
-  }
-  if (status == Integrator::ReachedEventTrigger) return;
+// Marks every slip running against its mode in s (pending_), and says whether there is one.
+bool NetworkSimbodyRun::slipAgainstMode(const State& s) {
   bool against = false;
   for (int p = 0; p < lay_.platforms; ++p) {
     const CoulombContact* c = ns_.contact(p);
-    if (!c || c->mode(adv) == PlatformMode::Stuck) continue;
-    if (static_cast<int>(c->mode(adv)) * c->slipVelocity(adv) < 0) {
+    if (!c || c->mode(s) == PlatformMode::Stuck) continue;
+    if (static_cast<int>(c->mode(s)) * c->slipVelocity(s) < 0) {
       pending_.contacts[p] = 1;
       against = true;
     }
   }
-  if (!against) return;
-  // the samples inside the step first, from its interpolant (the stop restarts at its end)
-  for (double ts = next_sample_ * sample_dt_; ts <= adv.getTime() && ts <= t_end_;
-       ts = next_sample_ * sample_dt_) {
-    if (integ.getTime() < ts) integ.stepTo(ts, t_end_);
-    sample(integ.getState());
-    ++next_sample_;
+  return against;
+}
+
+// Back to the last step's start, with steps kRedoShrink times smaller until past its end.
+void NetworkSimbodyRun::redoStep(Integrator& integ) {
+  const double t_end_of_step = integ.getAdvancedTime();
+  pending_.clear();
+  noteDiscontinuity(t_end_of_step);
+  integ.setMaximumStepSize(
+      std::max((t_end_of_step - back_.getTime()) / kRedoShrink, 1e-14 * period_));
+  redo_until_ = t_end_of_step;
+  ++redo_depth_;
+  steps_base_ += integ.getNumStepsTaken();
+  const long evals_before = integ.getNumRealizations();
+  integ.initialize(back_);
+  evals_base_ += evals_before - integ.getNumRealizations();
+}
+
+// A step just taken: a slip that reversed inside it (see kRedoShrink) redoes it, or at the
+// finest steps is stopped at its end; its end re-arms the ticks whose pendulums are back inside.
+bool NetworkSimbodyRun::checkNewStep(Integrator& integ, Integrator::SuccessfulStepStatus status) {
+  State& adv = integ.updAdvancedState();
+  for (int k = 0; k < adv.getNY(); ++k)
+    if (!std::isfinite(adv.getY()[k])) {
+      fail(adv.getTime(), "the state is not finite");
+      return false;
+    }
+  const bool against = status != Integrator::ReachedEventTrigger && slipAgainstMode(adv);
+  if (against && redo_depth_ < kMaxRedoDepth && adv.getTime() > back_.getTime()) {
+    redoStep(integ);
+    return true;
   }
-  State& end = integ.updAdvancedState();
-  noteDiscontinuity(end.getTime());
-  resolveWindow(end);
-  integ.reinitialize(Stage::Model, false);
+  for (int p = 0; p < lay_.platforms; ++p) {
+    const network::Block& b = eq_.block(p);
+    for (int j = 0; j < b.count; ++j) resolvers_[p].rearm(j, ns_.theta(adv, b.first + j));
+  }
+  if (against) {
+    // the samples inside the step first, from its interpolant (the stop restarts at its end)
+    for (double ts = next_sample_ * sample_dt_; ts <= adv.getTime() && ts <= t_end_;
+         ts = next_sample_ * sample_dt_) {
+      if (integ.getTime() < ts) integ.stepTo(ts, t_end_);
+      sample(integ.getState());
+      ++next_sample_;
+    }
+    State& end = integ.updAdvancedState();
+    noteDiscontinuity(end.getTime());
+    resolveWindow(end);
+    integ.reinitialize(Stage::Model, false);
+  }
+  if (redo_depth_ > 0 && integ.getAdvancedTime() >= redo_until_) {
+    redo_depth_ = 0;
+    integ.setMaximumStepSize(kMaxStepPeriods * period_);
+  }
+  back_ = integ.getAdvancedState();
+  return false;
 }
 
 bool NetworkSimbodyRun::windowIsLive() const {
@@ -330,6 +374,7 @@ void NetworkSimbodyRun::handleTrigger(Integrator& integ) {
   noteDiscontinuity(adv.getTime());
   resolveWindow(adv);
   integ.reinitialize(Stage::Model, false);
+  back_ = integ.getAdvancedState();
 }
 
 void NetworkSimbodyRun::absorb(const WindowOutcome& out, int p) {
@@ -414,6 +459,7 @@ NetworkRunReport NetworkSimbodyRun::run() {
   sample(integ->getState());
   next_sample_ = 1;
   double checked_until = integ->getAdvancedTime();
+  back_ = integ->getAdvancedState();
   try {
     while (report_.complete && integ->getTime() < t_end_) {
       const double ts = next_sample_ * sample_dt_;
@@ -423,9 +469,10 @@ NetworkRunReport NetworkSimbodyRun::run() {
       }
       const Integrator::SuccessfulStepStatus status = integ->stepTo(std::min(ts, t_end_), t_end_);
       if (integ->getAdvancedTime() > checked_until) {
-        checkNewStep(*integ, status);
+        const bool redone = checkNewStep(*integ, status);
         checked_until = integ->getAdvancedTime();
         if (!report_.complete) break;
+        if (redone) continue;
       }
       if (status == Integrator::ReachedEventTrigger) {
         handleTrigger(*integ);
@@ -439,8 +486,8 @@ NetworkRunReport NetworkSimbodyRun::run() {
     fail(integ->getAdvancedTime(), e.what());
   }
   const State& fin = integ->getState();
-  report_.steps = integ->getNumStepsTaken();
-  report_.rhs_evals = integ->getNumRealizations();
+  report_.steps = steps_base_ + integ->getNumStepsTaken();
+  report_.rhs_evals = evals_base_ + integ->getNumRealizations();
   report_.t_end = fin.getTime();
   ns_.layoutState(fin, report_.final_state);
   report_.ledger.final_J = energy(fin);
