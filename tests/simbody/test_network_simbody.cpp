@@ -255,6 +255,23 @@ TEST(NetworkSimbody, FixedPlatformsAgreeWithTheDirectEngine) {
   expectEnginesAgree(net, 1e-13, 20);
 }
 
+TEST(NetworkSimbody, TowerOfThreeListedTopFirstAgreesWithTheDirectEngine) {
+  // c on b on a, listed c, a, b: the sliders are built bottom up whatever the file order; three
+  // Coulomb contacts, often all stuck at once (three holding forces from one solve)
+  const std::string c =
+      "  - name: c\n    on: b\n    mass: 0.1\n    friction: {law: coulomb, "
+      "mu: 0.01}\n    metronomes:\n" +
+      metronome(0.6, 1.0, 0.022);
+  const std::string a =
+      platform("a", "{law: coulomb, mu: 0.002}", "", metronome(0.785, 0.0) + metronome(-0.5, 1.0));
+  const std::string b =
+      "  - name: b\n    on: a\n    mass: 0.12\n    friction: {law: coulomb, "
+      "mu: 0.005}\n    metronomes:\n" +
+      metronome(0.3, -2.0, 0.0227);
+  const Network net = loadNetworkText(network(c + a + b, "", 4.0, 1e-12), "tower.yaml");
+  expectEnginesAgree(net, 1e-13, 50);
+}
+
 TEST(NetworkSimbody, StackAgreesWithTheDirectEngine) {
   // both contacts Coulomb (often stuck together: holding forces from one solve), a third board
   // on a ground spring and damper, coupled to the base
