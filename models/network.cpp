@@ -1,5 +1,8 @@
 #include "models/network.h"
 
+#include <algorithm>
+#include <stdexcept>
+
 namespace metrosync {
 
 int Network::numMetronomes() const {
@@ -29,6 +32,28 @@ bool Network::isSingleRig() const {
 Rig Network::toSingleRig() const {
   Rig rig = platforms.at(0).rig;
   rig.name = name;
+  return rig;
+}
+
+Rig Network::unionRig() const {
+  Rig rig = platforms.at(0).rig;
+  rig.metronomes.clear();
+  for (const NetworkPlatform& p : platforms)
+    for (const MetronomeSpec& m : p.rig.metronomes)
+      if (!m.locked) rig.metronomes.push_back(m);
+  if (rig.metronomes.empty()) throw std::invalid_argument("the network has no swinging pendulum");
+  if (rig.platform.law == FrictionLaw::Fixed) rig.platform.law = FrictionLaw::None;
+  rig.platform.mass_kg = std::max(rig.platform.mass_kg, 1.0);  // scales only
+  return rig;
+}
+
+Rig Network::scalesRig() const {
+  Rig rig = platforms.at(0).rig;
+  rig.metronomes.clear();
+  for (const NetworkPlatform& p : platforms)
+    for (const MetronomeSpec& m : p.rig.metronomes)
+      if (!m.locked && rig.metronomes.empty()) rig.metronomes.push_back(m);
+  if (rig.platform.law == FrictionLaw::Fixed) rig.platform.law = FrictionLaw::None;
   return rig;
 }
 

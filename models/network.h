@@ -47,6 +47,13 @@ struct Network {
   bool isSingleRig() const;
   // That rig (valid when isSingleRig()).
   Rig toSingleRig() const;
+  // The rig the engines take their scales (fast period, tolerances) and default integrator from:
+  // the first platform's, carrying every swinging metronome of the network (metronome 1 sets the
+  // scales). Throws std::invalid_argument when the network has no swinging pendulum.
+  Rig unionRig() const;
+  // The rig of the network's output scales (tau, scaled A in envelope.csv): the first platform
+  // with only the network's first swinging metronome.
+  Rig scalesRig() const;
 };
 
 }  // namespace metrosync

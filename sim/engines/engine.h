@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "models/network.h"
 #include "models/rig.h"
+#include "sim/record/network_report.h"
 #include "sim/record/run_report.h"
 
 namespace metrosync {
@@ -30,6 +32,13 @@ class Engine {
   // engines' own entry points: a failed simulation gives complete = false; RunInterrupted and
   // SimulationFailure thrown by the sink pass through.
   virtual RunReport run(const Rig& rig, RunSink& sink) const = 0;
+  // Does the engine run networks of platforms (models/network.h, docs/networks.md)?
+  virtual bool runsNetworks() const { return false; }
+  // Runs the network to net.sim.t_end_s into `sink` (engines that runsNetworks() only; the others
+  // throw std::logic_error). A failed simulation gives complete = false.
+  virtual NetworkRunReport runNetwork(const Network& net, NetworkSink& sink) const {
+    throw std::logic_error("the " + name() + " engine runs single-platform rigs only");
+  }
 };
 
 // Every engine of this build, in the order --help lists them (the default full engine first).

@@ -4,7 +4,9 @@
 
 #include "models/scaling.h"
 #include "sim/engines/direct/direct_engine.h"
+#include "sim/engines/direct/network_engine.h"
 #include "sim/engines/engine.h"
+#include "sim/engines/simbody/network_simbody_engine.h"
 #include "sim/engines/simbody/simbody_engine.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 
@@ -29,6 +31,10 @@ class DirectEngine final : public Engine {
     return "the full model in minimal coordinates (the default; ~100x faster than simbody)";
   }
   RunReport run(const Rig& rig, RunSink& sink) const override { return runDirectModel(rig, sink); }
+  bool runsNetworks() const override { return true; }
+  NetworkRunReport runNetwork(const Network& net, NetworkSink& sink) const override {
+    return runNetworkDirect(net, sink);
+  }
 };
 
 class SimbodyEngine final : public Engine {
@@ -44,6 +50,10 @@ class SimbodyEngine final : public Engine {
            "simulation.integrator names a Simbody integrator)";
   }
   RunReport run(const Rig& rig, RunSink& sink) const override { return runFullModel(rig, sink); }
+  bool runsNetworks() const override { return true; }
+  NetworkRunReport runNetwork(const Network& net, NetworkSink& sink) const override {
+    return runNetworkSimbody(net, sink);
+  }
 };
 
 class SlowFlowEngine final : public Engine {

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "tests/common/run_metrosync.h"
 
@@ -51,8 +52,8 @@ TEST(NetworkCli, RunWritesTheIssuesColumnsAndKeys) {
   EXPECT_LT(std::abs(s["energy"]["relative_residual"].get<double>()), 1e-6);
 }
 
-TEST(NetworkCli, SlowFlowAndOtherEnginesAreRefusedWithNothingWritten) {
-  for (const std::string opt : {"--model slow", "--engine simbody"}) {
+TEST(NetworkCli, SlowFlowIsRefusedWithNothingWritten) {
+  for (const std::string opt : {"--model slow", "--engine slowflow"}) {
     const std::string out = scratchDir("net", "refused");
     const auto r = runMetrosync("run " + shellQuote(kRigs + "two-swings.yaml") + " " + opt +
                                 " --out " + shellQuote(out));
@@ -60,6 +61,25 @@ TEST(NetworkCli, SlowFlowAndOtherEnginesAreRefusedWithNothingWritten) {
     EXPECT_NE(r.err.find("a network of 2 platforms"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(out)) << opt;
   }
+}
+
+TEST(NetworkCli, SimbodyEngineWritesTheSameFilesAsTheDirectEngine) {
+  const std::string d = scratchDir("net", "engines", true);
+  std::vector<nlohmann::json> s;
+  for (const std::string engine : {"direct", "simbody"}) {
+    const auto r = runMetrosync(
+        "run " + shellQuote(kRigs + "two-boards-rollers.yaml") + " --quiet --no-plot --engine " +
+        engine + " --set simulation.duration=2 --out " + shellQuote(d + "/" + engine));
+    ASSERT_EQ(r.code, 0) << r.err;
+    s.push_back(nlohmann::json::parse(slurp(d + "/" + engine + "/summary.json")));
+    EXPECT_EQ(s.back()["engine"], engine);
+  }
+  for (const char* f : {"trajectory.csv", "envelope.csv", "order.csv"})
+    EXPECT_EQ(firstLine(d + "/direct/" + f), firstLine(d + "/simbody/" + f)) << f;
+  EXPECT_EQ(s[0]["network"]["regime"], s[1]["network"]["regime"]);
+  EXPECT_NEAR(s[0]["network"]["r"].get<double>(), s[1]["network"]["r"].get<double>(), 1e-6);
+  EXPECT_EQ(s[0]["counts"]["escapements"], s[1]["counts"]["escapements"]);
+  EXPECT_EQ(s[0]["counts"]["stick_slip"], s[1]["counts"]["stick_slip"]);
 }
 
 TEST(NetworkCli, BadNetworkExitsTwoNamingFileKeyAndLine) {

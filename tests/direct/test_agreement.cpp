@@ -19,6 +19,9 @@
 // many metronomes, at 64/N periods (not below 1.5, so that there is an envelope row): Simbody's
 // cost per period grows with N (n32: ~1 s per period at 1e-12), and the whole test must stay
 // within about a minute.
+//
+// Networks of platforms (docs/networks.md) are compared the same way, sample by sample, on the
+// network engines of both (runNetworkDirect, runNetworkSimbody).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -26,9 +29,13 @@
 #include <filesystem>
 #include <map>
 
+#include "models/network_equations.h"
 #include "models/scaling.h"
 #include "sim/engines/direct/direct_engine.h"
+#include "sim/engines/direct/network_engine.h"
+#include "sim/engines/simbody/network_simbody_engine.h"
 #include "sim/engines/simbody/simbody_engine.h"
+#include "yaml/network_loader.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync {
@@ -52,22 +59,81 @@ const std::map<std::string, std::string>& notComparable() {
   static const std::map<std::string, std::string> m = {
       {"hard/storm.yaml",
        "an event storm by design: both engines stop it with exit 3 (tests/hard, tests/direct)"},
-      {"two-swings.yaml",
-       "a network of platforms: the Simbody engine runs single platforms only (docs/networks.md); "
-       "the network engine is checked in tests/direct/test_network_engine.cpp"},
-      {"two-boards-rollers.yaml",
-       "a network of platforms: the Simbody engine runs single platforms only (docs/networks.md); "
-       "the network engine is checked in tests/direct/test_network_engine.cpp"},
   };
   return m;
 }
 
 class EnginesAgree : public ::testing::TestWithParam<std::string> {};
 
+// Every sample of a network run.
+struct NetworkSamples : NetworkSink {
+  std::vector<double> t;
+  std::vector<std::vector<double>> y;
+  std::vector<std::vector<PlatformMode>> modes;
+  void sample(double ts, const std::vector<double>& ys,
+              const std::vector<PlatformMode>& ms) override {
+    t.push_back(ts);
+    y.push_back(ys);
+    modes.push_back(ms);
+  }
+};
+
+// A network (docs/networks.md) on both engines, with the windows and accuracies of the single
+// rigs below; every sample compared in scaled units (the scales of the network's first swinging
+// metronome): platforms, pendulums to 1e-8 (the bar), modes and counts exactly.
+void compareNetworkEngines(const std::string& name) {
+  Network net = loadNetworkFile(kRigRoot + "/" + name);
+  const ScaledParams sp = computeScaled(net.unionRig());
+  const double omega0 = 1.0 / sp.time_scale_s;
+  const double periods = std::clamp(64.0 / net.numMetronomes(), 1.5, 8.0);
+  net.sim.t_end_s = std::min(2.0 / (sp.epsilon * omega0), periods * 2 * M_PI / omega0);
+  net.sim.integrator.clear();  // Simbody's default
+  net.sim.accuracy = 1e-14;
+  Network net_direct = net;
+  net_direct.sim.integrator = "verner76";
+  net_direct.sim.accuracy = 1e-12;
+
+  NetworkSamples sd, ss;
+  const NetworkRunReport d = runNetworkDirect(net_direct, sd);
+  const NetworkRunReport s = runNetworkSimbody(net, ss);
+  ASSERT_TRUE(d.complete) << d.failure;
+  ASSERT_TRUE(s.complete) << s.failure;
+  EXPECT_EQ(s.engine, "simbody");
+  EXPECT_EQ(d.ticks, s.ticks);
+  EXPECT_EQ(d.stick_slip, s.stick_slip);
+  EXPECT_EQ(d.slip_reversals, s.slip_reversals);
+  EXPECT_EQ(d.events, s.events);
+
+  const network::Layout lay = network::NetworkEquations(net).layout();
+  const double x_unit = sp.x_scale_m, v_unit = sp.x_scale_m * omega0;
+  const double a_unit = sp.angle_scale, w_unit = sp.angle_scale * omega0;
+  ASSERT_EQ(sd.t, ss.t) << "sample times";
+  ASSERT_GE(sd.t.size(), 20u);
+  for (std::size_t r = 0; r < sd.y.size(); ++r) {
+    const std::vector<double>& a = sd.y[r];
+    const std::vector<double>& b = ss.y[r];
+    EXPECT_EQ(sd.modes[r], ss.modes[r]) << name << " t = " << sd.t[r];
+    for (int p = 0; p < lay.platforms; ++p) {
+      EXPECT_NEAR(a[lay.x(p)] / x_unit, b[lay.x(p)] / x_unit, 1e-8) << name << " x " << p;
+      EXPECT_NEAR(a[lay.v(p)] / v_unit, b[lay.v(p)] / v_unit, 1e-8) << name << " xdot " << p;
+    }
+    for (int j = 0; j < lay.n; ++j) {
+      EXPECT_NEAR(a[lay.theta(j)] / a_unit, b[lay.theta(j)] / a_unit, 1e-8) << name << " " << j;
+      EXPECT_NEAR(a[lay.omega(j)] / w_unit, b[lay.omega(j)] / w_unit, 1e-8) << name << " " << j;
+    }
+  }
+  // both ledgers close, on their own integrations of the dissipation
+  EXPECT_LT(std::abs(d.ledger.relativeResidual()), 1e-9);
+  EXPECT_LT(std::abs(s.ledger.relativeResidual()), 1e-9);
+}
+
 TEST_P(EnginesAgree, OnShippedRig) {
   const std::string name = GetParam();
   if (auto it = notComparable().find(name); it != notComparable().end())
     GTEST_SKIP() << name << ": " << it->second;
+  const std::string text = readRigFile(kRigRoot + "/" + name);
+  if (isNetworkText(text) && !loadNetworkText(text, name).isSingleRig())
+    return compareNetworkEngines(name);
   Rig rig = loadRigFile(kRigRoot + "/" + name);
   const ScaledParams sp = computeScaled(rig);
   const double omega0 = 1.0 / sp.time_scale_s;

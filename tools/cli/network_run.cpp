@@ -2,8 +2,8 @@
 
 #include <iostream>
 
-#include "sim/engines/direct/network_engine.h"
 #include "sim/engines/engine.h"
+#include "tools/cli/engines.h"
 #include "tools/report/network_files.h"
 #include "tools/report/outputs.h"
 #include "yaml/network_loader.h"
@@ -21,14 +21,18 @@ Network loadNetwork(const Options& opt) {
   return loadNetworkFile(opt.rig_path, opt.sets, lo);
 }
 
-void refuseOptions(const Options& opt, const Network& net) {
+// The engine that runs the network: the full model's, as for a single rig (--engine, else the
+// one simulation.integrator names, else direct); the slow flow is refused.
+const Engine& networkEngine(const Options& opt, const Network& net) {
   const std::string what = "a network of " + std::to_string(net.platforms.size()) + " platforms";
   if (opt.model == "slow")
     throw UsageError("--model slow: the slow flow is single-platform; " + what +
-                     " runs the full model only (--engine direct)");
-  if (!opt.engine.empty() && opt.engine != "direct")
-    throw UsageError("--engine " + opt.engine + ": " + what +
-                     " runs on the direct engine only (--engine direct)");
+                     " runs the full model only (--engine direct or simbody)");
+  const Engine& e = chooseEngine(opt.engine, "", net.platforms.at(0).rig, opt.rig_path);
+  if (!e.runsNetworks())
+    throw UsageError("--engine " + e.name() + ": " + what +
+                     " runs the full model only (--engine direct or simbody)");
+  return e;
 }
 
 OutputDir openDir(const Options& opt, const Network& net) {
@@ -51,11 +55,11 @@ bool isNetworkRun(const Options& opt) {
 
 int runNetworkCommand(const Options& opt) {
   const Network net = loadNetwork(opt);
-  refuseOptions(opt, net);
+  const Engine& engine = networkEngine(opt, net);
   installStopHandlers();
   const OutputDir dir = openDir(opt, net);
   NetworkFiles files(dir, net);
-  const NetworkRunReport report = runNetworkDirect(net, files);
+  const NetworkRunReport report = engine.runNetwork(net, files);
   files.commit();
   nlohmann::json summary = files.summary(report);
   summary["model"] = "full";
@@ -69,7 +73,7 @@ int runNetworkCommand(const Options& opt) {
   summary["files"] = names;
   writeSummary(dir, summary);  // last: a summary.json means the run's files are all there
   if (!opt.quiet)
-    std::cout << "network of " << net.platforms.size() << " platforms (direct, "
+    std::cout << "network of " << net.platforms.size() << " platforms (" << engine.name() << ", "
               << report.integrator << "): " << summary["network"]["regime"].get<std::string>()
               << ", r = " << summary["network"]["r"].get<double>() << "\nfiles in " << dir.path()
               << "\n";

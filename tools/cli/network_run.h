@@ -1,6 +1,6 @@
-// `metrosync run` on a network of platforms (docs/networks.md): the direct engine, the network's
-// files (tools/report/network_files.h), summary.json with `platforms` and `network`. A network of
-// one platform on the table, uncoupled, is today's rig and never comes here.
+// `metrosync run` on a network of platforms (docs/networks.md): the direct or Simbody engine, the
+// network's files (tools/report/network_files.h), summary.json with `platforms` and `network`. A
+// network of one platform on the table, uncoupled, is today's rig and never comes here.
 #pragma once
 
 #include "tools/cli/commands.h"
@@ -11,7 +11,8 @@ namespace metrosync::cli {
 // network throws RigError (exit 2) here, before anything is written.
 bool isNetworkRun(const Options& opt);
 
-// Runs it; `--model slow` and any engine but direct are refused (UsageError, exit 2).
+// Runs it on the direct or the Simbody engine; `--model slow` and `--engine slowflow` are refused
+// (UsageError, exit 2).
 int runNetworkCommand(const Options& opt);
 
 }  // namespace metrosync::cli

@@ -25,6 +25,7 @@
 #include "tools/cli/commands.h"
 #include "tools/cli/continue.h"
 #include "tools/cli/engines.h"
+#include "tools/cli/network_sweep.h"
 #include "tools/report/folder_lock.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
@@ -109,6 +110,7 @@ struct PointInput {
   Rig rig;
   ScaledParams scaled;
   const Engine* engine = nullptr;  // the same at every point (no --vary names one)
+  std::optional<Network> net;      // a network of platforms (tools/cli/network_sweep.h)
 };
 
 // The model --model asks for: as given, else the --engine's, else the slow flow.
@@ -127,7 +129,8 @@ PointInput loadPoint(const std::string& text, const SweepOptions& opt, const Swe
   const std::string where = "grid point " + std::to_string(g) + " (" + joined(point) + ")";
   PointInput in;
   try {
-    in.rig = loadRigText(text, displayName(opt), overrides);
+    in.net = loadSweepNetwork(text, displayName(opt), overrides);
+    in.rig = in.net ? networkSweepRig(*in.net) : loadRigText(text, displayName(opt), overrides);
   } catch (const RigError& e) {
     // the loader calls every override --set; the point's own ones come from --vary
     std::string what = e.what();
@@ -136,6 +139,10 @@ PointInput loadPoint(const std::string& text, const SweepOptions& opt, const Swe
            at = what.find("--set " + o, at))
         what.replace(at, 6 + o.size(), "--vary point " + o);
     throw RigError(what + "\n  at " + where + " of the sweep");
+  }
+  if (in.net) {  // docs/networks.md
+    in.engine = &networkSweepEngine(opt.engine, opt.model, *in.net, displayName(opt));
+    return in;
   }
   // checks --engine against --model and the point's integrator
   in.engine = &chooseEngine(opt.engine, requestedModel(opt), in.rig, displayName(opt));
@@ -174,7 +181,17 @@ bool failureInjected(long g) {
   return std::find(points.begin(), points.end(), g) != points.end();
 }
 
+// A network's point (tools/cli/network_sweep.h), with the test hook and the stop request.
+std::optional<SweepPoint> runNetworkPoint(const PointInput& in, long g) {
+  const Clock::time_point t0 = Clock::now();
+  SweepPoint p = runNetworkSweepPoint(*in.net, *in.engine, g, failureInjected(g));
+  if (FileSink::stopRequested()) return std::nullopt;
+  p.wall_seconds = secondsSince(t0);
+  return p;
+}
+
 std::optional<SweepPoint> runPoint(const PointInput& in, long g) {
+  if (in.net) return runNetworkPoint(in, g);
   const Clock::time_point t0 = Clock::now();
   const ScaledParams& sp = in.scaled;
   PointSink sink(sp.tau_end, sp.epsilon);
@@ -438,7 +455,8 @@ SweepPlan planSweep(const SweepOptions& opt) {
   plan.shard = opt.shard.empty() ? SweepShard{} : parseShard(opt.shard);
   // the rig, and every grid point's rig: a bad key or value stops here, before any file
   plan.text = readRigText(opt);
-  plan.base = loadRigText(plan.text, displayName(opt), opt.sets);
+  const std::optional<Network> net = loadSweepNetwork(plan.text, displayName(opt), opt.sets);
+  plan.base = net ? networkSweepRig(*net) : loadRigText(plan.text, displayName(opt), opt.sets);
   plan.n = static_cast<int>(plan.base.metronomes.size());
   plan.mine = shardSize(plan.grid, plan.shard);
   const Engine* engine = checkGrid(plan, opt);
@@ -758,7 +776,7 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
   c.sweep
       ->add_option("--model", opt.model,
                    "slow: the slow flow; full: the full model (default: the --engine's model, "
-                   "else slow)")
+                   "else slow; full for a network of platforms, docs/networks.md)")
       ->check(CLI::IsMember({"slow", "full"}));
   c.sweep->add_option("--engine", opt.engine, anyEngineHelp());
   c.sweep

@@ -55,23 +55,11 @@ struct NetworkFiles::Impl {
                         const std::vector<double>& phi);
 };
 
-namespace {
-Rig scalesRig(const Network& net) {
-  Rig rig = net.platforms[0].rig;  // the scales of the network's first swinging metronome
-  rig.metronomes.clear();
-  for (const NetworkPlatform& p : net.platforms)
-    for (const MetronomeSpec& m : p.rig.metronomes)
-      if (!m.locked && rig.metronomes.empty()) rig.metronomes.push_back(m);
-  if (rig.platform.law == FrictionLaw::Fixed) rig.platform.law = FrictionLaw::None;
-  return rig;
-}
-}  // namespace
-
 NetworkFiles::Impl::Impl(const OutputDir& dir, const Network& n)
     : net(n),
       eq(n),
       lay(eq.layout()),
-      sp(computeScaled(scalesRig(n))),
+      sp(computeScaled(n.scalesRig())),
       trajectory(dir.file("trajectory.csv")),
       envelope(dir.file("envelope.csv")),
       order(dir.file("order.csv")),
@@ -232,7 +220,7 @@ nlohmann::json NetworkFiles::summary(const NetworkRunReport& report) const {
                   {"r", m.last_all.r}};
   j["complete"] = report.complete;
   if (!report.complete) j["failure"] = report.failure;
-  j["engine"] = "direct";
+  j["engine"] = report.engine;
   j["integrator"] = report.integrator;
   j["counts"] = {{"steps", report.steps},           {"rhs_evals", report.rhs_evals},
                  {"events", report.events},         {"escapements", report.ticks},

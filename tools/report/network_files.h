@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "models/network.h"
-#include "sim/engines/direct/network_engine.h"
+#include "sim/record/network_report.h"
 #include "tools/report/outputs.h"
 
 namespace metrosync {

@@ -27,6 +27,9 @@ constexpr double kTwoPi = 6.283185307179586;
 constexpr double kMaxStepPeriods = 0.05;
 // The shortest step, relative to the run's time: below it the step size has underflowed.
 constexpr double kMinStepRelative = 1e-14;
+// Points of the dense output scanned for the reversal of a slip that started from rest within
+// the step (locate()).
+constexpr int kRestScan = 16;
 // Resolution passes per event window: each pass settles the platforms whose support moved; a
 // stack of P platforms needs at most P passes.
 constexpr int kSettlePassesPerPlatform = 2;
@@ -79,20 +82,6 @@ struct Witness {
   int side = 1;
 };
 
-// The rig the integrator choice and the scales are taken from: the first platform's, carrying
-// every swinging metronome of the network.
-Rig unionRig(const Network& net) {
-  Rig rig = net.platforms[0].rig;
-  rig.metronomes.clear();
-  for (const NetworkPlatform& p : net.platforms)
-    for (const MetronomeSpec& m : p.rig.metronomes)
-      if (!m.locked) rig.metronomes.push_back(m);
-  if (rig.metronomes.empty()) throw std::invalid_argument("the network has no swinging pendulum");
-  if (rig.platform.law == FrictionLaw::Fixed) rig.platform.law = FrictionLaw::None;
-  rig.platform.mass_kg = std::max(rig.platform.mass_kg, 1.0);  // scales only
-  return rig;
-}
-
 class NetworkRun {
  public:
   NetworkRun(const Network& net, NetworkSink& sink);
@@ -134,10 +123,10 @@ NetworkRun::NetworkRun(const Network& net, NetworkSink& sink)
       lay_(eq_.layout()),
       modes_(lay_.platforms, PlatformMode::Stuck),
       rhs_(eq_, modes_),
-      tab_(ode::rkTableau(net.sim.integrator.empty() ? defaultDirectIntegrator(unionRig(net))
+      tab_(ode::rkTableau(net.sim.integrator.empty() ? defaultDirectIntegrator(net.unionRig())
                                                      : net.sim.integrator)),
       stepper_(tab_, lay_.dim(), rhs_) {
-  const Rig scales = unionRig(net);
+  const Rig scales = net.unionRig();
   const ScaledParams sp = computeScaled(scales);
   period_ = kTwoPi * sp.time_scale_s;
   t_end_ = net.sim.t_end_s;
@@ -230,7 +219,6 @@ std::optional<double> NetworkRun::locate(const std::vector<double>& g0,
   for (std::size_t i = 0; i < witnesses_.size(); ++i) {
     const Witness& w = witnesses_[i];
     if (w.tick && !armed(w)) continue;
-    if (!crossed(Direction::Rising, g0[i], g1[i])) continue;
     auto f = [&](double th) {
       if (w.tick)  // one component of the dense output: O(1), whatever the network's size
         return TickWitness{w.index, w.side}.value(eq_.escapement(w.index),
@@ -238,7 +226,26 @@ std::optional<double> NetworkRun::locate(const std::vector<double>& g0,
       stepper_.interpolate(th, scratch_.data());
       return witnessValue(w, scratch_.data(), eq_.holdingForces(scratch_.data(), modes_));
     };
-    const ode::Bracket br = ode::illinois(f, 0.0, g0[i], 1.0, g1[i]);
+    double a = 0.0, ga = g0[i], b = 1.0, gb = g1[i];
+    if (!w.tick && g0[i] == 0 && g1[i] > 0) {
+      // a slip that started from rest (its witness exactly 0 at the step's start: no crossing)
+      // and runs against its mode at the step's end reversed inside the step: its crossing is
+      // bracketed on the dense output (within the first 1 / kRestScan of the step: taken there)
+      b = 1.0 / kRestScan;
+      gb = f(b);
+      for (int k = 1; k < kRestScan && !(ga < 0 && gb >= 0); ++k) {
+        a = b, ga = gb;
+        b = (k + 1.0) / kRestScan;
+        gb = k + 1 < kRestScan ? f(b) : g1[i];
+      }
+      if (!(ga < 0)) {
+        if (!earliest || 1.0 / kRestScan < *earliest) earliest = 1.0 / kRestScan;
+        continue;
+      }
+    } else if (!crossed(Direction::Rising, g0[i], g1[i])) {
+      continue;
+    }
+    const ode::Bracket br = ode::illinois(f, a, ga, b, gb);
     if (!earliest || br.hi < *earliest) earliest = br.hi;
   }
   return earliest;
@@ -252,8 +259,10 @@ void NetworkRun::absorb(const WindowOutcome& out, int p) {
   for (int j : out.ticked) ++report_.ticks[eq_.pendulum(eq_.block(p).first + j).rig_index];
 }
 
-// Platforms whose slip velocity an impulse below them changed: stuck with a velocity, or slipping
-// against their mode.
+// Platforms whose contact the window's later changes left inconsistent: stuck with a velocity (an
+// impulse below them), stuck beyond the bound (another contact's switch or tick changed the
+// forces on it after its own rule was applied: left so, its witness would start below zero and
+// never cross), or slipping against their mode.
 void NetworkRun::settleSupports() {
   for (int pass = 0; pass < kSettlePassesPerPlatform * lay_.platforms; ++pass) {
     bool changed = false;
@@ -262,7 +271,9 @@ void NetworkRun::settleSupports() {
       if (!b.moves || !b.friction.setValued()) continue;
       const double u = eq_.slipVelocity(y_.data(), p);
       const bool off =
-          modes_[p] == PlatformMode::Stuck ? u != 0 : static_cast<int>(modes_[p]) * u <= 0;
+          modes_[p] == PlatformMode::Stuck
+              ? u != 0 || b.friction.coulomb.breaksFree(eq_.holdingForces(y_.data(), modes_)[p])
+              : static_cast<int>(modes_[p]) * u <= 0;
       if (!off) continue;
       const WindowOutcome out = resolvers_[p].settleAfterSupportImpulse(*views_[p]);
       absorb(out, p);

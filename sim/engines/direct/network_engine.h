@@ -14,30 +14,9 @@
 
 #include "contact/friction_law.h"
 #include "models/network.h"
-#include "sim/record/run_report.h"
+#include "sim/record/network_report.h"
 
 namespace metrosync {
-
-// Receives the state at every sample time (simulation.sample, default period/20) and at the end.
-struct NetworkSink {
-  virtual ~NetworkSink() = default;
-  // y in the layout of network::Layout (x_p, xdot_p, ..., theta_j, ..., thetadot_j, ...);
-  // modes: each platform's contact mode (Stuck for every non-Coulomb contact).
-  virtual void sample(double t, const std::vector<double>& y,
-                      const std::vector<PlatformMode>& modes) = 0;
-};
-
-struct NetworkRunReport {
-  bool complete = true;
-  std::string failure;  // why and when it stopped (empty when complete)
-  std::string integrator;
-  long steps = 0, rhs_evals = 0, events = 0, stick_slip = 0, slip_reversals = 0;
-  std::vector<long> ticks;  // per metronome, global numbering (locked ones stay 0)
-  EnergyLedger ledger;      // damping_out_J includes the ground and coupling dampers
-  double t_end = 0.0;
-  std::vector<double> final_state;
-  double fast_period_s = 0.0;  // 2 pi / omega0 of the network's first swinging pendulum
-};
 
 // Runs the network to net.sim.t_end_s. Never throws for a failed simulation (complete = false);
 // throws std::invalid_argument for a network it cannot run (an unknown integrator name, no

@@ -28,6 +28,7 @@
 #include <sstream>
 
 #include "models/simbody/metronome_system.h"
+#include "sim/engines/simbody/integrators.h"
 #include "sim/events/resolver.h"
 #include "sim/events/sample_schedule.h"
 #include "sim/events/storm_guard.h"
@@ -45,18 +46,6 @@ const std::vector<std::string>& simbodyIntegratorNames() {
 }
 
 namespace {
-
-std::unique_ptr<Integrator> makeIntegrator(const std::string& name, const System& sys) {
-  if (name == "rk-merson") return std::make_unique<RungeKuttaMersonIntegrator>(sys);
-  if (name == "rk-feldberg") return std::make_unique<RungeKuttaFeldbergIntegrator>(sys);
-  if (name == "rk3") return std::make_unique<RungeKutta3Integrator>(sys);
-  if (name == "rk2") return std::make_unique<RungeKutta2Integrator>(sys);
-  if (name == "cpodes")
-    return std::make_unique<CPodesIntegrator>(sys, CPodes::Adams, CPodes::Functional);
-  if (name == "verlet") return std::make_unique<VerletIntegrator>(sys);
-  if (name == "semi-explicit-euler2") return std::make_unique<SemiExplicitEuler2Integrator>(sys);
-  throw std::invalid_argument("unknown integrator '" + name + "'");
-}
 
 // What the witnesses report within one localization window: which (pendulum, side) tick
 // witnesses and whether the platform's witness crossed. The resolver acts on the state; a report
@@ -340,7 +329,7 @@ State FullModelRun::startState() {
 }
 
 std::unique_ptr<Integrator> FullModelRun::makeRunIntegrator(const State& s0) {
-  std::unique_ptr<Integrator> integ = makeIntegrator(report_.integrator, ms_.system());
+  std::unique_ptr<Integrator> integ = makeSimbodyIntegrator(report_.integrator, ms_.system());
   integ->setAccuracy(rig_.sim.accuracy);
   integ->setFinalTime(rig_.sim.t_end_s);
   integ->setReturnEveryInternalStep(true);

@@ -1,0 +1,40 @@
+// What a sweep keeps of a network run (docs/networks.md): the network's label, each platform's
+// regime, and the final envelope row, from the run's samples as they stream, without any file.
+// The same rules and scales as `metrosync run` on a network (tools/report/network_files.h):
+// amplitudes and phases numbered 1..N over the network (metronome 1 the reference), scaled by the
+// network's first swinging metronome (Network::scalesRig); a platform's regime is the
+// single-platform classifier on its own metronomes; the label is classifyNetwork's.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "models/network.h"
+#include "sim/record/envelope.h"
+#include "sim/record/network_report.h"
+
+namespace metrosync {
+
+class NetworkVerdict : public NetworkSink {
+ public:
+  explicit NetworkVerdict(const Network& net);
+  ~NetworkVerdict() override;
+  void sample(double t, const std::vector<double>& y,
+              const std::vector<PlatformMode>& modes) override;
+
+  bool empty() const;
+  // The network's label ("unknown" when no sample fell in the window).
+  std::string label() const;
+  // Each platform's regime name, in file order ("unknown" for one without swinging metronomes).
+  std::vector<std::string> platformRegimes() const;
+  // The last sample's envelope row (tau, A_1..A_N, psi_2..psi_N unwrapped; 0 for locked ones) and
+  // its overall order parameter r (in last().r).
+  const EnvelopeRow& last() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace metrosync

@@ -1,0 +1,16 @@
+// Simbody's integrators by the names simulation.integrator accepts (simbodyIntegratorNames(),
+// sim/engines/simbody/simbody_engine.h), for the single-platform and the network engine.
+#pragma once
+
+#include <Simbody.h>
+
+#include <memory>
+#include <string>
+
+namespace metrosync {
+
+// Throws std::invalid_argument for a name that is not one of simbodyIntegratorNames().
+std::unique_ptr<SimTK::Integrator> makeSimbodyIntegrator(const std::string& name,
+                                                         const SimTK::System& sys);
+
+}  // namespace metrosync
