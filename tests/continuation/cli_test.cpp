@@ -82,6 +82,42 @@ struct BadCase {
   std::string says;  // in the message
 };
 
+// metronomes.*.nu sets both metronomes: identical metronomes stay identical along the branch (the
+// in-phase state keeps A_1 = A_2), while the amplitude follows the damping; a change of metronome
+// 1 alone (metronomes.0.nu) breaks the symmetry at once.
+TEST(ContinueCli, WildcardKeySetsEveryMetronome) {
+  const std::string rig = std::string(METROSYNC_SOURCE_DIR) + "/yaml/rigs/paper/f4.3-mu0.2.yaml";
+  auto amplitudes = [&](const std::string& key) {
+    const std::string out = scratchDir("continue", "wildcard");
+    const auto r = runMetrosync("continue " + shellQuote(rig) + " --param " + key +
+                                " --to 0.8 --no-cycles -q --out " + shellQuote(out));
+    EXPECT_EQ(r.code, 0) << r.err;
+    std::vector<std::pair<double, double>> a;  // (A_1, A_2) per point
+    std::istringstream in(slurp(out + "/branches.csv"));
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line)) {
+      std::stringstream ss(line);
+      std::string c[4];
+      for (auto& x : c) std::getline(ss, x, ',');
+      a.push_back({std::stod(c[2]), std::stod(c[3])});
+    }
+    return a;
+  };
+  const auto both = amplitudes("'metronomes.*.nu'");
+  ASSERT_GT(both.size(), 5u);
+  double spread = 0;
+  for (const auto& [a1, a2] : both) {
+    EXPECT_NEAR(a1, a2, 1e-9);
+    spread = std::max(spread, std::abs(a1 - both.front().first));
+  }
+  EXPECT_GT(spread, 0.05);  // the amplitude moved with nu
+  double asym = 0;
+  for (const auto& [a1, a2] : amplitudes("metronomes.0.nu"))
+    asym = std::max(asym, std::abs(a1 - a2));
+  EXPECT_GT(asym, 1e-3);
+}
+
 TEST(ContinueCli, BadInputExit2NothingWritten) {
   const std::vector<BadCase> cases = {
       {"--param metronomes.1.bogus --from 1 --to 2", "bogus"},
@@ -93,6 +129,7 @@ TEST(ContinueCli, BadInputExit2NothingWritten) {
       {"--param metronomes.1.alpha --from 3.9 --to 4 --set simulation.tau=2", "does not settle"},
       {"--param metronomes.1.alpha --from 3.9 --to 4 --start 1,2", "expected 3 numbers"},
       {"--param metronomes.1.alpha --from 3.9 --to 4 --start 1,x,3", "not a number"},
+      {"--param metronomes.*.bogus --from 1 --to 2", "bogus"},
   };
   for (const BadCase& c : cases) {
     const std::string out = scratchDir("continue", "bad");

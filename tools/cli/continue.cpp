@@ -41,9 +41,31 @@ std::string fmt(double v) {
   return buf;
 }
 
-// The rig with --set, then `extra` (the parameter's KEY=VALUE, named --param in messages).
+constexpr const char* kEveryMetronome = "metronomes.*.";
+
+// "metronomes.*.X=V" as one override per metronome (n of them); any other override as it is.
+std::vector<std::string> expandWildcards(const std::vector<std::string>& overrides, size_t n) {
+  std::vector<std::string> out;
+  const std::string every = kEveryMetronome;
+  for (const std::string& kv : overrides) {
+    if (kv.compare(0, every.size(), every) != 0) {
+      out.push_back(kv);
+      continue;
+    }
+    for (size_t i = 0; i < n; ++i)
+      out.push_back("metronomes." + std::to_string(i) + "." + kv.substr(every.size()));
+  }
+  return out;
+}
+
+// The rig with --set, then `extra` (the parameter's KEY=VALUE, named --param in messages; a key
+// metronomes.*.X sets X of every metronome).
 Rig loadWith(const ContinueOptions& opt, std::vector<std::string> extra) {
   std::vector<std::string> o = opt.sets;
+  const bool wildcard = std::any_of(extra.begin(), extra.end(), [](const std::string& kv) {
+    return kv.rfind(kEveryMetronome, 0) == 0;
+  });
+  if (wildcard) extra = expandWildcards(extra, loadWith(opt, {}).metronomes.size());
   o.insert(o.end(), extra.begin(), extra.end());
   try {
     return opt.rig_path.empty() ? defaultRig(o) : loadRigFile(opt.rig_path, o);
@@ -102,7 +124,12 @@ double startValue(const ContinueOptions& opt) {
         "time scale of the full model); choose a key the slow flow depends on");
   const Rig rig = loadWith(opt, {});  // the rig itself must load
   const std::string display = opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
-  const std::optional<double> in_rig = rigNumber(rigText(opt), display, opt.sets, opt.param);
+  // metronomes.*.X: the rig's value of metronome 1 (0-based 0)
+  const std::string key =
+      opt.param.rfind(kEveryMetronome, 0) == 0
+          ? "metronomes.0." + opt.param.substr(std::string(kEveryMetronome).size())
+          : opt.param;
+  const std::optional<double> in_rig = rigNumber(rigText(opt), display, opt.sets, key);
   if (!opt.from && !in_rig)
     throw UsageError("--param " + opt.param +
                      ": the key is not set in the rig (its default applies); give --from VALUE");

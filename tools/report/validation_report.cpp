@@ -401,12 +401,14 @@ void mdSummary(std::ostream& md, const ValidationResults& r) {
        << sequenceText(regimeSequence(r.sweep, false))
        << "<br>full model: " << sequenceText(regimeSequence(r.sweep, true)) << " |\n";
   if (!r.bifurcations.empty()) {
-    int located = 0, pass = 0;
+    int located = 0, checked = 0, pass = 0;
     for (const auto& f : r.bifurcations)
-      for (const auto& p : f.points) located += 1, pass += p.pass;
+      for (const auto& p : f.points)
+        located += 1, checked += p.checked, pass += p.checked && p.pass;
     md << "| 6. bifurcations of the slow flow (continuation) | " << located
-       << " folds and Hopf points located on " << r.bifurcations.size() << " families; " << pass
-       << " confirmed by slow-flow runs on both sides: " << passText(pass == located && located > 0)
+       << " folds and Hopf points located on " << r.bifurcations.size() << " families; " << checked
+       << " of them change a stable state, " << pass
+       << " confirmed by slow-flow runs on both sides: " << passText(pass == checked && located > 0)
        << " |\n";
   }
   md << "\nChecks failed: " << r.failedChecks()
