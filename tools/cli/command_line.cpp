@@ -6,6 +6,7 @@
 
 #include "sim/record/atomic_file.h"
 #include "tools/cli/engines.h"
+#include "tools/report/build_info.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
@@ -25,8 +26,9 @@ void addRigOptions(CLI::App* cmd, Options& opt, bool with_out) {
       ->allow_extra_args(false);
   if (with_out) {
     cmd->add_option("--out", opt.out,
-                    "output directory (default: runs/<rig name>-<command>); metrosync's own "
-                    "output files already there are replaced")
+                    "output directory (default: runs/<rig name>-<command>, with -<hash of the "
+                    "--set overrides> appended when there are any); metrosync's own output "
+                    "files already there are replaced")
         ->type_name("DIR");
     cmd->add_option("--max-output", opt.max_output,
                     "refuse a run that would write more than BYTES (estimated from the run's "
@@ -55,7 +57,7 @@ void configureApp(CLI::App& app) {
       "model (a Simbody multibody system with stick-slip and escapement events) and the "
       "slow flow of the two-timescale analysis.");
   app.name("metrosync");
-  app.set_version_flag("--version", metrosyncVersion());
+  app.set_version_flag("--version", versionText());
   app.require_subcommand(1);
   app.footer(kExitCodes);
 }
@@ -134,6 +136,7 @@ std::vector<Command> addRigCommands(CLI::App& app, Options& opt) {
 }
 
 int runCommandLine(CLI::App& app, const std::vector<Command>& commands, int argc, char** argv) {
+  setCommandLine(argc, argv);  // summary.json's command_line
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

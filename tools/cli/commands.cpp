@@ -55,6 +55,7 @@ std::string fmtList(const std::vector<double>& v, const char* f = "%.4g") {
 
 // A rig with everything a command needs, checked before anything is written (SPEC 5).
 struct LoadedRig {
+  std::string text;  // the rig file's text (the default rig's), before the overrides
   Rig rig;
   ScaledParams scaled;
   nlohmann::json scaled_json;
@@ -69,7 +70,8 @@ LoadedRig loadAndCheck(const Options& opt, const std::string& model) {
   for (const Engine* e : engines())
     for (const std::string& n : e->integrators()) lo.integrators.push_back(n);
   lo.integrator_help = "one of: " + integratorHelp();
-  r.rig = opt.rig_path.empty() ? defaultRig(opt.sets, lo) : loadRigFile(opt.rig_path, opt.sets, lo);
+  r.text = opt.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.rig_path);
+  r.rig = loadRigText(r.text, opt.rig_path.empty() ? "<default rig>" : opt.rig_path, opt.sets, lo);
 
   // the integrator is the engine's business, so the loader leaves its name to us
   r.engine = &chooseEngine(opt.engine, model, r.rig, rigDisplayName(opt));
@@ -86,7 +88,8 @@ LoadedRig loadAndCheck(const Options& opt, const std::string& model) {
 // The output directory, created only now that the rig is valid; stale outputs of an earlier
 // command there are removed so that every file in it belongs to this run.
 OutputDir openOutputDir(const Options& opt, const Rig& rig, const std::string& command) {
-  const std::string path = opt.out.empty() ? defaultOutputDir(rig.name, command) : opt.out;
+  const std::string path =
+      opt.out.empty() ? defaultOutputDir(rig.name, command, opt.sets) : opt.out;
   try {
     OutputDir dir(path);
     dir.removeStaleOutputs();
@@ -96,15 +99,29 @@ OutputDir openOutputDir(const Options& opt, const Rig& rig, const std::string& c
   }
 }
 
+// Seconds per unit of slow time for a physical rig (t_s columns, plot axes); 0 for a scaled rig.
+double secondsPerTau(const LoadedRig& r) {
+  return r.rig.units == Units::Physical ? r.scaled.time_scale_s / r.scaled.epsilon : 0.0;
+}
+
 RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::string& envelope) {
   RunFilesOptions o;
   o.n_metronomes = static_cast<int>(r.rig.metronomes.size());
   o.tau_end = r.scaled.tau_end;
   o.trajectory = trajectory;
+  o.events = trajectory;  // events.csv beside the full model's trajectory
   o.envelope_name = envelope;
+  o.seconds = r.rig.units == Units::Physical;
   o.epsilon = r.scaled.epsilon;
   o.time_unit = r.rig.units == Units::Physical ? r.scaled.time_scale_s : 1.0;
   return o;
+}
+
+// summary.json's resolved_rig, command_line and build (docs/outputs.md)
+void addRunProvenance(nlohmann::json& summary, const Options& opt, const LoadedRig& r) {
+  addProvenance(
+      summary,
+      resolvedRigJson(r.text, opt.rig_path.empty() ? "<default rig>" : opt.rig_path, opt.sets));
 }
 
 // Runs `engine` into `sink`. An engine that lets an interruption (or a SimulationFailure) through
@@ -217,6 +234,7 @@ int runCommand(const Options& opt) {
 
   nlohmann::json summary = runSummaryJson(r.rig, r.scaled_json, report, verdict);
   summary["files"] = files;
+  addRunProvenance(summary, opt, r);
   writeSummary(dir, summary);  // last: a summary.json means the run's files are all there
 
   if (!opt.quiet) {
@@ -260,7 +278,7 @@ int compareCommand(const Options& opt) {
   const RegimeVerdict v_slow = judge(slow, slow_sink, r);
   const ComparisonResult cmp =
       compareEnvelopeFiles(dir.file("envelope_full.csv"), dir.file("envelope_slow.csv"),
-                           r.scaled.epsilon, dir.file("comparison.csv"));
+                           r.scaled.epsilon, dir.file("comparison.csv"), secondsPerTau(r));
 
   std::vector<std::string> files = full_sink.fileNames();
   for (const auto& f : slow_sink.fileNames()) files.push_back(f);
@@ -290,6 +308,7 @@ int compareCommand(const Options& opt) {
   }
   summary["wall_seconds"] = secondsSince(t0);
   summary["files"] = files;
+  addRunProvenance(summary, opt, r);
   writeSummary(dir, summary);
 
   if (!opt.quiet) {

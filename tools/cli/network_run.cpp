@@ -33,7 +33,7 @@ void refuseOptions(const Options& opt, const Network& net) {
 
 OutputDir openDir(const Options& opt, const Network& net) {
   try {
-    OutputDir dir(opt.out.empty() ? defaultOutputDir(net.name, "run") : opt.out);
+    OutputDir dir(opt.out.empty() ? defaultOutputDir(net.name, "run", opt.sets) : opt.out);
     dir.removeStaleOutputs();
     return dir;
   } catch (const std::runtime_error& e) {

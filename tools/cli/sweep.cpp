@@ -423,7 +423,7 @@ SweepPlan planSweep(const SweepOptions& opt) {
   m.metronomes = plan.n;
   m.grid = plan.grid;
   m.shard = plan.shard;
-  plan.path = opt.out.empty() ? defaultOutputDir(plan.base.name, "sweep") : opt.out;
+  plan.path = opt.out.empty() ? defaultOutputDir(plan.base.name, "sweep", opt.sets) : opt.out;
   plan.regimes_path = plan.path + "/regimes.csv";
   return plan;
 }
