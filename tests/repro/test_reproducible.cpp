@@ -191,7 +191,9 @@ TEST(Version, PrintsTheCommitGitNames) {
   // the build may be older than HEAD only if it was not rebuilt: the test binary was built with it
   const std::string base = commit.substr(0, commit.find("-dirty"));
   EXPECT_EQ(base, head) << "--version says " << commit;
-  if (head == "unknown") EXPECT_EQ(commit, "unknown");
+  if (head == "unknown") {
+    EXPECT_EQ(commit, "unknown");
+  }
   EXPECT_NE(r.out.find("Simbody "), std::string::npos);
   EXPECT_NE(r.out.find("Eigen "), std::string::npos);
 

@@ -7,6 +7,7 @@
 #include "sim/record/atomic_file.h"
 #include "tools/cli/engines.h"
 #include "tools/report/build_info.h"
+#include "tools/report/plot.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
@@ -39,6 +40,11 @@ void addRigOptions(CLI::App* cmd, Options& opt, bool with_out) {
     cmd->add_flag("-q,--quiet", opt.quiet,
                   "no summary on stdout (errors and warnings still go "
                   "to stderr)");
+    cmd->add_option("--plot-format", opt.plot_format,
+                    "format of the plots: png (default), svg or pdf (gnuplot's pngcairo, svg and "
+                    "pdfcairo terminals)")
+        ->check(CLI::IsMember(plotFormats()))
+        ->capture_default_str();
     cmd->add_flag("--no-plot", opt.no_plot,
                   "write no plot (the CSV and JSON files only; saves the plotting child "
                   "process, most of a short run's time)");

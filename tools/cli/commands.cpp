@@ -8,16 +8,19 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "models/scaling.h"
 #include "sim/analysis/compare.h"
+#include "sim/analysis/linear_decay.h"
 #include "sim/analysis/regime.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/network_run.h"
 #include "tools/report/comparison_csv.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
+#include "tools/report/progress_log.h"
 #include "tools/report/scale_report.h"
 #include "yaml/rig_loader.h"
 
@@ -104,6 +107,13 @@ double secondsPerTau(const LoadedRig& r) {
   return r.rig.units == Units::Physical ? r.scaled.time_scale_s / r.scaled.epsilon : 0.0;
 }
 
+PlotStyle plotStyle(const Options& opt, const LoadedRig& r) {
+  PlotStyle s;
+  s.format = opt.plot_format;
+  s.seconds_per_tau = secondsPerTau(r);
+  return s;
+}
+
 RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::string& envelope) {
   RunFilesOptions o;
   o.n_metronomes = static_cast<int>(r.rig.metronomes.size());
@@ -122,6 +132,18 @@ void addRunProvenance(nlohmann::json& summary, const Options& opt, const LoadedR
   addProvenance(
       summary,
       resolvedRigJson(r.text, opt.rig_path.empty() ? "<default rig>" : opt.rig_path, opt.sets));
+}
+
+// A line every 10% of a long run on stderr when it is not a terminal (logs, CI).
+std::unique_ptr<ProgressLog> attachProgress(const Options& opt, const LoadedRig& r, FileSink& sink,
+                                            const std::string& what) {
+  if (!ProgressLog::wanted(opt.quiet)) return nullptr;
+  auto log = std::make_unique<ProgressLog>(what, "tau", r.scaled.tau_end, [](const std::string& l) {
+    std::cerr << l << "\n" << std::flush;
+  });
+  ProgressLog* p = log.get();
+  sink.setProgress([p](double tau) { p->update(tau); });
+  return log;
 }
 
 // Runs `engine` into `sink`. An engine that lets an interruption (or a SimulationFailure) through
@@ -221,20 +243,35 @@ int runCommand(const Options& opt) {
   const bool full = model == "full";
 
   FileSink sink(dir, sinkOptions(r, full, "envelope.csv"));
+  // section 3A (locked metronomes, board on springs): the extremes are the platform's stops
+  LinearDecay decay;
+  if (full && isSection3ARig(r.rig))
+    sink.setEventObserver([&decay](const char*, int who, const std::vector<double>&,
+                                   const std::vector<double>& after) {
+      if (who < 0) decay.addExtreme(after[0], after[1]);
+    });
+  const auto progress = attachProgress(opt, r, sink, "run");
   RunReport report = runModel(*r.engine, r, sink);
   sink.commit();
   const RegimeVerdict verdict = judge(report, sink, r);
 
   std::vector<std::string> files = sink.fileNames();
+  const std::string plot = "envelope." + opt.plot_format;
   if (!opt.no_plot &&
-      plotEnvelope(dir, "envelope.png", sink.plotRows(), r.scaled.theta_c,
-                   r.rig.name + " - " + modelTitle(model) + " - " + regimeName(verdict)))
-    files.push_back("envelope.png");
+      plotEnvelope(dir, plot, sink.plotRows(), r.scaled.theta_c,
+                   r.rig.name + " - " + modelTitle(model) + " - " + regimeName(verdict),
+                   plotStyle(opt, r)))
+    files.push_back(plot);
   files.push_back("summary.json");
 
   nlohmann::json summary = runSummaryJson(r.rig, r.scaled_json, report, verdict);
   summary["files"] = files;
   addRunProvenance(summary, opt, r);
+  if (const auto s3a = decay.result(r.rig))
+    summary["section3a"] = {{"slope", s3a->slope_m_s},
+                            {"mu_bar", s3a->mu_bar},
+                            {"period", s3a->period_s},
+                            {"extremes", s3a->extremes}};
   writeSummary(dir, summary);  // last: a summary.json means the run's files are all there
 
   if (!opt.quiet) {
@@ -259,10 +296,12 @@ int compareCommand(const Options& opt) {
   const Clock::time_point t0 = Clock::now();
 
   FileSink full_sink(dir, sinkOptions(r, true, "envelope_full.csv"));
+  const auto full_progress = attachProgress(opt, r, full_sink, "compare (full model)");
   RunReport full = runModel(*r.engine, r, full_sink);
   full_sink.commit();
 
   FileSink slow_sink(dir, sinkOptions(r, false, "envelope_slow.csv"));
+  const auto slow_progress = attachProgress(opt, r, slow_sink, "compare (slow flow)");
   RunReport slow;
   if (FileSink::stopRequested()) {
     slow.model = "slow";
@@ -283,11 +322,13 @@ int compareCommand(const Options& opt) {
   std::vector<std::string> files = full_sink.fileNames();
   for (const auto& f : slow_sink.fileNames()) files.push_back(f);
   files.push_back("comparison.csv");
-  if (!opt.no_plot && plotComparison(dir, "comparison.png", full_sink.plotRows(),
-                                     slow_sink.plotRows(), r.scaled.theta_c,
-                                     r.rig.name + " - full model (solid) " + regimeName(v_full) +
-                                         ", slow flow (dashed) " + regimeName(v_slow)))
-    files.push_back("comparison.png");
+  const std::string plot = "comparison." + opt.plot_format;
+  if (!opt.no_plot &&
+      plotComparison(dir, plot, full_sink.plotRows(), slow_sink.plotRows(), r.scaled.theta_c,
+                     r.rig.name + " - full model (solid) " + regimeName(v_full) +
+                         ", slow flow (dashed) " + regimeName(v_slow),
+                     plotStyle(opt, r)))
+    files.push_back(plot);
   files.push_back("summary.json");
 
   // SPEC keys at the top level are the full model's (the reference); each model's own report is

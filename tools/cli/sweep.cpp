@@ -14,6 +14,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -27,6 +28,7 @@
 #include "tools/report/folder_lock.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
+#include "tools/report/progress_log.h"
 #include "tools/report/sweep_files.h"
 #include "tools/report/sweep_maps.h"
 #include "yaml/rig_loader.h"
@@ -243,12 +245,18 @@ SweepPoint unloadablePoint(long g, int n, const std::string& why) {
 
 class Progress {
  public:
-  Progress(bool on, long total, long done_before)
-      : on_(on), total_(total), done_(done_before), start_done_(done_before) {}
+  // on: the bar (stderr a terminal); log: a line every 10% instead (tools/report/progress_log.h)
+  Progress(bool on, bool log, long total, long done_before)
+      : on_(on), total_(total), done_(done_before), start_done_(done_before) {
+    if (log)
+      log_ = std::make_unique<ProgressLog>("sweep", "points", static_cast<double>(total),
+                                           [](const std::string& l) { std::cerr << l << "\n"; });
+  }
 
   void finished(bool failed) {
     ++done_;
     failed_ += failed;
+    if (log_) log_->update(static_cast<double>(done_));
     if (!on_) return;
     const Clock::time_point now = Clock::now();
     if (done_ < total_ && now - last_ < std::chrono::milliseconds(200)) return;
@@ -275,6 +283,7 @@ class Progress {
   }
 
   bool on_;
+  std::unique_ptr<ProgressLog> log_;
   long total_, done_, start_done_, failed_ = 0;
   bool drawn_ = false;
   Clock::time_point t0_ = Clock::now(), last_{};
@@ -506,7 +515,8 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
   RegimesAppender timings(timingsPath(dir), "index,wall_seconds", timing_bytes == 0, timing_bytes);
   run.jobs = opt.jobs > 0 ? opt.jobs : static_cast<int>(std::thread::hardware_concurrency());
   run.jobs = std::max(1, run.jobs);
-  Progress progress(!opt.quiet && ::isatty(2), plan.mine, static_cast<long>(run.points.size()));
+  Progress progress(!opt.quiet && ::isatty(2), ProgressLog::wanted(opt.quiet), plan.mine,
+                    static_cast<long>(run.points.size()));
   const long stop_after = stopAfterHook();
   runSweepPoints(
       plan.grid.size(), [&](long g) { return plan.shard.contains(g) && !table.lines.count(g); },

@@ -190,6 +190,7 @@ void FileSink::eventRecord(const char* kind, int metronome, const std::vector<do
   if (opt_.seconds) line += "," + formatNumber(t);
   events_->writeLine(line);
   ++event_rows_;
+  if (observer_) observer_(kind, metronome, before, after);
 }
 
 void FileSink::checkStop(double t) {
@@ -228,6 +229,7 @@ void FileSink::envelopeRow(const EnvelopeRow& row) {
   ++envelope_rows_;
   window_.add(row);
   plot_.add(row);
+  if (progress_) progress_(row.tau);
   checkStop(row.tau / opt_.epsilon * opt_.time_unit);
 }
 

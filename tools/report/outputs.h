@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -117,6 +118,13 @@ class FileSink : public RunSink {
   long trajectoryRows() const { return trajectory_rows_; }
   long envelopeRows() const { return envelope_rows_; }
   long eventRecords() const { return event_rows_; }
+  // Called with every event record as it is written (an analysis on the events: section 3A).
+  using EventObserver =
+      std::function<void(const char* kind, int metronome, const std::vector<double>& before,
+                         const std::vector<double>& after)>;
+  void setEventObserver(EventObserver f) { observer_ = std::move(f); }
+  // Called with every envelope row's tau (progress of the run, tools/report/progress_log.h).
+  void setProgress(std::function<void(double tau)> f) { progress_ = std::move(f); }
   const RegimeWindow& regimeWindow() const { return window_; }
   std::vector<EnvelopeRow> plotRows() const { return plot_.rows(); }
   // final names of the files this sink writes
@@ -133,6 +141,8 @@ class FileSink : public RunSink {
   RunFilesOptions opt_;
   std::unique_ptr<AtomicFile> trajectory_, envelope_, events_;
   long trajectory_rows_ = 0, envelope_rows_ = 0, event_rows_ = 0;
+  EventObserver observer_;
+  std::function<void(double)> progress_;
   bool stop_thrown_ = false;
   RegimeWindow window_;
   EnvelopeDecimator plot_;
