@@ -4,7 +4,6 @@
 
 #include <Eigen/Core>
 
-#include "metrosync_git_commit.h"  // generated: METROSYNC_GIT_COMMIT
 #include "sim/record/atomic_file.h"
 
 namespace metrosync {
@@ -25,7 +24,7 @@ std::vector<std::string>& commandLineStore() {
 }  // namespace
 
 const BuildInfo& buildInfo() {
-  static const BuildInfo info{metrosyncVersion(), METROSYNC_GIT_COMMIT, simbodyVersion(),
+  static const BuildInfo info{metrosyncVersion(), gitCommit(), simbodyVersion(),
                               std::to_string(EIGEN_WORLD_VERSION) + "." +
                                   std::to_string(EIGEN_MAJOR_VERSION) + "." +
                                   std::to_string(EIGEN_MINOR_VERSION)};

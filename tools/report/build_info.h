@@ -19,6 +19,9 @@ struct BuildInfo {
 
 const BuildInfo& buildInfo();
 
+// The commit alone (a source generated at build time: build/generated/git_commit.cpp).
+const char* gitCommit();
+
 // {"metrosync", "commit", "simbody", "eigen"}
 nlohmann::json buildJson();
 

@@ -155,7 +155,7 @@ FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt)
     for (int i = 1; i <= opt_.n_metronomes; ++i)
       h += ",theta_" + std::to_string(i) + ",thetadot_" + std::to_string(i);
     h += ",platform";
-    trajectory_->writeLine(h + (opt_.seconds ? ",t_s" : ""));
+    trajectory_->writeLine(h);  // t is in seconds already for a physical rig (SPEC 3)
     if (opt_.events) {
       events_ = std::make_unique<AtomicFile>(dir.file(opt_.events_name));
       events_->writeLine(eventsHeader(opt_.n_metronomes, opt_.seconds));
@@ -211,7 +211,6 @@ void FileSink::trajectoryRow(const std::vector<double>& row) {
     if (k) line += ',';
     line += formatNumber(row[k]);
   }
-  if (opt_.seconds) line += "," + formatNumber(row[0]);  // t is in seconds already
   trajectory_->writeLine(line);
   ++trajectory_rows_;
   checkStop(row[0]);

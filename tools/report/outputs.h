@@ -77,7 +77,8 @@ struct RunFilesOptions {
   std::string envelope_name = "envelope.csv";
   bool events = false;  // events.csv, with the trajectory (full model only)
   std::string events_name = "events.csv";
-  // physical rigs: every file gets a last column t_s, the row's time in seconds
+  // physical rigs: envelope.csv and events.csv get a last column t_s, the row's time in seconds
+  // (trajectory.csv's t is in seconds already: the rig's units)
   bool seconds = false;
   size_t max_plot_rows = 4000;
   // to report an interruption "at t = ..." in the rig's time unit: t = tau / epsilon * time_unit
