@@ -97,6 +97,25 @@ TEST(PlotFormat, SvgAndPdfOnRequestPngByDefault) {
   EXPECT_FALSE(fs::exists(dir + "/gif"));
 }
 
+TEST(PlotFormat, SweepMapsInPdf) {
+  const std::string dir = scratch("sweep");
+  std::ofstream(dir + "/pair.yaml")
+      << "units: scaled\nepsilon: 0.073\nplatform:\n  friction: {law: coulomb, mu: 0.4}\n"
+         "metronomes:\n  - {nu: 0.7, J: 2.8, theta_c: 0.9, start: {A: 1.9, phi: 0.03}}\n"
+         "  - {nu: 0.7, J: 2.8, theta_c: 0.9, start: {A: 1.9, phi: 3.0}}\nsimulation:\n  tau: 20\n";
+  const CommandResult r = metrosync(
+      "sweep pair.yaml --vary platform.friction.mu=0.1:0.5:3 --plot-format pdf -q --out s", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(startsWith(slurp(dir + "/s/regimes.pdf"), "%PDF"));
+  EXPECT_TRUE(startsWith(slurp(dir + "/s/amplitudes.pdf"), "%PDF"));
+  EXPECT_FALSE(fs::exists(dir + "/s/regimes.png"));
+  // a png sweep into the same folder replaces the pdf maps (stale files of any format go)
+  ASSERT_EQ(metrosync("sweep pair.yaml --vary platform.friction.mu=0.1:0.5:3 -q --out s", dir).code,
+            0);
+  EXPECT_TRUE(fs::exists(dir + "/s/regimes.png"));
+  EXPECT_FALSE(fs::exists(dir + "/s/regimes.pdf"));
+}
+
 TEST(PlotFormat, HeatmapAboveEightMetronomes) {
   const std::vector<double> tc(9, 0.9), tc8(8, 0.9);
   const std::string many = metrosync::gnuplotScript("d", "p", 9, 1, tc, 10, 0, 2 * kPi, "t");

@@ -578,7 +578,8 @@ int sweepImpl(const SweepOptions& opt) {
   const bool complete = static_cast<long>(run.points.size()) == plan.mine;
   writeSortedRegimesCsv(plan.regimes_path, plan.grid, plan.n, run.lines);
   std::vector<std::string> files = {"regimes.csv", "timings.csv"};
-  for (const auto& f : plotSweepMaps(dir, plan.grid, plan.n, run.points, mapTitle(plan.manifest)))
+  for (const auto& f :
+       plotSweepMaps(dir, plan.grid, plan.n, run.points, mapTitle(plan.manifest), opt.plot_format))
     files.push_back(f);
   files.push_back("sweep.json");
   nlohmann::json status = statusJson(plan.manifest, plan.mine, run.points, complete);
@@ -679,7 +680,8 @@ int mergeImpl(const SweepOptions& opt) {
   if (!lock) lock.emplace(path, "metrosync merge");
   writeSortedRegimesCsv(dir.file("regimes.csv"), grid, n, lines);
   std::vector<std::string> files = {"regimes.csv"};
-  for (const auto& f : plotSweepMaps(dir, grid, n, points, mapTitle(merged))) files.push_back(f);
+  for (const auto& f : plotSweepMaps(dir, grid, n, points, mapTitle(merged), opt.plot_format))
+    files.push_back(f);
   files.push_back("sweep.json");
   const bool complete = static_cast<long>(points.size()) == grid.size();
   nlohmann::json status = statusJson(merged, grid.size(), points, complete);
@@ -751,6 +753,12 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
       ->type_name("DIR");
   c.sweep->add_flag("-q,--quiet", opt.quiet,
                     "no progress bar and no summary (errors and warnings still go to stderr)");
+  c.sweep
+      ->add_option("--plot-format", opt.plot_format,
+                   "format of the maps: png (default), svg or pdf (gnuplot's pngcairo, svg and "
+                   "pdfcairo terminals)")
+      ->check(CLI::IsMember(plotFormats()))
+      ->capture_default_str();
   c.sweep->footer(
       "Files in --out DIR: regimes.csv (one row per grid point, appended as points finish, "
       "sorted by grid index at the end: the varied keys, regime, A_1..A_N, psi_2..psi_N (final, "
@@ -759,7 +767,8 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
       "swept, how far it got), timings.csv (wall seconds per point), regimes.png, "
       "amplitudes.png, phases.png, order.png (N >= 3), drive.png (Coulomb platforms).\n"
       "A point whose run fails is recorded with regime 'failed' and the reason; the sweep goes "
-      "on. A progress bar with ETA goes to stderr when it is a terminal. SIGINT/SIGTERM stop the "
+      "on. A progress bar with ETA goes to stderr when it is a terminal; otherwise a line at every "
+      "10% of a sweep that has run for 5 s. SIGINT/SIGTERM stop the "
       "sweep (the points in flight are not recorded; exit 3): --resume continues it, as it does "
       "after kill -9.\n"
       "Exit codes: 0 success; 2 bad command line or rig (nothing written); 3 interrupted; 1 "
@@ -772,6 +781,11 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
   c.merge->add_option("--out", opt.out, "output directory (default: runs/<rig name>-merge)")
       ->type_name("DIR");
   c.merge->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
+  c.merge
+      ->add_option("--plot-format", opt.plot_format,
+                   "format of the maps: png (default), svg or pdf")
+      ->check(CLI::IsMember(plotFormats()))
+      ->capture_default_str();
   c.merge->footer(
       "The directories must hold the same sweep (rig, --set, model, grid: their sweep.json "
       "says); points missing from all of them are reported and left white in the maps.\n"

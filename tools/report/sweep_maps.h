@@ -23,7 +23,7 @@
 
 namespace metrosync {
 
-// The file names the maps may have (for removing stale ones).
+// The file names the maps may have, in every plot format (for removing stale ones).
 const std::vector<std::string>& sweepMapNames();
 
 // A grid of more points than this gets no maps: the pictures are ~1000 pixels across, so a finer
@@ -35,7 +35,8 @@ constexpr long kMaxMapCells = 1000000;
 // written.
 std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& grid, int n,
                                        const std::map<long, SweepPoint>& points,
-                                       const std::string& title);
+                                       const std::string& title,
+                                       const std::string& format = "png");  // --plot-format
 
 // The colour of a regime name (#rrggbb): fixed for the SPEC names and `failed`, from a palette in
 // the order given for the others. `names` are the regimes present, in legend order.
@@ -45,6 +46,6 @@ std::string regimeColour(const std::string& name, const std::vector<std::string>
 // The gnuplot script of the regime map (exposed for tests).
 std::string regimeMapScript(const std::string& data_path, const std::string& png_path,
                             const SweepGrid& grid, const std::vector<std::string>& legend,
-                            const std::string& title);
+                            const std::string& title, const std::string& format = "png");
 
 }  // namespace metrosync
