@@ -84,8 +84,9 @@ CLI::App* addRunCommand(CLI::App& app, Options& opt) {
       "simulation.integrator=verner76): " +
       integratorHelp() +
       ". Accuracy: simulation.accuracy (relative local error target, default 1e-8).\n"
-      "Files in --out DIR: trajectory.csv (full model), envelope.csv, envelope.png, "
-      "summary.json.\n" +
+      "Files in --out DIR: trajectory.csv and events.csv (full model), envelope.csv, "
+      "envelope.png (.svg, .pdf with --plot-format), summary.json (with resolved_rig: the rig "
+      "after --set, runnable as is; docs/outputs.md).\n" +
       kExitCodes);
   return run;
 }
@@ -96,7 +97,8 @@ CLI::App* addCompareCommand(CLI::App& app, Options& opt) {
   addRigOptions(compare, opt, true);
   compare->add_option("--engine", opt.engine, fullEngineHelp());
   compare->footer(
-      "Files in --out DIR: trajectory.csv, envelope_full.csv, envelope_slow.csv, comparison.csv "
+      "Files in --out DIR: trajectory.csv, events.csv, envelope_full.csv, envelope_slow.csv, "
+      "comparison.csv "
       "(tau, A_i full/slow, psi_j full/slow), comparison.png, summary.json (top-level keys: the "
       "full model; models.full, models.slow: each model; comparison: max |dA_i|, max |dpsi_j| "
       "modulo 2 pi).\n" +
