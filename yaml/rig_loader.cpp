@@ -1074,13 +1074,14 @@ void appendJson(std::string& out, const Node& n) {
 
 std::string resolvedRigJson(const std::string& yaml_text, const std::string& display_name,
                             const std::vector<std::string>& overrides) {
-  const Rig rig = loadRigText(yaml_text, display_name, overrides);  // the rig must be valid
   Node root = checkedRigTree(yaml_text, RigSource{display_name, overrides});
-  if (!root.find("name") && !root.find("platforms")) {
+  // a single rig is checked whole here; a network (platforms:) by its own loader, before
+  if (!root.find("platforms")) loadRigText(yaml_text, display_name, overrides);
+  if (!root.find("name")) {
     Entry name;
     name.key = "name";
     name.value.kind = Node::Kind::Scalar;
-    name.value.scalar = rig.name;
+    name.value.scalar = stemOf(display_name);  // the name it ran under (yaml/rig_loader.h)
     root.map.insert(root.map.begin(), std::move(name));
   }
   std::string out;

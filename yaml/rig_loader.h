@@ -61,7 +61,8 @@ std::optional<double> rigNumber(const std::string& yaml_text, const std::string&
 // double (%.17g), every other scalar a string, an empty value null. JSON is YAML, so the text is a
 // rig file that runs as is. A rig without a `name` key gets the name it had here (the stem of
 // display_name) as its first key, so the text names the same rig wherever it is saved. Throws
-// RigError for an invalid rig, like loadRigText.
+// RigError for an invalid rig, like loadRigText (a network's tree, `platforms:`, is checked
+// against the schema only: its own loader, yaml/network_loader.h, checks the rest).
 std::string resolvedRigJson(const std::string& yaml_text, const std::string& display_name,
                             const std::vector<std::string>& overrides);
 

@@ -7,6 +7,7 @@
 #include "tools/report/network_files.h"
 #include "tools/report/outputs.h"
 #include "yaml/network_loader.h"
+#include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
 
@@ -67,6 +68,9 @@ int runNetworkCommand(const Options& opt) {
     names.push_back(png);
   names.push_back("summary.json");
   summary["files"] = names;
+  addProvenance(summary,  // resolved_rig, command_line, build (docs/outputs.md)
+                resolvedRigJson(opt.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.rig_path),
+                                opt.rig_path.empty() ? "<default rig>" : opt.rig_path, opt.sets));
   writeSummary(dir, summary);  // last: a summary.json means the run's files are all there
   if (!opt.quiet)
     std::cout << "network of " << net.platforms.size() << " platforms (direct, "
