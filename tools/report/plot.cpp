@@ -271,15 +271,88 @@ std::string xOf(const PlotStyle& style, const std::string& expr) {
                                    : "(" + expr + ")";
 }
 
+// What a panel needs: the data, its shape, the style; `plot` collects one `plot` command.
+struct Panel {
+  const std::string& data;
+  int n, blocks;
+  const PlotStyle& style;
+  std::string plot;
+  void add(const std::string& item) { plot += (plot.empty() ? "plot " : ", \\\n     ") + item; }
+  bool compare() const { return blocks == 2; }
+  std::string model(int b) const {
+    static const char* const names[] = {"full", "slow"};
+    return compare() ? std::string(" ") + names[b] : "";
+  }
+  std::string lines(int b, int column) const {
+    return quote(data) + " index " + std::to_string(b) + " using " + xOf(style, "$1") + ":" +
+           std::to_string(column) + " with lines lw " + (b == 0 ? "2" : "1.5") + " dt " +
+           (b == 0 ? "1" : "2");
+  }
+};
+
+// One row of cells per metronome, coloured by A_i (the first model's, in a comparison).
+std::string heatmapPanel(Panel& p) {
+  std::ostringstream s;
+  s << "set ylabel 'metronome i" << (p.compare() ? " (full model)" : "") << "'\n"
+    << "set yrange [0.5:" << p.n + 0.5 << "]\nset cbrange [0:*]\n"
+    << "set cblabel 'amplitude A_i (scaled)'\n"
+    << "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', 4 '#fde725')\n";
+  p.add(quote(p.data) + " index " + std::to_string(p.blocks) + " using " +
+        xOf(p.style, "($1+$2)/2") + ":3:" + xOf(p.style, "$1") + ":" + xOf(p.style, "$2") +
+        ":($3-0.5):($3+0.5):4 with boxxyerror fs solid 1.0 noborder lc palette notitle");
+  s << p.plot << "\nunset colorbox\nunset cblabel\n";
+  return s.str();
+}
+
+// Amplitudes, with the escapement threshold: below theta_c a metronome is dead (SPEC 4).
+std::string amplitudePanel(Panel& p, const std::vector<double>& theta_c) {
+  std::ostringstream s;
+  s << "set ylabel 'amplitude A_i (scaled)'\nset yrange [0:*]\n";
+  for (int b = 0; b < p.blocks; ++b)
+    for (int i = 0; i < p.n; ++i)
+      p.add(p.lines(b, 2 + i) + " lc rgb '" + colour(i) + "' title 'A_" + std::to_string(i + 1) +
+            p.model(b) + "'");
+  std::vector<double> levels;
+  for (double tc : theta_c)
+    if (std::none_of(levels.begin(), levels.end(),
+                     [&](double l) { return std::fabs(l - tc) < 1e-9; }))
+      levels.push_back(tc);
+  for (size_t k = 0; k < levels.size(); ++k)
+    p.add(num(levels[k]) + " with lines dt 3 lw 1.5 lc rgb '#555555' " +
+          (k == 0 ? "title 'θ_c'" : "notitle"));
+  s << p.plot << "\n";
+  return s.str();
+}
+
+// Phase differences, in units of pi, with guides at pi (antiphase) and 2 pi (in-phase); above
+// kHeatmapAbove metronomes one key entry for them all.
+std::string phasePanel(Panel& p, double psi_lo, double psi_hi) {
+  std::ostringstream s;
+  const double pad = 0.04 * (psi_hi - psi_lo);
+  s << "set ylabel 'phase difference ψ_j = φ_1 - φ_j (rad)'\n"
+    << "set yrange [" << num(psi_lo - pad) << ":" << num(psi_hi + pad) << "]\n"
+    << piTics(psi_lo - pad, psi_hi + pad);
+  const bool many = p.n > kHeatmapAbove;
+  for (int b = 0; b < p.blocks; ++b)
+    for (int j = 2; j <= p.n; ++j) {
+      const std::string key =
+          many ? (j == 2 ? "title 'ψ_j, j = 2..." + std::to_string(p.n) + p.model(b) + "'"
+                         : std::string("notitle"))
+               : "title 'ψ_" + std::to_string(j) + p.model(b) + "'";
+      p.add(p.lines(b, p.n + j) + " lc rgb '" + colour(j - 1) + "' " + key);
+    }
+  p.add("pi with lines dt 3 lw 1.5 lc rgb '#555555' title 'π, 2π'");
+  p.add("2*pi with lines dt 3 lw 1.5 lc rgb '#555555' notitle");
+  s << p.plot << "\n";
+  return s.str();
+}
+
 }  // namespace
 
 std::string gnuplotScript(const std::string& data_path, const std::string& png_path, int n,
                           int blocks, const std::vector<double>& theta_c, double tau_max,
                           double psi_lo, double psi_hi, const std::string& title,
                           const PlotStyle& style) {
-  const bool compare = blocks == 2;
-  const bool heatmap = n > kHeatmapAbove;
-  const char* const model_name[] = {"full", "slow"};
   std::ostringstream s;
   const int panels = n > 1 ? 2 : 1;
   s << plotTerminal(style.format, 1100, panels == 2 ? 850 : 480) << "set output " << quote(png_path)
@@ -291,65 +364,12 @@ std::string gnuplotScript(const std::string& data_path, const std::string& png_p
     << "set lmargin at screen 0.09\nset rmargin at screen 0.84\n"
     << xAxis(style, tau_max) << "set multiplot layout " << panels << ",1 title " << quote(title)
     << " noenhanced font 'sans,13'\n";
-
-  std::string plot;
-  auto add = [&](const std::string& item) {
-    plot += (plot.empty() ? "plot " : ", \\\n     ") + item;
-  };
-  if (heatmap) {
-    // one row of cells per metronome, coloured by A_i (the first model's, in a comparison)
-    s << "set ylabel 'metronome i" << (compare ? " (full model)" : "") << "'\n"
-      << "set yrange [0.5:" << n + 0.5 << "]\nset cbrange [0:*]\n"
-      << "set cblabel 'amplitude A_i (scaled)'\n"
-      << "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', 4 '#fde725')\n";
-    add(quote(data_path) + " index " + std::to_string(blocks) + " using " +
-        xOf(style, "($1+$2)/2") + ":3:" + xOf(style, "$1") + ":" + xOf(style, "$2") +
-        ":($3-0.5):($3+0.5):4 with boxxyerror fs solid 1.0 noborder lc palette notitle");
-    s << plot << "\nunset colorbox\nunset cblabel\n";
-  } else {
-    // amplitudes, with the escapement threshold: below theta_c a metronome is dead (SPEC 4)
-    s << "set ylabel 'amplitude A_i (scaled)'\nset yrange [0:*]\n";
-    for (int b = 0; b < blocks; ++b)
-      for (int i = 0; i < n; ++i)
-        add(quote(data_path) + " index " + std::to_string(b) + " using " + xOf(style, "$1") + ":" +
-            std::to_string(2 + i) + " with lines lw " + (b == 0 ? "2" : "1.5") + " dt " +
-            (b == 0 ? "1" : "2") + " lc rgb '" + colour(i) + "' title '" + "A_" +
-            std::to_string(i + 1) + (compare ? std::string(" ") + model_name[b] : "") + "'");
-    std::vector<double> levels;
-    for (double tc : theta_c)
-      if (std::none_of(levels.begin(), levels.end(),
-                       [&](double l) { return std::fabs(l - tc) < 1e-9; }))
-        levels.push_back(tc);
-    for (size_t k = 0; k < levels.size(); ++k)
-      add(num(levels[k]) + " with lines dt 3 lw 1.5 lc rgb '#555555' " +
-          (k == 0 ? "title 'θ_c'" : "notitle"));
-    s << plot << "\n";
-  }
+  Panel top{data_path, n, blocks, style, {}};
+  s << (n > kHeatmapAbove ? heatmapPanel(top) : amplitudePanel(top, theta_c));
   if (style.seconds_per_tau > 0) s << "unset x2tics\nset xtics mirror\nset xlabel 'time (s)'\n";
-
-  // phase differences, in units of pi, with guides at pi (antiphase) and 2 pi (in-phase)
   if (panels == 2) {
-    const double pad = 0.04 * (psi_hi - psi_lo);
-    s << "set ylabel 'phase difference ψ_j = φ_1 - φ_j (rad)'\n"
-      << "set yrange [" << num(psi_lo - pad) << ":" << num(psi_hi + pad) << "]\n"
-      << piTics(psi_lo - pad, psi_hi + pad);
-    plot.clear();
-    for (int b = 0; b < blocks; ++b)
-      for (int j = 2; j <= n; ++j) {
-        // many metronomes: one key entry for them all, not one each
-        const std::string key =
-            heatmap ? (j == 2 ? "title 'ψ_j, j = 2..." + std::to_string(n) +
-                                    (compare ? std::string(" ") + model_name[b] : "") + "'"
-                              : std::string("notitle"))
-                    : "title 'ψ_" + std::to_string(j) +
-                          (compare ? std::string(" ") + model_name[b] : "") + "'";
-        add(quote(data_path) + " index " + std::to_string(b) + " using " + xOf(style, "$1") + ":" +
-            std::to_string(1 + n + j - 1) + " with lines lw " + (b == 0 ? "2" : "1.5") + " dt " +
-            (b == 0 ? "1" : "2") + " lc rgb '" + colour(j - 1) + "' " + key);
-      }
-    add("pi with lines dt 3 lw 1.5 lc rgb '#555555' title 'π, 2π'");
-    add("2*pi with lines dt 3 lw 1.5 lc rgb '#555555' notitle");
-    s << plot << "\n";
+    Panel bottom{data_path, n, blocks, style, {}};
+    s << phasePanel(bottom, psi_lo, psi_hi);
   }
   s << "unset multiplot\nset output\n";
   return s.str();
