@@ -25,6 +25,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -1011,6 +1012,81 @@ std::optional<double> rigNumber(const std::string& yaml_text, const std::string&
   if (n->kind != Node::Kind::Scalar || !parseNumber(n->scalar))
     throw RigError(display_name + ": " + key + " is not a number");
   return parseNumber(n->scalar);
+}
+
+namespace {
+
+void appendJsonString(std::string& out, const std::string& s) {
+  out += '"';
+  for (unsigned char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  out += '"';
+}
+
+void appendJson(std::string& out, const Node& n) {
+  switch (n.kind) {
+    case Node::Kind::Null:
+      out += "null";
+      return;
+    case Node::Kind::Scalar: {
+      const std::optional<double> v = parseNumber(n.scalar);
+      if (v && std::isfinite(*v)) {
+        char buf[40];
+        std::snprintf(buf, sizeof buf, "%.17g", *v);
+        out += buf;
+      } else {
+        appendJsonString(out, n.scalar);
+      }
+      return;
+    }
+    case Node::Kind::Map:
+      out += '{';
+      for (std::size_t k = 0; k < n.map.size(); ++k) {
+        if (k) out += ", ";
+        appendJsonString(out, n.map[k].key);
+        out += ": ";
+        appendJson(out, n.map[k].value);
+      }
+      out += '}';
+      return;
+    case Node::Kind::Seq:
+      out += '[';
+      for (std::size_t k = 0; k < n.seq.size(); ++k) {
+        if (k) out += ", ";
+        appendJson(out, n.seq[k]);
+      }
+      out += ']';
+      return;
+  }
+}
+
+}  // namespace
+
+std::string resolvedRigJson(const std::string& yaml_text, const std::string& display_name,
+                            const std::vector<std::string>& overrides) {
+  Node root = checkedRigTree(yaml_text, RigSource{display_name, overrides});
+  // a single rig is checked whole here; a network (platforms:) by its own loader, before
+  if (!root.find("platforms")) loadRigText(yaml_text, display_name, overrides);
+  if (!root.find("name")) {
+    Entry name;
+    name.key = "name";
+    name.value.kind = Node::Kind::Scalar;
+    name.value.scalar = stemOf(display_name);  // the name it ran under (yaml/rig_loader.h)
+    root.map.insert(root.map.begin(), std::move(name));
+  }
+  std::string out;
+  appendJson(out, root);
+  return out;
 }
 
 Node checkedRigTree(const std::string& yaml_text, const RigSource& rs) {

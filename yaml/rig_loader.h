@@ -56,6 +56,16 @@ Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
 std::optional<double> rigNumber(const std::string& yaml_text, const std::string& display_name,
                                 const std::vector<std::string>& overrides, const std::string& key);
 
+// The rig's tree after the overrides, as JSON text (summary.json's `resolved_rig`): maps become
+// objects (keys in document order), lists arrays, numbers JSON numbers that read back as the same
+// double (%.17g), every other scalar a string, an empty value null. JSON is YAML, so the text is a
+// rig file that runs as is. A rig without a `name` key gets the name it had here (the stem of
+// display_name) as its first key, so the text names the same rig wherever it is saved. Throws
+// RigError for an invalid rig, like loadRigText (a network's tree, `platforms:`, is checked
+// against the schema only: its own loader, yaml/network_loader.h, checks the rest).
+std::string resolvedRigJson(const std::string& yaml_text, const std::string& display_name,
+                            const std::vector<std::string>& overrides);
+
 // The built-in default rig (SPEC section 2, the paper's experiment): the text of
 // yaml/rigs/experiment.yaml.
 std::string defaultRigYaml();

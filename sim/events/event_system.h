@@ -36,6 +36,14 @@ class EventSystem {
 
   // Writes an event row ("tick", "stick", "slip") with the current state.
   virtual void eventRow(const char* kind) = 0;
+
+  // The event record (events.csv, docs/outputs.md), one per tick of each pendulum and per
+  // platform switch, with the state just before and just after it: the resolver calls
+  // snapshotBefore() before each change it may record and recordEvent() once the change is made.
+  // kind: "tick" (pendulum: engine order), "stick" or "slip" (pendulum -1: the platform).
+  // An engine that records nothing keeps the defaults.
+  virtual void snapshotBefore() {}
+  virtual void recordEvent(const char* kind, int pendulum) {}
 };
 
 }  // namespace metrosync

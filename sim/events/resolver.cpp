@@ -51,11 +51,13 @@ PlatformMode EventResolver::settleAtStart(EventSystem& sys) const {
     sys.setMode(m);
     return m;
   }
+  sys.snapshotBefore();
   sys.setMode(PlatformMode::Stuck);
   const PlatformMode m = coulomb_->modeAtRest(sys.holdingForce());
   if (m != PlatformMode::Stuck) {
     sys.setMode(m);
     sys.eventRow("slip");
+    sys.recordEvent("slip", -1);
   }
   return m;
 }
@@ -72,6 +74,7 @@ std::vector<int> EventResolver::dueTicks(const EventSystem& sys) const {
 }
 
 void EventResolver::applyTicks(EventSystem& sys, const std::vector<int>& due, WindowOutcome& out) {
+  sys.snapshotBefore();
   std::vector<double> impulse(esc_.size(), 0.0);
   for (int j : due) {
     const double th = sys.theta(j);
@@ -80,11 +83,14 @@ void EventResolver::applyTicks(EventSystem& sys, const std::vector<int>& due, Wi
   }
   out.escapement_in += sys.applyImpulse(impulse, 0.0);
   out.ticked = due;
+  // one record per pendulum: the combined impulse is each one's tick (the same states)
+  for (int j : due) sys.recordEvent("tick", j);
 }
 
 // --- 2. the platform after the impulse --------------------------------------------------------
 
 void EventResolver::modeAfterImpulse(EventSystem& sys, PlatformMode before, WindowOutcome& out) {
+  sys.snapshotBefore();  // after the ticks: a switch they cause starts from their result
   const double v = sys.xdot();
   if (v == 0) {
     // exactly cancelling impulses leave a stuck platform stuck; a slip at exactly 0 stops in
@@ -107,6 +113,7 @@ void EventResolver::modeAfterImpulse(EventSystem& sys, PlatformMode before, Wind
 // --- 3. the Coulomb rule ----------------------------------------------------------------------
 
 void EventResolver::coulombRule(EventSystem& sys, WindowOutcome& out) {
+  sys.snapshotBefore();
   const PlatformMode m = sys.mode();
   if (m == PlatformMode::Stuck) {
     const double h = sys.holdingForce();
@@ -150,6 +157,7 @@ void EventResolver::countSwitch(EventSystem& sys, PlatformMode before, PlatformM
   else
     ++out.slip_reversals;
   sys.eventRow(after == PlatformMode::Stuck ? "stick" : "slip");
+  sys.recordEvent(after == PlatformMode::Stuck ? "stick" : "slip", -1);
 }
 
 }  // namespace metrosync

@@ -52,8 +52,10 @@ EnvelopeLayout parseEnvelopeHeader(const std::string& header, const std::string&
   while (std::getline(ss, name, ',')) names.push_back(name);
   if (!header.empty() && header.back() == ',') names.emplace_back();
   EnvelopeLayout layout;
-  layout.has_r = names.size() > 1 && names.back() == "r";
-  const size_t core = names.size() - (layout.has_r ? 1 : 0);  // tau + N + (N-1) = 2N columns
+  layout.has_t_s = names.size() > 1 && names.back() == "t_s";
+  const size_t tail = names.size() - (layout.has_t_s ? 1 : 0);
+  layout.has_r = tail > 1 && names[tail - 1] == "r";
+  const size_t core = tail - (layout.has_r ? 1 : 0);  // tau + N + (N-1) = 2N columns
   layout.n = static_cast<int>(core / 2);
   bool ok = core >= 2 && core % 2 == 0 && names[0] == "tau";
   for (int i = 1; ok && i <= layout.n; ++i) ok = names[i] == "A_" + std::to_string(i);
@@ -61,7 +63,7 @@ EnvelopeLayout parseEnvelopeHeader(const std::string& header, const std::string&
     ok = names[layout.n + j - 1] == "psi_" + std::to_string(j);
   if (!ok)
     throw std::runtime_error(path + ": not an envelope file (header '" + header +
-                             "', expected tau,A_1..A_N,psi_2..psi_N[,r])");
+                             "', expected tau,A_1..A_N,psi_2..psi_N[,r][,t_s])");
   return layout;
 }
 

@@ -35,9 +35,10 @@ std::string formatEnvelopeRow(const EnvelopeRow& row);
 // The columns of an envelope file, from its header: tau, N amplitudes, N-1 phase differences and
 // (files written since r was added) r. Throws std::runtime_error for any other header.
 struct EnvelopeLayout {
-  int n = 0;           // metronomes
-  bool has_r = false;  // the last column is r
-  int columns() const { return 2 * n + (has_r ? 1 : 0); }
+  int n = 0;             // metronomes
+  bool has_r = false;    // the column after psi_N is r
+  bool has_t_s = false;  // the last column is t_s (seconds; physical rigs, docs/outputs.md)
+  int columns() const { return 2 * n + (has_r ? 1 : 0) + (has_t_s ? 1 : 0); }
 };
 EnvelopeLayout parseEnvelopeHeader(const std::string& header, const std::string& path);
 // A row from the numbers of one line (values.size() == layout.columns()); r computed when absent.

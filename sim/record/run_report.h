@@ -64,6 +64,18 @@ struct RunSink {
   // Full model: one call per event, with the state just after it in the trajectory format.
   // kind: "tick" (escapement), "stick", "slip" (platform mode after a switch).
   virtual void eventRow(const char* kind, const std::vector<double>& row) {}
+  // Full model: the event record (events.csv), when wantsEventRecords(): one call per tick of
+  // each metronome and per platform switch, with the states just before and just after it in
+  // the trajectory format. metronome: 0-based rig index; -1 for the platform ("stick", "slip").
+  virtual bool wantsEventRecords() const { return false; }
+  virtual void eventRecord(const char* kind, int metronome, const std::vector<double>& before,
+                           const std::vector<double>& after) {}
+};
+
+struct EventRecord {
+  std::string kind;
+  int metronome = -1;
+  std::vector<double> before, after;
 };
 
 // A sink that keeps everything in memory: for tests and small comparisons.
@@ -71,10 +83,16 @@ struct MemorySink : RunSink {
   std::vector<std::vector<double>> trajectory;
   std::vector<EnvelopeRow> envelope;
   std::vector<std::pair<std::string, std::vector<double>>> events;
+  std::vector<EventRecord> records;
   void trajectoryRow(const std::vector<double>& row) override { trajectory.push_back(row); }
   void envelopeRow(const EnvelopeRow& row) override { envelope.push_back(row); }
   void eventRow(const char* kind, const std::vector<double>& row) override {
     events.emplace_back(kind, row);
+  }
+  bool wantsEventRecords() const override { return true; }
+  void eventRecord(const char* kind, int metronome, const std::vector<double>& before,
+                   const std::vector<double>& after) override {
+    records.push_back({kind, metronome, before, after});
   }
 };
 

@@ -36,8 +36,9 @@ TEST(NetworkCli, RunWritesTheIssuesColumnsAndKeys) {
   EXPECT_EQ(firstLine(out + "/trajectory.csv"),
             "t,x_left,xdot_left,platform_left,x_right,xdot_right,platform_right,theta_1,"
             "thetadot_1,theta_2,thetadot_2,theta_3,thetadot_3,theta_4,thetadot_4");
-  EXPECT_EQ(firstLine(out + "/envelope.csv"), "tau,A_1,A_2,A_3,A_4,psi_2,psi_3,psi_4,r");
-  EXPECT_EQ(firstLine(out + "/order.csv"), "tau,r_left,Phi_left,r_right,Phi_right,r,Phi");
+  // SPEC's columns, then t_s (seconds: a network is a physical rig)
+  EXPECT_EQ(firstLine(out + "/envelope.csv"), "tau,A_1,A_2,A_3,A_4,psi_2,psi_3,psi_4,r,t_s");
+  EXPECT_EQ(firstLine(out + "/order.csv"), "tau,r_left,Phi_left,r_right,Phi_right,r,Phi,t_s");
   const nlohmann::json s = nlohmann::json::parse(slurp(out + "/summary.json"));
   EXPECT_EQ(s["platforms"]["left"]["metronomes"], nlohmann::json({1, 2}));
   EXPECT_EQ(s["platforms"]["right"]["metronomes"], nlohmann::json({3, 4}));

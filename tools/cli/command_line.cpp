@@ -6,6 +6,8 @@
 
 #include "sim/record/atomic_file.h"
 #include "tools/cli/engines.h"
+#include "tools/report/build_info.h"
+#include "tools/report/plot.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
@@ -25,8 +27,9 @@ void addRigOptions(CLI::App* cmd, Options& opt, bool with_out) {
       ->allow_extra_args(false);
   if (with_out) {
     cmd->add_option("--out", opt.out,
-                    "output directory (default: runs/<rig name>-<command>); metrosync's own "
-                    "output files already there are replaced")
+                    "output directory (default: runs/<rig name>-<command>, with -<hash of the "
+                    "--set overrides> appended when there are any); metrosync's own output "
+                    "files already there are replaced")
         ->type_name("DIR");
     cmd->add_option("--max-output", opt.max_output,
                     "refuse a run that would write more than BYTES (estimated from the run's "
@@ -37,6 +40,11 @@ void addRigOptions(CLI::App* cmd, Options& opt, bool with_out) {
     cmd->add_flag("-q,--quiet", opt.quiet,
                   "no summary on stdout (errors and warnings still go "
                   "to stderr)");
+    cmd->add_option("--plot-format", opt.plot_format,
+                    "format of the plots: png (default), svg or pdf (gnuplot's pngcairo, svg and "
+                    "pdfcairo terminals)")
+        ->check(CLI::IsMember(plotFormats()))
+        ->capture_default_str();
     cmd->add_flag("--no-plot", opt.no_plot,
                   "write no plot (the CSV and JSON files only; saves the plotting child "
                   "process, most of a short run's time)");
@@ -55,7 +63,7 @@ void configureApp(CLI::App& app) {
       "model (a Simbody multibody system with stick-slip and escapement events) and the "
       "slow flow of the two-timescale analysis.");
   app.name("metrosync");
-  app.set_version_flag("--version", metrosyncVersion());
+  app.set_version_flag("--version", versionText());
   app.require_subcommand(1);
   app.footer(kExitCodes);
 }
@@ -76,8 +84,9 @@ CLI::App* addRunCommand(CLI::App& app, Options& opt) {
       "simulation.integrator=verner76): " +
       integratorHelp() +
       ". Accuracy: simulation.accuracy (relative local error target, default 1e-8).\n"
-      "Files in --out DIR: trajectory.csv (full model), envelope.csv, envelope.png, "
-      "summary.json.\n" +
+      "Files in --out DIR: trajectory.csv and events.csv (full model), envelope.csv, "
+      "envelope.png (.svg, .pdf with --plot-format), summary.json (with resolved_rig: the rig "
+      "after --set, runnable as is; docs/outputs.md).\n" +
       kExitCodes);
   return run;
 }
@@ -88,7 +97,8 @@ CLI::App* addCompareCommand(CLI::App& app, Options& opt) {
   addRigOptions(compare, opt, true);
   compare->add_option("--engine", opt.engine, fullEngineHelp());
   compare->footer(
-      "Files in --out DIR: trajectory.csv, envelope_full.csv, envelope_slow.csv, comparison.csv "
+      "Files in --out DIR: trajectory.csv, events.csv, envelope_full.csv, envelope_slow.csv, "
+      "comparison.csv "
       "(tau, A_i full/slow, psi_j full/slow), comparison.png, summary.json (top-level keys: the "
       "full model; models.full, models.slow: each model; comparison: max |dA_i|, max |dpsi_j| "
       "modulo 2 pi).\n" +
@@ -134,6 +144,7 @@ std::vector<Command> addRigCommands(CLI::App& app, Options& opt) {
 }
 
 int runCommandLine(CLI::App& app, const std::vector<Command>& commands, int argc, char** argv) {
+  setCommandLine(argc, argv);  // summary.json's command_line
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

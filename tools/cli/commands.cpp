@@ -8,16 +8,19 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "models/scaling.h"
 #include "sim/analysis/compare.h"
+#include "sim/analysis/linear_decay.h"
 #include "sim/analysis/regime.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/network_run.h"
 #include "tools/report/comparison_csv.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
+#include "tools/report/progress_log.h"
 #include "tools/report/scale_report.h"
 #include "yaml/rig_loader.h"
 
@@ -55,6 +58,7 @@ std::string fmtList(const std::vector<double>& v, const char* f = "%.4g") {
 
 // A rig with everything a command needs, checked before anything is written (SPEC 5).
 struct LoadedRig {
+  std::string text;  // the rig file's text (the default rig's), before the overrides
   Rig rig;
   ScaledParams scaled;
   nlohmann::json scaled_json;
@@ -69,7 +73,8 @@ LoadedRig loadAndCheck(const Options& opt, const std::string& model) {
   for (const Engine* e : engines())
     for (const std::string& n : e->integrators()) lo.integrators.push_back(n);
   lo.integrator_help = "one of: " + integratorHelp();
-  r.rig = opt.rig_path.empty() ? defaultRig(opt.sets, lo) : loadRigFile(opt.rig_path, opt.sets, lo);
+  r.text = opt.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.rig_path);
+  r.rig = loadRigText(r.text, opt.rig_path.empty() ? "<default rig>" : opt.rig_path, opt.sets, lo);
 
   // the integrator is the engine's business, so the loader leaves its name to us
   r.engine = &chooseEngine(opt.engine, model, r.rig, rigDisplayName(opt));
@@ -86,7 +91,8 @@ LoadedRig loadAndCheck(const Options& opt, const std::string& model) {
 // The output directory, created only now that the rig is valid; stale outputs of an earlier
 // command there are removed so that every file in it belongs to this run.
 OutputDir openOutputDir(const Options& opt, const Rig& rig, const std::string& command) {
-  const std::string path = opt.out.empty() ? defaultOutputDir(rig.name, command) : opt.out;
+  const std::string path =
+      opt.out.empty() ? defaultOutputDir(rig.name, command, opt.sets) : opt.out;
   try {
     OutputDir dir(path);
     dir.removeStaleOutputs();
@@ -96,15 +102,48 @@ OutputDir openOutputDir(const Options& opt, const Rig& rig, const std::string& c
   }
 }
 
+// Seconds per unit of slow time for a physical rig (t_s columns, plot axes); 0 for a scaled rig.
+double secondsPerTau(const LoadedRig& r) {
+  return r.rig.units == Units::Physical ? r.scaled.time_scale_s / r.scaled.epsilon : 0.0;
+}
+
+PlotStyle plotStyle(const Options& opt, const LoadedRig& r) {
+  PlotStyle s;
+  s.format = opt.plot_format;
+  s.seconds_per_tau = secondsPerTau(r);
+  return s;
+}
+
 RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::string& envelope) {
   RunFilesOptions o;
   o.n_metronomes = static_cast<int>(r.rig.metronomes.size());
   o.tau_end = r.scaled.tau_end;
   o.trajectory = trajectory;
+  o.events = trajectory;  // events.csv beside the full model's trajectory
   o.envelope_name = envelope;
+  o.seconds = r.rig.units == Units::Physical;
   o.epsilon = r.scaled.epsilon;
   o.time_unit = r.rig.units == Units::Physical ? r.scaled.time_scale_s : 1.0;
   return o;
+}
+
+// summary.json's resolved_rig, command_line and build (docs/outputs.md)
+void addRunProvenance(nlohmann::json& summary, const Options& opt, const LoadedRig& r) {
+  addProvenance(
+      summary,
+      resolvedRigJson(r.text, opt.rig_path.empty() ? "<default rig>" : opt.rig_path, opt.sets));
+}
+
+// A line every 10% of a long run on stderr when it is not a terminal (logs, CI).
+std::unique_ptr<ProgressLog> attachProgress(const Options& opt, const LoadedRig& r, FileSink& sink,
+                                            const std::string& what) {
+  if (!ProgressLog::wanted(opt.quiet)) return nullptr;
+  auto log = std::make_unique<ProgressLog>(what, "tau", r.scaled.tau_end, [](const std::string& l) {
+    std::cerr << l << "\n" << std::flush;
+  });
+  ProgressLog* p = log.get();
+  sink.setProgress([p](double tau) { p->update(tau); });
+  return log;
 }
 
 // Runs `engine` into `sink`. An engine that lets an interruption (or a SimulationFailure) through
@@ -204,19 +243,35 @@ int runCommand(const Options& opt) {
   const bool full = model == "full";
 
   FileSink sink(dir, sinkOptions(r, full, "envelope.csv"));
+  // section 3A (locked metronomes, board on springs): the extremes are the platform's stops
+  LinearDecay decay;
+  if (full && isSection3ARig(r.rig))
+    sink.setEventObserver([&decay](const char*, int who, const std::vector<double>&,
+                                   const std::vector<double>& after) {
+      if (who < 0) decay.addExtreme(after[0], after[1]);
+    });
+  const auto progress = attachProgress(opt, r, sink, "run");
   RunReport report = runModel(*r.engine, r, sink);
   sink.commit();
   const RegimeVerdict verdict = judge(report, sink, r);
 
   std::vector<std::string> files = sink.fileNames();
+  const std::string plot = "envelope." + opt.plot_format;
   if (!opt.no_plot &&
-      plotEnvelope(dir, "envelope.png", sink.plotRows(), r.scaled.theta_c,
-                   r.rig.name + " - " + modelTitle(model) + " - " + regimeName(verdict)))
-    files.push_back("envelope.png");
+      plotEnvelope(dir, plot, sink.plotRows(), r.scaled.theta_c,
+                   r.rig.name + " - " + modelTitle(model) + " - " + regimeName(verdict),
+                   plotStyle(opt, r)))
+    files.push_back(plot);
   files.push_back("summary.json");
 
   nlohmann::json summary = runSummaryJson(r.rig, r.scaled_json, report, verdict);
   summary["files"] = files;
+  addRunProvenance(summary, opt, r);
+  if (const auto s3a = decay.result(r.rig))
+    summary["section3a"] = {{"slope", s3a->slope_m_s},
+                            {"mu_bar", s3a->mu_bar},
+                            {"period", s3a->period_s},
+                            {"extremes", s3a->extremes}};
   writeSummary(dir, summary);  // last: a summary.json means the run's files are all there
 
   if (!opt.quiet) {
@@ -241,10 +296,12 @@ int compareCommand(const Options& opt) {
   const Clock::time_point t0 = Clock::now();
 
   FileSink full_sink(dir, sinkOptions(r, true, "envelope_full.csv"));
+  const auto full_progress = attachProgress(opt, r, full_sink, "compare (full model)");
   RunReport full = runModel(*r.engine, r, full_sink);
   full_sink.commit();
 
   FileSink slow_sink(dir, sinkOptions(r, false, "envelope_slow.csv"));
+  const auto slow_progress = attachProgress(opt, r, slow_sink, "compare (slow flow)");
   RunReport slow;
   if (FileSink::stopRequested()) {
     slow.model = "slow";
@@ -260,16 +317,18 @@ int compareCommand(const Options& opt) {
   const RegimeVerdict v_slow = judge(slow, slow_sink, r);
   const ComparisonResult cmp =
       compareEnvelopeFiles(dir.file("envelope_full.csv"), dir.file("envelope_slow.csv"),
-                           r.scaled.epsilon, dir.file("comparison.csv"));
+                           r.scaled.epsilon, dir.file("comparison.csv"), secondsPerTau(r));
 
   std::vector<std::string> files = full_sink.fileNames();
   for (const auto& f : slow_sink.fileNames()) files.push_back(f);
   files.push_back("comparison.csv");
-  if (!opt.no_plot && plotComparison(dir, "comparison.png", full_sink.plotRows(),
-                                     slow_sink.plotRows(), r.scaled.theta_c,
-                                     r.rig.name + " - full model (solid) " + regimeName(v_full) +
-                                         ", slow flow (dashed) " + regimeName(v_slow)))
-    files.push_back("comparison.png");
+  const std::string plot = "comparison." + opt.plot_format;
+  if (!opt.no_plot &&
+      plotComparison(dir, plot, full_sink.plotRows(), slow_sink.plotRows(), r.scaled.theta_c,
+                     r.rig.name + " - full model (solid) " + regimeName(v_full) +
+                         ", slow flow (dashed) " + regimeName(v_slow),
+                     plotStyle(opt, r)))
+    files.push_back(plot);
   files.push_back("summary.json");
 
   // SPEC keys at the top level are the full model's (the reference); each model's own report is
@@ -290,6 +349,7 @@ int compareCommand(const Options& opt) {
   }
   summary["wall_seconds"] = secondsSince(t0);
   summary["files"] = files;
+  addRunProvenance(summary, opt, r);
   writeSummary(dir, summary);
 
   if (!opt.quiet) {

@@ -7,6 +7,7 @@
 #include "tools/report/network_files.h"
 #include "tools/report/outputs.h"
 #include "yaml/network_loader.h"
+#include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
 
@@ -37,7 +38,7 @@ const Engine& networkEngine(const Options& opt, const Network& net) {
 
 OutputDir openDir(const Options& opt, const Network& net) {
   try {
-    OutputDir dir(opt.out.empty() ? defaultOutputDir(net.name, "run") : opt.out);
+    OutputDir dir(opt.out.empty() ? defaultOutputDir(net.name, "run", opt.sets) : opt.out);
     dir.removeStaleOutputs();
     return dir;
   } catch (const std::runtime_error& e) {
@@ -71,6 +72,9 @@ int runNetworkCommand(const Options& opt) {
     names.push_back(png);
   names.push_back("summary.json");
   summary["files"] = names;
+  addProvenance(summary,  // resolved_rig, command_line, build (docs/outputs.md)
+                resolvedRigJson(opt.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.rig_path),
+                                opt.rig_path.empty() ? "<default rig>" : opt.rig_path, opt.sets));
   writeSummary(dir, summary);  // last: a summary.json means the run's files are all there
   if (!opt.quiet)
     std::cout << "network of " << net.platforms.size() << " platforms (" << engine.name() << ", "

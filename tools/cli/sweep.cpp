@@ -14,6 +14,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -29,6 +30,7 @@
 #include "tools/report/folder_lock.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
+#include "tools/report/progress_log.h"
 #include "tools/report/sweep_files.h"
 #include "tools/report/sweep_maps.h"
 #include "yaml/rig_loader.h"
@@ -261,12 +263,18 @@ SweepPoint unloadablePoint(long g, int n, const std::string& why) {
 
 class Progress {
  public:
-  Progress(bool on, long total, long done_before)
-      : on_(on), total_(total), done_(done_before), start_done_(done_before) {}
+  // on: the bar (stderr a terminal); log: a line every 10% instead (tools/report/progress_log.h)
+  Progress(bool on, bool log, long total, long done_before)
+      : on_(on), total_(total), done_(done_before), start_done_(done_before) {
+    if (log)
+      log_ = std::make_unique<ProgressLog>("sweep", "points", static_cast<double>(total),
+                                           [](const std::string& l) { std::cerr << l << "\n"; });
+  }
 
   void finished(bool failed) {
     ++done_;
     failed_ += failed;
+    if (log_) log_->update(static_cast<double>(done_));
     if (!on_) return;
     const Clock::time_point now = Clock::now();
     if (done_ < total_ && now - last_ < std::chrono::milliseconds(200)) return;
@@ -293,6 +301,7 @@ class Progress {
   }
 
   bool on_;
+  std::unique_ptr<ProgressLog> log_;
   long total_, done_, start_done_, failed_ = 0;
   bool drawn_ = false;
   Clock::time_point t0_ = Clock::now(), last_{};
@@ -470,7 +479,7 @@ SweepPlan planSweep(const SweepOptions& opt) {
   m.metronomes = plan.n;
   m.grid = plan.grid;
   m.shard = plan.shard;
-  plan.path = opt.out.empty() ? defaultOutputDir(plan.base.name, "sweep") : opt.out;
+  plan.path = opt.out.empty() ? defaultOutputDir(plan.base.name, "sweep", opt.sets) : opt.out;
   plan.regimes_path = plan.path + "/regimes.csv";
   if (opt.boundaries) checkBoundaries(opt, plan);
   return plan;
@@ -554,7 +563,8 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
   RegimesAppender timings(timingsPath(dir), "index,wall_seconds", timing_bytes == 0, timing_bytes);
   run.jobs = opt.jobs > 0 ? opt.jobs : static_cast<int>(std::thread::hardware_concurrency());
   run.jobs = std::max(1, run.jobs);
-  Progress progress(!opt.quiet && ::isatty(2), plan.mine, static_cast<long>(run.points.size()));
+  Progress progress(!opt.quiet && ::isatty(2), ProgressLog::wanted(opt.quiet), plan.mine,
+                    static_cast<long>(run.points.size()));
   const long stop_after = stopAfterHook();
   runSweepPoints(
       plan.grid.size(), [&](long g) { return plan.shard.contains(g) && !table.lines.count(g); },
@@ -624,8 +634,8 @@ int sweepImpl(const SweepOptions& opt) {
     files.push_back("boundaries.csv");
   }
   if (!opt.no_plot)
-    for (const auto& f :
-         plotSweepMaps(dir, plan.grid, plan.n, run.points, mapTitle(plan.manifest), curves))
+    for (const auto& f : plotSweepMaps(dir, plan.grid, plan.n, run.points, mapTitle(plan.manifest),
+                                       opt.plot_format, curves))
       files.push_back(f);
   files.push_back("sweep.json");
   nlohmann::json status = statusJson(plan.manifest, plan.mine, run.points, complete);
@@ -727,7 +737,8 @@ int mergeImpl(const SweepOptions& opt) {
   if (!lock) lock.emplace(path, "metrosync merge");
   writeSortedRegimesCsv(dir.file("regimes.csv"), grid, n, lines);
   std::vector<std::string> files = {"regimes.csv"};
-  for (const auto& f : plotSweepMaps(dir, grid, n, points, mapTitle(merged))) files.push_back(f);
+  for (const auto& f : plotSweepMaps(dir, grid, n, points, mapTitle(merged), opt.plot_format))
+    files.push_back(f);
   files.push_back("sweep.json");
   const bool complete = static_cast<long>(points.size()) == grid.size();
   nlohmann::json status = statusJson(merged, grid.size(), points, complete);
@@ -805,6 +816,12 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
                     "(continuation) over the regime map, boundaries.csv");
   c.sweep->add_flag("--no-plot", opt.no_plot,
                     "draw no maps (regimes.csv, sweep.json and timings.csv only)");
+  c.sweep
+      ->add_option("--plot-format", opt.plot_format,
+                   "format of the maps: png (default), svg or pdf (gnuplot's pngcairo, svg and "
+                   "pdfcairo terminals)")
+      ->check(CLI::IsMember(plotFormats()))
+      ->capture_default_str();
   c.sweep->footer(
       "Files in --out DIR: regimes.csv (one row per grid point, appended as points finish, "
       "sorted by grid index at the end: the varied keys, regime, A_1..A_N, psi_2..psi_N (final, "
@@ -813,7 +830,8 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
       "swept, how far it got), timings.csv (wall seconds per point), regimes.png, "
       "amplitudes.png, phases.png, order.png (N >= 3), drive.png (Coulomb platforms).\n"
       "A point whose run fails is recorded with regime 'failed' and the reason; the sweep goes "
-      "on. A progress bar with ETA goes to stderr when it is a terminal. SIGINT/SIGTERM stop the "
+      "on. A progress bar with ETA goes to stderr when it is a terminal; otherwise a line at every "
+      "10% of a sweep that has run for 5 s. SIGINT/SIGTERM stop the "
       "sweep (the points in flight are not recorded; exit 3): --resume continues it, as it does "
       "after kill -9.\n"
       "Exit codes: 0 success; 2 bad command line or rig (nothing written); 3 interrupted; 1 "
@@ -826,6 +844,11 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
   c.merge->add_option("--out", opt.out, "output directory (default: runs/<rig name>-merge)")
       ->type_name("DIR");
   c.merge->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
+  c.merge
+      ->add_option("--plot-format", opt.plot_format,
+                   "format of the maps: png (default), svg or pdf")
+      ->check(CLI::IsMember(plotFormats()))
+      ->capture_default_str();
   c.merge->footer(
       "The directories must hold the same sweep (rig, --set, model, grid: their sweep.json "
       "says); points missing from all of them are reported and left white in the maps.\n"

@@ -16,13 +16,18 @@ void appendNumber(std::string& s, double v) {
 }
 
 // joinEnvelopes with every matched pair written to out_csv, committed at the end.
+// seconds_per_tau > 0 (a physical rig): a last column t_s = tau * seconds_per_tau.
 ComparisonResult joinAndWrite(int n, const RowSource& next_full, const RowSource& next_slow,
-                              double epsilon, const std::string& out_csv) {
+                              double epsilon, const std::string& out_csv, double seconds_per_tau) {
   AtomicFile out(out_csv);
-  out.writeLine(comparisonCsvHeader(n));
-  const ComparisonResult r = joinEnvelopes(
-      n, next_full, next_slow, epsilon,
-      [&](const EnvelopeRow& f, const EnvelopeRow& s) { out.writeLine(comparisonCsvLine(f, s)); });
+  const bool t_s = seconds_per_tau > 0;
+  out.writeLine(comparisonCsvHeader(n) + (t_s ? ",t_s" : ""));
+  const ComparisonResult r = joinEnvelopes(n, next_full, next_slow, epsilon,
+                                           [&](const EnvelopeRow& f, const EnvelopeRow& s) {
+                                             std::string line = comparisonCsvLine(f, s);
+                                             if (t_s) appendNumber(line, f.tau * seconds_per_tau);
+                                             out.writeLine(line);
+                                           });
   out.commit();
   return r;
 }
@@ -97,19 +102,21 @@ bool EnvelopeCsvReader::next(EnvelopeRow& row) {
 
 ComparisonResult writeComparisonCsv(const std::vector<EnvelopeRow>& full,
                                     const std::vector<EnvelopeRow>& slow, double epsilon,
-                                    const std::string& out_csv) {
-  return joinAndWrite(metronomesOf(full, slow), rowSource(full), rowSource(slow), epsilon, out_csv);
+                                    const std::string& out_csv, double seconds_per_tau) {
+  return joinAndWrite(metronomesOf(full, slow), rowSource(full), rowSource(slow), epsilon, out_csv,
+                      seconds_per_tau);
 }
 
 ComparisonResult compareEnvelopeFiles(const std::string& full_csv, const std::string& slow_csv,
-                                      double epsilon, const std::string& out_csv) {
+                                      double epsilon, const std::string& out_csv,
+                                      double seconds_per_tau) {
   EnvelopeCsvReader full(full_csv), slow(slow_csv);
   if (full.n() != slow.n())
     throw std::runtime_error(full_csv + " has " + std::to_string(full.n()) + " metronomes, " +
                              slow_csv + " has " + std::to_string(slow.n()));
   return joinAndWrite(
       full.n(), [&](EnvelopeRow& r) { return full.next(r); },
-      [&](EnvelopeRow& r) { return slow.next(r); }, epsilon, out_csv);
+      [&](EnvelopeRow& r) { return slow.next(r); }, epsilon, out_csv, seconds_per_tau);
 }
 
 nlohmann::json comparisonJson(const ComparisonResult& r) {

@@ -35,13 +35,15 @@ class EnvelopeCsvReader {
 };
 
 // compareEnvelopes, and comparison.csv written to `out_csv` atomically. Rows without a partner
-// (a run that stopped early) are counted, not written.
+// (a run that stopped early) are counted, not written. seconds_per_tau > 0 (a physical rig): a
+// last column t_s, the row's tau in seconds.
 ComparisonResult writeComparisonCsv(const std::vector<EnvelopeRow>& full,
                                     const std::vector<EnvelopeRow>& slow, double epsilon,
-                                    const std::string& out_csv);
+                                    const std::string& out_csv, double seconds_per_tau = 0.0);
 // The same from two envelope CSV files, streaming.
 ComparisonResult compareEnvelopeFiles(const std::string& full_csv, const std::string& slow_csv,
-                                      double epsilon, const std::string& out_csv);
+                                      double epsilon, const std::string& out_csv,
+                                      double seconds_per_tau = 0.0);
 
 // {max_abs_dA[], max_abs_dpsi[], tau_max_dA[], tau_max_dpsi[], rows, unmatched_full,
 // unmatched_slow}; a maximum over no row is null.

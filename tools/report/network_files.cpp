@@ -90,8 +90,9 @@ void NetworkFiles::Impl::writeHeaders() {
   for (int i = 1; i <= net.numMetronomes(); ++i)
     h += ",theta_" + std::to_string(i) + ",thetadot_" + std::to_string(i);
   trajectory.writeLine(h);
-  envelope.writeLine(envelopeHeader(net.numMetronomes()));
-  order.writeLine(o + ",r,Phi");
+  // a network is physical: t_s (seconds) last, as in every CSV of a physical rig
+  envelope.writeLine(envelopeHeader(net.numMetronomes()) + ",t_s");
+  order.writeLine(o + ",r,Phi,t_s");
 }
 
 std::vector<double> NetworkFiles::Impl::phases(const std::vector<double>& y) const {
@@ -145,7 +146,7 @@ void NetworkFiles::sample(double t, const std::vector<double>& y,
     if (i > 0) env.psi.push_back(j < 0 || j1 < 0 ? 0.0 : m.unwrap[i - 1](phi[j1] - phi[j]));
   }
   m.trajectory.writeLine(csvLine(row));
-  m.envelope.writeLine(formatEnvelopeRow(env));
+  m.envelope.writeLine(formatEnvelopeRow(env) + "," + csvLine({t}));
 
   std::vector<double> orow{tau}, raster{tau};
   m.last_groups.clear();
@@ -160,7 +161,7 @@ void NetworkFiles::sample(double t, const std::vector<double>& y,
   }
   m.last_all = orderParameter(phi);
   orow.insert(orow.end(), {m.last_all.r, m.last_all.Phi});
-  m.order.writeLine(csvLine(orow));
+  m.order.writeLine(csvLine(orow) + "," + csvLine({t}));
   m.window.add(t, m.last_groups);
   keepForPlots(orow, raster);
 }

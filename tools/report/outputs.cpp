@@ -13,6 +13,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "tools/report/build_info.h"
+
 namespace metrosync {
 
 namespace fs = std::filesystem;
@@ -32,7 +34,18 @@ std::string formatNumber(double v) {
 // ---------------------------------------------------------------------------------------------
 // OutputDir
 
-std::string defaultOutputDir(const std::string& rig_name, const std::string& command) {
+std::uint64_t overridesHash(const std::vector<std::string>& overrides) {
+  std::uint64_t h = 14695981039346656037ull;
+  auto add = [&h](unsigned char c) { h = (h ^ c) * 1099511628211ull; };
+  for (const std::string& o : overrides) {
+    for (char c : o) add(static_cast<unsigned char>(c));
+    add('\n');
+  }
+  return h;
+}
+
+std::string defaultOutputDir(const std::string& rig_name, const std::string& command,
+                             const std::vector<std::string>& overrides) {
   std::string safe;
   for (char c : rig_name) {
     const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
@@ -40,7 +53,14 @@ std::string defaultOutputDir(const std::string& rig_name, const std::string& com
     safe += ok ? c : '_';
   }
   if (safe.empty() || safe.find_first_not_of('.') == std::string::npos) safe = "rig";
-  return "runs/" + safe + "-" + command;
+  std::string dir = "runs/" + safe + "-" + command;
+  if (!overrides.empty()) {
+    char hex[24];
+    std::snprintf(hex, sizeof hex, "-%08llx",
+                  static_cast<unsigned long long>(overridesHash(overrides) >> 32));
+    dir += hex;
+  }
+  return dir;
 }
 
 OutputDir::OutputDir(std::string path) : path_(std::move(path)) {
@@ -55,10 +75,11 @@ OutputDir::OutputDir(std::string path) : path_(std::move(path)) {
 
 const std::vector<std::string>& OutputDir::outputNames() {
   static const std::vector<std::string> names = {
-      "trajectory.csv", "envelope.csv", "envelope_full.csv", "envelope_slow.csv",
-      "comparison.csv", "summary.json", "envelope.png",      "comparison.png",
-      "order.csv",      "order.png",    "raster.png",  // a network's (docs/networks.md)
-      "fitted.yaml",    "fit.json",     "fit.png",     "measure.json",  // docs/fit.md
+      "trajectory.csv", "envelope.csv", "envelope_full.csv", "envelope_slow.csv", "comparison.csv",
+      "summary.json",   "envelope.png", "comparison.png",    "order.csv",         "order.png",
+      "raster.png",  // a network's (docs/networks.md)
+      "fitted.yaml",    "fit.json",     "fit.png",           "measure.json",  // docs/fit.md
+      "events.csv",     "envelope.svg", "envelope.pdf",      "comparison.svg",    "comparison.pdf",
   };
   return names;
 }
@@ -135,10 +156,42 @@ FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt)
     for (int i = 1; i <= opt_.n_metronomes; ++i)
       h += ",theta_" + std::to_string(i) + ",thetadot_" + std::to_string(i);
     h += ",platform";
-    trajectory_->writeLine(h);
+    trajectory_->writeLine(h);  // t is in seconds already for a physical rig (SPEC 3)
+    if (opt_.events) {
+      events_ = std::make_unique<AtomicFile>(dir.file(opt_.events_name));
+      events_->writeLine(eventsHeader(opt_.n_metronomes, opt_.seconds));
+    }
   }
   envelope_ = std::make_unique<AtomicFile>(dir.file(opt_.envelope_name));
-  envelope_->writeLine(envelopeHeader(opt_.n_metronomes));
+  envelope_->writeLine(envelopeHeader(opt_.n_metronomes) + (opt_.seconds ? ",t_s" : ""));
+}
+
+std::string eventsHeader(int n, bool seconds) {
+  std::string h = "t,tau,kind,who";
+  for (const char* when : {"_before", "_after"}) {
+    h += std::string(",x") + when + ",xdot" + when;
+    for (int i = 1; i <= n; ++i)
+      h += ",theta_" + std::to_string(i) + when + ",thetadot_" + std::to_string(i) + when;
+    h += std::string(",platform") + when;
+  }
+  return h + (seconds ? ",t_s" : "");
+}
+
+void FileSink::eventRecord(const char* kind, int metronome, const std::vector<double>& before,
+                           const std::vector<double>& after) {
+  if (!events_) return;
+  const size_t want = 2 * static_cast<size_t>(opt_.n_metronomes) + 4;
+  if (before.size() != want || after.size() != want)
+    throw std::logic_error("event record of the wrong width");
+  const double t = after[0];
+  std::string line = formatNumber(t) + "," + formatNumber(opt_.epsilon * t / opt_.time_unit) + "," +
+                     kind + "," + (metronome < 0 ? "platform" : std::to_string(metronome + 1));
+  for (const auto* row : {&before, &after})
+    for (size_t k = 1; k < row->size(); ++k) line += "," + formatNumber((*row)[k]);
+  if (opt_.seconds) line += "," + formatNumber(t);
+  events_->writeLine(line);
+  ++event_rows_;
+  if (observer_) observer_(kind, metronome, before, after);
 }
 
 void FileSink::checkStop(double t) {
@@ -168,22 +221,29 @@ void FileSink::envelopeRow(const EnvelopeRow& row) {
   if (static_cast<int>(row.A.size()) != opt_.n_metronomes ||
       static_cast<int>(row.psi.size()) != opt_.n_metronomes - 1)
     throw std::logic_error("envelope row of the wrong width");
-  envelope_->writeLine(formatEnvelopeRow(row));
+  if (opt_.seconds)
+    envelope_->writeLine(formatEnvelopeRow(row) + "," +
+                         formatNumber(row.tau / opt_.epsilon * opt_.time_unit));
+  else
+    envelope_->writeLine(formatEnvelopeRow(row));
   ++envelope_rows_;
   window_.add(row);
   plot_.add(row);
+  if (progress_) progress_(row.tau);
   checkStop(row.tau / opt_.epsilon * opt_.time_unit);
 }
 
 void FileSink::commit() {
   if (trajectory_ && trajectory_->open()) trajectory_->commit();
   if (envelope_->open()) envelope_->commit();
+  if (events_ && events_->open()) events_->commit();
 }
 
 std::vector<std::string> FileSink::fileNames() const {
   std::vector<std::string> names;
   if (opt_.trajectory) names.push_back(opt_.trajectory_name);
   names.push_back(opt_.envelope_name);
+  if (events_) names.push_back(opt_.events_name);
   return names;
 }
 
@@ -239,6 +299,12 @@ nlohmann::json runSummaryJson(const Rig& rig, const nlohmann::json& scaled, cons
   j["scaled"] = scaled;
   j["version"] = metrosyncVersion();
   return j;
+}
+
+void addProvenance(nlohmann::json& summary, const std::string& resolved_rig_json) {
+  summary["resolved_rig"] = nlohmann::json::parse(resolved_rig_json);
+  summary["command_line"] = commandLine();
+  summary["build"] = buildJson();
 }
 
 void writeSummary(const OutputDir& dir, const nlohmann::json& j) {

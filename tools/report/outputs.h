@@ -6,7 +6,9 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -21,8 +23,14 @@
 
 namespace metrosync {
 
-// `runs/<rig name>-<command>`, the rig name reduced to characters safe in a file name.
-std::string defaultOutputDir(const std::string& rig_name, const std::string& command);
+// `runs/<rig name>-<command>`, the rig name reduced to characters safe in a file name. With
+// overrides (--set, in the order given) `-<hash>` is appended: 8 hex digits of overridesHash, so
+// that runs of one rig with different overrides do not share (and overwrite) a folder; without
+// them the name is exactly the SPEC's.
+std::string defaultOutputDir(const std::string& rig_name, const std::string& command,
+                             const std::vector<std::string>& overrides = {});
+// FNV-1a (64 bits) of the overrides, each followed by a newline: the same on every machine.
+std::uint64_t overridesHash(const std::vector<std::string>& overrides);
 
 // The --out directory. The constructor creates it (with its parents): construct it only once the
 // rig and the command line have been validated (SPEC 5: a bad rig writes nothing).
@@ -67,11 +75,20 @@ struct RunFilesOptions {
   bool trajectory = true;  // trajectory.csv (full model only)
   std::string trajectory_name = "trajectory.csv";
   std::string envelope_name = "envelope.csv";
+  bool events = false;  // events.csv, with the trajectory (full model only)
+  std::string events_name = "events.csv";
+  // physical rigs: envelope.csv and events.csv get a last column t_s, the row's time in seconds
+  // (trajectory.csv's t is in seconds already: the rig's units)
+  bool seconds = false;
   size_t max_plot_rows = 4000;
   // to report an interruption "at t = ..." in the rig's time unit: t = tau / epsilon * time_unit
   double epsilon = 1.0;
   double time_unit = 1.0;  // physical rigs: seconds per unit of scaled time; scaled rigs: 1
 };
+
+// events.csv's header: t,tau,kind,who, then x,xdot,theta_i,thetadot_i,platform with _before
+// and _after, then t_s when `seconds` (docs/outputs.md).
+std::string eventsHeader(int n, bool seconds);
 
 // Thrown by FileSink at the first row after a stop request. A std::runtime_error, so that an
 // engine that turns exceptions into a failed report (complete = false) stops cleanly; the caller
@@ -91,6 +108,9 @@ class FileSink : public RunSink {
 
   void trajectoryRow(const std::vector<double>& row) override;
   void envelopeRow(const EnvelopeRow& row) override;
+  bool wantsEventRecords() const override { return events_ != nullptr; }
+  void eventRecord(const char* kind, int metronome, const std::vector<double>& before,
+                   const std::vector<double>& after) override;
 
   // Renames every file written to its final name. Called after the run whether it completed or
   // not (a failed run keeps its rows, marked incomplete in summary.json).
@@ -98,6 +118,14 @@ class FileSink : public RunSink {
 
   long trajectoryRows() const { return trajectory_rows_; }
   long envelopeRows() const { return envelope_rows_; }
+  long eventRecords() const { return event_rows_; }
+  // Called with every event record as it is written (an analysis on the events: section 3A).
+  using EventObserver =
+      std::function<void(const char* kind, int metronome, const std::vector<double>& before,
+                         const std::vector<double>& after)>;
+  void setEventObserver(EventObserver f) { observer_ = std::move(f); }
+  // Called with every envelope row's tau (progress of the run, tools/report/progress_log.h).
+  void setProgress(std::function<void(double tau)> f) { progress_ = std::move(f); }
   const RegimeWindow& regimeWindow() const { return window_; }
   std::vector<EnvelopeRow> plotRows() const { return plot_.rows(); }
   // final names of the files this sink writes
@@ -112,8 +140,10 @@ class FileSink : public RunSink {
   void checkStop(double t);
 
   RunFilesOptions opt_;
-  std::unique_ptr<AtomicFile> trajectory_, envelope_;
-  long trajectory_rows_ = 0, envelope_rows_ = 0;
+  std::unique_ptr<AtomicFile> trajectory_, envelope_, events_;
+  long trajectory_rows_ = 0, envelope_rows_ = 0, event_rows_ = 0;
+  EventObserver observer_;
+  std::function<void(double)> progress_;
   bool stop_thrown_ = false;
   RegimeWindow window_;
   EnvelopeDecimator plot_;
@@ -128,6 +158,11 @@ nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict)
 // `scale --json` prints).
 nlohmann::json runSummaryJson(const Rig& rig, const nlohmann::json& scaled, const RunReport& report,
                               const RegimeVerdict& verdict);
+
+// The reproducibility keys of a summary (docs/outputs.md): `resolved_rig` (the rig after --set,
+// the JSON text of resolvedRigJson), `command_line` (argv, tools/report/build_info.h) and `build`
+// {metrosync, commit, simbody, eigen}.
+void addProvenance(nlohmann::json& summary, const std::string& resolved_rig_json);
 
 // Writes `j` (pretty-printed, newline-terminated) to DIR/summary.json atomically.
 void writeSummary(const OutputDir& dir, const nlohmann::json& j);

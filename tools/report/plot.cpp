@@ -73,7 +73,24 @@ void warn(const std::string& what) {
   std::cerr << "metrosync: warning: " << what << "\n";
 }
 
-std::string envelopeData(const std::vector<const std::vector<EnvelopeRow>*>& blocks) {
+// The heatmap's cells: row k spans half-way to its neighbours in tau, at most kCells rows.
+void heatmapData(std::ostringstream& out, const std::vector<EnvelopeRow>& rows) {
+  constexpr size_t kCells = 600;
+  const size_t stride = rows.size() / kCells + 1;
+  std::vector<const EnvelopeRow*> kept;
+  for (size_t k = 0; k < rows.size(); k += stride) kept.push_back(&rows[k]);
+  if (!rows.empty() && kept.back() != &rows.back()) kept.push_back(&rows.back());
+  for (size_t k = 0; k < kept.size(); ++k) {
+    const double tau = kept[k]->tau;
+    const double lo = k ? (kept[k - 1]->tau + tau) / 2 : tau;
+    const double hi = k + 1 < kept.size() ? (tau + kept[k + 1]->tau) / 2 : tau;
+    for (size_t i = 0; i < kept[k]->A.size(); ++i)
+      out << num(lo) << ' ' << num(hi) << ' ' << i + 1 << ' ' << num(kept[k]->A[i]) << '\n';
+  }
+  if (kept.empty()) out << "nan\n";
+}
+
+std::string envelopeData(const std::vector<const std::vector<EnvelopeRow>*>& blocks, int n) {
   std::ostringstream out;
   for (size_t b = 0; b < blocks.size(); ++b) {
     if (b) out << "\n\n";  // gnuplot: two blank lines separate data blocks (`index`)
@@ -88,6 +105,10 @@ std::string envelopeData(const std::vector<const std::vector<EnvelopeRow>*>& blo
       for (double p : r.psi) out << ' ' << num(p);
       out << '\n';
     }
+  }
+  if (n > kHeatmapAbove) {
+    out << "\n\n";
+    heatmapData(out, *blocks[0]);
   }
   return out.str();
 }
@@ -105,7 +126,8 @@ std::string firstLines(const std::string& path, int count) {
 
 bool drawPlot(const OutputDir& dir, const std::string& png_name,
               const std::vector<const std::vector<EnvelopeRow>*>& blocks,
-              const std::vector<double>& theta_c, const std::string& title) {
+              const std::vector<double>& theta_c, const std::string& title,
+              const PlotStyle& style) {
   int n = 0;
   double psi_lo = 0.0, psi_hi = 2 * kPi, tau_max = 0.0;
   bool any = false;
@@ -122,10 +144,10 @@ bool drawPlot(const OutputDir& dir, const std::string& png_name,
       warn(png_name + " not written: no envelope row to plot");
     return false;
   }
-  return drawPng(dir, png_name, envelopeData(blocks),
+  return drawPng(dir, png_name, envelopeData(blocks, n),
                  [&](const std::string& data_path, const std::string& png_path) {
                    return gnuplotScript(data_path, png_path, n, static_cast<int>(blocks.size()),
-                                        theta_c, tau_max, psi_lo, psi_hi, title);
+                                        theta_c, tau_max, psi_lo, psi_hi, title, style);
                  });
 }
 
@@ -206,64 +228,148 @@ std::string findExecutable(const std::string& name) {
   return "";
 }
 
-std::string gnuplotScript(const std::string& data_path, const std::string& png_path, int n,
-                          int blocks, const std::vector<double>& theta_c, double tau_max,
-                          double psi_lo, double psi_hi, const std::string& title) {
-  const bool compare = blocks == 2;
-  const char* const model_name[] = {"full", "slow"};
-  std::ostringstream s;
-  const int panels = n > 1 ? 2 : 1;
-  s << "set terminal pngcairo size 1100," << (panels == 2 ? 850 : 480)
-    << " enhanced font 'sans,11' linewidth 1.2\n"
-    << "set output " << quote(png_path) << "\n"
-    << "set datafile missing 'nan'\n"
-    << "set grid back lt 1 lw 0.8 lc rgb '#e4e4e4'\n"
-    << "set key outside right top samplen 3\n"
-    // fixed margins, so that the panels' tau axes line up whatever their keys
-    << "set lmargin at screen 0.09\nset rmargin at screen 0.84\n"
-    << "set xrange [0:" << num(tau_max > 0 ? tau_max : 1) << "]\n"
-    << "set multiplot layout " << panels << ",1 title " << quote(title)
-    << " noenhanced font 'sans,13'\n"
-    << "set xlabel 'slow time τ'\n";
+const std::vector<std::string>& plotFormats() {
+  static const std::vector<std::string> formats = {"png", "svg", "pdf"};
+  return formats;
+}
 
-  // amplitudes, with the escapement threshold: below theta_c a metronome is dead (SPEC 4)
-  s << "set ylabel 'amplitude A_i (scaled)'\nset yrange [0:*]\n";
+std::string plotTerminal(const std::string& format, int width_px, int height_px) {
+  std::ostringstream s;
+  if (format == "svg")
+    s << "set terminal svg size " << width_px << "," << height_px
+      << " enhanced font 'sans,11' linewidth 1.2 background rgb 'white'\n";
+  else if (format == "pdf")  // 100 pixels an inch: the PNG's proportions and type size
+    s << "set terminal pdfcairo size " << num(width_px / 100.0) << "in," << num(height_px / 100.0)
+      << "in enhanced font 'sans,11' linewidth 1.2\n";
+  else
+    s << "set terminal pngcairo size " << width_px << "," << height_px
+      << " enhanced font 'sans,11' linewidth 1.2\n";
+  return s.str();
+}
+
+namespace {
+
+// The x axis: tau, or seconds with tau on the top axis (style.seconds_per_tau > 0).
+std::string xAxis(const PlotStyle& style, double tau_max) {
+  const double k = style.seconds_per_tau;
+  const double hi = tau_max > 0 ? tau_max : 1;
+  std::ostringstream s;
+  if (k > 0) {
+    // both axes start at 0 and span the same run: tau on top at its own round tics
+    s << "set xrange [0:" << num(hi * k) << "]\nset x2range [0:" << num(hi) << "]\n"
+      << "set xtics nomirror\nset x2tics\n"
+      << "set xlabel 'time (s); top axis: slow time τ'\n";
+  } else {
+    s << "set xrange [0:" << num(hi) << "]\nset xlabel 'slow time τ'\n";
+  }
+  return s.str();
+}
+
+// gnuplot's x value of a data row whose tau is `expr`
+std::string xOf(const PlotStyle& style, const std::string& expr) {
+  return style.seconds_per_tau > 0 ? "((" + expr + ")*" + num(style.seconds_per_tau) + ")"
+                                   : "(" + expr + ")";
+}
+
+// What a panel needs: the data, its shape, the style; `plot` collects one `plot` command.
+struct Panel {
+  const std::string& data;
+  int n, blocks;
+  const PlotStyle& style;
   std::string plot;
-  auto add = [&](const std::string& item) {
-    plot += (plot.empty() ? "plot " : ", \\\n     ") + item;
-  };
-  for (int b = 0; b < blocks; ++b)
-    for (int i = 0; i < n; ++i)
-      add(quote(data_path) + " index " + std::to_string(b) + " using 1:" + std::to_string(2 + i) +
-          " with lines lw " + (b == 0 ? "2" : "1.5") + " dt " + (b == 0 ? "1" : "2") + " lc rgb '" +
-          colour(i) + "' title '" + "A_" + std::to_string(i + 1) +
-          (compare ? std::string(" ") + model_name[b] : "") + "'");
+  void add(const std::string& item) { plot += (plot.empty() ? "plot " : ", \\\n     ") + item; }
+  bool compare() const { return blocks == 2; }
+  std::string model(int b) const {
+    static const char* const names[] = {"full", "slow"};
+    return compare() ? std::string(" ") + names[b] : "";
+  }
+  std::string lines(int b, int column) const {
+    return quote(data) + " index " + std::to_string(b) + " using " + xOf(style, "$1") + ":" +
+           std::to_string(column) + " with lines lw " + (b == 0 ? "2" : "1.5") + " dt " +
+           (b == 0 ? "1" : "2");
+  }
+};
+
+// One row of cells per metronome, coloured by A_i (the first model's, in a comparison).
+std::string heatmapPanel(Panel& p) {
+  std::ostringstream s;
+  s << "set ylabel 'metronome i" << (p.compare() ? " (full model)" : "") << "'\n"
+    << "set yrange [0.5:" << p.n + 0.5 << "]\nset cbrange [0:*]\n"
+    << "set cblabel 'amplitude A_i (scaled)'\n"
+    << "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', 4 '#fde725')\n";
+  p.add(quote(p.data) + " index " + std::to_string(p.blocks) + " using " +
+        xOf(p.style, "($1+$2)/2") + ":3:" + xOf(p.style, "$1") + ":" + xOf(p.style, "$2") +
+        ":($3-0.5):($3+0.5):4 with boxxyerror fs solid 1.0 noborder lc palette notitle");
+  s << p.plot << "\nunset colorbox\nunset cblabel\n";
+  return s.str();
+}
+
+// Amplitudes, with the escapement threshold: below theta_c a metronome is dead (SPEC 4).
+std::string amplitudePanel(Panel& p, const std::vector<double>& theta_c) {
+  std::ostringstream s;
+  s << "set ylabel 'amplitude A_i (scaled)'\nset yrange [0:*]\n";
+  for (int b = 0; b < p.blocks; ++b)
+    for (int i = 0; i < p.n; ++i)
+      p.add(p.lines(b, 2 + i) + " lc rgb '" + colour(i) + "' title 'A_" + std::to_string(i + 1) +
+            p.model(b) + "'");
   std::vector<double> levels;
   for (double tc : theta_c)
     if (std::none_of(levels.begin(), levels.end(),
                      [&](double l) { return std::fabs(l - tc) < 1e-9; }))
       levels.push_back(tc);
   for (size_t k = 0; k < levels.size(); ++k)
-    add(num(levels[k]) + " with lines dt 3 lw 1.5 lc rgb '#555555' " +
-        (k == 0 ? "title 'θ_c'" : "notitle"));
-  s << plot << "\n";
+    p.add(num(levels[k]) + " with lines dt 3 lw 1.5 lc rgb '#555555' " +
+          (k == 0 ? "title 'θ_c'" : "notitle"));
+  s << p.plot << "\n";
+  return s.str();
+}
 
-  // phase differences, in units of pi, with guides at pi (antiphase) and 2 pi (in-phase)
+// Phase differences, in units of pi, with guides at pi (antiphase) and 2 pi (in-phase); above
+// kHeatmapAbove metronomes one key entry for them all.
+std::string phasePanel(Panel& p, double psi_lo, double psi_hi) {
+  std::ostringstream s;
+  const double pad = 0.04 * (psi_hi - psi_lo);
+  s << "set ylabel 'phase difference ψ_j = φ_1 - φ_j (rad)'\n"
+    << "set yrange [" << num(psi_lo - pad) << ":" << num(psi_hi + pad) << "]\n"
+    << piTics(psi_lo - pad, psi_hi + pad);
+  const bool many = p.n > kHeatmapAbove;
+  for (int b = 0; b < p.blocks; ++b)
+    for (int j = 2; j <= p.n; ++j) {
+      const std::string key =
+          many ? (j == 2 ? "title 'ψ_j, j = 2..." + std::to_string(p.n) + p.model(b) + "'"
+                         : std::string("notitle"))
+               : "title 'ψ_" + std::to_string(j) + p.model(b) + "'";
+      p.add(p.lines(b, p.n + j) + " lc rgb '" + colour(j - 1) + "' " + key);
+    }
+  p.add("pi with lines dt 3 lw 1.5 lc rgb '#555555' title 'π, 2π'");
+  p.add("2*pi with lines dt 3 lw 1.5 lc rgb '#555555' notitle");
+  s << p.plot << "\n";
+  return s.str();
+}
+
+}  // namespace
+
+std::string gnuplotScript(const std::string& data_path, const std::string& png_path, int n,
+                          int blocks, const std::vector<double>& theta_c, double tau_max,
+                          double psi_lo, double psi_hi, const std::string& title,
+                          const PlotStyle& style) {
+  std::ostringstream s;
+  const int panels = n > 1 ? 2 : 1;
+  s << plotTerminal(style.format, 1100, panels == 2 ? 850 : 480) << "set output " << quote(png_path)
+    << "\n"
+    << "set datafile missing 'nan'\n"
+    << "set grid back lt 1 lw 0.8 lc rgb '#e4e4e4'\n"
+    << "set key outside right top samplen 3\n"
+    // fixed margins, so that the panels' tau axes line up whatever their keys
+    << "set lmargin at screen 0.09\nset rmargin at screen 0.84\n"
+    << xAxis(style, tau_max) << "set multiplot layout " << panels << ",1 title " << quote(title)
+    << " noenhanced font 'sans,13'\n";
+  Panel top{data_path, n, blocks, style, {}};
+  s << (n > kHeatmapAbove ? heatmapPanel(top) : amplitudePanel(top, theta_c));
+  if (style.seconds_per_tau > 0) s << "unset x2tics\nset xtics mirror\nset xlabel 'time (s)'\n";
   if (panels == 2) {
-    const double pad = 0.04 * (psi_hi - psi_lo);
-    s << "set ylabel 'phase difference ψ_j = φ_1 - φ_j (rad)'\n"
-      << "set yrange [" << num(psi_lo - pad) << ":" << num(psi_hi + pad) << "]\n"
-      << piTics(psi_lo - pad, psi_hi + pad);
-    plot.clear();
-    for (int b = 0; b < blocks; ++b)
-      for (int j = 2; j <= n; ++j)
-        add(quote(data_path) + " index " + std::to_string(b) + " using 1:" +
-            std::to_string(1 + n + j - 1) + " with lines lw " + (b == 0 ? "2" : "1.5") + " dt " +
-            (b == 0 ? "1" : "2") + " lc rgb '" + colour(j - 1) + "' title 'ψ_" + std::to_string(j) +
-            (compare ? std::string(" ") + model_name[b] : "") + "'");
-    add("pi with lines dt 3 lw 1.5 lc rgb '#555555' title 'π, 2π'");
-    add("2*pi with lines dt 3 lw 1.5 lc rgb '#555555' notitle");
-    s << plot << "\n";
+    Panel bottom{data_path, n, blocks, style, {}};
+    s << phasePanel(bottom, psi_lo, psi_hi);
   }
   s << "unset multiplot\nset output\n";
   return s.str();
@@ -271,14 +377,15 @@ std::string gnuplotScript(const std::string& data_path, const std::string& png_p
 
 bool plotEnvelope(const OutputDir& dir, const std::string& png_name,
                   const std::vector<EnvelopeRow>& rows, const std::vector<double>& theta_c,
-                  const std::string& title) {
-  return drawPlot(dir, png_name, {&rows}, theta_c, title);
+                  const std::string& title, const PlotStyle& style) {
+  return drawPlot(dir, png_name, {&rows}, theta_c, title, style);
 }
 
 bool plotComparison(const OutputDir& dir, const std::string& png_name,
                     const std::vector<EnvelopeRow>& full, const std::vector<EnvelopeRow>& slow,
-                    const std::vector<double>& theta_c, const std::string& title) {
-  return drawPlot(dir, png_name, {&full, &slow}, theta_c, title);
+                    const std::vector<double>& theta_c, const std::string& title,
+                    const PlotStyle& style) {
+  return drawPlot(dir, png_name, {&full, &slow}, theta_c, title, style);
 }
 
 }  // namespace metrosync

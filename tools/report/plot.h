@@ -30,19 +30,34 @@ int runGnuplot(const std::string& gnuplot, const std::string& script, const std:
 bool drawPng(const OutputDir& dir, const std::string& png_name, const std::string& data,
              const std::function<std::string(const std::string&, const std::string&)>& script);
 
+// How the envelope and comparison plots are drawn (docs/outputs.md).
+struct PlotStyle {
+  std::string format = "png";    // png (pngcairo), svg or pdf (pdfcairo): --plot-format
+  double seconds_per_tau = 0.0;  // > 0 (a physical rig): x in seconds, tau on the top axis
+};
+// Above this many metronomes the amplitude panel is a heatmap of A_i(tau), not one line each.
+constexpr int kHeatmapAbove = 8;
+// The plot formats --plot-format takes.
+const std::vector<std::string>& plotFormats();
+// gnuplot's `set terminal` line for `format` at the size of a width x height pixel PNG.
+std::string plotTerminal(const std::string& format, int width_px, int height_px);
+
 // Returns true when DIR/png_name was written. theta_c: (N x 1) scaled critical angles.
 bool plotEnvelope(const OutputDir& dir, const std::string& png_name,
                   const std::vector<EnvelopeRow>& rows, const std::vector<double>& theta_c,
-                  const std::string& title);
+                  const std::string& title, const PlotStyle& style = {});
 
 bool plotComparison(const OutputDir& dir, const std::string& png_name,
                     const std::vector<EnvelopeRow>& full, const std::vector<EnvelopeRow>& slow,
-                    const std::vector<double>& theta_c, const std::string& title);
+                    const std::vector<double>& theta_c, const std::string& title,
+                    const PlotStyle& style = {});
 
 // The gnuplot script of a plot (exposed for tests): reads `data_path` (blocks of rows
-// "tau A_1..A_N psi_2..psi_N", one block per model), writes `png_path`.
+// "tau A_1..A_N psi_2..psi_N", one block per model; above kHeatmapAbove metronomes one more
+// block of heatmap cells "tau_lo tau_hi i A_i" for the first model), writes `png_path`.
 std::string gnuplotScript(const std::string& data_path, const std::string& png_path, int n,
                           int blocks, const std::vector<double>& theta_c, double tau_max,
-                          double psi_lo, double psi_hi, const std::string& title);
+                          double psi_lo, double psi_hi, const std::string& title,
+                          const PlotStyle& style = {});
 
 }  // namespace metrosync

@@ -162,11 +162,9 @@ std::string panelLayout(int panels) {
   return std::to_string(rows) + "," + std::to_string(cols);
 }
 
-std::string header(const std::string& png, int width, int height) {
+std::string header(const std::string& format, const std::string& png, int width, int height) {
   std::ostringstream s;
-  s << "set terminal pngcairo size " << width << "," << height
-    << " enhanced font 'sans,11' linewidth 1.2\n"
-    << "set output " << quote(png) << "\n"
+  s << plotTerminal(format, width, height) << "set output " << quote(png) << "\n"
     << "set tics out\n";
   return s.str();
 }
@@ -174,8 +172,12 @@ std::string header(const std::string& png, int width, int height) {
 }  // namespace
 
 const std::vector<std::string>& sweepMapNames() {
-  static const std::vector<std::string> names = {"boundaries.csv", "regimes.png", "amplitudes.png",
-                                                 "phases.png",     "order.png",   "drive.png"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> v = {"boundaries.csv"};
+    for (const char* stem : {"regimes", "amplitudes", "phases", "order", "drive"})
+      for (const std::string& format : plotFormats()) v.push_back(stem + ("." + format));
+    return v;
+  }();
   return names;
 }
 
@@ -263,12 +265,12 @@ nlohmann::json boundariesJson(const std::vector<continuation::FoldCurve>& curves
 
 std::string regimeMapScript(const std::string& data_path, const std::string& png_path,
                             const SweepGrid& grid, const std::vector<std::string>& legend,
-                            const std::string& title,
+                            const std::string& title, const std::string& format,
                             const std::vector<continuation::FoldCurve>& boundaries) {
   const std::vector<size_t> axes = drawnAxes(grid);
   const bool map2d = axes.size() > 1;
   std::ostringstream s;
-  s << header(png_path, 1100, map2d ? 850 : 420) << "set title " << quote(title)
+  s << header(format, png_path, 1100, map2d ? 850 : 420) << "set title " << quote(title)
     << " noenhanced font 'sans,13'\n"
     << "set key at screen 0.75, graph 1 left top Left reverse noenhanced title 'regime' "
        "samplen 1.5\n"
@@ -302,7 +304,13 @@ struct MapFrame {
   bool map2d = false;
   std::vector<long> order;  // scan order, -1 between rows
   std::string title;
+  std::string format = "png";  // png, svg or pdf (tools/report/plot.h)
 };
+
+// "regimes.png" in the frame's format
+std::string named(const MapFrame& f, const std::string& png_name) {
+  return png_name.substr(0, png_name.rfind('.') + 1) + f.format;
+}
 
 // regimes.png: "x y R G B" cells (2-D; white where not run), or "x rgb" (1-D; -1 not run)
 bool drawRegimeMap(const MapFrame& f, const std::map<long, SweepPoint>& points,
@@ -322,10 +330,11 @@ bool drawRegimeMap(const MapFrame& f, const std::map<long, SweepPoint>& points,
     else
       d << " " << rgb << "\n";
   }
-  return drawPng(
-      f.dir, "regimes.png", d.str(), [&](const std::string& data, const std::string& png) {
-        return regimeMapScript(data, png, f.grid, legend, f.title + " - regimes", boundaries);
-      });
+  return drawPng(f.dir, named(f, "regimes.png"), d.str(),
+                 [&](const std::string& data, const std::string& png) {
+                   return regimeMapScript(data, png, f.grid, legend, f.title + " - regimes",
+                                          f.format, boundaries);
+                 });
 }
 
 // The values: "x [y] A_1..A_N psi_2..psi_N r log10(s)" (NaN where not run or failed).
@@ -369,7 +378,8 @@ std::string pictureScript(const MapFrame& f, const Picture& pic, const std::stri
   std::ostringstream s;
   const int panels = f.map2d ? static_cast<int>(pic.qs.size()) : 1;
   const std::string title = f.title + " - " + pic.name.substr(0, pic.name.size() - 4);
-  s << header(png, 1100, f.map2d ? (panels > 2 ? 950 : 520) : 480) << axisSettings(f.grid, f.axes);
+  s << header(f.format, png, 1100, f.map2d ? (panels > 2 ? 950 : 520) : 480)
+    << axisSettings(f.grid, f.axes);
   if (f.map2d) {
     s << "set multiplot layout " << panelLayout(panels) << " title " << quote(title)
       << " noenhanced\n"
@@ -431,15 +441,15 @@ std::vector<Picture> valuePictures(int n, int first_value, bool any_drive) {
 
 std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& grid, int n,
                                        const std::map<long, SweepPoint>& points,
-                                       const std::string& title,
+                                       const std::string& title, const std::string& format,
                                        const std::vector<continuation::FoldCurve>& boundaries) {
   std::vector<std::string> written;
   if (grid.size() == 0 || n < 1 || points.empty()) return written;  // nothing to draw
   if (grid.size() > kMaxMapCells) return written;                   // more cells than pixels
-  MapFrame f{dir, grid, drawnAxes(grid), false, {}, title};
+  MapFrame f{dir, grid, drawnAxes(grid), false, {}, title, format};
   f.map2d = f.axes.size() > 1;
   f.order = scanOrder(grid, f.axes);
-  if (drawRegimeMap(f, points, boundaries)) written.push_back("regimes.png");
+  if (drawRegimeMap(f, points, boundaries)) written.push_back(named(f, "regimes.png"));
   const bool any_complete =
       std::any_of(points.begin(), points.end(), [](const auto& kv) { return kv.second.complete; });
   if (!any_complete) return written;  // every point failed: no value to draw
@@ -452,7 +462,7 @@ std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& gr
     auto script = [&](const std::string& data, const std::string& png) {
       return pictureScript(f, pic, data, png);
     };
-    if (drawPng(dir, pic.name, values, script)) written.push_back(pic.name);
+    if (drawPng(dir, named(f, pic.name), values, script)) written.push_back(named(f, pic.name));
   }
   return written;
 }

@@ -24,7 +24,7 @@
 
 namespace metrosync {
 
-// The file names the maps may have (for removing stale ones).
+// The file names the maps may have, in every plot format (for removing stale ones).
 const std::vector<std::string>& sweepMapNames();
 
 // A grid of more points than this gets no maps: the pictures are ~1000 pixels across, so a finer
@@ -39,6 +39,7 @@ constexpr long kMaxMapCells = 1000000;
 std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& grid, int n,
                                        const std::map<long, SweepPoint>& points,
                                        const std::string& title,
+                                       const std::string& format = "png",  // --plot-format
                                        const std::vector<continuation::FoldCurve>& boundaries = {});
 
 // boundaries.csv: `curve,type,KEY1,KEY2`, one row per point of each curve in order along it.
@@ -55,7 +56,7 @@ std::string regimeColour(const std::string& name, const std::vector<std::string>
 // The gnuplot script of the regime map (exposed for tests).
 std::string regimeMapScript(const std::string& data_path, const std::string& png_path,
                             const SweepGrid& grid, const std::vector<std::string>& legend,
-                            const std::string& title,
+                            const std::string& title, const std::string& format = "png",
                             const std::vector<continuation::FoldCurve>& boundaries = {});
 
 }  // namespace metrosync

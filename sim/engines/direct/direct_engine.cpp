@@ -96,6 +96,14 @@ class DirectRun : public EventSystem {
   }
   double platformMobility() override { return eq_.platformMobility(ev_y_); }
   void eventRow(const char* kind) override { sink_.eventRow(kind, makeRow(ev_y_, ev_t_)); }
+  void snapshotBefore() override {
+    if (sink_.wantsEventRecords()) before_ = makeRow(ev_y_, ev_t_);
+  }
+  void recordEvent(const char* kind, int j) override {
+    if (sink_.wantsEventRecords())
+      sink_.eventRecord(kind, j < 0 ? -1 : eq_.pendulum(j).rig_index, before_,
+                        makeRow(ev_y_, ev_t_));
+  }
 
  private:
   // --- witnesses --------------------------------------------------------------------------
@@ -159,7 +167,8 @@ class DirectRun : public EventSystem {
   std::vector<Crossing> found_;
   std::optional<EventResolver> resolver_;
   std::optional<SampleSchedule> schedule_;
-  double* ev_y_ = nullptr;  // the state the resolver acts on, at time ev_t_
+  double* ev_y_ = nullptr;      // the state the resolver acts on, at time ev_t_
+  std::vector<double> before_;  // the state before the event being recorded (events.csv)
   double ev_t_ = 0.0;
   std::vector<double> ya_, yb_;  // scratch states (dim): the event's, the witnesses'
   std::vector<double> env_th_, env_w_;

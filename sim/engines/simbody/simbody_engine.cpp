@@ -182,6 +182,13 @@ class FullModelRun : public EventSystem {
   double applyImpulse(const std::vector<double>& pin, double platform) override;
   double platformMobility() override;
   void eventRow(const char* kind) override { eventRow(kind, *ev_s_); }
+  void snapshotBefore() override {
+    if (sink_.wantsEventRecords()) before_ = makeRow(*ev_s_, ev_s_->getTime());
+  }
+  void recordEvent(const char* kind, int i) override {
+    if (sink_.wantsEventRecords())
+      sink_.eventRecord(kind, i, before_, makeRow(*ev_s_, ev_s_->getTime()));
+  }
 
  private:
   static std::vector<bool> activeMask(const Rig& rig) {
@@ -255,7 +262,8 @@ class FullModelRun : public EventSystem {
   std::optional<EventResolver> resolver_;
   std::optional<SampleSchedule> schedule_;
   std::optional<StormGuard> storm_;
-  State* ev_s_ = nullptr;  // the state the resolver acts on
+  State* ev_s_ = nullptr;       // the state the resolver acts on
+  std::vector<double> before_;  // the state before the event being recorded (events.csv)
   // grazing guard: the last checked step end, and the state of a redo
   StepEnd prev_, cur_;
   double checked_until_ = 0.0;
