@@ -24,9 +24,9 @@ struct Options {
   bool quiet = false;
   bool no_plot = false;  // run, compare: --no-plot, no PNG (and no gnuplot child process)
   std::string plot_format = "png";  // run, compare: --plot-format png|svg|pdf
-  std::string model;     // run: full | slow; empty: the engine's model, full when no --engine
-  std::string engine;    // run, compare: a registry name (sim/engines/engine.h); empty: default
-  bool json = false;     // scale
+  std::string model;   // run: full | slow; empty: the engine's model, full when no --engine
+  std::string engine;  // run, compare: a registry name (sim/engines/engine.h); empty: default
+  bool json = false;   // scale
   double max_output = kDefaultMaxOutputBytes;  // --max-output BYTES (yaml/rig_limits.h)
 };
 

@@ -8,6 +8,7 @@
 #include "sim/record/atomic_file.h"
 #include "tools/report/plot.h"
 #include "tools/report/sweep_maps.h"
+#include "tools/report/validation_report.h"
 
 namespace metrosync {
 
@@ -244,18 +245,6 @@ std::vector<std::string> drawBoth(
   return files;
 }
 
-nlohmann::json runJson(const ModelRun& m) {
-  nlohmann::json j;
-  j["model"] = m.model;
-  j["epsilon"] = m.epsilon;
-  j["tau_end"] = m.tau_end;
-  j["complete"] = m.report.complete;
-  if (!m.report.complete) j["failure"] = m.report.failure;
-  j["regime"] = toString(m.verdict.regime);
-  j["final"] = {{"tau", m.final().tau}, {"A", m.final().A}, {"psi", m.final().psi}};
-  return j;
-}
-
 }  // namespace
 
 nlohmann::json figuresJson(const std::vector<FigureResult>& figures,
@@ -268,8 +257,8 @@ nlohmann::json figuresJson(const std::vector<FigureResult>& figures,
     nlohmann::json runs = nlohmann::json::array();
     for (const auto& r : f.runs) {
       nlohmann::json jr = {{"scenario", r.curve.scenario}, {"label", r.curve.label}};
-      if (r.has_slow) jr["slow"] = runJson(r.slow);
-      if (r.has_full) jr["full"] = runJson(r.full);
+      if (r.has_slow) jr["slow"] = modelRunJson(r.slow);
+      if (r.has_full) jr["full"] = modelRunJson(r.full);
       runs.push_back(jr);
     }
     j["figures"].push_back({{"id", f.spec.id},

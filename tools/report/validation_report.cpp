@@ -704,9 +704,7 @@ std::string validationReportMarkdown(const ValidationResults& r, const ReportCon
 
 // ---- summary.json -------------------------------------------------------------------------------
 
-namespace {
-
-nlohmann::json runJson(const ModelRun& m) {
+nlohmann::json modelRunJson(const ModelRun& m) {
   nlohmann::json j;
   j["model"] = m.model;
   j["epsilon"] = m.epsilon;
@@ -721,8 +719,6 @@ nlohmann::json runJson(const ModelRun& m) {
   j["wall_seconds"] = m.report.wall_seconds;
   return j;
 }
-
-}  // namespace
 
 nlohmann::json validationJson(const ValidationResults& r, const ReportContext& ctx) {
   nlohmann::json j;
@@ -749,7 +745,7 @@ nlohmann::json validationJson(const ValidationResults& r, const ReportContext& c
     for (const auto& c : s.checks)
       checks.push_back({{"what", c.what}, {"pass", c.pass}, {"detail", c.detail}});
     j["scenarios"].push_back(
-        {{"name", s.name}, {"slow", runJson(s.slow)}, {"checks", checks}, {"pass", s.pass}});
+        {{"name", s.name}, {"slow", modelRunJson(s.slow)}, {"checks", checks}, {"pass", s.pass}});
   }
   for (const auto& c : r.convergence) {
     nlohmann::json e = nlohmann::json::array();
@@ -766,19 +762,23 @@ nlohmann::json validationJson(const ValidationResults& r, const ReportContext& c
   for (const auto& rc : r.regimes) {
     nlohmann::json full = nlohmann::json::array();
     for (size_t k = 0; k < rc.full.size(); ++k) {
-      nlohmann::json f = runJson(rc.full[k]);
+      nlohmann::json f = modelRunJson(rc.full[k]);
       f["distance"] = rc.distance[k];
       f["agree"] = static_cast<bool>(rc.agree[k]);
       f["mirror_agree"] = static_cast<bool>(rc.mirror_agree[k]);
       if (std::isfinite(rc.mirror_distance[k])) f["mirror_distance"] = rc.mirror_distance[k];
       full.push_back(f);
     }
-    j["regimes"].push_back(
-        {{"name", rc.name}, {"tau_end", rc.tau_end}, {"slow", runJson(rc.slow)}, {"full", full}});
+    j["regimes"].push_back({{"name", rc.name},
+                            {"tau_end", rc.tau_end},
+                            {"slow", modelRunJson(rc.slow)},
+                            {"full", full}});
   }
   for (const auto& p : r.sweep)
-    j["sweep"].push_back(
-        {{"mu", p.mu}, {"mu_bar", p.mu_bar}, {"slow", runJson(p.slow)}, {"full", runJson(p.full)}});
+    j["sweep"].push_back({{"mu", p.mu},
+                          {"mu_bar", p.mu_bar},
+                          {"slow", modelRunJson(p.slow)},
+                          {"full", modelRunJson(p.full)}});
   if (!r.bifurcations.empty()) j["bifurcations"] = validationBifurcationsJson(r.bifurcations);
   return j;
 }

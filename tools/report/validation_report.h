@@ -32,6 +32,10 @@ std::string sweepLabel(const ModelRun& run);
 std::string validationReportMarkdown(const ValidationResults& r, const ReportContext& ctx,
                                      const std::vector<std::string>& plots);
 
+// One run of either model as summary.json records it: {model, epsilon, tau_end, complete,
+// [failure], regime, final {tau, A, psi}, [platform, platform_stuck_fraction], wall_seconds}.
+nlohmann::json modelRunJson(const ModelRun& m);
+
 // {plan, failed_checks, incomplete_runs, wall_seconds, betas[], scenarios[], convergence[],
 // regimes[], sweep[]}: the report's numbers for machines.
 nlohmann::json validationJson(const ValidationResults& r, const ReportContext& ctx);
