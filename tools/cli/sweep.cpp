@@ -77,6 +77,10 @@ void removeStaleSweepOutputs(const OutputDir& dir) {
   for (const auto& name : names) fs::remove(dir.file(name), ec);
   for (const auto& entry : fs::directory_iterator(dir.path(), ec)) {
     const std::string f = entry.path().filename().string();
+    if (isSweepSliceMapName(f)) {  // regimes--KEY=VALUE.png: an N-D sweep's maps
+      fs::remove(entry.path(), ec);
+      continue;
+    }
     for (const auto& name : names) {
       const std::string prefix = "." + name + ".";
       if (f.compare(0, prefix.size(), prefix) != 0 || f.size() < 6 ||
@@ -95,6 +99,9 @@ void removeStaleSweepOutputs(const OutputDir& dir) {
 }
 
 // ---- the rig and the grid, checked before anything is written --------------------------------
+
+// Up to this many axes every corner of the grid is loaded before the sweep (2^axes rigs).
+constexpr size_t kMaxCornerAxes = 8;
 
 std::string readRigText(const SweepOptions& opt) {
   // the same checks as every command: a regular file of bounded size (yaml/rig_loader.h)
@@ -119,14 +126,14 @@ std::string requestedModel(const SweepOptions& opt) {
   return opt.engine.empty() ? "slow" : "";
 }
 
-// The rig of one point: the base rig, --set, then the point's KEY=VALUE; checked like `run`
-// checks its rig. Throws RigError naming the point.
-PointInput loadPoint(const std::string& text, const SweepOptions& opt, const SweepGrid& grid,
-                     long g) {
+// The rig of one point: the base rig, --set, then the point's KEY=VALUE (a wildcard key
+// "metronomes.*.REST" set at each of the n metronomes); checked like `run` checks its rig.
+// `where` names the point ("grid point 12 (...)"); throws RigError naming it.
+PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
+                        const std::vector<std::string>& point, int n, const std::string& where) {
   std::vector<std::string> overrides = opt.sets;
-  const std::vector<std::string> point = grid.overrides(g);
-  overrides.insert(overrides.end(), point.begin(), point.end());
-  const std::string where = "grid point " + std::to_string(g) + " (" + joined(point) + ")";
+  const std::vector<std::string> expanded = expandSweepOverrides(point, n);
+  overrides.insert(overrides.end(), expanded.begin(), expanded.end());
   PointInput in;
   try {
     in.net = loadSweepNetwork(text, displayName(opt), overrides);
@@ -134,11 +141,14 @@ PointInput loadPoint(const std::string& text, const SweepOptions& opt, const Swe
   } catch (const RigError& e) {
     // the loader calls every override --set; the point's own ones come from --vary
     std::string what = e.what();
-    for (const auto& o : point)
+    for (const auto& o : expanded)
       for (size_t at = what.find("--set " + o); at != std::string::npos;
            at = what.find("--set " + o, at))
         what.replace(at, 6 + o.size(), "--vary point " + o);
-    throw RigError(what + "\n  at " + where + " of the sweep");
+    for (const auto& o : point)
+      if (isWildcardKey(o.substr(0, o.find('='))))
+        what += "\n  (from the wildcard --vary " + o.substr(0, o.find('=')) + ")";
+    throw RigError(what + "\n  at " + where);
   }
   if (in.net) {  // docs/networks.md
     in.engine = &networkSweepEngine(opt.engine, opt.model, *in.net, displayName(opt));
@@ -149,9 +159,16 @@ PointInput loadPoint(const std::string& text, const SweepOptions& opt, const Swe
   try {
     in.scaled = computeScaled(in.rig);
   } catch (const std::invalid_argument& e) {
-    throw RigError(displayName(opt) + ": " + e.what() + "\n  at " + where + " of the sweep");
+    throw RigError(displayName(opt) + ": " + e.what() + "\n  at " + where);
   }
   return in;
+}
+
+PointInput loadPoint(const std::string& text, const SweepOptions& opt, const SweepGrid& grid,
+                     long g, int n) {
+  const std::vector<std::string> point = grid.overrides(g);
+  return loadPointRig(text, opt, point, n,
+                      "grid point " + std::to_string(g) + " (" + joined(point) + ") of the sweep");
 }
 
 // ---- one point ---------------------------------------------------------------------------------
@@ -390,6 +407,7 @@ struct SweepPlan {
   long mine = 0;  // how many grid points this shard holds (SweepShard::contains says which)
   SweepManifest manifest;
   std::string path, regimes_path;
+  std::vector<size_t> map_axes;  // --map
 };
 
 // The grid checked in bounded time, before any file: the point at every corner of the grid and
@@ -401,15 +419,29 @@ struct SweepPlan {
 const Engine* checkGrid(const SweepPlan& plan, const SweepOptions& opt) {
   const std::vector<SweepAxis>& axes = plan.grid.axes();
   std::set<long> probes;
-  for (long corner = 0; corner < (1L << axes.size()); ++corner) {
+  auto index = [&](const std::vector<bool>& high) {
     long g = 0;
     for (size_t a = 0; a < axes.size(); ++a)
-      g = g * axes[a].count + ((corner >> (axes.size() - 1 - a)) & 1 ? axes[a].count - 1 : 0);
-    probes.insert(g);
+      g = g * axes[a].count + (high[a] ? axes[a].count - 1 : 0);
+    return g;
+  };
+  if (axes.size() <= kMaxCornerAxes) {
+    for (long corner = 0; corner < (1L << axes.size()); ++corner) {
+      std::vector<bool> high(axes.size());
+      for (size_t a = 0; a < axes.size(); ++a) high[a] = (corner >> (axes.size() - 1 - a)) & 1;
+      probes.insert(index(high));
+    }
+  } else {  // 2^axes corners would be too many: both ends of each axis, the others low or high
+    for (bool rest : {false, true})
+      for (size_t a = 0; a <= axes.size(); ++a) {
+        std::vector<bool> high(axes.size(), rest);
+        if (a < axes.size()) high[a] = !rest;
+        probes.insert(index(high));
+      }
   }
   const Engine* engine = nullptr;
   for (long g : probes) {
-    const PointInput in = loadPoint(plan.text, opt, plan.grid, g);
+    const PointInput in = loadPoint(plan.text, opt, plan.grid, g, plan.n);
     if (static_cast<int>(in.rig.metronomes.size()) != plan.n)
       throw UsageError("--vary changes the number of metronomes at grid point " +
                        std::to_string(g));
@@ -451,7 +483,8 @@ SweepPlan planSweep(const SweepOptions& opt) {
   std::vector<SweepAxis> axes;
   for (const auto& v : opt.vary) axes.push_back(parseVary(v));
   SweepPlan plan;
-  plan.grid = SweepGrid(std::move(axes));
+  plan.grid = SweepGrid(std::move(axes), opt.force ? kMaxForcedGridPoints : kMaxGridPoints);
+  plan.map_axes = mapAxes(plan.grid, opt.map);
   plan.shard = opt.shard.empty() ? SweepShard{} : parseShard(opt.shard);
   // the rig, and every grid point's rig: a bad key or value stops here, before any file
   plan.text = readRigText(opt);
@@ -534,7 +567,7 @@ struct SweepRun {
 std::optional<SweepPoint> runGridPoint(const SweepPlan& plan, const SweepOptions& opt, long g) {
   std::optional<PointInput> in;
   try {
-    in = loadPoint(plan.text, opt, plan.grid, g);
+    in = loadPoint(plan.text, opt, plan.grid, g, plan.n);
   } catch (const std::exception& e) {
     return unloadablePoint(g, plan.n, e.what());
   }
@@ -624,8 +657,8 @@ int sweepImpl(const SweepOptions& opt) {
     files.push_back("boundaries.csv");
   }
   if (!opt.no_plot)
-    for (const auto& f :
-         plotSweepMaps(dir, plan.grid, plan.n, run.points, mapTitle(plan.manifest), curves))
+    for (const auto& f : plotSweepMaps(dir, plan.grid, plan.n, run.points, mapTitle(plan.manifest),
+                                       curves, plan.map_axes))
       files.push_back(f);
   files.push_back("sweep.json");
   nlohmann::json status = statusJson(plan.manifest, plan.mine, run.points, complete);
@@ -707,6 +740,7 @@ int mergeImpl(const SweepOptions& opt) {
   merged.shard = SweepShard{};
   const SweepGrid& grid = merged.grid;
   const int n = merged.metronomes;
+  const std::vector<size_t> map_axes = mapAxes(grid, opt.map);
 
   const std::string path = opt.out.empty() ? defaultOutputDir(merged.rig_name, "merge") : opt.out;
   for (const auto& d : opt.dirs)
@@ -727,7 +761,8 @@ int mergeImpl(const SweepOptions& opt) {
   if (!lock) lock.emplace(path, "metrosync merge");
   writeSortedRegimesCsv(dir.file("regimes.csv"), grid, n, lines);
   std::vector<std::string> files = {"regimes.csv"};
-  for (const auto& f : plotSweepMaps(dir, grid, n, points, mapTitle(merged))) files.push_back(f);
+  for (const auto& f : plotSweepMaps(dir, grid, n, points, mapTitle(merged), {}, map_axes))
+    files.push_back(f);
   files.push_back("sweep.json");
   const bool complete = static_cast<long>(points.size()) == grid.size();
   nlohmann::json status = statusJson(merged, grid.size(), points, complete);
@@ -750,22 +785,50 @@ int mergeImpl(const SweepOptions& opt) {
 
 }  // namespace
 
+std::pair<std::string, std::string> checkSweepPoint(const std::string& rig_text,
+                                                    const SweepOptions& opt,
+                                                    const std::vector<std::string>& point, int n,
+                                                    const std::string& where) {
+  const PointInput in = loadPointRig(rig_text, opt, point, n, where);
+  if (static_cast<int>(in.rig.metronomes.size()) != n)
+    throw UsageError(joined(point) + " changes the number of metronomes (at " + where + ")");
+  return {in.engine->model(), in.engine->name()};
+}
+
+std::optional<SweepPoint> runSweepPointAt(const std::string& rig_text, const SweepOptions& opt,
+                                          const std::vector<std::string>& point, int n,
+                                          long index) {
+  std::optional<PointInput> in;
+  try {
+    in = loadPointRig(rig_text, opt, point, n, "point " + std::to_string(index));
+  } catch (const std::exception& e) {
+    return unloadablePoint(index, n, e.what());
+  }
+  if (static_cast<int>(in->rig.metronomes.size()) != n)
+    return unloadablePoint(index, n, "the point changes the number of metronomes");
+  return runPoint(*in, index);
+}
+
 SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
   SweepCommands c;
   c.sweep = app.add_subcommand(
-      "sweep", "a grid of runs over one or two rig keys, in parallel and resumable: a regime map");
+      "sweep", "a grid of runs over one or more rig keys, in parallel and resumable: a regime map");
   c.sweep->add_option("RIG", opt.rig_path,
                       "rig file (YAML, SPEC section 1); default: the built-in rig (the paper's "
                       "experiment)");
   c.sweep
-      ->add_option("--vary", opt.vary,
-                   "a key and its values: COUNT values from FROM to TO, both included; ':open' "
-                   "leaves TO out ([FROM, TO), for angles); or the values listed, V1,V2,... "
-                   "(e.g. platform.friction.mu=0.2,0.3,0.4). Values may use pi: "
-                   "--vary platform.friction.mu=0:0.8:41, --vary "
-                   "metronomes.0.start.phi=0:2pi:100:open. Once or twice (the first across the "
-                   "map, the second up)")
-      ->type_name("KEY=FROM:TO:COUNT[:open]|V1,V2,..")
+      ->add_option(
+          "--vary", opt.vary,
+          "a key and its values: COUNT values from FROM to TO, both included; ':open' "
+          "leaves TO out ([FROM, TO), for angles); ':log' spaces them evenly in log "
+          "(0 < FROM <= TO); or the values listed, V1,V2,... "
+          "(e.g. platform.friction.mu=0.2,0.3,0.4). Values may use pi: "
+          "--vary platform.friction.mu=0:0.8:41, --vary "
+          "metronomes.0.start.phi=0:2pi:100:open, --vary platform.friction.mu=0.01:10:31:log. "
+          "metronomes.*.KEY sets KEY of every metronome (--vary metronomes.*.nu=0.5:0.8:4). "
+          "Repeatable: one axis each, an N-D grid (the first the slowest; the maps draw "
+          "two, see --map)")
+      ->type_name("KEY=FROM:TO:COUNT[:open][:log]|V1,V2,..")
       ->required()
       ->allow_extra_args(false);
   c.sweep
@@ -800,6 +863,14 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
       ->type_name("DIR");
   c.sweep->add_flag("-q,--quiet", opt.quiet,
                     "no progress bar and no summary (errors and warnings still go to stderr)");
+  c.sweep->add_flag("--force", opt.force,
+                    "run a grid of more than 10^7 points (without it such a grid is refused)");
+  c.sweep
+      ->add_option("--map", opt.map,
+                   "the two --vary keys the maps draw, across then up (default: the first two); "
+                   "every combination of the other keys' values gets its own maps, "
+                   "regimes--KEY=VALUE.png, ...")
+      ->type_name("KEY1,KEY2");
   c.sweep->add_flag("--boundaries", opt.boundaries,
                     "with --model slow over two ranges: the slow flow's fold and Hopf curves "
                     "(continuation) over the regime map, boundaries.csv");
@@ -811,7 +882,8 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
       "psi in [0, 2 pi)), r, s (= |Z|/mu: <= 1 a stuck platform), clusters, tau, complete, "
       "index, message), sweep.json (what was "
       "swept, how far it got), timings.csv (wall seconds per point), regimes.png, "
-      "amplitudes.png, phases.png, order.png (N >= 3), drive.png (Coulomb platforms).\n"
+      "amplitudes.png, phases.png, order.png (N >= 3), drive.png (Coulomb platforms); with more "
+      "than two --vary one set of maps per value of the keys not drawn (regimes--KEY=VALUE.png).\n"
       "A point whose run fails is recorded with regime 'failed' and the reason; the sweep goes "
       "on. A progress bar with ETA goes to stderr when it is a terminal. SIGINT/SIGTERM stop the "
       "sweep (the points in flight are not recorded; exit 3): --resume continues it, as it does "
@@ -826,6 +898,8 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
   c.merge->add_option("--out", opt.out, "output directory (default: runs/<rig name>-merge)")
       ->type_name("DIR");
   c.merge->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
+  c.merge->add_option("--map", opt.map, "the two --vary keys the maps draw (as for sweep)")
+      ->type_name("KEY1,KEY2");
   c.merge->footer(
       "The directories must hold the same sweep (rig, --set, model, grid: their sweep.json "
       "says); points missing from all of them are reported and left white in the maps.\n"
