@@ -18,9 +18,9 @@ int main(int argc, char** argv) {
   cli::ValidateOptions validate_opt;  // tools/cli/validate.h
   cli::FitOptions fit_opt;            // tools/cli/fit.h
   cli::MeasureOptions measure_opt;
-  cli::FiguresOptions figures_opt;    // tools/cli/figures.h
-  cli::AnimateOptions animate_opt;    // tools/cli/animate.h
-  cli::BasinOptions basin_opt;        // tools/cli/basin.h
+  cli::FiguresOptions figures_opt;  // tools/cli/figures.h
+  cli::AnimateOptions animate_opt;  // tools/cli/animate.h
+  cli::BasinOptions basin_opt;      // tools/cli/basin.h
   std::vector<cli::Command> commands = cli::addRigCommands(app, opt);
   const cli::SweepCommands sweep = cli::addSweepCommands(app, sweep_opt);
   commands.push_back({sweep.sweep, [&] { return cli::sweepCommand(sweep_opt); }});

@@ -39,8 +39,7 @@ bool isAngleKeyName(const std::string& key);
 // The value of `key` in sample `sample` for `seed`, key number `which` of the draw.
 double drawValue(const RandomKey& key, std::uint64_t seed, long sample, size_t which);
 // All the keys' values of one sample, in order.
-std::vector<double> drawSample(const std::vector<RandomKey>& keys, std::uint64_t seed,
-                               long sample);
+std::vector<double> drawSample(const std::vector<RandomKey>& keys, std::uint64_t seed, long sample);
 
 // A uniform number in [0, 1) for (seed, sample, which), 53 random bits.
 double basinUniform(std::uint64_t seed, long sample, size_t which);

@@ -114,7 +114,8 @@ BasinPlan planBasin(const BasinOptions& opt) {
   plan.rig_name = base.name;
   checkCorners(opt, plan);
   plan.path = opt.run.out.empty() ? defaultOutputDir(base.name, "basin") : opt.run.out;
-  plan.jobs = opt.run.jobs > 0 ? opt.run.jobs : static_cast<int>(std::thread::hardware_concurrency());
+  plan.jobs =
+      opt.run.jobs > 0 ? opt.run.jobs : static_cast<int>(std::thread::hardware_concurrency());
   plan.jobs = std::max(1, plan.jobs);
   return plan;
 }
@@ -233,8 +234,9 @@ int basinImpl(const BasinOptions& opt) {
 
 CLI::App* addBasinCommand(CLI::App& app, BasinOptions& opt) {
   CLI::App* c = app.add_subcommand(
-      "basin", "basin stability: the fraction of random starts ending in each regime, with 95% "
-               "Wilson intervals");
+      "basin",
+      "basin stability: the fraction of random starts ending in each regime, with 95% "
+      "Wilson intervals");
   c->add_option("RIG", opt.run.rig_path,
                 "rig file (YAML, SPEC section 1); default: the built-in rig");
   c->add_option("--random", opt.random,
@@ -245,9 +247,7 @@ CLI::App* addBasinCommand(CLI::App& app, BasinOptions& opt) {
       ->type_name("KEY=FROM:TO")
       ->required()
       ->allow_extra_args(false);
-  c->add_option("--samples", opt.samples, "how many random starts")
-      ->type_name("S")
-      ->required();
+  c->add_option("--samples", opt.samples, "how many random starts")->type_name("S")->required();
   c->add_option("--seed", opt.seed,
                 "the seed of the draws (default 1): sample k's values depend only on the seed "
                 "and k, not on --jobs")

@@ -15,11 +15,11 @@
 namespace metrosync::cli {
 
 struct BasinOptions {
-  SweepOptions run;                  // RIG, --set, --model, --engine, --jobs, --out, --quiet
-  std::vector<std::string> random;   // --random KEY=FROM:TO, in order
-  long samples = 0;                  // --samples S
-  std::uint64_t seed = 1;            // --seed N
-  bool no_plot = false;              // --no-plot
+  SweepOptions run;                 // RIG, --set, --model, --engine, --jobs, --out, --quiet
+  std::vector<std::string> random;  // --random KEY=FROM:TO, in order
+  long samples = 0;                 // --samples S
+  std::uint64_t seed = 1;           // --seed N
+  bool no_plot = false;             // --no-plot
 };
 
 CLI::App* addBasinCommand(CLI::App& app, BasinOptions& opt);

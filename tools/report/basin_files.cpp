@@ -33,8 +33,7 @@ std::pair<double, double> shownRange(const RandomKey& k) {
 }
 
 std::string basinScript(const std::vector<RandomKey>& keys, const std::vector<std::string>& legend,
-                        const std::string& title, const std::string& data,
-                        const std::string& png) {
+                        const std::string& title, const std::string& data, const std::string& png) {
   std::ostringstream s;
   s << "set terminal pngcairo size 1000,850 enhanced font 'sans,11' linewidth 1.2\n"
     << "set output " << quote(png) << "\nset tics out\n"
@@ -113,9 +112,8 @@ std::string fractionsTable(const std::vector<RegimeFraction>& fractions, long sa
                 "count", "fraction", "95% interval (Wilson)");
   t << line;
   for (const auto& f : fractions) {
-    std::snprintf(line, sizeof line, "  %-*s %8ld %9.4f   [%.4f, %.4f]\n",
-                  static_cast<int>(width), f.regime.c_str(), f.count, f.fraction, f.ci.lo,
-                  f.ci.hi);
+    std::snprintf(line, sizeof line, "  %-*s %8ld %9.4f   [%.4f, %.4f]\n", static_cast<int>(width),
+                  f.regime.c_str(), f.count, f.fraction, f.ci.lo, f.ci.hi);
     t << line;
   }
   t << "  (" << samples << " samples)\n";
