@@ -301,7 +301,10 @@ nlohmann::json SweepGrid::toJson() const {
                     {"open", a.open},
                     {"log", a.log},
                     {"values", a.texts}});
-  return {{"axes", axes}, {"points", size_}};
+  nlohmann::json j = {{"axes", axes}, {"points", size_}};
+  if (basin_.samples > 0)
+    j["basin"] = {{"samples", basin_.samples}, {"seed", basin_.seed}, {"random", basin_.random}};
+  return j;
 }
 
 SweepGrid SweepGrid::fromJson(const nlohmann::json& j) {
@@ -320,7 +323,13 @@ SweepGrid SweepGrid::fromJson(const nlohmann::json& j) {
       for (const auto& t : a.texts) a.values.push_back(parseSweepNumber(t));
       axes.push_back(std::move(a));
     }
-    return SweepGrid(std::move(axes), kMaxForcedGridPoints);
+    SweepGrid grid(std::move(axes), kMaxForcedGridPoints);
+    if (j.contains("basin")) {
+      const auto& b = j.at("basin");
+      grid.setBasin({b.at("samples").get<long>(), b.at("seed").get<std::uint64_t>(),
+                     b.at("random").get<std::vector<std::string>>()});
+    }
+    return grid;
   } catch (const nlohmann::json::exception& e) {
     throw SweepInputError(std::string("not a sweep grid: ") + e.what());
   }

@@ -26,6 +26,7 @@
 // split into shards.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <map>
@@ -88,13 +89,28 @@ class SweepGrid {
   explicit SweepGrid(std::vector<SweepAxis> axes, long max_points = kMaxGridPoints);
 
   const std::vector<SweepAxis>& axes() const { return axes_; }
+
+  // sweep --basin-samples S --random KEY=FROM:TO ... [--seed N]: each point also runs S random
+  // starts (sample k's draws those of `metrosync basin`, sim/analysis/basin.h, the same at every
+  // point) and regimes.csv gets the column in_phase_fraction. S = 0: none.
+  struct Basin {
+    long samples = 0;
+    std::uint64_t seed = 1;
+    std::vector<std::string> random;  // KEY=FROM:TO, as given
+    bool operator==(const Basin& o) const {
+      return samples == o.samples && seed == o.seed && random == o.random;
+    }
+  };
+  const Basin& basin() const { return basin_; }
+  void setBasin(Basin b) { basin_ = std::move(b); }
   long size() const { return size_; }
   // (axes x 1) position of point g on each axis
   std::vector<long> coordinates(long index) const;
   // "KEY=VALUE" for point g, one per axis, for the rig loader
   std::vector<std::string> overrides(long index) const;
 
-  // {"axes": [{key, spec, from, to, count, open, log, values: [texts]}], "points": size}
+  // {"axes": [{key, spec, from, to, count, open, log, values: [texts]}], "points": size,
+  //  "basin": {samples, seed, random} when samples > 0}
   nlohmann::json toJson() const;
   // throws SweepInputError; any size up to kMaxForcedGridPoints (it was checked when run)
   static SweepGrid fromJson(const nlohmann::json& j);
@@ -102,6 +118,7 @@ class SweepGrid {
  private:
   std::vector<SweepAxis> axes_;
   long size_ = 0;
+  Basin basin_;
 };
 
 // --map KEY1,KEY2 (or one KEY): the positions of the axes a map draws, across then up; empty
@@ -137,8 +154,10 @@ struct SweepPoint {
   double s = std::numeric_limits<double>::quiet_NaN();
   std::string clusters;                                   // "3+2": clusters of the alive metronomes
   double tau = std::numeric_limits<double>::quiet_NaN();  // tau of the final row
-  bool complete = true;                                   // false: the run failed (regime "failed")
-  std::string message;                                    // why it failed
+  // --basin-samples: the fraction of the point's random starts that end in-phase
+  double in_phase_fraction = std::numeric_limits<double>::quiet_NaN();
+  bool complete = true;       // false: the run failed (regime "failed")
+  std::string message;        // why it failed
   double wall_seconds = 0.0;  // not in regimes.csv (it changes from run to run): timings.csv
 };
 

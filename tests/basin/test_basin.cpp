@@ -256,3 +256,61 @@ TEST(BasinCli, BadInputExitsTwoAndWritesNothing) {
 
 }  // namespace
 }  // namespace metrosync
+
+namespace metrosync {
+namespace {
+
+// sweep --basin-samples: each point's in_phase_fraction is what `metrosync basin` reports for the
+// same draws at that point (two commands, one answer); --resume checks the draws.
+TEST(BasinSweep, InPhaseFractionPerPointEqualsTheBasinCommand) {
+  const std::string d = scratch("sweep");
+  const std::string r = rig(d, 2);
+  const std::string draws =
+      " --random metronomes.0.start.phi=0:2pi --random metronomes.1.start.A=1:4 --seed 5";
+  const std::string cmd = "sweep " + r + " --vary platform.friction.mu=0,0.3" +
+                          " --basin-samples 16" + draws + " -q --no-plot --out " + d + "/sw";
+  const Result s = metrosync(cmd);
+  ASSERT_EQ(s.code, 0) << s.err;
+  const auto rows = csvRows(d + "/sw/regimes.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  ASSERT_EQ(rows[0][9], "in_phase_fraction");
+  for (size_t k = 1; k < rows.size(); ++k) {
+    const Result b =
+        metrosync("basin " + r + " --set platform.friction.mu=" + rows[k][0] + " --samples 16" +
+                  draws + " -q --no-plot --out " + d + "/b" + std::to_string(k));
+    ASSERT_EQ(b.code, 0) << b.err;
+    double in_phase = 0.0;
+    const json j = json::parse(slurp(d + "/b" + std::to_string(k) + "/basin.json"));
+    for (const auto& f : j["fractions"])
+      if (f["regime"] == "in-phase") in_phase = f["fraction"].get<double>();
+    EXPECT_DOUBLE_EQ(std::stod(rows[k][9]), in_phase) << rows[k][0];
+  }
+  // resuming with the same draws keeps the rows; other draws are another sweep (exit 2)
+  const std::string before = slurp(d + "/sw/regimes.csv");
+  ASSERT_EQ(metrosync(cmd + " --resume").code, 0);
+  EXPECT_EQ(slurp(d + "/sw/regimes.csv"), before);
+  const Result other = metrosync("sweep " + r + " --vary platform.friction.mu=0,0.3" +
+                                 " --basin-samples 16 --random metronomes.0.start.phi=0:2pi "
+                                 "--seed 6 -q --no-plot --resume --out " +
+                                 d + "/sw");
+  EXPECT_EQ(other.code, 2) << other.err;
+  EXPECT_NE(other.err.find("--basin-samples"), std::string::npos) << other.err;
+  // --basin-samples without --random, and a --random key that is also a --vary key: exit 2
+  EXPECT_EQ(metrosync("sweep " + r +
+                      " --vary platform.friction.mu=0,0.3 --basin-samples 4 -q "
+                      "--out " +
+                      d + "/bad1")
+                .code,
+            2);
+  EXPECT_EQ(metrosync("sweep " + r +
+                      " --vary platform.friction.mu=0,0.3 --basin-samples 4 "
+                      "--random platform.friction.mu=0:1 -q --out " +
+                      d + "/bad2")
+                .code,
+            2);
+  EXPECT_FALSE(fs::exists(d + "/bad1"));
+  EXPECT_FALSE(fs::exists(d + "/bad2"));
+}
+
+}  // namespace
+}  // namespace metrosync

@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "models/scaling.h"
+#include "sim/analysis/basin.h"
 #include "sim/analysis/regime.h"
 #include "sim/analysis/sweep.h"
 #include "tools/cli/commands.h"
@@ -407,7 +408,8 @@ struct SweepPlan {
   long mine = 0;  // how many grid points this shard holds (SweepShard::contains says which)
   SweepManifest manifest;
   std::string path, regimes_path;
-  std::vector<size_t> map_axes;  // --map
+  std::vector<size_t> map_axes;   // --map
+  std::vector<RandomKey> random;  // --random (with --basin-samples)
 };
 
 // The grid checked in bounded time, before any file: the point at every corner of the grid and
@@ -478,12 +480,40 @@ std::vector<continuation::FoldCurve> mapBoundaries(const SweepOptions& opt, cons
                         y.values.front(), y.values.back());
 }
 
+// --basin-samples S --random ... [--seed N]: the keys drawn at every point, kept in the grid (the
+// manifest) so that --resume and merge check them. Throws UsageError.
+std::vector<RandomKey> planPointBasin(const SweepOptions& opt, SweepGrid& grid) {
+  if (opt.basin_samples == 0 && opt.random.empty()) return {};
+  if (opt.basin_samples < 1 || opt.random.empty())
+    throw UsageError("--basin-samples S (S >= 1) and --random KEY=FROM:TO go together");
+  std::vector<RandomKey> keys;
+  for (const auto& r : opt.random) {
+    keys.push_back(parseRandom(r));
+    for (const auto& a : grid.axes())
+      if (a.key == keys.back().key)
+        throw UsageError("--random " + r + ": " + a.key + " is also a --vary key");
+  }
+  grid.setBasin({opt.basin_samples, opt.seed, opt.random});
+  return keys;
+}
+
+// The overrides of grid point g's basin sample k: the point's, then the draws of (seed, k).
+std::vector<std::string> basinSampleOverrides(const SweepGrid& grid,
+                                              const std::vector<RandomKey>& keys, long g, long k) {
+  std::vector<std::string> point = grid.overrides(g);
+  const std::vector<double> v = drawSample(keys, grid.basin().seed, k);
+  for (size_t i = 0; i < keys.size(); ++i)
+    point.push_back(keys[i].key + "=" + sweepValueText(v[i]));
+  return point;
+}
+
 SweepPlan planSweep(const SweepOptions& opt) {
   if (opt.jobs < 0) throw UsageError("--jobs " + std::to_string(opt.jobs) + ": must be >= 1");
   std::vector<SweepAxis> axes;
   for (const auto& v : opt.vary) axes.push_back(parseVary(v));
   SweepPlan plan;
   plan.grid = SweepGrid(std::move(axes), opt.force ? kMaxForcedGridPoints : kMaxGridPoints);
+  plan.random = planPointBasin(opt, plan.grid);
   plan.map_axes = mapAxes(plan.grid, opt.map);
   plan.shard = opt.shard.empty() ? SweepShard{} : parseShard(opt.shard);
   // the rig, and every grid point's rig: a bad key or value stops here, before any file
@@ -493,6 +523,16 @@ SweepPlan planSweep(const SweepOptions& opt) {
   plan.n = static_cast<int>(plan.base.metronomes.size());
   plan.mine = shardSize(plan.grid, plan.shard);
   const Engine* engine = checkGrid(plan, opt);
+  for (bool high : {false, true}) {  // the drawn keys at their ends, at grid point 0
+    if (plan.random.empty()) break;
+    std::vector<std::string> point = plan.grid.overrides(0);
+    for (const RandomKey& r : plan.random) {
+      const double v = high ? r.to : r.from;
+      point.push_back(r.key + "=" + sweepValueText(r.angle ? wrapToTwoPi(v) : v));
+    }
+    loadPointRig(plan.text, opt, point, plan.n,
+                 "grid point 0 with --random at " + std::string(high ? "TO" : "FROM"));
+  }
   SweepManifest& m = plan.manifest;
   m.model = engine->model();
   m.engine = engine->name();
@@ -573,7 +613,18 @@ std::optional<SweepPoint> runGridPoint(const SweepPlan& plan, const SweepOptions
   }
   if (static_cast<int>(in->rig.metronomes.size()) != plan.n)
     return unloadablePoint(g, plan.n, "--vary changes the number of metronomes here");
-  return runPoint(*in, g);
+  std::optional<SweepPoint> p = runPoint(*in, g);
+  const long samples = plan.grid.basin().samples;
+  if (!p || samples == 0) return p;
+  long in_phase = 0;  // failed samples count as not in phase
+  for (long k = 0; k < samples; ++k) {
+    const auto q = runSweepPointAt(plan.text, opt,
+                                   basinSampleOverrides(plan.grid, plan.random, g, k), plan.n, g);
+    if (!q) return std::nullopt;  // interrupted
+    in_phase += q->regime == "in-phase";
+  }
+  p->in_phase_fraction = static_cast<double>(in_phase) / static_cast<double>(samples);
+  return p;
 }
 
 SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir,
@@ -871,6 +922,20 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
                    "every combination of the other keys' values gets its own maps, "
                    "regimes--KEY=VALUE.png, ...")
       ->type_name("KEY1,KEY2");
+  c.sweep
+      ->add_option("--basin-samples", opt.basin_samples,
+                   "with --random: also run S random starts at every point and give the fraction "
+                   "that ends in-phase (column in_phase_fraction, map basin.png; docs/basin.md)")
+      ->type_name("S")
+      ->check(CLI::Range(1L, 1000000L));
+  c.sweep
+      ->add_option("--random", opt.random,
+                   "with --basin-samples: a start key drawn uniformly from FROM to TO (angles on "
+                   "the circle), as for `metrosync basin`; repeatable")
+      ->type_name("KEY=FROM:TO")
+      ->allow_extra_args(false);
+  c.sweep->add_option("--seed", opt.seed, "with --basin-samples: the seed of the draws (default 1)")
+      ->type_name("N");
   c.sweep->add_flag("--boundaries", opt.boundaries,
                     "with --model slow over two ranges: the slow flow's fold and Hopf curves "
                     "(continuation) over the regime map, boundaries.csv");
@@ -883,7 +948,8 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
       "index, message), sweep.json (what was "
       "swept, how far it got), timings.csv (wall seconds per point), regimes.png, "
       "amplitudes.png, phases.png, order.png (N >= 3), drive.png (Coulomb platforms); with more "
-      "than two --vary one set of maps per value of the keys not drawn (regimes--KEY=VALUE.png).\n"
+      "than two --vary one set of maps per value of the keys not drawn (regimes--KEY=VALUE.png); "
+      "with --basin-samples the column in_phase_fraction (after tau) and basin.png.\n"
       "A point whose run fails is recorded with regime 'failed' and the reason; the sweep goes "
       "on. A progress bar with ETA goes to stderr when it is a terminal. SIGINT/SIGTERM stop the "
       "sweep (the points in flight are not recorded; exit 3): --resume continues it, as it does "

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,7 +20,10 @@ struct SweepOptions {
   std::vector<std::string> vary;  // --vary KEY=FROM:TO:COUNT[:open][:log] or KEY=V1,V2,..
   bool force = false;             // --force: more than kMaxGridPoints points
   std::string map;                // --map KEY1,KEY2: the axes of the maps (default: the first two)
-  std::string out;                // --out DIR; empty: runs/<rig name>-sweep (-merge)
+  long basin_samples = 0;         // --basin-samples S: random starts per point (0: none)
+  std::vector<std::string> random;  // --random KEY=FROM:TO (with --basin-samples)
+  std::uint64_t seed = 1;           // --seed N (with --basin-samples)
+  std::string out;                  // --out DIR; empty: runs/<rig name>-sweep (-merge)
   bool quiet = false;
   bool no_plot = false;     // sweep: --no-plot, no maps
   bool boundaries = false;  // sweep: --boundaries, the slow flow's fold and Hopf curves

@@ -194,7 +194,8 @@ bool isSweepSliceMapName(const std::string& name) {
 
 const std::vector<std::string>& sweepMapNames() {
   static const std::vector<std::string> names = {"boundaries.csv", "regimes.png", "amplitudes.png",
-                                                 "phases.png",     "order.png",   "drive.png"};
+                                                 "phases.png",     "order.png",   "drive.png",
+                                                 "basin.png"};
   return names;
 }
 
@@ -370,8 +371,8 @@ std::string valuesData(const MapFrame& f, int n, const std::map<long, SweepPoint
     d << " " << num(shown(p, p ? p->r : NAN));
     // log10 s, clamped to [-2, 2] (s = inf: a free platform, drawn as slipping)
     const double s = p ? p->s : NAN;
-    d << " " << num(shown(p, std::isnan(s) ? NAN : std::max(-2.0, std::min(2.0, std::log10(s)))))
-      << "\n";
+    d << " " << num(shown(p, std::isnan(s) ? NAN : std::max(-2.0, std::min(2.0, std::log10(s)))));
+    d << " " << num(shown(p, p ? p->in_phase_fraction : NAN)) << "\n";
   }
   return d.str();
 }
@@ -422,7 +423,7 @@ std::string pictureScript(const MapFrame& f, const Picture& pic, const std::stri
 }
 
 // The pictures of the values: amplitudes, phases, order parameter (N >= 3), drive (Coulomb).
-std::vector<Picture> valuePictures(int n, int first_value, bool any_drive) {
+std::vector<Picture> valuePictures(int n, int first_value, bool any_drive, long basin_samples) {
   std::vector<Quantity> amps, phases;
   for (int i = 0; i < std::min(n, kMaxPanels); ++i)
     amps.push_back({"A_" + std::to_string(i + 1), first_value + i});
@@ -449,6 +450,13 @@ std::vector<Picture> valuePictures(int n, int first_value, bool any_drive) {
                     diverging,
                     "[-2:2]",
                     false});
+  if (basin_samples > 0)
+    pics.push_back({"basin.png",
+                    {{"in-phase fraction of " + std::to_string(basin_samples) + " random starts",
+                      first_value + 2 * n + 1}},
+                    viridis,
+                    "[0:1]",
+                    false});
   return pics;
 }
 
@@ -468,7 +476,7 @@ std::vector<std::string> plotSlice(MapFrame& f, int n, const std::map<long, Swee
                                      [](const auto& kv) { return !std::isnan(kv.second.s); });
   const std::string values = valuesData(f, n, points);
   const int first_value = f.map2d ? 3 : 2;  // gnuplot column of A_1
-  for (const Picture& pic : valuePictures(n, first_value, any_drive)) {
+  for (const Picture& pic : valuePictures(n, first_value, any_drive, f.grid.basin().samples)) {
     if (pic.qs.empty()) continue;
     auto script = [&](const std::string& data, const std::string& png) {
       return pictureScript(f, pic, data, png);
