@@ -33,7 +33,7 @@ std::string trimmed(const std::string& s) {
 bool isAngleKeyName(const std::string& key) {
   const size_t dot = key.rfind('.');
   const std::string last = dot == std::string::npos ? key : key.substr(dot + 1);
-  return last == "phi" || last == "psi" || last == "angle" || last == "theta";
+  return last == "phi" || last == "psi";
 }
 
 RandomKey parseRandom(const std::string& text) {

@@ -6,9 +6,10 @@
 //
 //   draw     sample k's values depend only on (seed, k) (a SplitMix64 stream seeded from both),
 //            not on --jobs nor on the order the samples run in; value = FROM + u (TO - FROM),
-//            u uniform in [0, 1) with 53 random bits. An angle key (last segment phi, psi, angle
-//            or theta) is drawn on the circle: the arc from FROM counter-clockwise to TO (the
-//            whole circle when TO - FROM is a nonzero multiple of 2 pi), wrapped to [0, 2 pi).
+//            u uniform in [0, 1) with 53 random bits. A phase key (last segment phi or psi; not a
+//            pendulum's start.angle, which must stay inside (-pi, pi)) is drawn on the circle: the
+//            arc from FROM counter-clockwise to TO (the whole circle when TO - FROM is a nonzero
+//            multiple of 2 pi), wrapped to [0, 2 pi).
 //   Wilson   p = k/n, z = 1.959963984540054 (the 97.5% normal quantile):
 //            centre = (p + z^2/(2n)) / (1 + z^2/n),
 //            half   = z / (1 + z^2/n) * sqrt(p (1 - p) / n + z^2 / (4 n^2)).
@@ -33,7 +34,7 @@ struct RandomKey {
 // what is wrong: no '=', not two numbers, FROM >= TO for a key that is not an angle.
 RandomKey parseRandom(const std::string& text);
 
-// Is the key's last segment an angle (phi, psi, angle, theta)?
+// Is the key a phase, drawn on the circle (last segment phi or psi)?
 bool isAngleKeyName(const std::string& key);
 
 // The value of `key` in sample `sample` for `seed`, key number `which` of the draw.

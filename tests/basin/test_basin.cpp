@@ -93,6 +93,9 @@ TEST(BasinDraw, UniformInRangeAndAFunctionOfSeedAndSampleOnly) {
 TEST(BasinDraw, AnglesAreDrawnOnTheCircleAndWrapped) {
   const RandomKey whole = parseRandom("metronomes.0.start.phi=-pi:pi");
   EXPECT_TRUE(whole.angle);
+  // a pendulum's start angle is not a phase: drawn as given, never wrapped
+  EXPECT_FALSE(parseRandom("metronomes.0.start.angle=-0.8:0.8").angle);
+  EXPECT_LT(drawValue(parseRandom("metronomes.0.start.angle=-0.8:-0.7"), 1, 0, 0), 0.0);
   const RandomKey arc = parseRandom("metronomes.0.start.phi=5.5:0.5");  // through 2 pi
   long near_zero = 0;
   for (long k = 0; k < 5000; ++k) {

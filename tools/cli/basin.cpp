@@ -240,8 +240,8 @@ CLI::App* addBasinCommand(CLI::App& app, BasinOptions& opt) {
   c->add_option("RIG", opt.run.rig_path,
                 "rig file (YAML, SPEC section 1); default: the built-in rig");
   c->add_option("--random", opt.random,
-                "a rig key drawn uniformly from FROM to TO for each sample; an angle (a key "
-                "ending in phi, psi, angle or theta) on the circle, wrapped to [0, 2 pi). "
+                "a rig key drawn uniformly from FROM to TO for each sample; a phase (a key "
+                "ending in phi or psi) on the circle, wrapped to [0, 2 pi). "
                 "Values may use pi: --random metronomes.0.start.phi=0:2pi --random "
                 "metronomes.1.start.A=1:4. Repeatable")
       ->type_name("KEY=FROM:TO")

@@ -131,7 +131,8 @@ std::string requestedModel(const SweepOptions& opt) {
 // "metronomes.*.REST" set at each of the n metronomes); checked like `run` checks its rig.
 // `where` names the point ("grid point 12 (...)"); throws RigError naming it.
 PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
-                        const std::vector<std::string>& point, int n, const std::string& where) {
+                        const std::vector<std::string>& point, int n, const std::string& where,
+                        const std::string& source = "--vary point") {
   std::vector<std::string> overrides = opt.sets;
   const std::vector<std::string> expanded = expandSweepOverrides(point, n);
   overrides.insert(overrides.end(), expanded.begin(), expanded.end());
@@ -145,7 +146,7 @@ PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
     for (const auto& o : expanded)
       for (size_t at = what.find("--set " + o); at != std::string::npos;
            at = what.find("--set " + o, at))
-        what.replace(at, 6 + o.size(), "--vary point " + o);
+        what.replace(at, 6 + o.size(), source + " " + o);
     for (const auto& o : point)
       if (isWildcardKey(o.substr(0, o.find('='))))
         what += "\n  (from the wildcard --vary " + o.substr(0, o.find('=')) + ")";
@@ -531,7 +532,7 @@ SweepPlan planSweep(const SweepOptions& opt) {
       point.push_back(r.key + "=" + sweepValueText(r.angle ? wrapToTwoPi(v) : v));
     }
     loadPointRig(plan.text, opt, point, plan.n,
-                 "grid point 0 with --random at " + std::string(high ? "TO" : "FROM"));
+                 "grid point 0 with --random at " + std::string(high ? "TO" : "FROM"), "--random");
   }
   SweepManifest& m = plan.manifest;
   m.model = engine->model();
@@ -840,7 +841,7 @@ std::pair<std::string, std::string> checkSweepPoint(const std::string& rig_text,
                                                     const SweepOptions& opt,
                                                     const std::vector<std::string>& point, int n,
                                                     const std::string& where) {
-  const PointInput in = loadPointRig(rig_text, opt, point, n, where);
+  const PointInput in = loadPointRig(rig_text, opt, point, n, where, "the drawn");
   if (static_cast<int>(in.rig.metronomes.size()) != n)
     throw UsageError(joined(point) + " changes the number of metronomes (at " + where + ")");
   return {in.engine->model(), in.engine->name()};
@@ -859,6 +860,36 @@ std::optional<SweepPoint> runSweepPointAt(const std::string& rig_text, const Swe
     return unloadablePoint(index, n, "the point changes the number of metronomes");
   return runPoint(*in, index);
 }
+
+namespace {
+
+// sweep's --force, --map, --basin-samples, --random and --seed.
+void addSweepMapAndBasinOptions(CLI::App& sweep, SweepOptions& opt) {
+  sweep.add_flag("--force", opt.force,
+                 "run a grid of more than 10^7 points (without it such a grid is refused)");
+  sweep
+      .add_option("--map", opt.map,
+                  "the two --vary keys the maps draw, across then up (default: the first two); "
+                  "every combination of the other keys' values gets its own maps, "
+                  "regimes--KEY=VALUE.png, ...")
+      ->type_name("KEY1,KEY2");
+  sweep
+      .add_option("--basin-samples", opt.basin_samples,
+                  "with --random: also run S random starts at every point and give the fraction "
+                  "that ends in-phase (column in_phase_fraction, map basin.png; docs/basin.md)")
+      ->type_name("S")
+      ->check(CLI::Range(1L, 1000000L));
+  sweep
+      .add_option("--random", opt.random,
+                  "with --basin-samples: a start key drawn uniformly from FROM to TO (angles on "
+                  "the circle), as for `metrosync basin`; repeatable")
+      ->type_name("KEY=FROM:TO")
+      ->allow_extra_args(false);
+  sweep.add_option("--seed", opt.seed, "with --basin-samples: the seed of the draws (default 1)")
+      ->type_name("N");
+}
+
+}  // namespace
 
 SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
   SweepCommands c;
@@ -914,28 +945,7 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
       ->type_name("DIR");
   c.sweep->add_flag("-q,--quiet", opt.quiet,
                     "no progress bar and no summary (errors and warnings still go to stderr)");
-  c.sweep->add_flag("--force", opt.force,
-                    "run a grid of more than 10^7 points (without it such a grid is refused)");
-  c.sweep
-      ->add_option("--map", opt.map,
-                   "the two --vary keys the maps draw, across then up (default: the first two); "
-                   "every combination of the other keys' values gets its own maps, "
-                   "regimes--KEY=VALUE.png, ...")
-      ->type_name("KEY1,KEY2");
-  c.sweep
-      ->add_option("--basin-samples", opt.basin_samples,
-                   "with --random: also run S random starts at every point and give the fraction "
-                   "that ends in-phase (column in_phase_fraction, map basin.png; docs/basin.md)")
-      ->type_name("S")
-      ->check(CLI::Range(1L, 1000000L));
-  c.sweep
-      ->add_option("--random", opt.random,
-                   "with --basin-samples: a start key drawn uniformly from FROM to TO (angles on "
-                   "the circle), as for `metrosync basin`; repeatable")
-      ->type_name("KEY=FROM:TO")
-      ->allow_extra_args(false);
-  c.sweep->add_option("--seed", opt.seed, "with --basin-samples: the seed of the draws (default 1)")
-      ->type_name("N");
+  addSweepMapAndBasinOptions(*c.sweep, opt);
   c.sweep->add_flag("--boundaries", opt.boundaries,
                     "with --model slow over two ranges: the slow flow's fold and Hopf curves "
                     "(continuation) over the regime map, boundaries.csv");
