@@ -16,8 +16,9 @@
 //   regimes.csv  one line per point (SPEC 3): the varied keys' values as given to the rig, regime,
 //              A_1..A_N, psi_2..psi_N (final, psi wrapped to [0, 2 pi)), then r (order parameter),
 //              s (drive strength |Z| / mu of a Coulomb platform), clusters ("3+2"), tau (of the
-//              final row), complete (1/0), index (g), message (why a failed point failed;
-//              CSV-quoted when it must be).
+//              final row), [in_phase_fraction (with --basin-samples, SweepGrid::Basin),]
+//              complete (1/0), index (g), message (why a failed point failed; CSV-quoted when
+//              it must be).
 //   sweep.json the manifest: what was swept (rig text, --set, model, grid), so that --resume and
 //              merge can check they continue or join the same sweep, and how far it got.
 //
