@@ -1,6 +1,7 @@
 // metrosync: the command line (SPEC section 2). Every sub-command is registered with its handler
 // (tools/cli/command_line.h maps outcomes to the SPEC section 5 exit codes).
 #include "tools/cli/animate.h"
+#include "tools/cli/basin.h"
 #include "tools/cli/command_line.h"
 #include "tools/cli/continue.h"
 #include "tools/cli/figures.h"
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
   cli::MeasureOptions measure_opt;
   cli::FiguresOptions figures_opt;  // tools/cli/figures.h
   cli::AnimateOptions animate_opt;  // tools/cli/animate.h
+  cli::BasinOptions basin_opt;      // tools/cli/basin.h
   std::vector<cli::Command> commands = cli::addRigCommands(app, opt);
   const cli::SweepCommands sweep = cli::addSweepCommands(app, sweep_opt);
   commands.push_back({sweep.sweep, [&] { return cli::sweepCommand(sweep_opt); }});
@@ -33,5 +35,7 @@ int main(int argc, char** argv) {
       {cli::addFiguresCommand(app, figures_opt), [&] { return cli::figuresCommand(figures_opt); }});
   commands.push_back(
       {cli::addAnimateCommand(app, animate_opt), [&] { return cli::animateCommand(animate_opt); }});
+  commands.push_back(
+      {cli::addBasinCommand(app, basin_opt), [&] { return cli::basinCommand(basin_opt); }});
   return cli::runCommandLine(app, commands, argc, argv);
 }

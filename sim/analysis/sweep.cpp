@@ -17,7 +17,6 @@ namespace {
 constexpr double kPi = 3.141592653589793;
 constexpr double kTwoPi = 6.283185307179586;
 constexpr long kMaxAxisCount = 1000000;
-constexpr long kMaxGridPoints = 10000000;
 
 std::string trim(const std::string& s) {
   const size_t a = s.find_first_not_of(" \t");
@@ -126,9 +125,84 @@ std::string sweepValueText(double v) {
   return buf;
 }
 
+namespace {
+
+// The COUNT values of a range axis: even steps in the value, or in log(value) for ":log"; the
+// ends exactly FROM and TO (when included).
+void rangeValues(SweepAxis& a) {
+  const double lo = a.log ? std::log(a.from) : a.from;
+  const double hi = a.log ? std::log(a.to) : a.to;
+  for (long k = 0; k < a.count; ++k) {
+    const long steps = a.open ? a.count : a.count - 1;
+    double v = a.from;
+    if (k > 0 && !a.open && k == a.count - 1) {
+      v = a.to;
+    } else if (k > 0) {
+      const double x = lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(steps);
+      v = a.log ? std::exp(x) : x;
+    }
+    a.texts.push_back(sweepValueText(v));
+    a.values.push_back(std::strtod(a.texts.back().c_str(), nullptr));
+  }
+}
+
+// The flags after COUNT: "open" and/or "log", each at most once.
+void rangeFlags(SweepAxis& a, const std::vector<std::string>& f, const std::string& text) {
+  for (size_t k = 3; k < f.size(); ++k) {
+    const std::string flag = trim(f[k]);
+    bool& on = flag == "open" ? a.open : a.log;
+    if ((flag != "open" && flag != "log") || on)
+      throw SweepInputError("--vary " + text +
+                            ": after COUNT only ':open' (TO left out) and ':log' "
+                            "(log spacing) may follow, each once; found '" +
+                            f[k] + "'");
+    on = true;
+  }
+  if (a.log && !(a.from > 0.0 && a.to > 0.0))
+    throw SweepInputError("--vary " + text + ": ':log' needs FROM > 0 and TO > 0 (log spacing " +
+                          "of " + sweepValueText(a.from) + " to " + sweepValueText(a.to) + ")");
+  if (a.log && a.from > a.to)
+    throw SweepInputError("--vary " + text + ": ':log' needs FROM <= TO (got FROM = " +
+                          sweepValueText(a.from) + " > TO = " + sweepValueText(a.to) + ")");
+}
+
+// A "*" only as "metronomes.*.REST" (REST not empty, no second "*").
+void checkWildcard(const std::string& key, const std::string& text) {
+  if (!isWildcardKey(key)) return;
+  const std::string prefix = "metronomes.*.";
+  if (key.compare(0, prefix.size(), prefix) != 0 || key.size() == prefix.size() ||
+      key.find('*', prefix.size()) != std::string::npos)
+    throw SweepInputError("--vary " + text + ": unknown wildcard key '" + key +
+                          "': '*' stands only for the metronome index, as in metronomes.*.nu");
+}
+
+}  // namespace
+
+bool isWildcardKey(const std::string& key) {
+  return key.find('*') != std::string::npos;
+}
+
+std::vector<std::string> expandSweepOverride(const std::string& key_value, int n) {
+  const size_t eq = key_value.find('=');
+  const size_t star = key_value.find('*');
+  if (star == std::string::npos || (eq != std::string::npos && star > eq)) return {key_value};
+  std::vector<std::string> out;
+  for (int i = 0; i < n; ++i)
+    out.push_back(key_value.substr(0, star) + std::to_string(i) + key_value.substr(star + 1));
+  return out;
+}
+
+std::vector<std::string> expandSweepOverrides(const std::vector<std::string>& overrides, int n) {
+  std::vector<std::string> out;
+  for (const auto& o : overrides)
+    for (auto& e : expandSweepOverride(o, n)) out.push_back(std::move(e));
+  return out;
+}
+
 SweepAxis parseVary(const std::string& text) {
-  const std::string usage =
-      "--vary " + text + ": expected KEY=FROM:TO:COUNT[:open] (e.g. platform.friction.mu=0:0.8:41)";
+  const std::string usage = "--vary " + text +
+                            ": expected KEY=FROM:TO:COUNT[:open][:log] or KEY=V1,V2,... (e.g. "
+                            "platform.friction.mu=0:0.8:41)";
   const size_t eq = text.find('=');
   if (eq == std::string::npos) throw SweepInputError(usage);
   SweepAxis a;
@@ -136,9 +210,11 @@ SweepAxis parseVary(const std::string& text) {
   a.spec = text.substr(eq + 1);
   if (a.key.empty() || a.key.find_first_of(" \t:=") != std::string::npos)
     throw SweepInputError(usage + ": no key before '='");
+  checkWildcard(a.key, text);
+  if (trim(a.spec).empty()) throw SweepInputError("--vary " + text + ": no values after '='");
   if (a.spec.find(',') != std::string::npos) return listAxis(a, text);
   const std::vector<std::string> f = split(a.spec, ':');
-  if (f.size() != 3 && f.size() != 4) throw SweepInputError(usage);
+  if (f.size() < 3 || f.size() > 5) throw SweepInputError(usage);
   try {
     a.from = parseSweepNumber(f[0]);
     a.to = parseSweepNumber(f[1]);
@@ -150,40 +226,51 @@ SweepAxis parseVary(const std::string& text) {
     throw SweepInputError("--vary " + text + ": COUNT = '" + f[2] +
                           "' must be a whole number from 1 to " + std::to_string(kMaxAxisCount));
   a.count = *count;
-  if (f.size() == 4) {
-    if (trim(f[3]) != "open")
-      throw SweepInputError("--vary " + text +
-                            ": after COUNT only ':open' may follow (TO left out)");
-    a.open = true;
-  }
-  for (long k = 0; k < a.count; ++k) {
-    double v = a.from;
-    if (a.open)
-      v = a.from + (a.to - a.from) * static_cast<double>(k) / static_cast<double>(a.count);
-    else if (a.count > 1)
-      v = k == a.count - 1 ? a.to
-                           : a.from + (a.to - a.from) * static_cast<double>(k) /
-                                          static_cast<double>(a.count - 1);
-    a.texts.push_back(sweepValueText(v));
-    a.values.push_back(std::strtod(a.texts.back().c_str(), nullptr));
-  }
+  rangeFlags(a, f, text);
+  rangeValues(a);
   return a;
 }
 
-SweepGrid::SweepGrid(std::vector<SweepAxis> axes) : axes_(std::move(axes)) {
+namespace {
+
+// Do two keys name one rig key at some metronome ("metronomes.*.nu" and "metronomes.1.nu")?
+bool keysOverlap(const std::string& a, const std::string& b) {
+  if (a == b) return true;
+  const std::string& w = isWildcardKey(a) ? a : b;
+  const std::string& o = isWildcardKey(a) ? b : a;
+  if (!isWildcardKey(w) || isWildcardKey(o)) return false;
+  const size_t star = w.find('*');
+  const std::string head = w.substr(0, star), tail = w.substr(star + 1);
+  if (o.size() <= head.size() + tail.size() || o.compare(0, head.size(), head) != 0 ||
+      o.compare(o.size() - tail.size(), tail.size(), tail) != 0)
+    return false;
+  const std::string index = o.substr(head.size(), o.size() - head.size() - tail.size());
+  return index.find_first_not_of("0123456789") == std::string::npos;
+}
+
+}  // namespace
+
+SweepGrid::SweepGrid(std::vector<SweepAxis> axes, long max_points) : axes_(std::move(axes)) {
   if (axes_.empty()) throw SweepInputError("sweep: at least one --vary KEY=FROM:TO:COUNT");
-  if (axes_.size() > 2)
-    throw SweepInputError("sweep: at most two --vary (a regime map has two axes); got " +
-                          std::to_string(axes_.size()));
-  if (axes_.size() == 2 && axes_[0].key == axes_[1].key)
-    throw SweepInputError("sweep: --vary " + axes_[0].key + " given twice");
+  for (size_t a = 0; a < axes_.size(); ++a)
+    for (size_t b = a + 1; b < axes_.size(); ++b)
+      if (keysOverlap(axes_[a].key, axes_[b].key))
+        throw SweepInputError("sweep: --vary " + axes_[a].key + " and --vary " + axes_[b].key +
+                              (axes_[a].key == axes_[b].key ? ": the key is given twice"
+                                                            : ": both set the same key"));
+  const long cap = std::min(max_points, kMaxForcedGridPoints);
   size_ = 1;
   for (const auto& a : axes_) {
     if (a.count < 1 || a.texts.size() != static_cast<size_t>(a.count))
       throw SweepInputError("sweep: axis " + a.key + " has no values");
+    if (size_ > cap / a.count) {
+      std::string counts;
+      for (const auto& b : axes_) counts += (counts.empty() ? "" : " x ") + std::to_string(b.count);
+      throw SweepInputError("sweep: " + counts + " is more than " + std::to_string(cap) +
+                            " grid points" +
+                            (cap < kMaxForcedGridPoints ? " (add --force to run it anyway)" : ""));
+    }
     size_ *= a.count;
-    if (size_ > kMaxGridPoints)
-      throw SweepInputError("sweep: more than " + std::to_string(kMaxGridPoints) + " grid points");
   }
 }
 
@@ -212,8 +299,12 @@ nlohmann::json SweepGrid::toJson() const {
                     {"to", a.to},
                     {"count", a.count},
                     {"open", a.open},
+                    {"log", a.log},
                     {"values", a.texts}});
-  return {{"axes", axes}, {"points", size_}};
+  nlohmann::json j = {{"axes", axes}, {"points", size_}};
+  if (basin_.samples > 0)
+    j["basin"] = {{"samples", basin_.samples}, {"seed", basin_.seed}, {"random", basin_.random}};
+  return j;
 }
 
 SweepGrid SweepGrid::fromJson(const nlohmann::json& j) {
@@ -227,14 +318,47 @@ SweepGrid SweepGrid::fromJson(const nlohmann::json& j) {
       a.to = ja.at("to").get<double>();
       a.count = ja.at("count").get<long>();
       a.open = ja.at("open").get<bool>();
+      a.log = ja.value("log", false);  // written since axes could be log-spaced
       a.texts = ja.at("values").get<std::vector<std::string>>();
       for (const auto& t : a.texts) a.values.push_back(parseSweepNumber(t));
       axes.push_back(std::move(a));
     }
-    return SweepGrid(std::move(axes));
+    SweepGrid grid(std::move(axes), kMaxForcedGridPoints);
+    if (j.contains("basin")) {
+      const auto& b = j.at("basin");
+      grid.setBasin({b.at("samples").get<long>(), b.at("seed").get<std::uint64_t>(),
+                     b.at("random").get<std::vector<std::string>>()});
+    }
+    return grid;
   } catch (const nlohmann::json::exception& e) {
     throw SweepInputError(std::string("not a sweep grid: ") + e.what());
   }
+}
+
+std::vector<size_t> mapAxes(const SweepGrid& grid, const std::string& text) {
+  std::vector<size_t> axes;
+  if (trim(text).empty()) {
+    for (size_t k = 0; k < grid.axes().size() && axes.size() < 2; ++k)
+      if (grid.axes()[k].count > 1) axes.push_back(k);
+    if (axes.empty()) axes.push_back(0);
+    return axes;
+  }
+  const std::vector<std::string> keys = split(text, ',');
+  if (keys.size() > 2) throw SweepInputError("--map " + text + ": one or two keys, KEY1,KEY2");
+  for (const auto& key : keys) {
+    size_t k = 0;
+    while (k < grid.axes().size() && grid.axes()[k].key != trim(key)) ++k;
+    if (k == grid.axes().size()) {
+      std::string known;
+      for (const auto& a : grid.axes()) known += (known.empty() ? "" : ", ") + a.key;
+      throw SweepInputError("--map " + text + ": '" + trim(key) +
+                            "' is not a --vary key of this sweep (" + known + ")");
+    }
+    if (std::find(axes.begin(), axes.end(), k) != axes.end())
+      throw SweepInputError("--map " + text + ": '" + trim(key) + "' named twice");
+    axes.push_back(k);
+  }
+  return axes;
 }
 
 SweepShard parseShard(const std::string& text) {

@@ -1,20 +1,24 @@
-// Sweeps (SPEC section 2 `sweep`, section 3 regimes.csv): a grid of runs over one or two rig keys,
-// run in parallel, streamed to regimes.csv as points finish, resumable, and splittable into
+// Sweeps (SPEC section 2 `sweep`, section 3 regimes.csv): a grid of runs over any number of rig
+// keys, run in parallel, streamed to regimes.csv as points finish, resumable, and splittable into
 // shards that `merge` joins again. No model and no rig loader in here: the command
 // (tools/cli/sweep.cpp) says how one grid point runs; this file owns the grid, the points and the
 // scheduling; tools/report/sweep_files.h writes and reads the files described below.
 //
 //   grid       --vary KEY=FROM:TO:COUNT, COUNT values from FROM to TO, both included (":open"
-//              after COUNT leaves TO out: [FROM, TO), for angles); FROM and TO may be written with
-//              pi ("2pi", "pi/2", "-0.5*pi"); --vary KEY=V1,V2,... lists the values (two or more,
-//              as given). Grid index g = i_1 * COUNT_2 + i_2: the first --vary
-//              is the slow (outer) one.
+//              after COUNT leaves TO out: [FROM, TO), for angles; ":log" spaces them evenly in
+//              log(value), 0 < FROM <= TO); FROM and TO may be written with pi ("2pi", "pi/2",
+//              "-0.5*pi"); --vary KEY=V1,V2,... lists the values (two or more, as given). A key
+//              "metronomes.*.REST" sets metronomes.i.REST of every metronome to the point's value.
+//              Any number of --vary (an N-D grid, at most kMaxGridPoints points unless forced).
+//              Grid index g = ((i_1 * COUNT_2 + i_2) * COUNT_3 + i_3) ...: the first --vary is
+//              the slowest (outer) one.
 //   shards     --shard K/N runs the points with g mod N == K - 1.
 //   regimes.csv  one line per point (SPEC 3): the varied keys' values as given to the rig, regime,
 //              A_1..A_N, psi_2..psi_N (final, psi wrapped to [0, 2 pi)), then r (order parameter),
 //              s (drive strength |Z| / mu of a Coulomb platform), clusters ("3+2"), tau (of the
-//              final row), complete (1/0), index (g), message (why a failed point failed;
-//              CSV-quoted when it must be).
+//              final row), [in_phase_fraction (with --basin-samples, SweepGrid::Basin),]
+//              complete (1/0), index (g), message (why a failed point failed; CSV-quoted when
+//              it must be).
 //   sweep.json the manifest: what was swept (rig text, --set, model, grid), so that --resume and
 //              merge can check they continue or join the same sweep, and how far it got.
 //
@@ -23,6 +27,7 @@
 // split into shards.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <map>
@@ -48,12 +53,27 @@ struct SweepAxis {
   double from = 0.0, to = 0.0;
   long count = 0;
   bool open = false;               // TO left out
+  bool log = false;                // values evenly spaced in log(value)
   std::vector<double> values;      // (count x 1), exactly the numbers the texts below denote
   std::vector<std::string> texts;  // (count x 1) the values as written to the rig and regimes.csv
 };
 
-// "KEY=FROM:TO:COUNT[:open]" or "KEY=V1,V2,..."; throws SweepInputError saying what is wrong.
+// "KEY=FROM:TO:COUNT[:open][:log]" or "KEY=V1,V2,..."; throws SweepInputError saying what is
+// wrong. A "*" segment is allowed only as "metronomes.*.REST" (expandSweepOverride).
 SweepAxis parseVary(const std::string& text);
+
+// The wildcard of "metronomes.*.REST": "KEY=VALUE" as the n overrides metronomes.i.REST=VALUE
+// (i = 0..n-1); any other override as it is.
+std::vector<std::string> expandSweepOverride(const std::string& key_value, int n);
+// ... for a list of overrides, in order.
+std::vector<std::string> expandSweepOverrides(const std::vector<std::string>& overrides, int n);
+// Does `key` hold the wildcard "*"?
+bool isWildcardKey(const std::string& key);
+
+// More grid points than this need --force (the default cap; a sweep keeps a line per point).
+constexpr long kMaxGridPoints = 10000000;
+// The hard cap, even with --force.
+constexpr long kMaxForcedGridPoints = 1000000000000L;
 
 // A number, or a multiple of pi: "1.5", "-2e-3", "pi", "2pi", "2*pi", "-pi/2", "0.5pi/3".
 // Throws SweepInputError.
@@ -65,24 +85,47 @@ std::string sweepValueText(double v);
 class SweepGrid {
  public:
   SweepGrid() = default;
-  // 1 or 2 axes with distinct keys (SPEC: "one or two keys"); throws SweepInputError.
-  explicit SweepGrid(std::vector<SweepAxis> axes);
+  // One or more axes with distinct keys (a wildcard key and a key it covers are not distinct), at
+  // most max_points points; throws SweepInputError (saying --force lifts the default cap).
+  explicit SweepGrid(std::vector<SweepAxis> axes, long max_points = kMaxGridPoints);
 
   const std::vector<SweepAxis>& axes() const { return axes_; }
+
+  // sweep --basin-samples S --random KEY=FROM:TO ... [--seed N]: each point also runs S random
+  // starts (sample k's draws those of `metrosync basin`, sim/analysis/basin.h, the same at every
+  // point) and regimes.csv gets the column in_phase_fraction. S = 0: none.
+  struct Basin {
+    long samples = 0;
+    std::uint64_t seed = 1;
+    std::vector<std::string> random;  // KEY=FROM:TO, as given
+    bool operator==(const Basin& o) const {
+      return samples == o.samples && seed == o.seed && random == o.random;
+    }
+  };
+  const Basin& basin() const { return basin_; }
+  void setBasin(Basin b) { basin_ = std::move(b); }
   long size() const { return size_; }
   // (axes x 1) position of point g on each axis
   std::vector<long> coordinates(long index) const;
   // "KEY=VALUE" for point g, one per axis, for the rig loader
   std::vector<std::string> overrides(long index) const;
 
-  // {"axes": [{key, spec, from, to, count, open, values: [texts]}], "points": size}
+  // {"axes": [{key, spec, from, to, count, open, log, values: [texts]}], "points": size,
+  //  "basin": {samples, seed, random} when samples > 0}
   nlohmann::json toJson() const;
-  static SweepGrid fromJson(const nlohmann::json& j);  // throws SweepInputError
+  // throws SweepInputError; any size up to kMaxForcedGridPoints (it was checked when run)
+  static SweepGrid fromJson(const nlohmann::json& j);
 
  private:
   std::vector<SweepAxis> axes_;
   long size_ = 0;
+  Basin basin_;
 };
+
+// --map KEY1,KEY2 (or one KEY): the positions of the axes a map draws, across then up; empty
+// text: the first two axes of more than one value (or axis 0). Throws SweepInputError for a key
+// that is not an axis or is named twice.
+std::vector<size_t> mapAxes(const SweepGrid& grid, const std::string& text);
 
 struct SweepShard {
   int k = 1, n = 1;  // the K-th of N, K from 1
@@ -112,8 +155,10 @@ struct SweepPoint {
   double s = std::numeric_limits<double>::quiet_NaN();
   std::string clusters;                                   // "3+2": clusters of the alive metronomes
   double tau = std::numeric_limits<double>::quiet_NaN();  // tau of the final row
-  bool complete = true;                                   // false: the run failed (regime "failed")
-  std::string message;                                    // why it failed
+  // --basin-samples: the fraction of the point's random starts that end in-phase
+  double in_phase_fraction = std::numeric_limits<double>::quiet_NaN();
+  bool complete = true;       // false: the run failed (regime "failed")
+  std::string message;        // why it failed
   double wall_seconds = 0.0;  // not in regimes.csv (it changes from run to run): timings.csv
 };
 

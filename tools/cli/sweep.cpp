@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "models/scaling.h"
+#include "sim/analysis/basin.h"
 #include "sim/analysis/regime.h"
 #include "sim/analysis/sweep.h"
 #include "tools/cli/commands.h"
@@ -79,6 +80,10 @@ void removeStaleSweepOutputs(const OutputDir& dir) {
   for (const auto& name : names) fs::remove(dir.file(name), ec);
   for (const auto& entry : fs::directory_iterator(dir.path(), ec)) {
     const std::string f = entry.path().filename().string();
+    if (isSweepSliceMapName(f)) {  // regimes--KEY=VALUE.png: an N-D sweep's maps
+      fs::remove(entry.path(), ec);
+      continue;
+    }
     for (const auto& name : names) {
       const std::string prefix = "." + name + ".";
       if (f.compare(0, prefix.size(), prefix) != 0 || f.size() < 6 ||
@@ -97,6 +102,9 @@ void removeStaleSweepOutputs(const OutputDir& dir) {
 }
 
 // ---- the rig and the grid, checked before anything is written --------------------------------
+
+// Up to this many axes every corner of the grid is loaded before the sweep (2^axes rigs).
+constexpr size_t kMaxCornerAxes = 8;
 
 std::string readRigText(const SweepOptions& opt) {
   // the same checks as every command: a regular file of bounded size (yaml/rig_loader.h)
@@ -121,14 +129,15 @@ std::string requestedModel(const SweepOptions& opt) {
   return opt.engine.empty() ? "slow" : "";
 }
 
-// The rig of one point: the base rig, --set, then the point's KEY=VALUE; checked like `run`
-// checks its rig. Throws RigError naming the point.
-PointInput loadPoint(const std::string& text, const SweepOptions& opt, const SweepGrid& grid,
-                     long g) {
+// The rig of one point: the base rig, --set, then the point's KEY=VALUE (a wildcard key
+// "metronomes.*.REST" set at each of the n metronomes); checked like `run` checks its rig.
+// `where` names the point ("grid point 12 (...)"); throws RigError naming it.
+PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
+                        const std::vector<std::string>& point, int n, const std::string& where,
+                        const std::string& source = "--vary point") {
   std::vector<std::string> overrides = opt.sets;
-  const std::vector<std::string> point = grid.overrides(g);
-  overrides.insert(overrides.end(), point.begin(), point.end());
-  const std::string where = "grid point " + std::to_string(g) + " (" + joined(point) + ")";
+  const std::vector<std::string> expanded = expandSweepOverrides(point, n);
+  overrides.insert(overrides.end(), expanded.begin(), expanded.end());
   PointInput in;
   try {
     in.net = loadSweepNetwork(text, displayName(opt), overrides);
@@ -136,11 +145,14 @@ PointInput loadPoint(const std::string& text, const SweepOptions& opt, const Swe
   } catch (const RigError& e) {
     // the loader calls every override --set; the point's own ones come from --vary
     std::string what = e.what();
-    for (const auto& o : point)
+    for (const auto& o : expanded)
       for (size_t at = what.find("--set " + o); at != std::string::npos;
            at = what.find("--set " + o, at))
-        what.replace(at, 6 + o.size(), "--vary point " + o);
-    throw RigError(what + "\n  at " + where + " of the sweep");
+        what.replace(at, 6 + o.size(), source + " " + o);
+    for (const auto& o : point)
+      if (isWildcardKey(o.substr(0, o.find('='))))
+        what += "\n  (from the wildcard --vary " + o.substr(0, o.find('=')) + ")";
+    throw RigError(what + "\n  at " + where);
   }
   if (in.net) {  // docs/networks.md
     in.engine = &networkSweepEngine(opt.engine, opt.model, *in.net, displayName(opt));
@@ -151,9 +163,16 @@ PointInput loadPoint(const std::string& text, const SweepOptions& opt, const Swe
   try {
     in.scaled = computeScaled(in.rig);
   } catch (const std::invalid_argument& e) {
-    throw RigError(displayName(opt) + ": " + e.what() + "\n  at " + where + " of the sweep");
+    throw RigError(displayName(opt) + ": " + e.what() + "\n  at " + where);
   }
   return in;
+}
+
+PointInput loadPoint(const std::string& text, const SweepOptions& opt, const SweepGrid& grid,
+                     long g, int n) {
+  const std::vector<std::string> point = grid.overrides(g);
+  return loadPointRig(text, opt, point, n,
+                      "grid point " + std::to_string(g) + " (" + joined(point) + ") of the sweep");
 }
 
 // ---- one point ---------------------------------------------------------------------------------
@@ -399,6 +418,8 @@ struct SweepPlan {
   long mine = 0;  // how many grid points this shard holds (SweepShard::contains says which)
   SweepManifest manifest;
   std::string path, regimes_path;
+  std::vector<size_t> map_axes;   // --map
+  std::vector<RandomKey> random;  // --random (with --basin-samples)
 };
 
 // The grid checked in bounded time, before any file: the point at every corner of the grid and
@@ -410,15 +431,29 @@ struct SweepPlan {
 const Engine* checkGrid(const SweepPlan& plan, const SweepOptions& opt) {
   const std::vector<SweepAxis>& axes = plan.grid.axes();
   std::set<long> probes;
-  for (long corner = 0; corner < (1L << axes.size()); ++corner) {
+  auto index = [&](const std::vector<bool>& high) {
     long g = 0;
     for (size_t a = 0; a < axes.size(); ++a)
-      g = g * axes[a].count + ((corner >> (axes.size() - 1 - a)) & 1 ? axes[a].count - 1 : 0);
-    probes.insert(g);
+      g = g * axes[a].count + (high[a] ? axes[a].count - 1 : 0);
+    return g;
+  };
+  if (axes.size() <= kMaxCornerAxes) {
+    for (long corner = 0; corner < (1L << axes.size()); ++corner) {
+      std::vector<bool> high(axes.size());
+      for (size_t a = 0; a < axes.size(); ++a) high[a] = (corner >> (axes.size() - 1 - a)) & 1;
+      probes.insert(index(high));
+    }
+  } else {  // 2^axes corners would be too many: both ends of each axis, the others low or high
+    for (bool rest : {false, true})
+      for (size_t a = 0; a <= axes.size(); ++a) {
+        std::vector<bool> high(axes.size(), rest);
+        if (a < axes.size()) high[a] = !rest;
+        probes.insert(index(high));
+      }
   }
   const Engine* engine = nullptr;
   for (long g : probes) {
-    const PointInput in = loadPoint(plan.text, opt, plan.grid, g);
+    const PointInput in = loadPoint(plan.text, opt, plan.grid, g, plan.n);
     if (static_cast<int>(in.rig.metronomes.size()) != plan.n)
       throw UsageError("--vary changes the number of metronomes at grid point " +
                        std::to_string(g));
@@ -455,12 +490,41 @@ std::vector<continuation::FoldCurve> mapBoundaries(const SweepOptions& opt, cons
                         y.values.front(), y.values.back());
 }
 
+// --basin-samples S --random ... [--seed N]: the keys drawn at every point, kept in the grid (the
+// manifest) so that --resume and merge check them. Throws UsageError.
+std::vector<RandomKey> planPointBasin(const SweepOptions& opt, SweepGrid& grid) {
+  if (opt.basin_samples == 0 && opt.random.empty()) return {};
+  if (opt.basin_samples < 1 || opt.random.empty())
+    throw UsageError("--basin-samples S (S >= 1) and --random KEY=FROM:TO go together");
+  std::vector<RandomKey> keys;
+  for (const auto& r : opt.random) {
+    keys.push_back(parseRandom(r));
+    for (const auto& a : grid.axes())
+      if (a.key == keys.back().key)
+        throw UsageError("--random " + r + ": " + a.key + " is also a --vary key");
+  }
+  grid.setBasin({opt.basin_samples, opt.seed, opt.random});
+  return keys;
+}
+
+// The overrides of grid point g's basin sample k: the point's, then the draws of (seed, k).
+std::vector<std::string> basinSampleOverrides(const SweepGrid& grid,
+                                              const std::vector<RandomKey>& keys, long g, long k) {
+  std::vector<std::string> point = grid.overrides(g);
+  const std::vector<double> v = drawSample(keys, grid.basin().seed, k);
+  for (size_t i = 0; i < keys.size(); ++i)
+    point.push_back(keys[i].key + "=" + sweepValueText(v[i]));
+  return point;
+}
+
 SweepPlan planSweep(const SweepOptions& opt) {
   if (opt.jobs < 0) throw UsageError("--jobs " + std::to_string(opt.jobs) + ": must be >= 1");
   std::vector<SweepAxis> axes;
   for (const auto& v : opt.vary) axes.push_back(parseVary(v));
   SweepPlan plan;
-  plan.grid = SweepGrid(std::move(axes));
+  plan.grid = SweepGrid(std::move(axes), opt.force ? kMaxForcedGridPoints : kMaxGridPoints);
+  plan.random = planPointBasin(opt, plan.grid);
+  plan.map_axes = mapAxes(plan.grid, opt.map);
   plan.shard = opt.shard.empty() ? SweepShard{} : parseShard(opt.shard);
   // the rig, and every grid point's rig: a bad key or value stops here, before any file
   plan.text = readRigText(opt);
@@ -469,6 +533,16 @@ SweepPlan planSweep(const SweepOptions& opt) {
   plan.n = static_cast<int>(plan.base.metronomes.size());
   plan.mine = shardSize(plan.grid, plan.shard);
   const Engine* engine = checkGrid(plan, opt);
+  for (bool high : {false, true}) {  // the drawn keys at their ends, at grid point 0
+    if (plan.random.empty()) break;
+    std::vector<std::string> point = plan.grid.overrides(0);
+    for (const RandomKey& r : plan.random) {
+      const double v = high ? r.to : r.from;
+      point.push_back(r.key + "=" + sweepValueText(r.angle ? wrapToTwoPi(v) : v));
+    }
+    loadPointRig(plan.text, opt, point, plan.n,
+                 "grid point 0 with --random at " + std::string(high ? "TO" : "FROM"), "--random");
+  }
   SweepManifest& m = plan.manifest;
   m.model = engine->model();
   m.engine = engine->name();
@@ -543,13 +617,24 @@ struct SweepRun {
 std::optional<SweepPoint> runGridPoint(const SweepPlan& plan, const SweepOptions& opt, long g) {
   std::optional<PointInput> in;
   try {
-    in = loadPoint(plan.text, opt, plan.grid, g);
+    in = loadPoint(plan.text, opt, plan.grid, g, plan.n);
   } catch (const std::exception& e) {
     return unloadablePoint(g, plan.n, e.what());
   }
   if (static_cast<int>(in->rig.metronomes.size()) != plan.n)
     return unloadablePoint(g, plan.n, "--vary changes the number of metronomes here");
-  return runPoint(*in, g);
+  std::optional<SweepPoint> p = runPoint(*in, g);
+  const long samples = plan.grid.basin().samples;
+  if (!p || samples == 0) return p;
+  long in_phase = 0;  // failed samples count as not in phase
+  for (long k = 0; k < samples; ++k) {
+    const auto q = runSweepPointAt(plan.text, opt,
+                                   basinSampleOverrides(plan.grid, plan.random, g, k), plan.n, g);
+    if (!q) return std::nullopt;  // interrupted
+    in_phase += q->regime == "in-phase";
+  }
+  p->in_phase_fraction = static_cast<double>(in_phase) / static_cast<double>(samples);
+  return p;
 }
 
 SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir,
@@ -635,7 +720,7 @@ int sweepImpl(const SweepOptions& opt) {
   }
   if (!opt.no_plot)
     for (const auto& f : plotSweepMaps(dir, plan.grid, plan.n, run.points, mapTitle(plan.manifest),
-                                       opt.plot_format, curves))
+                                       opt.plot_format, curves, plan.map_axes))
       files.push_back(f);
   files.push_back("sweep.json");
   nlohmann::json status = statusJson(plan.manifest, plan.mine, run.points, complete);
@@ -717,6 +802,7 @@ int mergeImpl(const SweepOptions& opt) {
   merged.shard = SweepShard{};
   const SweepGrid& grid = merged.grid;
   const int n = merged.metronomes;
+  const std::vector<size_t> map_axes = mapAxes(grid, opt.map);
 
   const std::string path = opt.out.empty() ? defaultOutputDir(merged.rig_name, "merge") : opt.out;
   for (const auto& d : opt.dirs)
@@ -737,7 +823,8 @@ int mergeImpl(const SweepOptions& opt) {
   if (!lock) lock.emplace(path, "metrosync merge");
   writeSortedRegimesCsv(dir.file("regimes.csv"), grid, n, lines);
   std::vector<std::string> files = {"regimes.csv"};
-  for (const auto& f : plotSweepMaps(dir, grid, n, points, mapTitle(merged), opt.plot_format))
+  for (const auto& f :
+       plotSweepMaps(dir, grid, n, points, mapTitle(merged), opt.plot_format, {}, map_axes))
     files.push_back(f);
   files.push_back("sweep.json");
   const bool complete = static_cast<long>(points.size()) == grid.size();
@@ -761,22 +848,80 @@ int mergeImpl(const SweepOptions& opt) {
 
 }  // namespace
 
+std::pair<std::string, std::string> checkSweepPoint(const std::string& rig_text,
+                                                    const SweepOptions& opt,
+                                                    const std::vector<std::string>& point, int n,
+                                                    const std::string& where) {
+  const PointInput in = loadPointRig(rig_text, opt, point, n, where, "the drawn");
+  if (static_cast<int>(in.rig.metronomes.size()) != n)
+    throw UsageError(joined(point) + " changes the number of metronomes (at " + where + ")");
+  return {in.engine->model(), in.engine->name()};
+}
+
+std::optional<SweepPoint> runSweepPointAt(const std::string& rig_text, const SweepOptions& opt,
+                                          const std::vector<std::string>& point, int n,
+                                          long index) {
+  std::optional<PointInput> in;
+  try {
+    in = loadPointRig(rig_text, opt, point, n, "point " + std::to_string(index));
+  } catch (const std::exception& e) {
+    return unloadablePoint(index, n, e.what());
+  }
+  if (static_cast<int>(in->rig.metronomes.size()) != n)
+    return unloadablePoint(index, n, "the point changes the number of metronomes");
+  return runPoint(*in, index);
+}
+
+namespace {
+
+// sweep's --force, --map, --basin-samples, --random and --seed.
+void addSweepMapAndBasinOptions(CLI::App& sweep, SweepOptions& opt) {
+  sweep.add_flag("--force", opt.force,
+                 "run a grid of more than 10^7 points (without it such a grid is refused)");
+  sweep
+      .add_option("--map", opt.map,
+                  "the two --vary keys the maps draw, across then up (default: the first two); "
+                  "every combination of the other keys' values gets its own maps, "
+                  "regimes--KEY=VALUE.png, ...")
+      ->type_name("KEY1,KEY2");
+  sweep
+      .add_option("--basin-samples", opt.basin_samples,
+                  "with --random: also run S random starts at every point and give the fraction "
+                  "that ends in-phase (column in_phase_fraction, map basin.png; docs/basin.md)")
+      ->type_name("S")
+      ->check(CLI::Range(1L, 1000000L));
+  sweep
+      .add_option("--random", opt.random,
+                  "with --basin-samples: a start key drawn uniformly from FROM to TO (angles on "
+                  "the circle), as for `metrosync basin`; repeatable")
+      ->type_name("KEY=FROM:TO")
+      ->allow_extra_args(false);
+  sweep.add_option("--seed", opt.seed, "with --basin-samples: the seed of the draws (default 1)")
+      ->type_name("N");
+}
+
+}  // namespace
+
 SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
   SweepCommands c;
   c.sweep = app.add_subcommand(
-      "sweep", "a grid of runs over one or two rig keys, in parallel and resumable: a regime map");
+      "sweep", "a grid of runs over one or more rig keys, in parallel and resumable: a regime map");
   c.sweep->add_option("RIG", opt.rig_path,
                       "rig file (YAML, SPEC section 1); default: the built-in rig (the paper's "
                       "experiment)");
   c.sweep
-      ->add_option("--vary", opt.vary,
-                   "a key and its values: COUNT values from FROM to TO, both included; ':open' "
-                   "leaves TO out ([FROM, TO), for angles); or the values listed, V1,V2,... "
-                   "(e.g. platform.friction.mu=0.2,0.3,0.4). Values may use pi: "
-                   "--vary platform.friction.mu=0:0.8:41, --vary "
-                   "metronomes.0.start.phi=0:2pi:100:open. Once or twice (the first across the "
-                   "map, the second up)")
-      ->type_name("KEY=FROM:TO:COUNT[:open]|V1,V2,..")
+      ->add_option(
+          "--vary", opt.vary,
+          "a key and its values: COUNT values from FROM to TO, both included; ':open' "
+          "leaves TO out ([FROM, TO), for angles); ':log' spaces them evenly in log "
+          "(0 < FROM <= TO); or the values listed, V1,V2,... "
+          "(e.g. platform.friction.mu=0.2,0.3,0.4). Values may use pi: "
+          "--vary platform.friction.mu=0:0.8:41, --vary "
+          "metronomes.0.start.phi=0:2pi:100:open, --vary platform.friction.mu=0.01:10:31:log. "
+          "metronomes.*.KEY sets KEY of every metronome (--vary metronomes.*.nu=0.5:0.8:4). "
+          "Repeatable: one axis each, an N-D grid (the first the slowest; the maps draw "
+          "two, see --map)")
+      ->type_name("KEY=FROM:TO:COUNT[:open][:log]|V1,V2,..")
       ->required()
       ->allow_extra_args(false);
   c.sweep
@@ -811,6 +956,7 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
       ->type_name("DIR");
   c.sweep->add_flag("-q,--quiet", opt.quiet,
                     "no progress bar and no summary (errors and warnings still go to stderr)");
+  addSweepMapAndBasinOptions(*c.sweep, opt);
   c.sweep->add_flag("--boundaries", opt.boundaries,
                     "with --model slow over two ranges: the slow flow's fold and Hopf curves "
                     "(continuation) over the regime map, boundaries.csv");
@@ -828,7 +974,9 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
       "psi in [0, 2 pi)), r, s (= |Z|/mu: <= 1 a stuck platform), clusters, tau, complete, "
       "index, message), sweep.json (what was "
       "swept, how far it got), timings.csv (wall seconds per point), regimes.png, "
-      "amplitudes.png, phases.png, order.png (N >= 3), drive.png (Coulomb platforms).\n"
+      "amplitudes.png, phases.png, order.png (N >= 3), drive.png (Coulomb platforms); with more "
+      "than two --vary one set of maps per value of the keys not drawn (regimes--KEY=VALUE.png); "
+      "with --basin-samples the column in_phase_fraction (after tau) and basin.png.\n"
       "A point whose run fails is recorded with regime 'failed' and the reason; the sweep goes "
       "on. A progress bar with ETA goes to stderr when it is a terminal; otherwise a line at every "
       "10% of a sweep that has run for 5 s. SIGINT/SIGTERM stop the "
@@ -849,6 +997,8 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
                    "format of the maps: png (default), svg or pdf")
       ->check(CLI::IsMember(plotFormats()))
       ->capture_default_str();
+  c.merge->add_option("--map", opt.map, "the two --vary keys the maps draw (as for sweep)")
+      ->type_name("KEY1,KEY2");
   c.merge->footer(
       "The directories must hold the same sweep (rig, --set, model, grid: their sweep.json "
       "says); points missing from all of them are reported and left white in the maps.\n"

@@ -97,8 +97,9 @@ std::vector<std::string> regimesColumns(const SweepGrid& grid, int n) {
   c.push_back("regime");
   for (int i = 1; i <= n; ++i) c.push_back("A_" + std::to_string(i));
   for (int j = 2; j <= n; ++j) c.push_back("psi_" + std::to_string(j));
-  for (const char* extra : {"r", "s", "clusters", "tau", "complete", "index", "message"})
-    c.push_back(extra);
+  for (const char* extra : {"r", "s", "clusters", "tau"}) c.push_back(extra);
+  if (grid.basin().samples > 0) c.push_back("in_phase_fraction");
+  for (const char* extra : {"complete", "index", "message"}) c.push_back(extra);
   return c;
 }
 
@@ -119,6 +120,7 @@ std::string formatRegimesRow(const SweepGrid& grid, const SweepPoint& p) {
   s += "," + numberText(p.s, "%.12g");
   s += "," + csvCell(p.clusters);
   s += "," + numberText(p.tau, "%.10g");
+  if (grid.basin().samples > 0) s += "," + numberText(p.in_phase_fraction, "%.12g");
   s += p.complete ? ",1" : ",0";
   s += "," + std::to_string(p.index);
   s += "," + csvCell(p.message);
@@ -147,6 +149,10 @@ SweepPoint parseRegimesRow(const SweepGrid& grid, int n, const std::string& line
   p.clusters = cells[k++];
   p.tau = cellNumber(cells[k], cols[k]);
   ++k;
+  if (grid.basin().samples > 0) {
+    p.in_phase_fraction = cellNumber(cells[k], cols[k]);
+    ++k;
+  }
   if (cells[k] != "0" && cells[k] != "1")
     throw SweepInputError("complete = '" + cells[k] + "' is not 0 or 1");
   p.complete = cells[k++] == "1";
@@ -307,6 +313,7 @@ std::string sweepDifference(const SweepManifest& a, const SweepManifest& b) {
     if (x[k].texts != y[k].texts)
       return "--vary " + x[k].key + "=" + x[k].spec + " / " + y[k].spec + ": other values";
   }
+  if (!(a.grid.basin() == b.grid.basin())) return "--basin-samples, --random or --seed differ";
   return "";
 }
 

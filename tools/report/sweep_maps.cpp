@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <sstream>
 
 #include "tools/report/plot.h"
@@ -45,13 +46,10 @@ std::string quote(const std::string& s) {
   return q + "'";
 }
 
-// The axes drawn: those with more than one value (a single point is drawn along axis 0).
+// The axes drawn by default: the first two with more than one value (a single point is drawn
+// along axis 0).
 std::vector<size_t> drawnAxes(const SweepGrid& grid) {
-  std::vector<size_t> a;
-  for (size_t k = 0; k < grid.axes().size(); ++k)
-    if (grid.axes()[k].count > 1) a.push_back(k);
-  if (a.empty()) a.push_back(0);
-  return a;
+  return mapAxes(grid, "");
 }
 
 bool isAngleKey(const std::string& key) {
@@ -85,13 +83,20 @@ std::string piTics(const char* axis, double lo, double hi) {
   return std::string("set ") + axis + "tics (" + tics + ")\n";
 }
 
+// Where a value sits along a map's axis: log10 of it for a log-spaced axis (even cells).
+double mapCoordinate(const SweepAxis& a, double v) {
+  return a.log ? std::log10(v) : v;
+}
+
 // range of an axis with half a cell on each side
 struct AxisRange {
   double lo, hi, cell;
 };
 AxisRange axisRange(const SweepAxis& a) {
-  const double lo = std::min(a.values.front(), a.values.back());
-  const double hi = std::max(a.values.front(), a.values.back());
+  const double front = mapCoordinate(a, a.values.front());
+  const double back = mapCoordinate(a, a.values.back());
+  const double lo = std::min(front, back);
+  const double hi = std::max(front, back);
   double cell = a.count > 1 ? (hi - lo) / (a.count - 1) : 0.0;
   if (!(cell > 0)) cell = std::max(1e-3, std::fabs(lo) * 0.1);
   return {lo - cell / 2, hi + cell / 2, cell};
@@ -103,7 +108,8 @@ std::string axisSettings(const SweepGrid& grid, const std::vector<size_t>& axes)
   for (size_t k = 0; k < axes.size() && k < 2; ++k) {
     const SweepAxis& a = grid.axes()[axes[k]];
     const AxisRange r = axisRange(a);
-    s << "set " << names[k] << "label " << quote(a.key + (isAngleKey(a.key) ? " (rad)" : ""))
+    const std::string label = a.log ? "log10 " + a.key : a.key;
+    s << "set " << names[k] << "label " << quote(label + (isAngleKey(a.key) ? " (rad)" : ""))
       << " noenhanced\n"
       << "set " << names[k] << "range [" << num(r.lo) << ":" << num(r.hi) << "]\n";
     if (isAngleKey(a.key) && r.hi - r.lo > 1.0) s << piTics(names[k], r.lo, r.hi);
@@ -123,10 +129,11 @@ long indexOf(const SweepGrid& grid, const std::vector<long>& c) {
 }
 
 // The cells drawn, in scan order: y outer, x inner (2-D), with the grid index of each; a blank
-// line (g = -1) between scan lines. Axes not drawn sit at their first value.
-std::vector<long> scanOrder(const SweepGrid& grid, const std::vector<size_t>& axes) {
+// line (g = -1) between scan lines. Axes not drawn sit at their coordinate in `fixed`.
+std::vector<long> scanOrder(const SweepGrid& grid, const std::vector<size_t>& axes,
+                            std::vector<long> fixed) {
   std::vector<long> order;
-  std::vector<long> c(grid.axes().size(), 0);
+  std::vector<long>& c = fixed;
   const long nx = grid.axes()[axes[0]].count;
   const long ny = axes.size() > 1 ? grid.axes()[axes[1]].count : 1;
   for (long iy = 0; iy < ny; ++iy) {
@@ -142,8 +149,9 @@ std::vector<long> scanOrder(const SweepGrid& grid, const std::vector<size_t>& ax
 
 std::string cellPosition(const SweepGrid& grid, const std::vector<size_t>& axes, long g) {
   const std::vector<long> c = grid.coordinates(g);
-  std::string s = num(grid.axes()[axes[0]].values[c[axes[0]]]);
-  if (axes.size() > 1) s += " " + num(grid.axes()[axes[1]].values[c[axes[1]]]);
+  const SweepAxis &x = grid.axes()[axes[0]], &y = grid.axes()[axes.size() > 1 ? axes[1] : 0];
+  std::string s = num(mapCoordinate(x, x.values[c[axes[0]]]));
+  if (axes.size() > 1) s += " " + num(mapCoordinate(y, y.values[c[axes[1]]]));
   return s;
 }
 
@@ -171,10 +179,21 @@ std::string header(const std::string& format, const std::string& png, int width,
 
 }  // namespace
 
+bool isSweepSliceMapName(const std::string& name) {
+  for (const auto& m : sweepMapNames()) {
+    if (m.size() < 4 || m.compare(m.size() - 4, 4, ".png") != 0) continue;
+    const std::string stem = m.substr(0, m.size() - 4) + "--";
+    if (name.size() > stem.size() + 4 && name.compare(0, stem.size(), stem) == 0 &&
+        name.compare(name.size() - 4, 4, ".png") == 0)
+      return true;
+  }
+  return false;
+}
+
 const std::vector<std::string>& sweepMapNames() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> v = {"boundaries.csv"};
-    for (const char* stem : {"regimes", "amplitudes", "phases", "order", "drive"})
+    for (const char* stem : {"regimes", "amplitudes", "phases", "order", "drive", "basin"})
       for (const std::string& format : plotFormats()) v.push_back(stem + ("." + format));
     return v;
   }();
@@ -266,8 +285,9 @@ nlohmann::json boundariesJson(const std::vector<continuation::FoldCurve>& curves
 std::string regimeMapScript(const std::string& data_path, const std::string& png_path,
                             const SweepGrid& grid, const std::vector<std::string>& legend,
                             const std::string& title, const std::string& format,
-                            const std::vector<continuation::FoldCurve>& boundaries) {
-  const std::vector<size_t> axes = drawnAxes(grid);
+                            const std::vector<continuation::FoldCurve>& boundaries,
+                            const std::vector<size_t>& map_axes) {
+  const std::vector<size_t> axes = map_axes.empty() ? drawnAxes(grid) : map_axes;
   const bool map2d = axes.size() > 1;
   std::ostringstream s;
   s << header(format, png_path, 1100, map2d ? 850 : 420) << "set title " << quote(title)
@@ -305,12 +325,12 @@ struct MapFrame {
   std::vector<long> order;  // scan order, -1 between rows
   std::string title;
   std::string format = "png";  // png, svg or pdf (tools/report/plot.h)
+  std::string suffix;          // "" or "--KEY3=V..." (a slice of an N-D sweep)
+  // "regimes.png" of this slice in this format: "regimes--KEY3=V.svg"
+  std::string file(const std::string& png_name) const {
+    return png_name.substr(0, png_name.rfind('.')) + suffix + "." + format;
+  }
 };
-
-// "regimes.png" in the frame's format
-std::string named(const MapFrame& f, const std::string& png_name) {
-  return png_name.substr(0, png_name.rfind('.') + 1) + f.format;
-}
 
 // regimes.png: "x y R G B" cells (2-D; white where not run), or "x rgb" (1-D; -1 not run)
 bool drawRegimeMap(const MapFrame& f, const std::map<long, SweepPoint>& points,
@@ -330,10 +350,10 @@ bool drawRegimeMap(const MapFrame& f, const std::map<long, SweepPoint>& points,
     else
       d << " " << rgb << "\n";
   }
-  return drawPng(f.dir, named(f, "regimes.png"), d.str(),
+  return drawPng(f.dir, f.file("regimes.png"), d.str(),
                  [&](const std::string& data, const std::string& png) {
                    return regimeMapScript(data, png, f.grid, legend, f.title + " - regimes",
-                                          f.format, boundaries);
+                                          f.format, boundaries, f.axes);
                  });
 }
 
@@ -354,8 +374,8 @@ std::string valuesData(const MapFrame& f, int n, const std::map<long, SweepPoint
     d << " " << num(shown(p, p ? p->r : NAN));
     // log10 s, clamped to [-2, 2] (s = inf: a free platform, drawn as slipping)
     const double s = p ? p->s : NAN;
-    d << " " << num(shown(p, std::isnan(s) ? NAN : std::max(-2.0, std::min(2.0, std::log10(s)))))
-      << "\n";
+    d << " " << num(shown(p, std::isnan(s) ? NAN : std::max(-2.0, std::min(2.0, std::log10(s)))));
+    d << " " << num(shown(p, p ? p->in_phase_fraction : NAN)) << "\n";
   }
   return d.str();
 }
@@ -407,7 +427,7 @@ std::string pictureScript(const MapFrame& f, const Picture& pic, const std::stri
 }
 
 // The pictures of the values: amplitudes, phases, order parameter (N >= 3), drive (Coulomb).
-std::vector<Picture> valuePictures(int n, int first_value, bool any_drive) {
+std::vector<Picture> valuePictures(int n, int first_value, bool any_drive, long basin_samples) {
   std::vector<Quantity> amps, phases;
   for (int i = 0; i < std::min(n, kMaxPanels); ++i)
     amps.push_back({"A_" + std::to_string(i + 1), first_value + i});
@@ -434,22 +454,25 @@ std::vector<Picture> valuePictures(int n, int first_value, bool any_drive) {
                     diverging,
                     "[-2:2]",
                     false});
+  if (basin_samples > 0)
+    pics.push_back({"basin.png",
+                    {{"in-phase fraction of " + std::to_string(basin_samples) + " random starts",
+                      first_value + 2 * n + 1}},
+                    viridis,
+                    "[0:1]",
+                    false});
   return pics;
 }
 
 }  // namespace
 
-std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& grid, int n,
-                                       const std::map<long, SweepPoint>& points,
-                                       const std::string& title, const std::string& format,
-                                       const std::vector<continuation::FoldCurve>& boundaries) {
+namespace {
+
+// The maps of one slice (all of them for a grid of two axes or fewer).
+std::vector<std::string> plotSlice(MapFrame& f, int n, const std::map<long, SweepPoint>& points,
+                                   const std::vector<continuation::FoldCurve>& boundaries) {
   std::vector<std::string> written;
-  if (grid.size() == 0 || n < 1 || points.empty()) return written;  // nothing to draw
-  if (grid.size() > kMaxMapCells) return written;                   // more cells than pixels
-  MapFrame f{dir, grid, drawnAxes(grid), false, {}, title, format};
-  f.map2d = f.axes.size() > 1;
-  f.order = scanOrder(grid, f.axes);
-  if (drawRegimeMap(f, points, boundaries)) written.push_back(named(f, "regimes.png"));
+  if (drawRegimeMap(f, points, boundaries)) written.push_back(f.file("regimes.png"));
   const bool any_complete =
       std::any_of(points.begin(), points.end(), [](const auto& kv) { return kv.second.complete; });
   if (!any_complete) return written;  // every point failed: no value to draw
@@ -457,12 +480,78 @@ std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& gr
                                      [](const auto& kv) { return !std::isnan(kv.second.s); });
   const std::string values = valuesData(f, n, points);
   const int first_value = f.map2d ? 3 : 2;  // gnuplot column of A_1
-  for (const Picture& pic : valuePictures(n, first_value, any_drive)) {
+  for (const Picture& pic : valuePictures(n, first_value, any_drive, f.grid.basin().samples)) {
     if (pic.qs.empty()) continue;
     auto script = [&](const std::string& data, const std::string& png) {
       return pictureScript(f, pic, data, png);
     };
-    if (drawPng(dir, named(f, pic.name), values, script)) written.push_back(named(f, pic.name));
+    if (drawPng(f.dir, f.file(pic.name), values, script)) written.push_back(f.file(pic.name));
+  }
+  return written;
+}
+
+// The axes of more than one value that the maps do not draw: each of their combinations is a
+// slice.
+std::vector<size_t> slicedAxes(const SweepGrid& grid, const std::vector<size_t>& drawn) {
+  std::vector<size_t> s;
+  for (size_t k = 0; k < grid.axes().size(); ++k)
+    if (grid.axes()[k].count > 1 && std::find(drawn.begin(), drawn.end(), k) == drawn.end())
+      s.push_back(k);
+  return s;
+}
+
+// "--KEY=V--KEY2=W" for a file name ('*' as "all", '/' as "_"), and "KEY = V, KEY2 = W"
+std::pair<std::string, std::string> sliceNames(const SweepGrid& grid,
+                                               const std::vector<size_t>& sliced,
+                                               const std::vector<long>& c) {
+  std::string file, title;
+  for (size_t k : sliced) {
+    const SweepAxis& a = grid.axes()[k];
+    std::string part = a.key + "=" + a.texts[c[k]];
+    title += (title.empty() ? "" : ", ") + a.key + " = " + a.texts[c[k]];
+    for (char& ch : part)
+      if (ch == '/' || ch == ' ') ch = '_';
+    for (size_t at = part.find('*'); at != std::string::npos; at = part.find('*'))
+      part.replace(at, 1, "all");
+    file += "--" + part;
+  }
+  return {file, title};
+}
+
+}  // namespace
+
+std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& grid, int n,
+                                       const std::map<long, SweepPoint>& points,
+                                       const std::string& title, const std::string& format,
+                                       const std::vector<continuation::FoldCurve>& boundaries,
+                                       const std::vector<size_t>& map_axes) {
+  std::vector<std::string> written;
+  if (grid.size() == 0 || n < 1 || points.empty()) return written;  // nothing to draw
+  if (grid.size() > kMaxMapCells) return written;                   // more cells than pixels
+  MapFrame f{dir,    grid, map_axes.empty() ? drawnAxes(grid) : map_axes, false, {}, title,
+             format, ""};
+  f.map2d = f.axes.size() > 1;
+  // the curves live in the plane of axes 0 and 1
+  const bool curves = f.axes == std::vector<size_t>{0, 1};
+  const std::vector<size_t> sliced = slicedAxes(grid, f.axes);
+  long slices = 1;
+  for (size_t k : sliced) slices = std::min(kMaxMapSlices + 1, slices * grid.axes()[k].count);
+  if (slices > kMaxMapSlices)
+    std::cerr << "metrosync: warning: the maps show only the first " << kMaxMapSlices
+              << " combinations of the axes not drawn (choose the drawn ones with --map)\n";
+  std::vector<long> c(grid.axes().size(), 0);
+  for (long s = 0; s < std::min(slices, kMaxMapSlices); ++s) {
+    const auto [file, slice_title] = sliceNames(grid, sliced, c);
+    f.suffix = file;
+    f.title = slice_title.empty() ? title : title + " (" + slice_title + ")";
+    f.order = scanOrder(grid, f.axes, c);
+    for (auto& w :
+         plotSlice(f, n, points, curves ? boundaries : std::vector<continuation::FoldCurve>{}))
+      written.push_back(w);
+    for (size_t k = sliced.size(); k-- > 0;) {  // the next combination, the last axis fastest
+      if (++c[sliced[k]] < grid.axes()[sliced[k]].count) break;
+      c[sliced[k]] = 0;
+    }
   }
   return written;
 }

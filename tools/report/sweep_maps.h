@@ -9,6 +9,9 @@
 //   order.png       final order parameter r (N >= 3 only)
 //   drive.png       log10 of the final drive strength s = |Z| / mu of a Coulomb platform: below 0
 //                   the platform sticks and the metronomes are uncoupled (the paper's exp1)
+// A grid of more than two axes: the maps draw two (--map KEY1,KEY2; default the first two), and
+// each combination of the other axes' values gets its own files, named after it:
+// regimes--KEY3=V.png, regimes--KEY3=V--KEY4=W.png, ... ('*' of a wildcard key written "all").
 // Grid points not run (an incomplete sweep or merge) are left white; failed points are drawn in
 // the regime map only. A missing or failing gnuplot is a warning, never an error.
 #pragma once
@@ -26,6 +29,12 @@ namespace metrosync {
 
 // The file names the maps may have, in every plot format (for removing stale ones).
 const std::vector<std::string>& sweepMapNames();
+// Is `name` the map of one slice of an N-D sweep (STEM--....png, STEM a map's name)?
+bool isSweepSliceMapName(const std::string& name);
+
+// An N-D sweep draws at most this many slices (combinations of the axes not drawn); more: the
+// slices of the first values only, with a warning.
+constexpr long kMaxMapSlices = 64;
 
 // A grid of more points than this gets no maps: the pictures are ~1000 pixels across, so a finer
 // grid cannot be seen, and its gnuplot data (~60 bytes a cell) would cost more memory than the
@@ -35,12 +44,14 @@ constexpr long kMaxMapCells = 1000000;
 // Draws the maps into `dir` (none for a grid over kMaxMapCells); returns the names of the files
 // written.
 // `boundaries` (sweep --boundaries): fold and Hopf curves in the plane of the first two axes,
-// drawn over the regime map (folds solid, Hopf curves dashed).
+// drawn over the regime map (folds solid, Hopf curves dashed). `map_axes`: the axes drawn
+// (mapAxes, sim/analysis/sweep.h); empty: the default.
 std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& grid, int n,
                                        const std::map<long, SweepPoint>& points,
                                        const std::string& title,
                                        const std::string& format = "png",  // --plot-format
-                                       const std::vector<continuation::FoldCurve>& boundaries = {});
+                                       const std::vector<continuation::FoldCurve>& boundaries = {},
+                                       const std::vector<size_t>& map_axes = {});
 
 // boundaries.csv: `curve,type,KEY1,KEY2`, one row per point of each curve in order along it.
 std::string boundariesCsv(const std::vector<continuation::FoldCurve>& curves,
@@ -57,6 +68,7 @@ std::string regimeColour(const std::string& name, const std::vector<std::string>
 std::string regimeMapScript(const std::string& data_path, const std::string& png_path,
                             const SweepGrid& grid, const std::vector<std::string>& legend,
                             const std::string& title, const std::string& format = "png",
-                            const std::vector<continuation::FoldCurve>& boundaries = {});
+                            const std::vector<continuation::FoldCurve>& boundaries = {},
+                            const std::vector<size_t>& map_axes = {});
 
 }  // namespace metrosync

@@ -284,12 +284,12 @@ class SweepResult:
 
 def sweep(rig, vary, model=None, engine=None, jobs=None, out=None, **simulation):
     """A grid of runs (`metrosync sweep`, the same C++ code): vary = {KEY: (from, to, count),
-    KEY2: [v1, v2, ...]} (one or two keys, in order; (from, to, count, "open") leaves `to`
+    KEY2: [v1, v2, ...]} (one key or more, in order; (from, to, count, "open") leaves `to`
     out). model "slow" (default) or "full"; jobs: threads (default: the cores). Keyword
     arguments set `simulation.KEY` for every point. Returns a SweepResult. `out`: keep the
     CLI's files (with its maps) there. Ctrl-C stops it (KeyboardInterrupt)."""
     if not vary:
-        raise RigError("sweep: vary needs one or two keys")
+        raise RigError("sweep: vary needs at least one key")
     texts = [_vary_text(k, v) for k, v in vary.items()]
     sets = rig._sets({"simulation." + k: v for k, v in simulation.items()})
     folder = tempfile.mkdtemp(prefix="metrosync-")

@@ -1,0 +1,287 @@
+#include "tools/cli/basin.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <thread>
+
+#include "sim/analysis/basin.h"
+#include "sim/analysis/sweep.h"
+#include "sim/record/atomic_file.h"
+#include "tools/cli/commands.h"
+#include "tools/cli/network_sweep.h"
+#include "tools/report/basin_files.h"
+#include "tools/report/folder_lock.h"
+#include "tools/report/outputs.h"
+#include "yaml/rig_loader.h"
+
+namespace metrosync::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr long kMaxSamples = 10000000;
+// Up to this many keys every corner of the drawn box is loaded before the samples run.
+constexpr size_t kMaxCornerKeys = 8;
+
+const std::vector<std::string>& basinFileNames() {
+  static const std::vector<std::string> names = {"basin.csv", "basin.json", "basin.png"};
+  return names;
+}
+
+std::string displayName(const SweepOptions& opt) {
+  return opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
+}
+
+// What is drawn and run, checked before any file is written.
+struct BasinPlan {
+  std::vector<RandomKey> keys;
+  std::string text;  // the rig's YAML
+  std::string rig_name;
+  int n = 0;
+  std::string model, engine;
+  std::string path;
+  int jobs = 1;
+};
+
+// The overrides of one sample and the texts of its values (the number each text denotes is the
+// value the rig gets, as for a sweep's grid points).
+std::vector<std::string> sampleOverrides(const BasinPlan& plan, const std::vector<double>& values,
+                                         std::vector<std::string>* texts) {
+  std::vector<std::string> o;
+  for (size_t k = 0; k < plan.keys.size(); ++k) {
+    const std::string t = sweepValueText(values[k]);
+    if (texts) texts->push_back(t);
+    o.push_back(plan.keys[k].key + "=" + t);
+  }
+  return o;
+}
+
+// The rig at the corners of the drawn box (each key at FROM or TO): a bad key or value stops here.
+void checkCorners(const BasinOptions& opt, BasinPlan& plan) {
+  const size_t k = plan.keys.size();
+  std::set<std::vector<bool>> corners;
+  if (k <= kMaxCornerKeys) {
+    for (long c = 0; c < (1L << k); ++c) {
+      std::vector<bool> high(k);
+      for (size_t a = 0; a < k; ++a) high[a] = (c >> a) & 1;
+      corners.insert(high);
+    }
+  } else {
+    corners.insert(std::vector<bool>(k, false));
+    corners.insert(std::vector<bool>(k, true));
+  }
+  for (const auto& high : corners) {
+    std::vector<double> v;
+    for (size_t a = 0; a < k; ++a) {
+      const RandomKey& r = plan.keys[a];
+      v.push_back(r.angle ? wrapToTwoPi(high[a] ? r.to : r.from) : (high[a] ? r.to : r.from));
+    }
+    const std::vector<std::string> point = sampleOverrides(plan, v, nullptr);
+    std::string where;
+    for (const auto& p : point) where += (where.empty() ? "" : ", ") + p;
+    const auto [model, engine] =
+        checkSweepPoint(plan.text, opt.run, point, plan.n, "the start " + where);
+    plan.model = model;
+    plan.engine = engine;
+  }
+}
+
+BasinPlan planBasin(const BasinOptions& opt) {
+  if (opt.random.empty()) throw UsageError("basin: give at least one --random KEY=FROM:TO");
+  if (opt.samples < 1 || opt.samples > kMaxSamples)
+    throw UsageError("--samples " + std::to_string(opt.samples) + ": must be from 1 to " +
+                     std::to_string(kMaxSamples));
+  BasinPlan plan;
+  std::set<std::string> seen;
+  for (const auto& r : opt.random) {
+    plan.keys.push_back(parseRandom(r));
+    if (!seen.insert(plan.keys.back().key).second)
+      throw UsageError("--random " + plan.keys.back().key + " given twice");
+  }
+  plan.text = opt.run.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.run.rig_path);
+  const std::optional<Network> net =
+      loadSweepNetwork(plan.text, displayName(opt.run), opt.run.sets);
+  const Rig base =
+      net ? networkSweepRig(*net) : loadRigText(plan.text, displayName(opt.run), opt.run.sets);
+  plan.n = static_cast<int>(base.metronomes.size());
+  plan.rig_name = base.name;
+  checkCorners(opt, plan);
+  plan.path = opt.run.out.empty() ? defaultOutputDir(base.name, "basin") : opt.run.out;
+  plan.jobs =
+      opt.run.jobs > 0 ? opt.run.jobs : static_cast<int>(std::thread::hardware_concurrency());
+  plan.jobs = std::max(1, plan.jobs);
+  return plan;
+}
+
+// Every sample, run on plan.jobs threads; the draws of sample k depend only on (seed, k).
+std::map<long, BasinSample> runSamples(const BasinOptions& opt, const BasinPlan& plan) {
+  std::map<long, BasinSample> samples;
+  std::mutex lock;  // guards the draws' texts handed from run_point to finished
+  std::map<long, std::vector<std::string>> texts;
+  runSweepPoints(
+      opt.samples, [](long) { return true; }, plan.jobs,
+      [&](long k) -> std::optional<SweepPoint> {
+        std::vector<std::string> t;
+        const std::vector<std::string> point =
+            sampleOverrides(plan, drawSample(plan.keys, opt.seed, k), &t);
+        {
+          std::lock_guard<std::mutex> l(lock);
+          texts[k] = t;
+        }
+        return runSweepPointAt(plan.text, opt.run, point, plan.n, k);
+      },
+      [&](const SweepPoint& p) {
+        std::lock_guard<std::mutex> l(lock);
+        samples[p.index] = BasinSample{texts[p.index], p};
+      },
+      [] { return FileSink::stopRequested(); });
+  return samples;
+}
+
+std::string modelTitle(const std::string& model) {
+  return model == "full" ? "full model" : "slow flow";
+}
+
+nlohmann::json basinJson(const BasinOptions& opt, const BasinPlan& plan,
+                         const std::vector<RegimeFraction>& fractions,
+                         const std::vector<std::string>& files, double wall_s) {
+  return {{"command", "basin"},
+          {"rig", opt.run.rig_path.empty() ? "<default rig>" : opt.run.rig_path},
+          {"rig_name", plan.rig_name},
+          {"rig_text", plan.text},
+          {"sets", opt.run.sets},
+          {"model", plan.model},
+          {"engine", plan.engine},
+          {"metronomes", plan.n},
+          {"seed", opt.seed},
+          {"samples", opt.samples},
+          {"random", randomKeysJson(plan.keys)},
+          {"fractions", fractionsJson(fractions)},
+          {"confidence", 0.95},
+          {"interval", "Wilson score"},
+          {"jobs", plan.jobs},
+          {"wall_seconds", wall_s},
+          {"files", files}};
+}
+
+OutputDir openBasinDir(const std::string& path) {
+  try {
+    OutputDir d(path);
+    d.removeStaleOutputs();
+    std::error_code ec;
+    for (const auto& name : basinFileNames()) fs::remove(d.file(name), ec);
+    return d;
+  } catch (const std::runtime_error& e) {
+    throw UsageError(std::string("--out: ") + e.what());
+  }
+}
+
+int basinImpl(const BasinOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const BasinPlan plan = planBasin(opt);
+  std::optional<FolderLock> lock;
+  if (fs::is_directory(plan.path)) lock.emplace(plan.path, "metrosync basin");
+  installStopHandlers();
+  const std::map<long, BasinSample> samples = runSamples(opt, plan);
+  if (FileSink::stopRequested()) {
+    std::cerr << "metrosync: error: interrupted by a signal after " << samples.size() << " of "
+              << opt.samples << " samples; nothing written\n";
+    return kSimulationFailed;
+  }
+  const OutputDir dir = openBasinDir(plan.path);
+  if (!lock) lock.emplace(plan.path, "metrosync basin");
+  std::vector<std::string> regimes;
+  long failed = 0;
+  for (const auto& [k, s] : samples) {
+    regimes.push_back(s.point.regime);
+    failed += !s.point.complete;
+  }
+  const std::vector<RegimeFraction> fractions = regimeFractions(regimes);
+  writeFileAtomically(dir.file("basin.csv"), basinCsv(plan.keys, plan.n, samples));
+  std::vector<std::string> files = {"basin.csv"};
+  const std::string title = plan.rig_name + " - " + modelTitle(plan.model) + ", " +
+                            std::to_string(opt.samples) + " random starts (seed " +
+                            std::to_string(opt.seed) + ")";
+  if (!opt.no_plot && plotBasinMap(dir, plan.keys, samples, title)) files.push_back("basin.png");
+  files.push_back("basin.json");
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  writeFileAtomically(dir.file("basin.json"),
+                      basinJson(opt, plan, fractions, files, wall_s).dump(2) + "\n");
+  if (!opt.run.quiet) {
+    std::cout << "basin stability of " << plan.rig_name << " (" << modelTitle(plan.model) << ", "
+              << plan.n << (plan.n == 1 ? " metronome" : " metronomes") << "), seed " << opt.seed
+              << ", " << opt.samples << " samples on " << plan.jobs
+              << (plan.jobs == 1 ? " thread" : " threads") << ":\n"
+              << fractionsTable(fractions, opt.samples) << "files: " << dir.path() << "/ (";
+    for (size_t k = 0; k < files.size(); ++k) std::cout << (k ? ", " : "") << files[k];
+    std::cout << ")\n";
+  }
+  if (failed > 0)
+    std::cerr << "metrosync: warning: " << failed
+              << " samples failed (regime 'failed', counted in the fractions)\n";
+  return kSuccess;
+}
+
+}  // namespace
+
+CLI::App* addBasinCommand(CLI::App& app, BasinOptions& opt) {
+  CLI::App* c = app.add_subcommand(
+      "basin",
+      "basin stability: the fraction of random starts ending in each regime, with 95% "
+      "Wilson intervals");
+  c->add_option("RIG", opt.run.rig_path,
+                "rig file (YAML, SPEC section 1); default: the built-in rig");
+  c->add_option("--random", opt.random,
+                "a rig key drawn uniformly from FROM to TO for each sample; a phase (a key "
+                "ending in phi or psi) on the circle, wrapped to [0, 2 pi). "
+                "Values may use pi: --random metronomes.0.start.phi=0:2pi --random "
+                "metronomes.1.start.A=1:4. Repeatable")
+      ->type_name("KEY=FROM:TO")
+      ->required()
+      ->allow_extra_args(false);
+  c->add_option("--samples", opt.samples, "how many random starts")->type_name("S")->required();
+  c->add_option("--seed", opt.seed,
+                "the seed of the draws (default 1): sample k's values depend only on the seed "
+                "and k, not on --jobs")
+      ->type_name("N");
+  c->add_option("--set", opt.run.sets, "override a rig key for every sample; repeatable")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  c->add_option("--model", opt.run.model, "slow: the slow flow (default); full: the full model")
+      ->check(CLI::IsMember({"slow", "full"}));
+  c->add_option("--engine", opt.run.engine, "the engine of the full model (as for sweep)");
+  c->add_option("--jobs", opt.run.jobs, "worker threads (default: the number of cores)")
+      ->type_name("N")
+      ->check(CLI::Range(1, 4096));
+  c->add_option("--out", opt.run.out, "output directory (default: runs/<rig name>-basin)")
+      ->type_name("DIR");
+  c->add_flag("--no-plot", opt.no_plot, "no basin.png");
+  c->add_flag("-q,--quiet", opt.run.quiet, "no table on stdout");
+  c->footer(
+      "Files in --out DIR: basin.csv (sample, the drawn values, regime, A_1..A_N, psi_2..psi_N, "
+      "complete), basin.json (what was drawn; each regime's count, fraction and 95% Wilson "
+      "interval), basin.png (two --random keys: the samples coloured by regime).\n"
+      "Exit codes: 0 success; 2 bad command line or rig (nothing written); 3 interrupted "
+      "(nothing written); 1 anything else.");
+  return c;
+}
+
+int basinCommand(const BasinOptions& opt) {
+  try {
+    return basinImpl(opt);
+  } catch (const SweepInputError& e) {
+    throw UsageError(e.what());
+  } catch (const FolderLockedError& e) {
+    throw UsageError(e.what());
+  }
+}
+
+}  // namespace metrosync::cli
