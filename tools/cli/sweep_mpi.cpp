@@ -1,6 +1,7 @@
 #include "tools/cli/sweep_mpi.h"
 
 #include <mpi.h>
+#include <sched.h>
 #include <signal.h>
 
 #include <algorithm>
@@ -66,9 +67,27 @@ int worldRank() {
   return rank;
 }
 
-int threadsOf(const SweepOptions& opt) {
-  return std::max(1,
-                  opt.jobs > 0 ? opt.jobs : static_cast<int>(std::thread::hardware_concurrency()));
+// The cores this process may run on: mpirun binds each rank to one core by default (with 2 or
+// fewer ranks), srun to its task's CPUs.
+int coresAllowed() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (::sched_getaffinity(0, sizeof set, &set) != 0) return 0;
+  return CPU_COUNT(&set);
+}
+
+// `opt` with --jobs defaulting to the cores this rank may use (not all the node's); a warning when
+// more threads are asked for than it may use.
+SweepOptions withRankJobs(SweepOptions opt) {
+  const int cores = coresAllowed();
+  if (opt.jobs <= 0) opt.jobs = std::max(1, cores);
+  if (cores > 0 && opt.jobs > cores)
+    std::cerr << "metrosync: warning: rank " << worldRank() << " runs --jobs " << opt.jobs
+              << " threads on " << cores << (cores == 1 ? " core" : " cores")
+              << " (its CPU binding); start it with `mpirun --bind-to none` or `srun "
+                 "--cpus-per-task="
+              << opt.jobs << "` (docs/cluster.md)\n";
+  return opt;
 }
 
 // ---- rank 0 -----------------------------------------------------------------------------------
@@ -322,7 +341,8 @@ void workerLoop(const SweepPointRunner& run, int threads) {
 
 }  // namespace
 
-int mpiSweepCoordinator(const SweepOptions& opt, int ranks) {
+int mpiSweepCoordinator(const SweepOptions& options, int ranks) {
+  const SweepOptions opt = withRankJobs(options);
   Coordinator c(ranks);
   const SweepScheduler schedule = [&c](long size, const std::function<bool(long)>& wanted, int jobs,
                                        const SweepPointRunner& run, const SweepPointSink& finished,
@@ -345,7 +365,8 @@ int mpiSweepCoordinator(const SweepOptions& opt, int ranks) {
   return code;
 }
 
-int mpiSweepWorker(const SweepOptions& opt) {
+int mpiSweepWorker(const SweepOptions& options) {
+  const SweepOptions opt = withRankJobs(options);
   if (receive(0, kTagStart) != "start") return kSuccess;  // rank 0 ended before running points
   SweepPointRunner run;
   try {
@@ -355,7 +376,7 @@ int mpiSweepWorker(const SweepOptions& opt) {
     MPI_Abort(MPI_COMM_WORLD, kBadInput);
   }
   installStopHandlers();
-  workerLoop(run, threadsOf(opt));
+  workerLoop(run, std::max(1, opt.jobs));
   return kSuccess;
 }
 
