@@ -174,19 +174,26 @@ class Coordinator {
     std::vector<std::thread> local;
     for (int t = 0; t < std::max(1, jobs); ++t)
       local.emplace_back([&] { runLocally(points, delivery, run, stop); });
-    serveWorkers(points, delivery, stop);
+    try {
+      serveWorkers(points, delivery, stop);
+      served_ = true;
+    } catch (...) {  // the local threads stop too; the workers are left to MPI_Abort
+      delivery.fail(std::current_exception());
+    }
     for (auto& t : local) t.join();
     delivery.rethrow();
   }
 
   // Workers that were never started are told to quit.
   void release() {
-    if (!started_)
+    if (!started_ && !released_)
       for (int w = 1; w <= workers_; ++w) sendBytes("quit", w, kTagStart);
-    started_ = true;
+    released_ = true;
   }
 
-  bool abandoned() const { return abandoned_; }
+  // Started workers that are still running (rank 0 left the scheduler by an exception, or gave
+  // up on silent workers after a stop request): only MPI_Abort ends them.
+  bool workersLeft() const { return (started_ && !served_) || abandoned_; }
 
  private:
   static void runLocally(Dispenser& points, Delivery& delivery, const SweepPointRunner& run,
@@ -240,7 +247,7 @@ class Coordinator {
   }
 
   int workers_;
-  bool started_ = false, abandoned_ = false;
+  bool started_ = false, released_ = false, served_ = false, abandoned_ = false;
 };
 
 // ---- a worker rank ----------------------------------------------------------------------------
@@ -352,15 +359,17 @@ int mpiSweepCoordinator(const SweepOptions& options, int ranks) {
   int code = 0;
   try {
     code = sweepCommand(opt, schedule, ranks);
-  } catch (...) {
+  } catch (const std::exception& e) {
     c.release();
-    throw;
+    if (!c.workersLeft()) throw;
+    std::cerr << "metrosync: error: " << e.what() << "\n";
+    code = kOtherError;
   }
   c.release();
-  if (c.abandoned()) {
-    std::cerr << "metrosync: error: worker ranks did not answer after the stop request; ending "
-                 "the job (continue with --resume)\n";
-    MPI_Abort(MPI_COMM_WORLD, code);
+  if (c.workersLeft()) {
+    std::cerr << "metrosync: error: ending the worker ranks still running (continue with "
+                 "--resume)\n";
+    MPI_Abort(MPI_COMM_WORLD, code != kSuccess ? code : kOtherError);
   }
   return code;
 }
@@ -376,7 +385,12 @@ int mpiSweepWorker(const SweepOptions& options) {
     MPI_Abort(MPI_COMM_WORLD, kBadInput);
   }
   installStopHandlers();
-  workerLoop(run, std::max(1, opt.jobs));
+  try {
+    workerLoop(run, std::max(1, opt.jobs));
+  } catch (const std::exception& e) {  // rank 0 would wait for this rank forever
+    std::cerr << "metrosync: error: rank " << worldRank() << ": " << e.what() << "\n";
+    MPI_Abort(MPI_COMM_WORLD, kOtherError);
+  }
   return kSuccess;
 }
 
