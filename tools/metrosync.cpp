@@ -1,15 +1,21 @@
 // metrosync: the command line (SPEC section 2). Every sub-command is registered with its handler
 // (tools/cli/command_line.h maps outcomes to the SPEC section 5 exit codes).
+#include <string>
+
 #include "tools/cli/animate.h"
 #include "tools/cli/command_line.h"
 #include "tools/cli/continue.h"
 #include "tools/cli/figures.h"
 #include "tools/cli/fit.h"
+#include "tools/cli/mpi_forward.h"
 #include "tools/cli/sweep.h"
 #include "tools/cli/validate.h"
 
 int main(int argc, char** argv) {
   namespace cli = metrosync::cli;
+  // `mpirun -np P metrosync sweep ...`: the ranks' sweep is metrosync-mpi's (docs/cluster.md)
+  if (argc > 1 && std::string(argv[1]) == "sweep" && cli::mpiRanksFromEnvironment() > 1)
+    return cli::forwardToMetrosyncMpi(argc, argv);
   CLI::App app;
   cli::configureApp(app);
   cli::Options opt;                   // run, compare, scale (tools/cli/commands.h)
@@ -17,8 +23,8 @@ int main(int argc, char** argv) {
   cli::ValidateOptions validate_opt;  // tools/cli/validate.h
   cli::FitOptions fit_opt;            // tools/cli/fit.h
   cli::MeasureOptions measure_opt;
-  cli::FiguresOptions figures_opt;    // tools/cli/figures.h
-  cli::AnimateOptions animate_opt;    // tools/cli/animate.h
+  cli::FiguresOptions figures_opt;  // tools/cli/figures.h
+  cli::AnimateOptions animate_opt;  // tools/cli/animate.h
   std::vector<cli::Command> commands = cli::addRigCommands(app, opt);
   const cli::SweepCommands sweep = cli::addSweepCommands(app, sweep_opt);
   commands.push_back({sweep.sweep, [&] { return cli::sweepCommand(sweep_opt); }});

@@ -1,7 +1,8 @@
-// `mpirun -np 2 metrosync-mpi sweep` end to end (docs/cluster.md): the regimes.csv of the serial
-// `metrosync sweep --jobs 1`, bit for bit; a rank killed with SIGKILL, or the whole job ended like
-// kill -9 after some rows, then --resume under MPI: the uninterrupted sweep's regimes.csv, no row
-// lost or doubled; a bad command line exits 2 with nothing written and no rank left waiting.
+// `mpirun -np 2 metrosync-mpi sweep` (and `metrosync sweep`, which hands over to it) end to end
+// (docs/cluster.md): the regimes.csv of the serial `metrosync sweep --jobs 1`, bit for bit; a rank
+// killed with SIGKILL, or the whole job ended like kill -9 after some rows, then --resume under
+// MPI: the uninterrupted sweep's regimes.csv, no row lost or doubled; a bad command line exits 2
+// with nothing written and no rank left waiting.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -27,13 +28,13 @@ std::string scratch(const std::string& name) {
 
 // `[ENV] mpirun -np RANKS metrosync-mpi ARGS` (oversubscribed: this machine may have fewer
 // cores than ranks); captures stdout and stderr.
-CommandResult mpiMetrosync(int ranks, const std::string& args, const std::string& env = "") {
+CommandResult mpiMetrosync(int ranks, const std::string& args, const std::string& env = "",
+                           const std::string& binary = METROSYNC_MPI_BINARY) {
   const std::string err =
       ::testing::TempDir() + "/metrosync_mpi_stderr_" + std::to_string(::getpid());
   const std::string cmd = env + " " + shellQuote(METROSYNC_MPIEXEC) + " -np " +
                           std::to_string(ranks) + " --oversubscribe --allow-run-as-root " +
-                          shellQuote(METROSYNC_MPI_BINARY) + " " + args + " 2>" + shellQuote(err) +
-                          " </dev/null";
+                          shellQuote(binary) + " " + args + " 2>" + shellQuote(err) + " </dev/null";
   CommandResult r;
   FILE* p = ::popen(cmd.c_str(), "r");
   if (!p) return r;
@@ -84,11 +85,16 @@ TEST(SweepMpi, TwoRanksWriteTheSerialRegimesCsvBitForBit) {
   const nlohmann::json s = nlohmann::json::parse(slurp(d + "/serial/sweep.json"));
   EXPECT_GE(s["regimes"].size(), 3u) << s["regimes"];
 
-  for (const char* jobs : {"1", "2"}) {
-    const std::string out = d + "/mpi" + jobs;
-    const CommandResult mpi = mpiMetrosync(2, sweep + " --jobs " + jobs + " --out " + out);
+  // metrosync-mpi with 1 and 2 threads a rank, and plain metrosync, which hands itself over to
+  // metrosync-mpi when an MPI launcher started it as one of several ranks
+  for (const auto& [binary, jobs] : {std::pair<std::string, std::string>{METROSYNC_MPI_BINARY, "1"},
+                                     {METROSYNC_MPI_BINARY, "2"},
+                                     {METROSYNC_BINARY, "1"}}) {
+    const std::string out = d + "/" + fs::path(binary).filename().string() + "-jobs" + jobs;
+    const CommandResult mpi =
+        mpiMetrosync(2, sweep + " --jobs " + jobs + " --out " + out, "", binary);
     ASSERT_EQ(mpi.code, 0) << mpi.err;
-    EXPECT_EQ(slurp(out + "/regimes.csv"), want) << "--jobs " << jobs;
+    EXPECT_EQ(slurp(out + "/regimes.csv"), want) << binary << " --jobs " << jobs;
     EXPECT_NE(mpi.out.find("144 done (144 now, 0 before)"), std::string::npos) << mpi.out;
     EXPECT_NE(mpi.out.find("on 2 MPI ranks"), std::string::npos) << mpi.out;
     const nlohmann::json m = nlohmann::json::parse(slurp(out + "/sweep.json"));

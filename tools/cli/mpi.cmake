@@ -1,4 +1,5 @@
-# metrosync-mpi (docs/cluster.md, tools/cli/sweep_mpi.h): `metrosync sweep` over MPI processes.
+# metrosync-mpi (docs/cluster.md, tools/cli/sweep_mpi.h): `metrosync sweep` over MPI processes
+# (`metrosync sweep` started as one of several ranks execs it: tools/cli/mpi_forward.h).
 # MPI is optional (Debian: libopenmpi-dev openmpi-bin) and linked into this executable only:
 #   metrosync_sweep_mpi  tools/cli/sweep_mpi.cpp  (the one file of the folder that sees MPI)
 #   metrosync-mpi        tools/metrosync_mpi.cpp
