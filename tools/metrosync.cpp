@@ -1,16 +1,22 @@
 // metrosync: the command line (SPEC section 2). Every sub-command is registered with its handler
 // (tools/cli/command_line.h maps outcomes to the SPEC section 5 exit codes).
+#include <string>
+
 #include "tools/cli/animate.h"
 #include "tools/cli/basin.h"
 #include "tools/cli/command_line.h"
 #include "tools/cli/continue.h"
 #include "tools/cli/figures.h"
 #include "tools/cli/fit.h"
+#include "tools/cli/mpi_forward.h"
 #include "tools/cli/sweep.h"
 #include "tools/cli/validate.h"
 
 int main(int argc, char** argv) {
   namespace cli = metrosync::cli;
+  // `mpirun -np P metrosync sweep ...`: the ranks' sweep is metrosync-mpi's (docs/cluster.md)
+  if (argc > 1 && std::string(argv[1]) == "sweep" && cli::mpiRanksFromEnvironment() > 1)
+    return cli::forwardToMetrosyncMpi(argc, argv);
   CLI::App app;
   cli::configureApp(app);
   cli::Options opt;                   // run, compare, scale (tools/cli/commands.h)

@@ -420,6 +420,7 @@ struct SweepPlan {
   std::string path, regimes_path;
   std::vector<size_t> map_axes;   // --map
   std::vector<RandomKey> random;  // --random (with --basin-samples)
+  int ranks = 1;                  // MPI processes sharing the points (tools/cli/sweep_mpi.h)
 };
 
 // The grid checked in bounded time, before any file: the point at every corner of the grid and
@@ -638,7 +639,7 @@ std::optional<SweepPoint> runGridPoint(const SweepPlan& plan, const SweepOptions
 }
 
 SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir,
-                  const RegimesTable& table, bool resuming) {
+                  const RegimesTable& table, bool resuming, const SweepScheduler& schedule) {
   SweepRun run{table.lines, table.points};
   writeSweepJson(dir, statusJson(plan.manifest, plan.mine, run.points, false));
   const bool fresh = table.complete_bytes == 0;
@@ -651,7 +652,7 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
   Progress progress(!opt.quiet && ::isatty(2), ProgressLog::wanted(opt.quiet), plan.mine,
                     static_cast<long>(run.points.size()));
   const long stop_after = stopAfterHook();
-  runSweepPoints(
+  schedule(
       plan.grid.size(), [&](long g) { return plan.shard.contains(g) && !table.lines.count(g); },
       run.jobs, [&](long g) { return runGridPoint(plan, opt, g); },
       [&](const SweepPoint& p) {
@@ -683,14 +684,16 @@ void printSweepSummary(const SweepPlan& plan, const SweepRun& run, const OutputD
             << "; " << run.points.size() << " done (" << run.finished_now << " now, " << before
             << " before), " << failed << " failed\n"
             << "  regimes: " << countsText(run.points) << "\n"
-            << "  wall time " << fmt(wall_s, "%.3g") << " s on " << run.jobs
+            << "  wall time " << fmt(wall_s, "%.3g") << " s on "
+            << (plan.ranks > 1 ? std::to_string(plan.ranks) + " MPI ranks x " : "") << run.jobs
             << (run.jobs == 1 ? " thread" : " threads") << "\n"
             << "files: " << dir.path() << "/ (" << joined(files) << ")\n";
 }
 
-int sweepImpl(const SweepOptions& opt) {
+int sweepImpl(const SweepOptions& opt, const SweepScheduler& schedule, int ranks) {
   const Clock::time_point t_start = Clock::now();
   SweepPlan plan = planSweep(opt);
+  plan.ranks = ranks;
   // the folder's lock before reading what it holds (a folder in use: exit 2, nothing written)
   std::optional<FolderLock> lock;
   if (fs::is_directory(plan.path)) lock.emplace(plan.path, "metrosync sweep");
@@ -705,7 +708,7 @@ int sweepImpl(const SweepOptions& opt) {
     std::cerr << "metrosync: note: took over the lock of " << plan.path
               << " from an ended process (" << lock->takenOver() << ")\n";
   for (const auto& w : table.warnings) std::cerr << "metrosync: warning: " << w << "\n";
-  const SweepRun run = runSweep(opt, plan, dir, table, resuming);
+  const SweepRun run = runSweep(opt, plan, dir, table, resuming, schedule);
 
   const bool interrupted = FileSink::stopRequested();
   const bool complete = static_cast<long>(run.points.size()) == plan.mine;
@@ -725,6 +728,7 @@ int sweepImpl(const SweepOptions& opt) {
   files.push_back("sweep.json");
   nlohmann::json status = statusJson(plan.manifest, plan.mine, run.points, complete);
   status["jobs"] = run.jobs;
+  if (ranks > 1) status["mpi_ranks"] = ranks;  // tools/cli/sweep_mpi.h
   status["wall_seconds"] = secondsSince(t_start);
   status["points"]["run_now"] = run.finished_now;
   status["interrupted"] = interrupted;
@@ -1008,11 +1012,29 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
 }
 
 int sweepCommand(const SweepOptions& opt) {
+  const SweepScheduler threads = [](long size, const std::function<bool(long)>& wanted, int jobs,
+                                    const SweepPointRunner& run, const SweepPointSink& finished,
+                                    const std::function<bool()>& stop) {
+    runSweepPoints(size, wanted, jobs, run, finished, stop);
+  };
+  return sweepCommand(opt, threads, 1);
+}
+
+int sweepCommand(const SweepOptions& opt, const SweepScheduler& schedule, int ranks) {
   try {
-    return sweepImpl(opt);
+    return sweepImpl(opt, schedule, ranks);
   } catch (const SweepInputError& e) {
     throw UsageError(e.what());
   } catch (const FolderLockedError& e) {
+    throw UsageError(e.what());
+  }
+}
+
+SweepPointRunner sweepPointRunner(const SweepOptions& opt) {
+  try {
+    auto plan = std::make_shared<const SweepPlan>(planSweep(opt));
+    return [plan, opt](long g) { return runGridPoint(*plan, opt, g); };
+  } catch (const SweepInputError& e) {
     throw UsageError(e.what());
   }
 }

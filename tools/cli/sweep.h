@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -60,5 +61,25 @@ std::pair<std::string, std::string> checkSweepPoint(const std::string& rig_text,
                                                     const std::string& where);
 std::optional<SweepPoint> runSweepPointAt(const std::string& rig_text, const SweepOptions& opt,
                                           const std::vector<std::string>& point, int n, long index);
+
+// ---- for other ways of running the points (MPI: tools/cli/sweep_mpi.h) -------------------------
+
+// How one grid point runs: its row, or nullopt when a stop request interrupted it.
+using SweepPointRunner = std::function<std::optional<SweepPoint>(long)>;
+using SweepPointSink = std::function<void(const SweepPoint&)>;
+// The run stage's scheduler, runSweepPoints's contract (sim/analysis/sweep.h): run every g <
+// size with wanted(g), hand each result to `finished` (never two at once), stop starting points
+// once stop() is true, rethrow the first exception.
+using SweepScheduler = std::function<void(
+    long size, const std::function<bool(long)>& wanted, int jobs, const SweepPointRunner& run,
+    const SweepPointSink& finished, const std::function<bool()>& stop)>;
+
+// The sweep with its points run by `schedule` (on `ranks` processes, for the summary and
+// sweep.json); everything else (checks, --resume, files, maps) as sweepCommand(opt).
+int sweepCommand(const SweepOptions& opt, const SweepScheduler& schedule, int ranks);
+
+// A process that only runs points for another one: checks `opt` as the sweep does (RigError or
+// UsageError, nothing written) and returns how grid point g runs.
+SweepPointRunner sweepPointRunner(const SweepOptions& opt);
 
 }  // namespace metrosync::cli
