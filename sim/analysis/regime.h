@@ -43,6 +43,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/friction_law.h"
 #include "sim/record/envelope.h"
 
 namespace metrosync {
@@ -55,7 +56,8 @@ enum class Regime {
   Antiphase,
   PhaseLocked,
   Unsettled,
-  Alive,    // N = 1 (or one swinging metronome), alive
+  Uncoupled,  // every swinging metronome alive and the platform never slips in the window
+  Alive,      // N = 1 (or one swinging metronome), alive
   None,     // no swinging metronome at all
   Unknown,  // not judged (the run stopped early)
 };
@@ -74,6 +76,9 @@ struct RegimeRules {
   double settled_rad = 0.1;              // settled: range of every psi_j < this
   double in_phase_rad = 0.2;             // |final psi_j - 0| (mod 2 pi) <= this
   double antiphase_rad = 0.5;            // |final psi_j - pi| (mod 2 pi) <= this
+  // splay (N >= 3): every gap between neighbouring phases within this of 2 pi / a (a alive), but
+  // never more than a quarter of 2 pi / a
+  double splay_rad = 0.2;
 };
 
 // An angle moved by a multiple of 2 pi into (-pi, pi].
@@ -88,6 +93,19 @@ class RegimeWindow {
   RegimeWindow(double tau_end, double epsilon, RegimeRules rules = {});
 
   void add(const EnvelopeRow& row);
+
+  // The platform (the `uncoupled` rule). Full model: call with the platform column (0 stuck,
+  // +-1 sliding) of every trajectory row and of every stick/slip event; an envelope row then
+  // counts as slipping when the platform slid at any such call since the previous envelope row
+  // (or was sliding at it). Slow flow (no trajectory rows): with the rig's friction law set here,
+  // a row slips when s = |sum_j A_j e^{i phi_j}| / mu > 1 (Coulomb), always (viscous, none),
+  // never (fixed). Without either, the platform is unknown and never `uncoupled`.
+  void platformMode(int mode);
+  void setEnvelopePlatform(FrictionLaw law, double mu);
+  long platformRows() const { return platform_rows_; }  // window rows with the platform known
+  long slipRows() const { return slip_rows_; }          // ... and the platform slipping
+  // (N x 1) the largest A_i over the window (the last row's when the window has no row)
+  std::vector<double> maxAmplitude() const;
 
   double tauStart() const { return tau_start_; }
   double tauEnd() const { return tau_end_; }
@@ -113,6 +131,14 @@ class RegimeWindow {
   std::vector<double> psi_min_, psi_max_;  // (N-1 x 1) over the window
   // (N (N-1)/2 x 1) phi_i - phi_j = psi_j - psi_i (psi_1 = 0), pairs i < j in row order; N >= 3
   std::vector<double> pair_min_, pair_max_;
+  std::vector<double> a_max_;  // (N x 1) over the window
+  // platform: seen in trajectory rows/events; slid since the last envelope row; sliding now
+  bool platform_seen_ = false, pending_slip_ = false;
+  int mode_now_ = 0;
+  bool envelope_platform_ = false;
+  FrictionLaw law_ = FrictionLaw::Coulomb;
+  double mu_ = 0.0;
+  long platform_rows_ = 0, slip_rows_ = 0;
 };
 
 struct RegimeVerdict {
@@ -127,6 +153,12 @@ struct RegimeVerdict {
   std::string name;
   std::vector<int> cluster_sizes;  // clusters of the alive metronomes, largest first
   int dead = 0;                    // swinging metronomes that are dead
+  // the alive metronomes' clusters (1-based numbers), the largest first, and each cluster's mean
+  // phase minus the first cluster's, wrapped to (-pi, pi] (summary.json: regime_window.clusters)
+  std::vector<std::vector<int>> cluster_members;
+  std::vector<double> cluster_phase;
+  // the platform over the window: -1 unknown, 0 never slipped (uncoupled), 1 slipped
+  int platform_slipped = -1;
   // why the verdict is `unsettled` or `unknown` (empty otherwise), in words for summary.json
   std::string reason;
 };

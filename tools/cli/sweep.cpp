@@ -163,6 +163,11 @@ struct PointSink : RunSink {
     window.add(row);
     if (FileSink::stopRequested()) throw RunInterrupted(row.tau, "interrupted by a signal");
   }
+  // the platform column (0 stuck): the `uncoupled` rule (full model)
+  void trajectoryRow(const std::vector<double>& row) override {
+    if (!row.empty()) window.platformMode(static_cast<int>(row.back()));
+  }
+  void eventRow(const char*, const std::vector<double>& row) override { trajectoryRow(row); }
   RegimeWindow window;
 };
 
@@ -195,6 +200,7 @@ std::optional<SweepPoint> runPoint(const PointInput& in, long g) {
   const Clock::time_point t0 = Clock::now();
   const ScaledParams& sp = in.scaled;
   PointSink sink(sp.tau_end, sp.epsilon);
+  if (in.engine->model() != "full") sink.window.setEnvelopePlatform(sp.law, sp.mu);
   RunReport rep;
   try {
     if (failureInjected(g))

@@ -129,6 +129,7 @@ void FileSink::clearStopRequest() {
 FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt)
     : opt_(opt), window_(opt.tau_end, opt.epsilon), plot_(opt.max_plot_rows) {
   if (opt_.n_metronomes < 1) throw std::invalid_argument("FileSink: no metronome");
+  if (opt_.envelope_platform) window_.setEnvelopePlatform(opt_.law, opt_.mu);
   if (opt_.trajectory) {
     trajectory_ = std::make_unique<AtomicFile>(dir.file(opt_.trajectory_name));
     std::string h = "t,x,xdot";
@@ -147,7 +148,12 @@ void FileSink::checkStop(double t) {
   throw RunInterrupted(t, "interrupted by a signal");
 }
 
+void FileSink::eventRow(const char*, const std::vector<double>& row) {
+  if (!row.empty()) window_.platformMode(static_cast<int>(row.back()));
+}
+
 void FileSink::trajectoryRow(const std::vector<double>& row) {
+  if (!row.empty()) window_.platformMode(static_cast<int>(row.back()));
   if (!trajectory_) return;
   const size_t want = 2 * static_cast<size_t>(opt_.n_metronomes) + 4;
   if (row.size() != want)
@@ -202,7 +208,14 @@ nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict)
                         {"rows", verdict.window_rows},
                         {"psi_range", verdict.psi_range},
                         {"alive", verdict.alive},
-                        {"clusters", clusterText(verdict.cluster_sizes)}};
+                        {"clusters", clusterText(verdict.cluster_sizes)},
+                        {"cluster_members", verdict.cluster_members},
+                        {"cluster_phase", verdict.cluster_phase}};
+  // the platform over the window (the `uncoupled` rule): null when not known
+  if (verdict.platform_slipped >= 0)
+    j["regime_window"]["platform_slipped"] = verdict.platform_slipped == 1;
+  else
+    j["regime_window"]["platform_slipped"] = nullptr;
   if (!verdict.reason.empty()) j["regime_reason"] = verdict.reason;
   j["final"] = {
       {"tau", report.final_row.tau}, {"A", report.final_row.A}, {"psi", report.final_row.psi}};

@@ -71,6 +71,11 @@ struct RunFilesOptions {
   // to report an interruption "at t = ..." in the rig's time unit: t = tau / epsilon * time_unit
   double epsilon = 1.0;
   double time_unit = 1.0;  // physical rigs: seconds per unit of scaled time; scaled rigs: 1
+  // the platform for the `uncoupled` rule when no trajectory row comes (the slow flow):
+  // RegimeWindow::setEnvelopePlatform; unset: only the full model's rows tell
+  bool envelope_platform = false;
+  FrictionLaw law = FrictionLaw::Coulomb;
+  double mu = 0.0;
 };
 
 // Thrown by FileSink at the first row after a stop request. A std::runtime_error, so that an
@@ -91,6 +96,8 @@ class FileSink : public RunSink {
 
   void trajectoryRow(const std::vector<double>& row) override;
   void envelopeRow(const EnvelopeRow& row) override;
+  // stick/slip events tell the regime window what the platform does between trajectory rows
+  void eventRow(const char* kind, const std::vector<double>& row) override;
 
   // Renames every file written to its final name. Called after the run whether it completed or
   // not (a failed run keeps its rows, marked incomplete in summary.json).
