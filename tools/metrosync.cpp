@@ -6,6 +6,7 @@
 #include "tools/cli/figures.h"
 #include "tools/cli/fit.h"
 #include "tools/cli/sweep.h"
+#include "tools/cli/sweep_point.h"
 #include "tools/cli/validate.h"
 
 int main(int argc, char** argv) {
@@ -17,8 +18,9 @@ int main(int argc, char** argv) {
   cli::ValidateOptions validate_opt;  // tools/cli/validate.h
   cli::FitOptions fit_opt;            // tools/cli/fit.h
   cli::MeasureOptions measure_opt;
-  cli::FiguresOptions figures_opt;    // tools/cli/figures.h
-  cli::AnimateOptions animate_opt;    // tools/cli/animate.h
+  cli::FiguresOptions figures_opt;   // tools/cli/figures.h
+  cli::AnimateOptions animate_opt;   // tools/cli/animate.h
+  cli::SweepPointOptions point_opt;  // tools/cli/sweep_point.h
   std::vector<cli::Command> commands = cli::addRigCommands(app, opt);
   const cli::SweepCommands sweep = cli::addSweepCommands(app, sweep_opt);
   commands.push_back({sweep.sweep, [&] { return cli::sweepCommand(sweep_opt); }});
@@ -33,5 +35,7 @@ int main(int argc, char** argv) {
       {cli::addFiguresCommand(app, figures_opt), [&] { return cli::figuresCommand(figures_opt); }});
   commands.push_back(
       {cli::addAnimateCommand(app, animate_opt), [&] { return cli::animateCommand(animate_opt); }});
+  commands.push_back({cli::addSweepPointCommand(app, point_opt),
+                      [&] { return cli::sweepPointCommand(point_opt); }});
   return cli::runCommandLine(app, commands, argc, argv);
 }

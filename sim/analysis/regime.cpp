@@ -210,7 +210,8 @@ ClusterAnalysis findClusters(const RegimeWindow& w, const std::vector<size_t>& a
       const bool settled = range < r.settled_rad;
       c.all_settled = c.all_settled && settled;
       c.any_drift = c.any_drift || range > r.drift_rad;
-      const bool close = std::fabs(wrapToPi(pairDifference(psi, alive[a], alive[b]))) <= r.in_phase_rad;
+      const bool close =
+          std::fabs(wrapToPi(pairDifference(psi, alive[a], alive[b]))) <= r.in_phase_rad;
       c.all_close = c.all_close && close;
       if (settled && close) parent[root(a)] = root(b);
     }
@@ -242,7 +243,8 @@ std::vector<double> clusterPhases(const ClusterAnalysis& c, const std::vector<do
 
 // a >= 3 alive metronomes, no two in one cluster: every gap between neighbouring phases within
 // the splay tolerance of 2 pi / a
-bool isSplay(const RegimeRules& r, const std::vector<size_t>& alive, const std::vector<double>& psi) {
+bool isSplay(const RegimeRules& r, const std::vector<size_t>& alive,
+             const std::vector<double>& psi) {
   const size_t a = alive.size();
   if (a < 3) return false;
   std::vector<double> phase;

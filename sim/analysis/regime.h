@@ -58,8 +58,8 @@ enum class Regime {
   Unsettled,
   Uncoupled,  // every swinging metronome alive and the platform never slips in the window
   Alive,      // N = 1 (or one swinging metronome), alive
-  None,     // no swinging metronome at all
-  Unknown,  // not judged (the run stopped early)
+  None,       // no swinging metronome at all
+  Unknown,    // not judged (the run stopped early)
 };
 
 // The name written to summary.json and regimes.csv: "death", "in-phase", "phase-locked", ...

@@ -114,6 +114,8 @@ struct SweepPoint {
   double tau = std::numeric_limits<double>::quiet_NaN();  // tau of the final row
   bool complete = true;                                   // false: the run failed (regime "failed")
   std::string message;                                    // why it failed
+  // sweep --keep envelope: the point's envelope rows (formatEnvelopeRow), for the envelope store
+  std::vector<std::string> kept_rows;
   double wall_seconds = 0.0;  // not in regimes.csv (it changes from run to run): timings.csv
 };
 

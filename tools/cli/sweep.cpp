@@ -26,6 +26,7 @@
 #include "tools/cli/continue.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/network_sweep.h"
+#include "tools/report/envelope_store.h"
 #include "tools/report/folder_lock.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
@@ -62,7 +63,8 @@ const char* modelTitle(const std::string& model) {
 
 // The files a sweep writes (besides the maps), for removing stale ones.
 const std::vector<std::string>& sweepFileNames() {
-  static const std::vector<std::string> names = {"regimes.csv", "sweep.json", "timings.csv"};
+  static const std::vector<std::string> names = {"regimes.csv", "sweep.json", "timings.csv",
+                                                 kEnvelopeStoreName};
   return names;
 }
 
@@ -161,6 +163,7 @@ struct PointSink : RunSink {
   PointSink(double tau_end, double epsilon) : window(tau_end, epsilon) {}
   void envelopeRow(const EnvelopeRow& row) override {
     window.add(row);
+    if (keep) kept.push_back(formatEnvelopeRow(row));
     if (FileSink::stopRequested()) throw RunInterrupted(row.tau, "interrupted by a signal");
   }
   // the platform column (0 stuck): the `uncoupled` rule (full model)
@@ -169,6 +172,8 @@ struct PointSink : RunSink {
   }
   void eventRow(const char*, const std::vector<double>& row) override { trajectoryRow(row); }
   RegimeWindow window;
+  bool keep = false;  // --keep envelope
+  std::vector<std::string> kept;
 };
 
 // The test hook METROSYNC_SWEEP_FAIL_AT=g1,g2,...: those grid points fail as a simulation
@@ -195,12 +200,13 @@ std::optional<SweepPoint> runNetworkPoint(const PointInput& in, long g) {
   return p;
 }
 
-std::optional<SweepPoint> runPoint(const PointInput& in, long g) {
+std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
   if (in.net) return runNetworkPoint(in, g);
   const Clock::time_point t0 = Clock::now();
   const ScaledParams& sp = in.scaled;
   PointSink sink(sp.tau_end, sp.epsilon);
   if (in.engine->model() != "full") sink.window.setEnvelopePlatform(sp.law, sp.mu);
+  sink.keep = keep;
   RunReport rep;
   try {
     if (failureInjected(g))
@@ -246,6 +252,7 @@ std::optional<SweepPoint> runPoint(const PointInput& in, long g) {
     p.regime = "failed";
     p.message = rep.failure.empty() ? "the run stopped early" : rep.failure;
   }
+  p.kept_rows = std::move(sink.kept);
   p.wall_seconds = secondsSince(t0);
   return p;
 }
@@ -464,6 +471,8 @@ SweepPlan planSweep(const SweepOptions& opt) {
   const std::optional<Network> net = loadSweepNetwork(plan.text, displayName(opt), opt.sets);
   plan.base = net ? networkSweepRig(*net) : loadRigText(plan.text, displayName(opt), opt.sets);
   plan.n = static_cast<int>(plan.base.metronomes.size());
+  if (net && !opt.keep.empty())
+    throw UsageError("--keep envelope: not for a network of platforms (docs/sweep-points.md)");
   plan.mine = shardSize(plan.grid, plan.shard);
   const Engine* engine = checkGrid(plan, opt);
   SweepManifest& m = plan.manifest;
@@ -546,7 +555,7 @@ std::optional<SweepPoint> runGridPoint(const SweepPlan& plan, const SweepOptions
   }
   if (static_cast<int>(in->rig.metronomes.size()) != plan.n)
     return unloadablePoint(g, plan.n, "--vary changes the number of metronomes here");
-  return runPoint(*in, g);
+  return runPoint(*in, g, opt.keep == "envelope");
 }
 
 SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir,
@@ -561,16 +570,21 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
   run.jobs = opt.jobs > 0 ? opt.jobs : static_cast<int>(std::thread::hardware_concurrency());
   run.jobs = std::max(1, run.jobs);
   Progress progress(!opt.quiet && ::isatty(2), plan.mine, static_cast<long>(run.points.size()));
+  std::optional<EnvelopeStore> store;  // --keep envelope
+  if (opt.keep == "envelope")
+    store.emplace(dir.file(kEnvelopeStoreName), plan.n, !resuming);
   const long stop_after = stopAfterHook();
   runSweepPoints(
       plan.grid.size(), [&](long g) { return plan.shard.contains(g) && !table.lines.count(g); },
       run.jobs, [&](long g) { return runGridPoint(plan, opt, g); },
       [&](const SweepPoint& p) {
+        if (store) store->append(p.index, p.kept_rows);  // before its row: a row has its rows
         const std::string line = formatRegimesRow(plan.grid, p);
         regimes.append(line);
         timings.append(std::to_string(p.index) + "," + fmt(p.wall_seconds, "%.6g"));
         run.lines[p.index] = line;
         run.points[p.index] = p;
+        run.points[p.index].kept_rows.clear();
         progress.finished(!p.complete);
         if (++run.finished_now == stop_after) std::_Exit(137);
       },
@@ -811,6 +825,12 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
                     "(continuation) over the regime map, boundaries.csv");
   c.sweep->add_flag("--no-plot", opt.no_plot,
                     "draw no maps (regimes.csv, sweep.json and timings.csv only)");
+  c.sweep
+      ->add_option("--keep", opt.keep,
+                   "envelope: keep every point's envelope rows in DIR/envelopes.csv.gz (one "
+                   "gzip'd CSV with a point column; docs/sweep-points.md); `metrosync "
+                   "sweep-point DIR INDEX` re-runs one point with full outputs")
+      ->check(CLI::IsMember({"envelope"}));
   c.sweep->footer(
       "Files in --out DIR: regimes.csv (one row per grid point, appended as points finish, "
       "sorted by grid index at the end: the varied keys, regime, A_1..A_N, psi_2..psi_N (final, "

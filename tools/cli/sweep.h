@@ -23,6 +23,7 @@ struct SweepOptions {
   int jobs = 0;             // worker threads; 0: the number of cores
   bool resume = false;
   std::string shard;              // "K/N"; empty: the whole grid
+  std::string keep;               // --keep envelope: DIR/envelopes.csv.gz (docs/sweep-points.md)
   std::vector<std::string> dirs;  // merge: the sweep output directories to join
 };
 
