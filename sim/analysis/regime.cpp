@@ -74,7 +74,11 @@ double pairDifference(const std::vector<double>& psi, size_t i, size_t j) {
 }
 }  // namespace
 
-void RegimeWindow::platformMode(int mode) {
+void RegimeWindow::platformMode(int mode, double x) {
+  if (in_window_) {
+    x_min_ = std::min(x_min_, x);
+    x_max_ = std::max(x_max_, x);
+  }
   platform_seen_ = true;
   mode_now_ = mode;
   pending_slip_ = pending_slip_ || mode != 0;
@@ -105,6 +109,7 @@ std::vector<double> RegimeWindow::maxAmplitude() const {
 void RegimeWindow::add(const EnvelopeRow& row) {
   last_ = row;
   have_last_ = true;
+  // the platform: the full model's own stick/slip when it reports it, else the averaged drive
   bool known = false, slipped = false;
   if (platform_seen_) {
     known = true;
@@ -115,6 +120,7 @@ void RegimeWindow::add(const EnvelopeRow& row) {
     slipped = envelopeSlips(row, law_, mu_);
   }
   if (row.tau < tau_start_) return;
+  in_window_ = true;
   platform_rows_ += known;
   slip_rows_ += known && slipped;
   const size_t n = row.psi.size() + 1;
@@ -343,8 +349,14 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
     v.alive[i] = a_max[i] >= theta_c[i] ? 1 : 0;
     dead += v.alive[i] == 0;
   }
-  if (window.platformRows() > 0 && window.platformRows() == window.rowsInWindow())
-    v.platform_slipped = window.slipRows() > 0 ? 1 : 0;
+  if (window.platformRows() > 0 && window.platformRows() == window.rowsInWindow()) {
+    // full model: slips that leave the platform where it was (micro-slips) do not count
+    const bool moved =
+        window.platformTravel() < 0 || window.platformTravel() > window.rules().still_platform;
+    v.platform_slipped = window.slipRows() > 0 && moved ? 1 : 0;
+    v.platform_slip_rows = window.platformTravel() < 0 ? -1 : window.slipRows();
+    v.platform_travel = window.platformTravel();
+  }
   const RegimeRules& r = window.rules();
   v.dead = dead;
   std::vector<size_t> alive_idx;

@@ -79,6 +79,11 @@ struct RegimeRules {
   // splay (N >= 3): every gap between neighbouring phases within this of 2 pi / a (a alive), but
   // never more than a quarter of 2 pi / a
   double splay_rad = 0.2;
+  // full model: slips in the window that move the platform by at most this (scaled x, range over
+  // the window) do not count for `uncoupled`. Near-simultaneous ticks in antiphase give
+  // micro-slips of 3e-9 (experiment-high-friction-antiphase, which die out over hundreds of
+  // periods); a coupled antiphase platform travels 0.02 (paper/f4.2); docs/regimes.md.
+  double still_platform = 1e-6;
 };
 
 // An angle moved by a multiple of 2 pi into (-pi, pi].
@@ -94,16 +99,20 @@ class RegimeWindow {
 
   void add(const EnvelopeRow& row);
 
-  // The platform (the `uncoupled` rule). Full model: call with the platform column (0 stuck,
-  // +-1 sliding) of every trajectory row and of every stick/slip event; an envelope row then
-  // counts as slipping when the platform slid at any such call since the previous envelope row
-  // (or was sliding at it). Slow flow (no trajectory rows): with the rig's friction law set here,
-  // a row slips when s = |sum_j A_j e^{i phi_j}| / mu > 1 (Coulomb), always (viscous, none),
-  // never (fixed). Without either, the platform is unknown and never `uncoupled`.
-  void platformMode(int mode);
+  // The platform (the `uncoupled` rule). Full model: platformMode() takes the platform column
+  // (0 stuck, +-1 sliding) and the position x in scaled units of every trajectory row and every
+  // event; a row counts as slipping when the platform slid at any such call since the previous
+  // row (or was sliding at it). Slow flow (no trajectory rows): with the rig's friction law set
+  // by setEnvelopePlatform, a row slips when the averaged drive s = |sum_j A_j e^{i phi_j}| / mu
+  // > 1 (Coulomb), always (viscous, none), never (fixed). Without either: never `uncoupled`.
+  void platformMode(int mode, double x_scaled);
   void setEnvelopePlatform(FrictionLaw law, double mu);
   long platformRows() const { return platform_rows_; }  // window rows with the platform known
   long slipRows() const { return slip_rows_; }          // ... and the platform slipping
+  // full model: max - min of the platform's scaled x over the window (-1: no trajectory row)
+  double platformTravel() const {
+    return platform_seen_ && x_max_ >= x_min_ ? x_max_ - x_min_ : -1.0;
+  }
   // (N x 1) the largest A_i over the window (the last row's when the window has no row)
   std::vector<double> maxAmplitude() const;
 
@@ -139,6 +148,8 @@ class RegimeWindow {
   FrictionLaw law_ = FrictionLaw::Coulomb;
   double mu_ = 0.0;
   long platform_rows_ = 0, slip_rows_ = 0;
+  bool in_window_ = false;  // a row of the window has come
+  double x_min_ = HUGE_VAL, x_max_ = -HUGE_VAL;
 };
 
 struct RegimeVerdict {
@@ -159,6 +170,8 @@ struct RegimeVerdict {
   std::vector<double> cluster_phase;
   // the platform over the window: -1 unknown, 0 never slipped (uncoupled), 1 slipped
   int platform_slipped = -1;
+  long platform_slip_rows = -1;   // full model: window rows in which the platform slid
+  double platform_travel = -1.0;  // full model: range of the platform's scaled x over the window
   // why the verdict is `unsettled` or `unknown` (empty otherwise), in words for summary.json
   std::string reason;
 };

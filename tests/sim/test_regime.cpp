@@ -190,10 +190,14 @@ TEST(Regime, EveryPhaseDifferenceMustAgreeWithThreeMetronomes) {
 RegimeVerdict withPlatform(std::vector<EnvelopeRow> rows, std::function<bool(double)> slip,
                            std::vector<double> theta_c = {0.9, 0.9}) {
   RegimeWindow w(kTauEnd, kEps);
+  double x = 0.0;
   for (const auto& r : rows) {
-    w.platformMode(0);
-    if (slip(r.tau)) w.platformMode(1);  // a slip and a stick within the period
-    w.platformMode(0);
+    // a slip and a stick within the period move the platform by 0.1 (scaled)
+    if (slip(r.tau)) {
+      w.platformMode(1, x);
+      x += 0.1;
+    }
+    w.platformMode(0, x);
     w.add(r);
   }
   return classifyRegime(w, theta_c);
@@ -211,6 +215,24 @@ TEST(Regime, UncoupledWhenThePlatformNeverSlipsInTheWindow) {
   const RegimeVerdict slips = withPlatform(rows, [](double t) { return t > kTauEnd - 0.5; });
   EXPECT_EQ(slips.regime, Regime::Antiphase);
   EXPECT_EQ(slips.platform_slipped, 1);
+  // slips in every period that leave the platform where it was (micro-slips at ticks): still
+  // uncoupled; the same slips moving it by 2e-6 over the window: antiphase
+  auto microSlips = [&](double step) {
+    RegimeWindow w(kTauEnd, kEps);
+    double x = 0.0;
+    for (const auto& r : rows) {
+      w.platformMode(1, x);
+      x += r.tau >= kWindow ? step : 0.0;
+      w.platformMode(0, x);
+      w.add(r);
+    }
+    return classifyRegime(w, {0.9, 0.9});
+  };
+  EXPECT_EQ(microSlips(0.0).regime, Regime::Uncoupled);
+  EXPECT_GT(microSlips(0.0).platform_slip_rows, 10);
+  const long window_rows = microSlips(0.0).window_rows;
+  EXPECT_EQ(microSlips(2e-6 / (window_rows - 1)).regime, Regime::Antiphase);
+  EXPECT_EQ(microSlips(0.5e-6 / (window_rows - 1)).regime, Regime::Uncoupled);
   // no platform information at all (validation, old callers): the phase rules as before
   EXPECT_EQ(classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9}).platform_slipped, -1);
   // death and suppression win over uncoupled (amplitude rules first)

@@ -168,11 +168,12 @@ struct PointSink : RunSink {
   }
   // the platform column (0 stuck): the `uncoupled` rule (full model)
   void trajectoryRow(const std::vector<double>& row) override {
-    if (!row.empty()) window.platformMode(static_cast<int>(row.back()));
+    if (row.size() > 2) window.platformMode(static_cast<int>(row.back()), row[1] / x_unit);
   }
   void eventRow(const char*, const std::vector<double>& row) override { trajectoryRow(row); }
   RegimeWindow window;
-  bool keep = false;  // --keep envelope
+  double x_unit = 1.0;  // trajectory x per scaled x
+  bool keep = false;    // --keep envelope
   std::vector<std::string> kept;
 };
 
@@ -205,7 +206,9 @@ std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
   const Clock::time_point t0 = Clock::now();
   const ScaledParams& sp = in.scaled;
   PointSink sink(sp.tau_end, sp.epsilon);
+  // the `uncoupled` rule: the slow flow's averaged drive, the full model's own stick/slip
   if (in.engine->model() != "full") sink.window.setEnvelopePlatform(sp.law, sp.mu);
+  sink.x_unit = in.rig.units == Units::Physical ? sp.x_scale_m : 1.0;
   sink.keep = keep;
   RunReport rep;
   try {
@@ -571,8 +574,7 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
   run.jobs = std::max(1, run.jobs);
   Progress progress(!opt.quiet && ::isatty(2), plan.mine, static_cast<long>(run.points.size()));
   std::optional<EnvelopeStore> store;  // --keep envelope
-  if (opt.keep == "envelope")
-    store.emplace(dir.file(kEnvelopeStoreName), plan.n, !resuming);
+  if (opt.keep == "envelope") store.emplace(dir.file(kEnvelopeStoreName), plan.n, !resuming);
   const long stop_after = stopAfterHook();
   runSweepPoints(
       plan.grid.size(), [&](long g) { return plan.shard.contains(g) && !table.lines.count(g); },

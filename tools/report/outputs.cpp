@@ -58,7 +58,7 @@ const std::vector<std::string>& OutputDir::outputNames() {
       "trajectory.csv", "envelope.csv", "envelope_full.csv", "envelope_slow.csv",
       "comparison.csv", "summary.json", "envelope.png",      "comparison.png",
       "order.csv",      "order.png",    "raster.png",  // a network's (docs/networks.md)
-      "fitted.yaml",    "fit.json",     "fit.png",     "measure.json",  // docs/fit.md
+      "fitted.yaml",    "fit.json",     "fit.png",           "measure.json",  // docs/fit.md
   };
   return names;
 }
@@ -149,11 +149,11 @@ void FileSink::checkStop(double t) {
 }
 
 void FileSink::eventRow(const char*, const std::vector<double>& row) {
-  if (!row.empty()) window_.platformMode(static_cast<int>(row.back()));
+  if (row.size() > 2) window_.platformMode(static_cast<int>(row.back()), row[1] / opt_.x_unit);
 }
 
 void FileSink::trajectoryRow(const std::vector<double>& row) {
-  if (!row.empty()) window_.platformMode(static_cast<int>(row.back()));
+  if (row.size() > 2) window_.platformMode(static_cast<int>(row.back()), row[1] / opt_.x_unit);
   if (!trajectory_) return;
   const size_t want = 2 * static_cast<size_t>(opt_.n_metronomes) + 4;
   if (row.size() != want)
@@ -216,6 +216,8 @@ nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict)
     j["regime_window"]["platform_slipped"] = verdict.platform_slipped == 1;
   else
     j["regime_window"]["platform_slipped"] = nullptr;
+  if (verdict.platform_slip_rows >= 0)  // the full model's own slips (docs/regimes.md)
+    j["regime_window"]["platform_slip_rows"] = verdict.platform_slip_rows;
   if (!verdict.reason.empty()) j["regime_reason"] = verdict.reason;
   j["final"] = {
       {"tau", report.final_row.tau}, {"A", report.final_row.A}, {"psi", report.final_row.psi}};

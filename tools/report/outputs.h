@@ -74,6 +74,7 @@ struct RunFilesOptions {
   // the platform for the `uncoupled` rule when no trajectory row comes (the slow flow):
   // RegimeWindow::setEnvelopePlatform; unset: only the full model's rows tell
   bool envelope_platform = false;
+  double x_unit = 1.0;  // trajectory x per unit of scaled x (physical rigs: x_scale_m)
   FrictionLaw law = FrictionLaw::Coulomb;
   double mu = 0.0;
 };
