@@ -59,22 +59,31 @@ std::string pairRig(const std::string& dir) {
 const std::string kGrid =
     " --vary metronomes.0.start.phi=0,1.5,3 --vary platform.friction.mu=0.1,0.3 --model slow";
 
-// point -> its lines of the store, decompressed by gzip(1) (not by the reader under test)
-std::map<long, std::vector<std::string>> storeByGzip(const std::string& dir) {
-  const std::string text = [&] {
-    const std::string out = dir + "/store.txt";
-    const std::string cmd = "gzip -dc " + shellQuote(dir + "/envelopes.csv.gz") + " > " + out;
-    EXPECT_EQ(std::system(cmd.c_str()), 0);
-    return slurp(out);
-  }();
-  std::map<long, std::vector<std::string>> points;
-  const std::vector<std::string> lines = splitLines(text);
+// point -> its lines of the store, decompressed by gzip(1) (not by the reader under test); a
+// point counts with its #end line only. damaged: gzip may report the cut-off tail.
+std::map<long, std::vector<std::string>> storeByGzip(const std::string& dir, bool damaged = false) {
+  const std::string out = dir + "/store.txt";
+  const std::string cmd = "gzip -dc " + shellQuote(dir + "/envelopes.csv.gz") + " > " + out +
+                          (damaged ? " 2>/dev/null" : "");
+  const int status = std::system(cmd.c_str());
+  if (!damaged) EXPECT_EQ(status, 0);
+  std::map<long, std::vector<std::string>> points, open;
+  const std::vector<std::string> lines = splitLines(slurp(out));
   EXPECT_FALSE(lines.empty());
+  if (lines.empty()) return points;
   EXPECT_EQ(lines.front(), "point,tau,A_1,A_2,psi_2,r");
   for (size_t k = 1; k < lines.size(); ++k) {
-    if (lines[k].rfind("#end,", 0) == 0) continue;
-    const size_t comma = lines[k].find(',');
-    points[std::stol(lines[k].substr(0, comma))].push_back(lines[k].substr(comma + 1));
+    const std::string& l = lines[k];
+    if (l.rfind("#end,", 0) == 0) {
+      const long g = std::stol(l.substr(5));
+      if (static_cast<long>(open[g].size()) == std::stol(l.substr(l.find(',', 5) + 1)))
+        points[g] = open[g];
+      open.erase(g);
+      continue;
+    }
+    const size_t comma = l.find(',');
+    if (comma == std::string::npos || l.find_first_not_of("0123456789") != comma) continue;
+    open[std::stol(l.substr(0, comma))].push_back(l.substr(comma + 1));
   }
   return points;
 }
@@ -173,7 +182,8 @@ TEST(SweepKeepEnvelope, AnInterruptedSweepResumedStoresEveryPointOnce) {
     std::ofstream(d + "/cut/envelopes.csv.gz", std::ios::app | std::ios::binary)
         << member.substr(0, member.size() / 2);
   }
-  EXPECT_EQ(storeByGzip(d + "/cut").size(), 2u);
+  // the two points written, and whatever the damaged half member decodes to
+  EXPECT_GE(storeByGzip(d + "/cut", true).size(), 2u);
   const Result resumed = metrosync(cmd + d + "/cut --resume");
   ASSERT_EQ(resumed.code, 0) << resumed.err;
   const auto whole = storeByGzip(d + "/whole"), cut = storeByGzip(d + "/cut");

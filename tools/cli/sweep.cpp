@@ -16,6 +16,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -574,7 +575,11 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
   run.jobs = std::max(1, run.jobs);
   Progress progress(!opt.quiet && ::isatty(2), plan.mine, static_cast<long>(run.points.size()));
   std::optional<EnvelopeStore> store;  // --keep envelope
-  if (opt.keep == "envelope") store.emplace(dir.file(kEnvelopeStoreName), plan.n, !resuming);
+  if (opt.keep == "envelope") {
+    std::set<long> done;  // resumed points keep their rows; the others run again
+    for (const auto& [g, line] : table.lines) done.insert(g);
+    store.emplace(dir.file(kEnvelopeStoreName), plan.n, !resuming, done);
+  }
   const long stop_after = stopAfterHook();
   runSweepPoints(
       plan.grid.size(), [&](long g) { return plan.shard.contains(g) && !table.lines.count(g); },

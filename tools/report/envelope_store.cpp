@@ -54,7 +54,7 @@ std::map<long, std::vector<std::string>> readEnvelopeStore(const std::string& pa
     if (at == std::string::npos) break;  // a line without its newline: cut short
     const std::string line = text.substr(start, at - start);
     const size_t comma = line.find(',');
-    if (comma == std::string::npos) continue;
+    if (comma == std::string::npos || line.compare(0, 6, "point,") == 0) continue;  // headers
     if (line.compare(0, 5, "#end,") == 0) {
       const long g = std::stol(line.substr(5));
       const long rows = std::stol(line.substr(line.find(',', 5) + 1));
@@ -67,12 +67,14 @@ std::map<long, std::vector<std::string>> readEnvelopeStore(const std::string& pa
   return points;
 }
 
-EnvelopeStore::EnvelopeStore(const std::string& path, int n, bool fresh) : path_(path) {
+EnvelopeStore::EnvelopeStore(const std::string& path, int n, bool fresh, const std::set<long>& keep)
+    : path_(path) {
   std::map<long, std::vector<std::string>> kept;
   if (!fresh) kept = readEnvelopeStore(path);
   // a new file (or the old one without its damaged tail), written whole, then appended to
   std::string text = envelopeStoreHeader(n) + "\n";
   for (const auto& [g, rows] : kept) {
+    if (!keep.count(g)) continue;
     for (const auto& row : rows) text += std::to_string(g) + "," + row + "\n";
     text += "#end," + std::to_string(g) + "," + std::to_string(rows.size()) + "\n";
   }

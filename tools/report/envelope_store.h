@@ -10,6 +10,7 @@
 
 #include <map>
 #include <mutex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -26,10 +27,11 @@ std::string envelopeStoreHeader(int n);
 std::map<long, std::vector<std::string>> readEnvelopeStore(const std::string& path);
 
 // Appends points to DIR/envelopes.csv.gz. fresh: a new file with the header; otherwise the
-// complete points already there are kept (the file is rewritten without a damaged tail first).
+// complete points already there that are in `keep` (the points regimes.csv has; the others run
+// again) are kept: the file is rewritten without them and without a damaged tail first.
 class EnvelopeStore {
  public:
-  EnvelopeStore(const std::string& path, int n, bool fresh);
+  EnvelopeStore(const std::string& path, int n, bool fresh, const std::set<long>& keep = {});
   // rows: envelope.csv lines (formatEnvelopeRow) of point g; thread-safe
   void append(long g, const std::vector<std::string>& rows);
 

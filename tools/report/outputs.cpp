@@ -218,6 +218,7 @@ nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict)
     j["regime_window"]["platform_slipped"] = nullptr;
   if (verdict.platform_slip_rows >= 0)  // the full model's own slips (docs/regimes.md)
     j["regime_window"]["platform_slip_rows"] = verdict.platform_slip_rows;
+  if (verdict.platform_travel >= 0) j["regime_window"]["platform_travel"] = verdict.platform_travel;
   if (!verdict.reason.empty()) j["regime_reason"] = verdict.reason;
   j["final"] = {
       {"tau", report.final_row.tau}, {"A", report.final_row.A}, {"psi", report.final_row.psi}};
