@@ -1,11 +1,13 @@
-// Regime classification (SPEC section 4), judged on the envelope rows of the last 10% of the run
-// (in tau) but never fewer than 5 fast periods: the window is
+// Regime classification (SPEC section 4 and issue 15; docs/regimes.md), judged on the envelope
+// rows of the last 10% of the run (in tau) but never fewer than 5 fast periods: the window is
 //   tau >= max(0, min(0.9 tau_end, tau_end - 5 * 2 pi epsilon)),
 // and a run shorter than 5 fast periods (tau_end < 5 * 2 pi epsilon) is `unsettled`, with the
-// reason in RegimeVerdict::reason. Metronome 1 is the reference. A metronome is dead when its final
-// A_i < theta_c,i. Rules, in order:
+// reason in RegimeVerdict::reason. Metronome 1 is the reference. A metronome is dead when A_i
+// stays below theta_c,i throughout the window (its largest A_i there is < theta_c,i). The platform
+// is judged as RegimeWindow::platformMode / setEnvelopePlatform say. Rules, in order:
 //   death         every metronome dead
 //   suppression   at least one dead and at least one alive
+//   uncoupled     all alive, the platform never slips in the window
 //   drift         all alive and some psi_j moves by more than pi over the window
 //   in-phase      all alive, every psi_j varies by < 0.1 rad and ends within 0.2 rad of 0 mod 2 pi
 //   antiphase     as in-phase, but every psi_j ends within 0.5 rad of pi (mod 2 pi)
@@ -28,15 +30,18 @@
 // over the window and ends within 0.2 rad of 0 (mod 2 pi): the in-phase rule, pair by pair;
 // clusters are the connected groups (single linkage). With d dead and a alive metronomes:
 //   death                     every metronome dead
-//   in-phase                  one cluster of all alive
-//   clusters:S1+S2+...        several clusters, at least one of two or more (sizes descending,
-//                             single metronomes counted as 1: clusters:3+1+1; three or more of
-//                             one size as SIZExCOUNT: clusters:2+1x14)
-//   phase-locked              no two in one cluster, every pair's difference varies by < 0.1 rad
-//   drift                     no two in one cluster, some pair's difference moves by more than pi
+//   uncoupled                 the platform never slips in the window
+//   in-phase                  one cluster of all alive, every pair within 0.2 rad
+//   clusters:S1+S2+...        several clusters, at least one of two or more, every pair settled
+//                             (sizes descending, single metronomes counted as 1: clusters:3+1+1;
+//                             three or more of one size as SIZExCOUNT: clusters:2+1x14)
+//   splay                     no two in one cluster, every pair settled, the phases evenly spread
+//                             (every gap within min(splay_rad, 0.25 * 2 pi / a) of 2 pi / a)
+//   phase-locked              no two in one cluster, every pair settled, not evenly spread
+//   drift                     not all settled, some pair's difference moves by more than pi
 //   unsettled                 none of these
 // and with d > 0 dead among them, `suppressed:d` alone (one alive) or before the name of the alive
-// ones: suppressed:2;in-phase, suppressed:1;clusters:2+2. For N <= 2 the name is the enum's.
+// ones: suppressed:2;in-phase, suppressed:1;uncoupled. For N <= 2 the name is the enum's.
 #pragma once
 
 #include <cmath>
