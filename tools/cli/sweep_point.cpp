@@ -52,12 +52,11 @@ int sweepPointCommand(const SweepPointOptions& opt) {
   if (ec) throw UsageError("--out " + run.out + ": " + ec.message());
   run.rig_path = run.out + "/sweep-rig.yaml";
   writeFileAtomically(run.rig_path, m.rig_text);
-  if (!opt.quiet)
-    std::cout << "grid point " << opt.index << " of " << opt.dir << ": " << [&] {
-      std::string s;
-      for (const auto& o : m.grid.overrides(opt.index)) s += (s.empty() ? "" : ", ") + o;
-      return s;
-    }() << "\n";
+  if (!opt.quiet) {
+    std::string values;
+    for (const auto& o : m.grid.overrides(opt.index)) values += (values.empty() ? "" : ", ") + o;
+    std::cout << "grid point " << opt.index << " of " << opt.dir << ": " << values << "\n";
+  }
   return runCommand(run);
 }
 
