@@ -10,6 +10,7 @@
 #include "tools/cli/fit.h"
 #include "tools/cli/mpi_forward.h"
 #include "tools/cli/sweep.h"
+#include "tools/cli/sweep_point.h"
 #include "tools/cli/validate.h"
 
 int main(int argc, char** argv) {
@@ -24,9 +25,10 @@ int main(int argc, char** argv) {
   cli::ValidateOptions validate_opt;  // tools/cli/validate.h
   cli::FitOptions fit_opt;            // tools/cli/fit.h
   cli::MeasureOptions measure_opt;
-  cli::FiguresOptions figures_opt;  // tools/cli/figures.h
-  cli::AnimateOptions animate_opt;  // tools/cli/animate.h
-  cli::BasinOptions basin_opt;      // tools/cli/basin.h
+  cli::FiguresOptions figures_opt;   // tools/cli/figures.h
+  cli::AnimateOptions animate_opt;   // tools/cli/animate.h
+  cli::BasinOptions basin_opt;       // tools/cli/basin.h
+  cli::SweepPointOptions point_opt;  // tools/cli/sweep_point.h
   std::vector<cli::Command> commands = cli::addRigCommands(app, opt);
   const cli::SweepCommands sweep = cli::addSweepCommands(app, sweep_opt);
   commands.push_back({sweep.sweep, [&] { return cli::sweepCommand(sweep_opt); }});
@@ -43,5 +45,7 @@ int main(int argc, char** argv) {
       {cli::addAnimateCommand(app, animate_opt), [&] { return cli::animateCommand(animate_opt); }});
   commands.push_back(
       {cli::addBasinCommand(app, basin_opt), [&] { return cli::basinCommand(basin_opt); }});
+  commands.push_back({cli::addSweepPointCommand(app, point_opt),
+                      [&] { return cli::sweepPointCommand(point_opt); }});
   return cli::runCommandLine(app, commands, argc, argv);
 }

@@ -19,7 +19,8 @@ packages=(cmake g++ make libsimbody-dev libeigen3-dev libyaml-cpp-dev nlohmann-j
           pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module, its tests
           jupyter-nbconvert python3-ipykernel python3-matplotlib python3-pandas  # the notebooks
           libcairo2-dev pkg-config ffmpeg  # `metrosync animate`: Cairo draws, ffmpeg encodes
-          libopenmpi-dev openmpi-bin)  # metrosync-mpi: a sweep over MPI ranks (docs/cluster.md)
+          libopenmpi-dev openmpi-bin  # metrosync-mpi: a sweep over MPI ranks (docs/cluster.md)
+          zlib1g-dev)  # sweep --keep envelope: envelopes.csv.gz
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -35,6 +35,8 @@ const char* toString(Regime r) {
       return "phase-locked";
     case Regime::Unsettled:
       return "unsettled";
+    case Regime::Uncoupled:
+      return "uncoupled";
     case Regime::Alive:
       return "alive";
     case Regime::None:
@@ -72,12 +74,60 @@ double pairDifference(const std::vector<double>& psi, size_t i, size_t j) {
 }
 }  // namespace
 
+void RegimeWindow::platformMode(int mode, double x) {
+  if (in_window_) {
+    x_min_ = std::min(x_min_, x);
+    x_max_ = std::max(x_max_, x);
+  }
+  platform_seen_ = true;
+  mode_now_ = mode;
+  pending_slip_ = pending_slip_ || mode != 0;
+}
+
+void RegimeWindow::setEnvelopePlatform(FrictionLaw law, double mu) {
+  envelope_platform_ = true;
+  law_ = law;
+  mu_ = mu;
+}
+
+namespace {
+// the slow flow's platform in one envelope row: slips when s = |Z| / mu > 1 (Coulomb)
+bool envelopeSlips(const EnvelopeRow& row, FrictionLaw law, double mu) {
+  if (law == FrictionLaw::Fixed) return false;
+  if (law != FrictionLaw::Coulomb) return true;
+  double sum = 0.0;
+  for (double a : row.A) sum += a;
+  const double r = std::isnan(row.r) ? orderParameter(row.A, row.psi) : row.r;
+  return r * sum > mu;
+}
+}  // namespace
+
+std::vector<double> RegimeWindow::maxAmplitude() const {
+  return rows_in_window_ == 0 ? last_.A : a_max_;
+}
+
 void RegimeWindow::add(const EnvelopeRow& row) {
   last_ = row;
   have_last_ = true;
+  // the platform: the full model's own stick/slip when it reports it, else the averaged drive
+  bool known = false, slipped = false;
+  if (platform_seen_) {
+    known = true;
+    slipped = pending_slip_;
+    pending_slip_ = mode_now_ != 0;
+  } else if (envelope_platform_) {
+    known = true;
+    slipped = envelopeSlips(row, law_, mu_);
+  }
   if (row.tau < tau_start_) return;
+  in_window_ = true;
+  platform_rows_ += known;
+  slip_rows_ += known && slipped;
   const size_t n = row.psi.size() + 1;
   const bool pairs = n >= 3;
+  if (rows_in_window_ == 0) a_max_ = row.A;
+  for (size_t i = 0; i < row.A.size() && i < a_max_.size(); ++i)
+    a_max_[i] = std::max(a_max_[i], row.A[i]);
   if (rows_in_window_ == 0) {
     psi_min_ = row.psi;
     psi_max_ = row.psi;
@@ -137,12 +187,19 @@ std::string clusterText(const std::vector<int>& sizes) {
 
 namespace {
 
-// Clusters of the alive metronomes (see the header): sizes, largest first. Also says whether
-// every alive pair is settled and whether some pair drifts.
+// Clusters of the alive metronomes (see the header): members (0-based), largest first. Also says
+// whether every alive pair is settled, whether some pair drifts, and whether every pair ends
+// within in_phase_rad (in-phase for all, not by single linkage alone).
 struct ClusterAnalysis {
+  std::vector<std::vector<size_t>> members;
   std::vector<int> sizes;
-  bool all_settled = true, any_drift = false;
+  bool all_settled = true, any_drift = false, all_close = true;
 };
+
+// phase of metronome i relative to metronome 1 in the last row: phi_i - phi_1 = -psi_i
+double relativePhase(const std::vector<double>& psi, size_t i) {
+  return i == 0 ? 0.0 : -psi[i - 1];
+}
 
 ClusterAnalysis findClusters(const RegimeWindow& w, const std::vector<size_t>& alive) {
   ClusterAnalysis c;
@@ -159,22 +216,62 @@ ClusterAnalysis findClusters(const RegimeWindow& w, const std::vector<size_t>& a
       const bool settled = range < r.settled_rad;
       c.all_settled = c.all_settled && settled;
       c.any_drift = c.any_drift || range > r.drift_rad;
-      const double d = pairDifference(psi, alive[a], alive[b]);
-      if (settled && std::fabs(wrapToPi(d)) <= r.in_phase_rad) parent[root(a)] = root(b);
+      const bool close =
+          std::fabs(wrapToPi(pairDifference(psi, alive[a], alive[b]))) <= r.in_phase_rad;
+      c.all_close = c.all_close && close;
+      if (settled && close) parent[root(a)] = root(b);
     }
-  std::vector<int> count(alive.size(), 0);
-  for (size_t a = 0; a < alive.size(); ++a) ++count[root(a)];
-  for (int k : count)
-    if (k > 0) c.sizes.push_back(k);
-  std::sort(c.sizes.rbegin(), c.sizes.rend());
+  std::vector<std::vector<size_t>> groups(alive.size());
+  for (size_t a = 0; a < alive.size(); ++a) groups[root(a)].push_back(alive[a]);
+  for (auto& g : groups)
+    if (!g.empty()) c.members.push_back(g);
+  std::stable_sort(c.members.begin(), c.members.end(),
+                   [](const auto& x, const auto& y) { return x.size() > y.size(); });
+  for (const auto& g : c.members) c.sizes.push_back(static_cast<int>(g.size()));
   return c;
 }
 
+// Each cluster's mean phase (unit complex numbers averaged) minus the first cluster's.
+std::vector<double> clusterPhases(const ClusterAnalysis& c, const std::vector<double>& psi) {
+  std::vector<double> mean;
+  for (const auto& g : c.members) {
+    double re = 0.0, im = 0.0;
+    for (size_t i : g) {
+      re += std::cos(relativePhase(psi, i));
+      im += std::sin(relativePhase(psi, i));
+    }
+    mean.push_back(std::atan2(im, re));
+  }
+  std::vector<double> d;
+  for (double m : mean) d.push_back(wrapToPi(m - mean.front()));
+  return d;
+}
+
+// a >= 3 alive metronomes, no two in one cluster: every gap between neighbouring phases within
+// the splay tolerance of 2 pi / a
+bool isSplay(const RegimeRules& r, const std::vector<size_t>& alive,
+             const std::vector<double>& psi) {
+  const size_t a = alive.size();
+  if (a < 3) return false;
+  std::vector<double> phase;
+  for (size_t i : alive) phase.push_back(wrapToPi(relativePhase(psi, i)) + kPi);  // [0, 2 pi)
+  std::sort(phase.begin(), phase.end());
+  const double even = kTwoPi / static_cast<double>(a);
+  const double tol = std::min(r.splay_rad, 0.25 * even);
+  for (size_t k = 0; k < a; ++k) {
+    const double gap = k + 1 < a ? phase[k + 1] - phase[k] : phase[0] + kTwoPi - phase[k];
+    if (std::fabs(gap - even) > tol) return false;
+  }
+  return true;
+}
+
 // The N >= 3 name of the alive metronomes' state (at least two alive).
-std::string aliveName(const ClusterAnalysis& c) {
-  if (c.sizes.size() == 1) return "in-phase";
-  if (c.sizes.front() >= 2) return "clusters:" + clusterText(c.sizes);
-  if (c.all_settled) return "phase-locked";
+std::string aliveName(const ClusterAnalysis& c, bool splay) {
+  if (c.sizes.size() == 1 && c.all_close) return "in-phase";
+  // clusters locked to each other (groups that slide past each other are drift or unsettled)
+  if (c.all_settled && c.sizes.size() > 1 && c.sizes.front() >= 2)
+    return "clusters:" + clusterText(c.sizes);
+  if (c.all_settled) return splay ? "splay" : "phase-locked";
   return c.any_drift ? "drift" : "unsettled";
 }
 
@@ -242,14 +339,23 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
   for (double p : last.psi)
     if (!std::isfinite(p)) return v;
 
-  // death and suppression: final amplitude against the escapement's critical angle
+  // death and suppression: below the escapement's critical angle throughout the window
+  const std::vector<double> a_max = window.maxAmplitude();
   int swinging = 0, dead = 0;
   v.alive.assign(n, -1);
   for (size_t i = 0; i < n; ++i) {
     if (isLocked(i)) continue;
     ++swinging;
-    v.alive[i] = last.A[i] >= theta_c[i] ? 1 : 0;
+    v.alive[i] = a_max[i] >= theta_c[i] ? 1 : 0;
     dead += v.alive[i] == 0;
+  }
+  if (window.platformRows() > 0 && window.platformRows() == window.rowsInWindow()) {
+    // full model: slips that leave the platform where it was (micro-slips) do not count
+    const bool moved =
+        window.platformTravel() < 0 || window.platformTravel() > window.rules().still_platform;
+    v.platform_slipped = window.slipRows() > 0 && moved ? 1 : 0;
+    v.platform_slip_rows = window.platformTravel() < 0 ? -1 : window.slipRows();
+    v.platform_travel = window.platformTravel();
   }
   const RegimeRules& r = window.rules();
   v.dead = dead;
@@ -258,6 +364,12 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
     if (v.alive[i] == 1) alive_idx.push_back(i);
   const ClusterAnalysis clusters = findClusters(window, alive_idx);
   v.cluster_sizes = clusters.sizes;
+  for (const auto& g : clusters.members) {
+    v.cluster_members.emplace_back();
+    for (size_t i : g) v.cluster_members.back().push_back(static_cast<int>(i) + 1);
+  }
+  if (!clusters.members.empty()) v.cluster_phase = clusterPhases(clusters, last.psi);
+  const bool uncoupled = v.platform_slipped == 0;
   // the name: the enum's, or for three or more swinging metronomes the clusters'
   auto named = [&](Regime regime) {
     v.regime = regime;
@@ -267,7 +379,9 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
     if (alive_idx.size() < 2)
       v.name = suppressed;
     else
-      v.name = suppressed + (suppressed.empty() ? "" : ";") + aliveName(clusters);
+      v.name = suppressed + (suppressed.empty() ? "" : ";") +
+               (uncoupled ? std::string(toString(Regime::Uncoupled))
+                          : aliveName(clusters, isSplay(r, alive_idx, last.psi)));
     return v;
   };
   if (swinging == 0) return named(Regime::None);
@@ -286,6 +400,7 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
     for (size_t j = 1; j < n; ++j)
       if (!isLocked(j) && j - 1 < last.psi.size()) judged.push_back(j - 1);
   if (judged.empty()) return named(Regime::Alive);
+  if (uncoupled) return named(Regime::Uncoupled);
   const Regime phase = phaseRegime(r, last, v.psi_range, judged, v.reason);
   return named(phase);
 }

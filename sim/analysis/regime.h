@@ -1,11 +1,13 @@
-// Regime classification (SPEC section 4), judged on the envelope rows of the last 10% of the run
-// (in tau) but never fewer than 5 fast periods: the window is
+// Regime classification (SPEC section 4 and issue 15; docs/regimes.md), judged on the envelope
+// rows of the last 10% of the run (in tau) but never fewer than 5 fast periods: the window is
 //   tau >= max(0, min(0.9 tau_end, tau_end - 5 * 2 pi epsilon)),
 // and a run shorter than 5 fast periods (tau_end < 5 * 2 pi epsilon) is `unsettled`, with the
-// reason in RegimeVerdict::reason. Metronome 1 is the reference. A metronome is dead when its final
-// A_i < theta_c,i. Rules, in order:
+// reason in RegimeVerdict::reason. Metronome 1 is the reference. A metronome is dead when A_i
+// stays below theta_c,i throughout the window (its largest A_i there is < theta_c,i). The platform
+// is judged as RegimeWindow::platformMode / setEnvelopePlatform say. Rules, in order:
 //   death         every metronome dead
 //   suppression   at least one dead and at least one alive
+//   uncoupled     all alive, the platform never slips in the window
 //   drift         all alive and some psi_j moves by more than pi over the window
 //   in-phase      all alive, every psi_j varies by < 0.1 rad and ends within 0.2 rad of 0 mod 2 pi
 //   antiphase     as in-phase, but every psi_j ends within 0.5 rad of pi (mod 2 pi)
@@ -28,21 +30,25 @@
 // over the window and ends within 0.2 rad of 0 (mod 2 pi): the in-phase rule, pair by pair;
 // clusters are the connected groups (single linkage). With d dead and a alive metronomes:
 //   death                     every metronome dead
-//   in-phase                  one cluster of all alive
-//   clusters:S1+S2+...        several clusters, at least one of two or more (sizes descending,
-//                             single metronomes counted as 1: clusters:3+1+1; three or more of
-//                             one size as SIZExCOUNT: clusters:2+1x14)
-//   phase-locked              no two in one cluster, every pair's difference varies by < 0.1 rad
-//   drift                     no two in one cluster, some pair's difference moves by more than pi
+//   uncoupled                 the platform never slips in the window
+//   in-phase                  one cluster of all alive, every pair within 0.2 rad
+//   clusters:S1+S2+...        several clusters, at least one of two or more, every pair settled
+//                             (sizes descending, single metronomes counted as 1: clusters:3+1+1;
+//                             three or more of one size as SIZExCOUNT: clusters:2+1x14)
+//   splay                     no two in one cluster, every pair settled, the phases evenly spread
+//                             (every gap within min(splay_rad, 0.25 * 2 pi / a) of 2 pi / a)
+//   phase-locked              no two in one cluster, every pair settled, not evenly spread
+//   drift                     not all settled, some pair's difference moves by more than pi
 //   unsettled                 none of these
 // and with d > 0 dead among them, `suppressed:d` alone (one alive) or before the name of the alive
-// ones: suppressed:2;in-phase, suppressed:1;clusters:2+2. For N <= 2 the name is the enum's.
+// ones: suppressed:2;in-phase, suppressed:1;uncoupled. For N <= 2 the name is the enum's.
 #pragma once
 
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "contact/friction_law.h"
 #include "sim/record/envelope.h"
 
 namespace metrosync {
@@ -55,9 +61,10 @@ enum class Regime {
   Antiphase,
   PhaseLocked,
   Unsettled,
-  Alive,    // N = 1 (or one swinging metronome), alive
-  None,     // no swinging metronome at all
-  Unknown,  // not judged (the run stopped early)
+  Uncoupled,  // every swinging metronome alive and the platform never slips in the window
+  Alive,      // N = 1 (or one swinging metronome), alive
+  None,       // no swinging metronome at all
+  Unknown,    // not judged (the run stopped early)
 };
 
 // The name written to summary.json and regimes.csv: "death", "in-phase", "phase-locked", ...
@@ -74,6 +81,14 @@ struct RegimeRules {
   double settled_rad = 0.1;              // settled: range of every psi_j < this
   double in_phase_rad = 0.2;             // |final psi_j - 0| (mod 2 pi) <= this
   double antiphase_rad = 0.5;            // |final psi_j - pi| (mod 2 pi) <= this
+  // splay (N >= 3): every gap between neighbouring phases within this of 2 pi / a (a alive), but
+  // never more than a quarter of 2 pi / a
+  double splay_rad = 0.2;
+  // full model: slips in the window that move the platform by at most this (scaled x, range over
+  // the window) do not count for `uncoupled`. Near-simultaneous ticks in antiphase give
+  // micro-slips of 3e-9 (experiment-high-friction-antiphase, which die out over hundreds of
+  // periods); a coupled antiphase platform travels 0.02 (paper/f4.2); docs/regimes.md.
+  double still_platform = 1e-6;
 };
 
 // An angle moved by a multiple of 2 pi into (-pi, pi].
@@ -88,6 +103,23 @@ class RegimeWindow {
   RegimeWindow(double tau_end, double epsilon, RegimeRules rules = {});
 
   void add(const EnvelopeRow& row);
+
+  // The platform (the `uncoupled` rule). Full model: platformMode() takes the platform column
+  // (0 stuck, +-1 sliding) and the position x in scaled units of every trajectory row and every
+  // event; a row counts as slipping when the platform slid at any such call since the previous
+  // row (or was sliding at it). Slow flow (no trajectory rows): with the rig's friction law set
+  // by setEnvelopePlatform, a row slips when the averaged drive s = |sum_j A_j e^{i phi_j}| / mu
+  // > 1 (Coulomb), always (viscous, none), never (fixed). Without either: never `uncoupled`.
+  void platformMode(int mode, double x_scaled);
+  void setEnvelopePlatform(FrictionLaw law, double mu);
+  long platformRows() const { return platform_rows_; }  // window rows with the platform known
+  long slipRows() const { return slip_rows_; }          // ... and the platform slipping
+  // full model: max - min of the platform's scaled x over the window (-1: no trajectory row)
+  double platformTravel() const {
+    return platform_seen_ && x_max_ >= x_min_ ? x_max_ - x_min_ : -1.0;
+  }
+  // (N x 1) the largest A_i over the window (the last row's when the window has no row)
+  std::vector<double> maxAmplitude() const;
 
   double tauStart() const { return tau_start_; }
   double tauEnd() const { return tau_end_; }
@@ -113,6 +145,16 @@ class RegimeWindow {
   std::vector<double> psi_min_, psi_max_;  // (N-1 x 1) over the window
   // (N (N-1)/2 x 1) phi_i - phi_j = psi_j - psi_i (psi_1 = 0), pairs i < j in row order; N >= 3
   std::vector<double> pair_min_, pair_max_;
+  std::vector<double> a_max_;  // (N x 1) over the window
+  // platform: seen in trajectory rows/events; slid since the last envelope row; sliding now
+  bool platform_seen_ = false, pending_slip_ = false;
+  int mode_now_ = 0;
+  bool envelope_platform_ = false;
+  FrictionLaw law_ = FrictionLaw::Coulomb;
+  double mu_ = 0.0;
+  long platform_rows_ = 0, slip_rows_ = 0;
+  bool in_window_ = false;  // a row of the window has come
+  double x_min_ = HUGE_VAL, x_max_ = -HUGE_VAL;
 };
 
 struct RegimeVerdict {
@@ -127,6 +169,14 @@ struct RegimeVerdict {
   std::string name;
   std::vector<int> cluster_sizes;  // clusters of the alive metronomes, largest first
   int dead = 0;                    // swinging metronomes that are dead
+  // the alive metronomes' clusters (1-based numbers), the largest first, and each cluster's mean
+  // phase minus the first cluster's, wrapped to (-pi, pi] (summary.json: regime_window.clusters)
+  std::vector<std::vector<int>> cluster_members;
+  std::vector<double> cluster_phase;
+  // the platform over the window: -1 unknown, 0 never slipped (uncoupled), 1 slipped
+  int platform_slipped = -1;
+  long platform_slip_rows = -1;   // full model: window rows in which the platform slid
+  double platform_travel = -1.0;  // full model: range of the platform's scaled x over the window
   // why the verdict is `unsettled` or `unknown` (empty otherwise), in words for summary.json
   std::string reason;
 };

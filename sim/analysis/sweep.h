@@ -157,8 +157,10 @@ struct SweepPoint {
   double tau = std::numeric_limits<double>::quiet_NaN();  // tau of the final row
   // --basin-samples: the fraction of the point's random starts that end in-phase
   double in_phase_fraction = std::numeric_limits<double>::quiet_NaN();
-  bool complete = true;       // false: the run failed (regime "failed")
-  std::string message;        // why it failed
+  bool complete = true;  // false: the run failed (regime "failed")
+  std::string message;   // why it failed
+  // sweep --keep envelope: the point's envelope rows (formatEnvelopeRow), for the envelope store
+  std::vector<std::string> kept_rows;
   double wall_seconds = 0.0;  // not in regimes.csv (it changes from run to run): timings.csv
 };
 

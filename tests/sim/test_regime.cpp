@@ -67,9 +67,29 @@ TEST(Regime, DeathWhenEveryMetronomeEndsBelowItsThreshold) {
   // amplitudes decaying from 1.9 to 0.5, each below its own theta_c at the end
   auto rows = envelope(
       2, [](int, double t) { return 1.9 - 1.4 * t / kTauEnd; }, [](int, double) { return 0.0; });
-  EXPECT_EQ(classifyRegime(rows, kTauEnd, kEps, {0.9, 0.6}).regime, Regime::Death);
+  // (A = 0.64 at the window's start tau = 90: a threshold of 0.65 is above it throughout)
+  EXPECT_EQ(classifyRegime(rows, kTauEnd, kEps, {0.9, 0.65}).regime, Regime::Death);
   // the same run with a lower threshold for metronome 2: it is alive, 1 is dead
   EXPECT_EQ(classifyRegime(rows, kTauEnd, kEps, {0.9, 0.4}).regime, Regime::Suppression);
+}
+
+TEST(Regime, DeadMeansBelowThetaCThroughoutTheWindowNotAtTheEndAlone) {
+  // metronome 2 decays linearly from 1.9 at the window's start (tau = 90) to 0.5 at the end: it
+  // ends below theta_c = 0.9 but was above it for most of the window, so it is not dead (the old
+  // rule, final amplitude alone, called it dead); with A_2 below 0.9 from tau = 90 on it is dead
+  auto judge = [](double from) {
+    auto rows = envelope(
+        2,
+        [=](int i, double t) {
+          return i == 0 ? 1.9 : (t < kWindow ? from : from - (from - 0.5) * (t - kWindow) / 10);
+        },
+        [](int, double) { return 0.0; });
+    return classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9});
+  };
+  EXPECT_EQ(judge(1.9).regime, Regime::InPhase);
+  EXPECT_EQ(judge(1.9).alive, (std::vector<int>{1, 1}));
+  EXPECT_EQ(judge(0.89).regime, Regime::Suppression);
+  EXPECT_EQ(judge(0.89).alive, (std::vector<int>{1, 0}));
 }
 
 TEST(Regime, DeadMeansStrictlyBelowThetaC) {
@@ -163,6 +183,130 @@ TEST(Regime, EveryPhaseDifferenceMustAgreeWithThreeMetronomes) {
   ASSERT_EQ(v.psi_range.size(), 2u);
   EXPECT_NEAR(v.psi_range[0], 0.0, 1e-12);
   EXPECT_GT(v.psi_range[1], kPi);
+}
+
+// Rows with the platform's mode given as a full model gives it (trajectory rows before each
+// envelope row): stuck throughout, or sliding in the periods where slip(tau) is true.
+RegimeVerdict withPlatform(std::vector<EnvelopeRow> rows, std::function<bool(double)> slip,
+                           std::vector<double> theta_c = {0.9, 0.9}) {
+  RegimeWindow w(kTauEnd, kEps);
+  double x = 0.0;
+  for (const auto& r : rows) {
+    // a slip and a stick within the period move the platform by 0.1 (scaled)
+    if (slip(r.tau)) {
+      w.platformMode(1, x);
+      x += 0.1;
+    }
+    w.platformMode(0, x);
+    w.add(r);
+  }
+  return classifyRegime(w, theta_c);
+}
+
+TEST(Regime, UncoupledWhenThePlatformNeverSlipsInTheWindow) {
+  auto rows = envelope(
+      2, [](int, double) { return 1.9; }, [](int, double) { return kPi; });
+  // stuck in the window (it slid before): uncoupled, though psi sits at pi
+  const RegimeVerdict stuck = withPlatform(rows, [](double t) { return t < kWindow - 1; });
+  EXPECT_EQ(stuck.regime, Regime::Uncoupled);
+  EXPECT_EQ(regimeName(stuck), "uncoupled");
+  EXPECT_EQ(stuck.platform_slipped, 0);
+  // one slip in the last period of the window: coupled, antiphase
+  const RegimeVerdict slips = withPlatform(rows, [](double t) { return t > kTauEnd - 0.5; });
+  EXPECT_EQ(slips.regime, Regime::Antiphase);
+  EXPECT_EQ(slips.platform_slipped, 1);
+  // slips in every period that leave the platform where it was (micro-slips at ticks): still
+  // uncoupled; the same slips moving it by 2e-6 over the window: antiphase
+  auto microSlips = [&](double step) {
+    RegimeWindow w(kTauEnd, kEps);
+    double x = 0.0;
+    for (const auto& r : rows) {
+      w.platformMode(1, x);
+      x += r.tau >= kWindow ? step : 0.0;
+      w.platformMode(0, x);
+      w.add(r);
+    }
+    return classifyRegime(w, {0.9, 0.9});
+  };
+  EXPECT_EQ(microSlips(0.0).regime, Regime::Uncoupled);
+  EXPECT_GT(microSlips(0.0).platform_slip_rows, 10);
+  const long window_rows = microSlips(0.0).window_rows;
+  EXPECT_EQ(microSlips(2e-6 / (window_rows - 1)).regime, Regime::Antiphase);
+  EXPECT_EQ(microSlips(0.5e-6 / (window_rows - 1)).regime, Regime::Uncoupled);
+  // no platform information at all (validation, old callers): the phase rules as before
+  EXPECT_EQ(classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9}).platform_slipped, -1);
+  // death and suppression win over uncoupled (amplitude rules first)
+  EXPECT_EQ(withPlatform(rows, [](double) { return false; }, {2.0, 2.0}).regime, Regime::Death);
+  EXPECT_EQ(withPlatform(rows, [](double) { return false; }, {0.9, 2.0}).regime,
+            Regime::Suppression);
+  // N = 3 with one dead: the dead count, then uncoupled
+  auto rows3 = envelope(
+      3, [](int i, double) { return i == 2 ? 0.1 : 1.9; }, [](int, double) { return 1.0; });
+  EXPECT_EQ(regimeName(withPlatform(rows3, [](double) { return false; }, {0.9, 0.9, 0.9})),
+            "suppressed:1;uncoupled");
+}
+
+TEST(Regime, TheSlowFlowsPlatformSlipsWhenTheDriveExceedsMu) {
+  // two metronomes at A = 1.9 in antiphase drive nothing (|Z| = 0), in phase |Z| = 3.8
+  auto judge = [](double psi, double mu, FrictionLaw law) {
+    auto rows = envelope(
+        2, [](int, double) { return 1.9; }, [=](int, double) { return psi; });
+    RegimeWindow w(kTauEnd, kEps);
+    w.setEnvelopePlatform(law, mu);
+    for (const auto& r : rows) w.add(r);
+    return classifyRegime(w, {0.9, 0.9}).regime;
+  };
+  EXPECT_EQ(judge(0.0, 3.7, FrictionLaw::Coulomb), Regime::InPhase);    // s = 3.8 / 3.7 > 1
+  EXPECT_EQ(judge(0.0, 3.9, FrictionLaw::Coulomb), Regime::Uncoupled);  // s < 1
+  EXPECT_EQ(judge(kPi, 0.1, FrictionLaw::Coulomb), Regime::Uncoupled);  // |Z| = 0
+  EXPECT_EQ(judge(kPi, 0.0, FrictionLaw::Viscous), Regime::Antiphase);  // always moves
+  EXPECT_EQ(judge(0.0, 0.0, FrictionLaw::Fixed), Regime::Uncoupled);    // never moves
+}
+
+// N = 3..8 metronomes at A = 1.5 with constant phases phi_i (relative to phi_1 = phases[0])
+RegimeVerdict fixedPhases(const std::vector<double>& phases) {
+  auto rows = envelope(
+      static_cast<int>(phases.size()), [](int, double) { return 1.5; },
+      [&](int j, double) { return phases[0] - phases[j + 1]; });
+  return classifyRegime(rows, kTauEnd, kEps, std::vector<double>(phases.size(), 0.9));
+}
+
+TEST(Regime, SplayWhenThePhasesAreEvenlySpread) {
+  EXPECT_EQ(regimeName(fixedPhases({0.0, 2 * kPi / 3, 4 * kPi / 3})), "splay");
+  EXPECT_EQ(regimeName(fixedPhases({0.0, 2 * kPi / 3 + 0.15, 4 * kPi / 3})), "splay");
+  EXPECT_EQ(regimeName(fixedPhases({0.0, 2 * kPi / 3 + 0.25, 4 * kPi / 3})), "phase-locked");
+  EXPECT_EQ(regimeName(fixedPhases({0.0, kPi / 2, kPi, 3 * kPi / 2})), "splay");
+  // five evenly but in the order 1 3 5 2 4: still splay (the set of phases counts)
+  std::vector<double> five;
+  for (int k : {0, 2, 4, 1, 3}) five.push_back(2 * kPi * k / 5);
+  EXPECT_EQ(regimeName(fixedPhases(five)), "splay");
+  // two in one cluster: clusters, not splay
+  EXPECT_EQ(regimeName(fixedPhases({0.0, 0.05, kPi})), "clusters:2+1");
+}
+
+TEST(Regime, InPhaseNeedsEveryPairWithinTheBoundNotAChain) {
+  EXPECT_EQ(regimeName(fixedPhases({0.0, 0.15, 0.3})), "phase-locked");  // 1-3 differ by 0.3
+  EXPECT_EQ(regimeName(fixedPhases({0.0, 0.1, 0.2})), "in-phase");
+}
+
+TEST(Regime, ClustersCarryTheirMembersAndPhaseDifferences) {
+  const RegimeVerdict v = fixedPhases({0.0, 2.0, 0.05, 2.1, -0.05});
+  EXPECT_EQ(regimeName(v), "clusters:3+2");
+  ASSERT_EQ(v.cluster_members.size(), 2u);
+  EXPECT_EQ(v.cluster_members[0], (std::vector<int>{1, 3, 5}));
+  EXPECT_EQ(v.cluster_members[1], (std::vector<int>{2, 4}));
+  ASSERT_EQ(v.cluster_phase.size(), 2u);
+  EXPECT_DOUBLE_EQ(v.cluster_phase[0], 0.0);
+  EXPECT_NEAR(v.cluster_phase[1], 2.05, 1e-12);  // circular means 0 and 2.05
+}
+
+TEST(Regime, ClustersThatSlidePastEachOtherAreNotClusters) {
+  // 1 and 2 locked in phase, 3 drifting against both by 0.4 per unit tau: drift, not clusters
+  auto rows = envelope(
+      3, [](int, double) { return 1.5; }, [](int j, double t) { return j == 0 ? 0.0 : 0.4 * t; });
+  const RegimeVerdict v = classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9, 0.9});
+  EXPECT_EQ(regimeName(v), "drift");
+  EXPECT_EQ(v.cluster_sizes, (std::vector<int>{2, 1}));
 }
 
 TEST(Regime, OneMetronomeIsAliveOrDead) {

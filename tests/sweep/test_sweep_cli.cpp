@@ -89,12 +89,14 @@ TEST(SweepCli, SameRegimesCsvForOneAndTwoJobs) {
             "metronomes.0.start.phi,platform.friction.mu,regime,A_1,A_2,psi_2,r,s,clusters,tau,"
             "complete,index,message");
   for (size_t k = 1; k < l.size(); ++k) EXPECT_EQ(cells(l[k])[11], std::to_string(k - 1));
-  // psi0 = 0 on a free platform stays in phase; psi0 = pi at mu = 0.4 stays in antiphase
+  // psi0 = 0 on a free platform stays in phase; psi0 = pi at mu = 0.4 stays in antiphase, where
+  // the drive |Z| = |A_1 - A_2| is below mu: the platform sticks, `uncoupled` (docs/regimes.md)
   EXPECT_EQ(cells(l[1])[2], "in-phase") << l[1];
   const auto anti = cells(l[1 + 3 * 5 + 2]);
   EXPECT_EQ(anti[0], "3.14159265358979");
   EXPECT_EQ(anti[1], "0.4");
-  EXPECT_EQ(anti[2], "antiphase");
+  EXPECT_EQ(anti[2], "uncoupled");
+  EXPECT_LT(std::stod(anti[7]), 1.0);  // s = |Z| / mu
   // the manifest and the maps
   const json m = json::parse(slurp(d + "/j1/sweep.json"));
   EXPECT_TRUE(m["complete"].get<bool>());
@@ -303,9 +305,14 @@ TEST(SweepCli, ThreeMetronomesAreNamedByClustersWithTheirOrderParameter) {
             "metronomes.2.start.phi,regime,A_1,A_2,A_3,psi_2,psi_3,r,s,clusters,tau,complete,"
             "index,message");
   const auto a = cells(l[1]), b = cells(l[2]), c = cells(l[3]);
-  EXPECT_EQ(a[1], "clusters:2+1");             // 1 and 3 together
-  EXPECT_EQ(b[1], "clusters:2+1");             // 2 and 3 together
-  EXPECT_EQ(c[1], "phase-locked");             // a splay state
+  // a platform held still couples nothing: `uncoupled` (docs/regimes.md), the clusters column
+  // still says how the phases sit
+  EXPECT_EQ(a[1], "uncoupled");
+  EXPECT_EQ(b[1], "uncoupled");
+  EXPECT_EQ(c[1], "uncoupled");
+  EXPECT_EQ(a[9], "2+1");  // 1 and 3 together
+  EXPECT_EQ(b[9], "2+1");  // 2 and 3 together
+  EXPECT_EQ(c[9], "1x3");  // a splay state
   EXPECT_NEAR(std::stod(a[7]), 0.5774, 1e-3);  // |2 + e^{i 2 pi/3}| / 3 = 1/sqrt(3)
   EXPECT_NEAR(std::stod(c[7]), 0.0, 1e-6);
   EXPECT_EQ(a[8], "nan");  // s: no Coulomb platform

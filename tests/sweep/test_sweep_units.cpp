@@ -394,12 +394,13 @@ TEST(ClusterNames, GroupsWithinTwoTenthsOfARadianAreClusters) {
   EXPECT_EQ(judge(4, [](int i, double) { return 0.05 * i; }).name, "in-phase");
   // a splay state: no two together, all locked
   const RegimeVerdict splay = judge(5, [](int i, double) { return 2 * kPi * i / 5; });
-  EXPECT_EQ(splay.name, "phase-locked");
+  EXPECT_EQ(splay.name, "splay");
   EXPECT_EQ(clusterText(splay.cluster_sizes), "1x5");
   // three together, the other two drifting away from them and from each other
   const RegimeVerdict d =
       judge(5, [](int i, double t) { return i < 3 ? 0.0 : (i == 3 ? 0.5 : -0.7) * t; });
-  EXPECT_EQ(d.name, "clusters:3+1+1");
+  EXPECT_EQ(d.name, "drift");  // clusters must be locked to each other (docs/regimes.md)
+  EXPECT_EQ(d.cluster_sizes, (std::vector<int>{3, 1, 1}));
   // all drifting apart: drift
   EXPECT_EQ(judge(3, [](int i, double t) { return 0.3 * i * t; }).name, "drift");
   // metronome 2 creeps away from 1 (by 0.3 over the window): no cluster, nothing settled

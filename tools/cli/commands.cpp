@@ -124,6 +124,10 @@ RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::stri
   o.seconds = r.rig.units == Units::Physical;
   o.epsilon = r.scaled.epsilon;
   o.time_unit = r.rig.units == Units::Physical ? r.scaled.time_scale_s : 1.0;
+  o.envelope_platform = !trajectory;  // the slow flow's `uncoupled` rule (sim/analysis/regime.h)
+  o.x_unit = r.rig.units == Units::Physical ? r.scaled.x_scale_m : 1.0;
+  o.law = r.scaled.law;
+  o.mu = r.scaled.mu;
   return o;
 }
 

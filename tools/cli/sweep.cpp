@@ -17,6 +17,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -28,6 +29,7 @@
 #include "tools/cli/continue.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/network_sweep.h"
+#include "tools/report/envelope_store.h"
 #include "tools/report/folder_lock.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
@@ -65,7 +67,8 @@ const char* modelTitle(const std::string& model) {
 
 // The files a sweep writes (besides the maps), for removing stale ones.
 const std::vector<std::string>& sweepFileNames() {
-  static const std::vector<std::string> names = {"regimes.csv", "sweep.json", "timings.csv"};
+  static const std::vector<std::string> names = {"regimes.csv", "sweep.json", "timings.csv",
+                                                 kEnvelopeStoreName};
   return names;
 }
 
@@ -182,9 +185,18 @@ struct PointSink : RunSink {
   PointSink(double tau_end, double epsilon) : window(tau_end, epsilon) {}
   void envelopeRow(const EnvelopeRow& row) override {
     window.add(row);
+    if (keep) kept.push_back(formatEnvelopeRow(row));
     if (FileSink::stopRequested()) throw RunInterrupted(row.tau, "interrupted by a signal");
   }
+  // the platform column (0 stuck): the `uncoupled` rule (full model)
+  void trajectoryRow(const std::vector<double>& row) override {
+    if (row.size() > 2) window.platformMode(static_cast<int>(row.back()), row[1] / x_unit);
+  }
+  void eventRow(const char*, const std::vector<double>& row) override { trajectoryRow(row); }
   RegimeWindow window;
+  double x_unit = 1.0;  // trajectory x per scaled x
+  bool keep = false;    // --keep envelope
+  std::vector<std::string> kept;
 };
 
 // The test hook METROSYNC_SWEEP_FAIL_AT=g1,g2,...: those grid points fail as a simulation
@@ -211,11 +223,15 @@ std::optional<SweepPoint> runNetworkPoint(const PointInput& in, long g) {
   return p;
 }
 
-std::optional<SweepPoint> runPoint(const PointInput& in, long g) {
+std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
   if (in.net) return runNetworkPoint(in, g);
   const Clock::time_point t0 = Clock::now();
   const ScaledParams& sp = in.scaled;
   PointSink sink(sp.tau_end, sp.epsilon);
+  // the `uncoupled` rule: the slow flow's averaged drive, the full model's own stick/slip
+  if (in.engine->model() != "full") sink.window.setEnvelopePlatform(sp.law, sp.mu);
+  sink.x_unit = in.rig.units == Units::Physical ? sp.x_scale_m : 1.0;
+  sink.keep = keep;
   RunReport rep;
   try {
     if (failureInjected(g))
@@ -261,6 +277,7 @@ std::optional<SweepPoint> runPoint(const PointInput& in, long g) {
     p.regime = "failed";
     p.message = rep.failure.empty() ? "the run stopped early" : rep.failure;
   }
+  p.kept_rows = std::move(sink.kept);
   p.wall_seconds = secondsSince(t0);
   return p;
 }
@@ -532,6 +549,8 @@ SweepPlan planSweep(const SweepOptions& opt) {
   const std::optional<Network> net = loadSweepNetwork(plan.text, displayName(opt), opt.sets);
   plan.base = net ? networkSweepRig(*net) : loadRigText(plan.text, displayName(opt), opt.sets);
   plan.n = static_cast<int>(plan.base.metronomes.size());
+  if (net && !opt.keep.empty())
+    throw UsageError("--keep envelope: not for a network of platforms (docs/sweep-points.md)");
   plan.mine = shardSize(plan.grid, plan.shard);
   const Engine* engine = checkGrid(plan, opt);
   for (bool high : {false, true}) {  // the drawn keys at their ends, at grid point 0
@@ -624,7 +643,7 @@ std::optional<SweepPoint> runGridPoint(const SweepPlan& plan, const SweepOptions
   }
   if (static_cast<int>(in->rig.metronomes.size()) != plan.n)
     return unloadablePoint(g, plan.n, "--vary changes the number of metronomes here");
-  std::optional<SweepPoint> p = runPoint(*in, g);
+  std::optional<SweepPoint> p = runPoint(*in, g, opt.keep == "envelope");
   const long samples = plan.grid.basin().samples;
   if (!p || samples == 0) return p;
   long in_phase = 0;  // failed samples count as not in phase
@@ -651,16 +670,24 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
   run.jobs = std::max(1, run.jobs);
   Progress progress(!opt.quiet && ::isatty(2), ProgressLog::wanted(opt.quiet), plan.mine,
                     static_cast<long>(run.points.size()));
+  std::optional<EnvelopeStore> store;  // --keep envelope
+  if (opt.keep == "envelope") {
+    std::set<long> done;  // resumed points keep their rows; the others run again
+    for (const auto& [g, line] : table.lines) done.insert(g);
+    store.emplace(dir.file(kEnvelopeStoreName), plan.n, !resuming, done);
+  }
   const long stop_after = stopAfterHook();
   schedule(
       plan.grid.size(), [&](long g) { return plan.shard.contains(g) && !table.lines.count(g); },
       run.jobs, [&](long g) { return runGridPoint(plan, opt, g); },
       [&](const SweepPoint& p) {
+        if (store) store->append(p.index, p.kept_rows);  // before its row: a row has its rows
         const std::string line = formatRegimesRow(plan.grid, p);
         regimes.append(line);
         timings.append(std::to_string(p.index) + "," + fmt(p.wall_seconds, "%.6g"));
         run.lines[p.index] = line;
         run.points[p.index] = p;
+        run.points[p.index].kept_rows.clear();
         progress.finished(!p.complete);
         if (++run.finished_now == stop_after) std::_Exit(137);
       },
@@ -873,7 +900,7 @@ std::optional<SweepPoint> runSweepPointAt(const std::string& rig_text, const Swe
   }
   if (static_cast<int>(in->rig.metronomes.size()) != n)
     return unloadablePoint(index, n, "the point changes the number of metronomes");
-  return runPoint(*in, index);
+  return runPoint(*in, index, false);  // basin samples: no envelope kept
 }
 
 namespace {
@@ -972,6 +999,12 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
                    "pdfcairo terminals)")
       ->check(CLI::IsMember(plotFormats()))
       ->capture_default_str();
+  c.sweep
+      ->add_option("--keep", opt.keep,
+                   "envelope: keep every point's envelope rows in DIR/envelopes.csv.gz (one "
+                   "gzip'd CSV with a point column; docs/sweep-points.md); `metrosync "
+                   "sweep-point DIR INDEX` re-runs one point with full outputs")
+      ->check(CLI::IsMember({"envelope"}));
   c.sweep->footer(
       "Files in --out DIR: regimes.csv (one row per grid point, appended as points finish, "
       "sorted by grid index at the end: the varied keys, regime, A_1..A_N, psi_2..psi_N (final, "

@@ -35,6 +35,7 @@ struct SweepOptions {
   std::string shard;                // "K/N"; empty: the whole grid
   std::vector<std::string> dirs;    // merge: the sweep output directories to join
   std::string plot_format = "png";  // --plot-format png|svg|pdf (the maps)
+  std::string keep;                 // --keep envelope: DIR/envelopes.csv.gz (docs/sweep-points.md)
 };
 
 struct SweepCommands {

@@ -358,6 +358,11 @@ int mpiSweepCoordinator(const SweepOptions& options, int ranks) {
   };
   int code = 0;
   try {
+    // the points' envelope rows stay on the rank that ran them (sweep_messages.h carries none)
+    if (!opt.keep.empty())
+      throw UsageError("--keep " + opt.keep +
+                       ": not available under MPI; keep the envelopes per shard (--shard K/N, "
+                       "docs/cluster.md) or run without MPI");
     code = sweepCommand(opt, schedule, ranks);
   } catch (const std::exception& e) {
     c.release();

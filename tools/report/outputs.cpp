@@ -150,6 +150,7 @@ void FileSink::clearStopRequest() {
 FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt)
     : opt_(opt), window_(opt.tau_end, opt.epsilon), plot_(opt.max_plot_rows) {
   if (opt_.n_metronomes < 1) throw std::invalid_argument("FileSink: no metronome");
+  if (opt_.envelope_platform) window_.setEnvelopePlatform(opt_.law, opt_.mu);
   if (opt_.trajectory) {
     trajectory_ = std::make_unique<AtomicFile>(dir.file(opt_.trajectory_name));
     std::string h = "t,x,xdot";
@@ -200,7 +201,12 @@ void FileSink::checkStop(double t) {
   throw RunInterrupted(t, "interrupted by a signal");
 }
 
+void FileSink::eventRow(const char*, const std::vector<double>& row) {
+  if (row.size() > 2) window_.platformMode(static_cast<int>(row.back()), row[1] / opt_.x_unit);
+}
+
 void FileSink::trajectoryRow(const std::vector<double>& row) {
+  if (row.size() > 2) window_.platformMode(static_cast<int>(row.back()), row[1] / opt_.x_unit);
   if (!trajectory_) return;
   const size_t want = 2 * static_cast<size_t>(opt_.n_metronomes) + 4;
   if (row.size() != want)
@@ -262,7 +268,17 @@ nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict)
                         {"rows", verdict.window_rows},
                         {"psi_range", verdict.psi_range},
                         {"alive", verdict.alive},
-                        {"clusters", clusterText(verdict.cluster_sizes)}};
+                        {"clusters", clusterText(verdict.cluster_sizes)},
+                        {"cluster_members", verdict.cluster_members},
+                        {"cluster_phase", verdict.cluster_phase}};
+  // the platform over the window (the `uncoupled` rule): null when not known
+  if (verdict.platform_slipped >= 0)
+    j["regime_window"]["platform_slipped"] = verdict.platform_slipped == 1;
+  else
+    j["regime_window"]["platform_slipped"] = nullptr;
+  if (verdict.platform_slip_rows >= 0)  // the full model's own slips (docs/regimes.md)
+    j["regime_window"]["platform_slip_rows"] = verdict.platform_slip_rows;
+  if (verdict.platform_travel >= 0) j["regime_window"]["platform_travel"] = verdict.platform_travel;
   if (!verdict.reason.empty()) j["regime_reason"] = verdict.reason;
   j["final"] = {
       {"tau", report.final_row.tau}, {"A", report.final_row.A}, {"psi", report.final_row.psi}};

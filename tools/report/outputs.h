@@ -84,6 +84,12 @@ struct RunFilesOptions {
   // to report an interruption "at t = ..." in the rig's time unit: t = tau / epsilon * time_unit
   double epsilon = 1.0;
   double time_unit = 1.0;  // physical rigs: seconds per unit of scaled time; scaled rigs: 1
+  // the platform for the `uncoupled` rule when no trajectory row comes (the slow flow):
+  // RegimeWindow::setEnvelopePlatform; unset: only the full model's rows tell
+  bool envelope_platform = false;
+  double x_unit = 1.0;  // trajectory x per unit of scaled x (physical rigs: x_scale_m)
+  FrictionLaw law = FrictionLaw::Coulomb;
+  double mu = 0.0;
 };
 
 // events.csv's header: t,tau,kind,who, then x,xdot,theta_i,thetadot_i,platform with _before
@@ -111,6 +117,8 @@ class FileSink : public RunSink {
   bool wantsEventRecords() const override { return events_ != nullptr; }
   void eventRecord(const char* kind, int metronome, const std::vector<double>& before,
                    const std::vector<double>& after) override;
+  // stick/slip events tell the regime window what the platform does between trajectory rows
+  void eventRow(const char* kind, const std::vector<double>& row) override;
 
   // Renames every file written to its final name. Called after the run whether it completed or
   // not (a failed run keeps its rows, marked incomplete in summary.json).
