@@ -391,6 +391,16 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
     v.name = toString(Regime::Unsettled);
     return v;
   }
+  // a metronome above theta_c in the window but below it at the end is dying, neither dead nor
+  // alive yet: the run has not reached its final state
+  for (size_t i = 0; i < n; ++i)
+    if (v.alive[i] == 1 && last.A[i] < theta_c[i]) {
+      v.reason = "metronome " + std::to_string(i + 1) +
+                 " falls below theta_c within the window (dying): a longer run decides";
+      v.regime = Regime::Unsettled;
+      v.name = toString(Regime::Unsettled);
+      return v;
+    }
   if (dead == swinging) return named(Regime::Death);
   if (dead > 0) return named(Regime::Suppression);
 

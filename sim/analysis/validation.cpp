@@ -96,7 +96,7 @@ const std::vector<ScenarioSpec>& shippedScenarios() {
       {"f4.4-alpha2", "paper/f4.4-alpha2.yaml", 80.0, PaperOutcome::FasterSuppressed,
        "moderate detuning: still locked near pi, the faster metronome (2) suppressed (fig. "
        "f4.4, red)"},
-      {"f4.4-alpha4", "paper/f4.4-alpha4.yaml", 250.0, PaperOutcome::SuppressionThenDeath,
+      {"f4.4-alpha4", "paper/f4.4-alpha4.yaml", 300.0, PaperOutcome::SuppressionThenDeath,
        "large detuning: 1 suppresses 2 for a long time, then both die (fig. f4.4, blue)"},
       {"experiment-low-friction-inphase", "experiment-low-friction-inphase.yaml", 60.0,
        PaperOutcome::None, "experiment, mu-bar = 6.5e-4, in-phase start: in-phase (fig. exp1)"},

@@ -76,7 +76,8 @@ TEST(Regime, DeathWhenEveryMetronomeEndsBelowItsThreshold) {
 TEST(Regime, DeadMeansBelowThetaCThroughoutTheWindowNotAtTheEndAlone) {
   // metronome 2 decays linearly from 1.9 at the window's start (tau = 90) to 0.5 at the end: it
   // ends below theta_c = 0.9 but was above it for most of the window, so it is not dead (the old
-  // rule, final amplitude alone, called it dead); with A_2 below 0.9 from tau = 90 on it is dead
+  // rule, final amplitude alone, called it dead): it is dying, and the run is unsettled; with A_2
+  // below 0.9 from tau = 90 on it is dead
   auto judge = [](double from) {
     auto rows = envelope(
         2,
@@ -86,7 +87,8 @@ TEST(Regime, DeadMeansBelowThetaCThroughoutTheWindowNotAtTheEndAlone) {
         [](int, double) { return 0.0; });
     return classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9});
   };
-  EXPECT_EQ(judge(1.9).regime, Regime::InPhase);
+  EXPECT_EQ(judge(1.9).regime, Regime::Unsettled);
+  EXPECT_NE(judge(1.9).reason.find("metronome 2 falls below theta_c"), std::string::npos);
   EXPECT_EQ(judge(1.9).alive, (std::vector<int>{1, 1}));
   EXPECT_EQ(judge(0.89).regime, Regime::Suppression);
   EXPECT_EQ(judge(0.89).alive, (std::vector<int>{1, 0}));
