@@ -1,5 +1,7 @@
-// metrosync-mpi: `metrosync sweep` over MPI processes (docs/cluster.md, tools/cli/sweep_mpi.h):
+// metrosync-mpi: `metrosync sweep` and `metrosync basin` over MPI processes (docs/cluster.md,
+// tools/cli/sweep_mpi.h):
 //   mpirun -np P metrosync-mpi sweep RIG --vary ... [--jobs J] [--resume] --out DIR
+//   mpirun -np P metrosync-mpi basin RIG --random ... --samples S [--seed N] --out DIR
 // A separate executable, so that `metrosync` itself, the Python module and the Debian package do
 // not load libmpi (whose initialisation outside mpirun/srun is slow or fails on some systems).
 // Rank 0 prints and writes everything; the other ranks stay silent unless something goes wrong
@@ -53,18 +55,28 @@ int main(int argc, char** argv) {
   cli::configureApp(app);
   app.name("metrosync-mpi");
   app.description(
-      "metrosync sweep over MPI processes: mpirun -np P metrosync-mpi sweep ... "
+      "metrosync sweep and basin over MPI processes: mpirun -np P metrosync-mpi sweep|basin ... "
       "(docs/cluster.md)");
   cli::SweepOptions opt;
   const cli::SweepCommands sweep = cli::addSweepCommands(app, opt);
   app.remove_subcommand(sweep.merge);  // merge needs no MPI: `metrosync merge`
+  cli::BasinOptions basin_opt;
+  CLI::App* basin = cli::addBasinCommand(app, basin_opt);
   std::optional<Silenced> silenced;
   if (rank > 0) silenced.emplace();
-  const std::vector<cli::Command> commands = {{sweep.sweep, [&] {
+  const std::vector<cli::Command> commands = {{sweep.sweep,
+                                               [&] {
                                                  if (rank == 0)
                                                    return cli::mpiSweepCoordinator(opt, ranks);
                                                  silenced->restore();
                                                  return cli::mpiSweepWorker(opt);
+                                               }},
+                                              {basin, [&] {
+                                                 if (rank == 0)
+                                                   return cli::mpiBasinCoordinator(basin_opt,
+                                                                                   ranks);
+                                                 silenced->restore();
+                                                 return cli::mpiBasinWorker(basin_opt);
                                                }}};
   const int code = cli::runCommandLine(app, commands, argc, argv);
   if (silenced) silenced->restore();

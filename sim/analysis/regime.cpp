@@ -106,6 +106,10 @@ std::vector<double> RegimeWindow::maxAmplitude() const {
   return rows_in_window_ == 0 ? last_.A : a_max_;
 }
 
+std::vector<double> RegimeWindow::minAmplitudeTau() const {
+  return rows_in_window_ == 0 ? std::vector<double>(last_.A.size(), last_.tau) : a_min_tau_;
+}
+
 void RegimeWindow::add(const EnvelopeRow& row) {
   last_ = row;
   have_last_ = true;
@@ -125,9 +129,11 @@ void RegimeWindow::add(const EnvelopeRow& row) {
   slip_rows_ += known && slipped;
   const size_t n = row.psi.size() + 1;
   const bool pairs = n >= 3;
-  if (rows_in_window_ == 0) a_max_ = row.A;
-  for (size_t i = 0; i < row.A.size() && i < a_max_.size(); ++i)
+  if (rows_in_window_ == 0) a_max_ = a_min_ = row.A, a_min_tau_.assign(row.A.size(), row.tau);
+  for (size_t i = 0; i < row.A.size() && i < a_max_.size(); ++i) {
     a_max_[i] = std::max(a_max_[i], row.A[i]);
+    if (row.A[i] <= a_min_[i]) a_min_[i] = row.A[i], a_min_tau_[i] = row.tau;
+  }
   if (rows_in_window_ == 0) {
     psi_min_ = row.psi;
     psi_max_ = row.psi;
@@ -391,10 +397,13 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
     v.name = toString(Regime::Unsettled);
     return v;
   }
-  // a metronome above theta_c in the window but below it at the end is dying, neither dead nor
-  // alive yet: the run has not reached its final state
+  // a metronome above theta_c in the window, below it at the end and at its lowest there is
+  // dying, neither dead nor alive yet: the run has not reached its final state. (One whose
+  // amplitude swings through theta_c and back, an exchange of energy between the metronomes, was
+  // lower earlier in the window: it is alive, and the phase rules judge the state.)
+  const std::vector<double> lowest_at = window.minAmplitudeTau();
   for (size_t i = 0; i < n; ++i)
-    if (v.alive[i] == 1 && last.A[i] < theta_c[i]) {
+    if (v.alive[i] == 1 && last.A[i] < theta_c[i] && lowest_at[i] >= last.tau) {
       v.reason = "metronome " + std::to_string(i + 1) +
                  " falls below theta_c within the window (dying): a longer run decides";
       v.regime = Regime::Unsettled;

@@ -120,6 +120,8 @@ class RegimeWindow {
   }
   // (N x 1) the largest A_i over the window (the last row's when the window has no row)
   std::vector<double> maxAmplitude() const;
+  // (N x 1) the tau of the smallest A_i over the window (its last row when the window has none)
+  std::vector<double> minAmplitudeTau() const;
 
   double tauStart() const { return tau_start_; }
   double tauEnd() const { return tau_end_; }
@@ -145,7 +147,8 @@ class RegimeWindow {
   std::vector<double> psi_min_, psi_max_;  // (N-1 x 1) over the window
   // (N (N-1)/2 x 1) phi_i - phi_j = psi_j - psi_i (psi_1 = 0), pairs i < j in row order; N >= 3
   std::vector<double> pair_min_, pair_max_;
-  std::vector<double> a_max_;  // (N x 1) over the window
+  std::vector<double> a_max_;              // (N x 1) over the window
+  std::vector<double> a_min_, a_min_tau_;  // (N x 1) the smallest A_i over the window, and when
   // platform: seen in trajectory rows/events; slid since the last envelope row; sliding now
   bool platform_seen_ = false, pending_slip_ = false;
   int mode_now_ = 0;

@@ -213,14 +213,17 @@ TEST(BasinCli, AGloballyAttractingStateHasFractionOne) {
 
 // Two identical metronomes whose starts are drawn from one distribution: exchanging them maps the
 // draws onto themselves, so "the first dies" and "the second dies" are equally likely; the pooled
-// estimate lies in both Wilson intervals.
+// estimate lies in both Wilson intervals. At mu = 0.55 over tau = 300 suppression is common (71 of
+// 400 samples with seed 1); the regime rules judge a metronome still dying at the end unsettled,
+// so short runs at low friction have too few suppressed samples to say anything.
 TEST(BasinCli, ExchangeSymmetryGivesEqualFractions) {
   const std::string d = scratch("symmetric");
   const Result r = metrosync("basin " + rig(d, 2) +
                              " --random metronomes.0.start.A=0.5:4 --random "
                              "metronomes.1.start.A=0.5:4 --random metronomes.0.start.phi=0:2pi "
                              "--random metronomes.1.start.phi=0:2pi --samples 400 --seed 1 -q "
-                             "--no-plot --out " +
+                             "--no-plot --set platform.friction.mu=0.55 --set simulation.tau=300 "
+                             "--out " +
                              d + "/b");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto rows = csvRows(d + "/b/basin.csv");

@@ -166,3 +166,29 @@ TEST(SweepMpi, BadInputExitsTwoOnEveryRankWithNothingWritten) {
 }
 
 }  // namespace
+
+namespace {
+
+// `metrosync basin` over 2 ranks draws the same samples and runs them to the same rows as the
+// serial basin (--jobs 1): basin.csv bit for bit, and the same fractions in basin.json.
+TEST(BasinMpi, TwoRanksWriteTheSerialBasinCsvBitForBit) {
+  const std::string d = scratch("basin");
+  const std::string basin = "basin " + shellQuote(pairRig(d, 60)) +
+                            " --random metronomes.0.start.phi=0:2pi --random "
+                            "platform.friction.mu=0:0.8 --samples 60 --seed 7 -q --no-plot";
+  const CommandResult serial = runMetrosync(basin + " --jobs 1 --out " + d + "/serial");
+  ASSERT_EQ(serial.code, 0) << serial.err;
+  const std::string want = slurp(d + "/serial/basin.csv");
+  ASSERT_EQ(lines(d + "/serial/basin.csv").size(), 61u);
+  const nlohmann::json s = nlohmann::json::parse(slurp(d + "/serial/basin.json"));
+  for (const std::string& jobs : {"1", "2"}) {
+    const std::string out = d + "/mpi-jobs" + jobs;
+    const CommandResult mpi = mpiMetrosync(2, basin + " --jobs " + jobs + " --out " + out);
+    ASSERT_EQ(mpi.code, 0) << mpi.err;
+    EXPECT_EQ(slurp(out + "/basin.csv"), want) << "--jobs " << jobs;
+    const nlohmann::json m = nlohmann::json::parse(slurp(out + "/basin.json"));
+    EXPECT_EQ(m["fractions"], s["fractions"]);
+  }
+}
+
+}  // namespace

@@ -94,6 +94,23 @@ TEST(Regime, DeadMeansBelowThetaCThroughoutTheWindowNotAtTheEndAlone) {
   EXPECT_EQ(judge(0.89).alive, (std::vector<int>{1, 0}));
 }
 
+TEST(Regime, AnAmplitudeSwingingThroughThetaCIsAliveNotDying) {
+  // metronome 2 exchanges energy with 1: A_2 = 1.8 + 1.6 cos(2 pi (t - c) / 3) swings through
+  // theta_c = 0.9 every 3 in tau, several times in the window (tau 90 to 100), and ends below it
+  // at 1.8 + 1.6 cos(1.2 pi) = 0.51 (c puts the last row at 0.6 of a swing), past its lowest
+  // point (the earlier minima, sampled every fast period of 0.46, are below 0.4): alive, not dying
+  const double t_last = envelope(1, [](int, double) { return 1.0; }, {}).back().tau;
+  const double c = t_last - 0.6 * 3;
+  auto rows = envelope(
+      2,
+      [c](int i, double t) { return i == 0 ? 1.9 : 1.8 + 1.6 * std::cos(2 * M_PI * (t - c) / 3); },
+      [](int, double) { return 0.0; });
+  const RegimeVerdict v = classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9});
+  ASSERT_LT(rows.back().A[1], 0.9);  // it ends below theta_c
+  EXPECT_EQ(v.alive, (std::vector<int>{1, 1}));
+  EXPECT_EQ(v.reason.find("dying"), std::string::npos) << v.reason << " " << toString(v.regime);
+}
+
 TEST(Regime, DeadMeansStrictlyBelowThetaC) {
   EXPECT_EQ(pair([](double) { return 0.0; }, 0.9), Regime::InPhase);  // A_2 == theta_c
   EXPECT_EQ(pair([](double) { return 0.0; }, 0.8999), Regime::Suppression);

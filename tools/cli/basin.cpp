@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -120,26 +121,25 @@ BasinPlan planBasin(const BasinOptions& opt) {
   return plan;
 }
 
-// Every sample, run on plan.jobs threads; the draws of sample k depend only on (seed, k).
-std::map<long, BasinSample> runSamples(const BasinOptions& opt, const BasinPlan& plan) {
+// The overrides of sample k (its draws depend only on (seed, k)); `texts` the drawn values.
+std::vector<std::string> sampleAt(const BasinOptions& opt, const BasinPlan& plan, long k,
+                                  std::vector<std::string>* texts) {
+  return sampleOverrides(plan, drawSample(plan.keys, opt.seed, k), texts);
+}
+
+// Every sample, run by `schedule` (threads, or MPI ranks) on plan.jobs threads.
+std::map<long, BasinSample> runSamples(const BasinOptions& opt, const BasinPlan& plan,
+                                       const SweepScheduler& schedule) {
   std::map<long, BasinSample> samples;
-  std::mutex lock;  // guards the draws' texts handed from run_point to finished
-  std::map<long, std::vector<std::string>> texts;
-  runSweepPoints(
+  schedule(
       opt.samples, [](long) { return true; }, plan.jobs,
       [&](long k) -> std::optional<SweepPoint> {
-        std::vector<std::string> t;
-        const std::vector<std::string> point =
-            sampleOverrides(plan, drawSample(plan.keys, opt.seed, k), &t);
-        {
-          std::lock_guard<std::mutex> l(lock);
-          texts[k] = t;
-        }
-        return runSweepPointAt(plan.text, opt.run, point, plan.n, k);
+        return runSweepPointAt(plan.text, opt.run, sampleAt(opt, plan, k, nullptr), plan.n, k);
       },
-      [&](const SweepPoint& p) {
-        std::lock_guard<std::mutex> l(lock);
-        samples[p.index] = BasinSample{texts[p.index], p};
+      [&](const SweepPoint& p) {  // one at a time (the scheduler's contract)
+        std::vector<std::string> texts;
+        sampleAt(opt, plan, p.index, &texts);
+        samples[p.index] = BasinSample{texts, p};
       },
       [] { return FileSink::stopRequested(); });
   return samples;
@@ -183,13 +183,13 @@ OutputDir openBasinDir(const std::string& path) {
   }
 }
 
-int basinImpl(const BasinOptions& opt) {
+int basinImpl(const BasinOptions& opt, const SweepScheduler& schedule, int ranks) {
   const auto t0 = std::chrono::steady_clock::now();
   const BasinPlan plan = planBasin(opt);
   std::optional<FolderLock> lock;
   if (fs::is_directory(plan.path)) lock.emplace(plan.path, "metrosync basin");
   installStopHandlers();
-  const std::map<long, BasinSample> samples = runSamples(opt, plan);
+  const std::map<long, BasinSample> samples = runSamples(opt, plan, schedule);
   if (FileSink::stopRequested()) {
     std::cerr << "metrosync: error: interrupted by a signal after " << samples.size() << " of "
               << opt.samples << " samples; nothing written\n";
@@ -218,7 +218,8 @@ int basinImpl(const BasinOptions& opt) {
   if (!opt.run.quiet) {
     std::cout << "basin stability of " << plan.rig_name << " (" << modelTitle(plan.model) << ", "
               << plan.n << (plan.n == 1 ? " metronome" : " metronomes") << "), seed " << opt.seed
-              << ", " << opt.samples << " samples on " << plan.jobs
+              << ", " << opt.samples << " samples on "
+              << (ranks > 1 ? std::to_string(ranks) + " MPI ranks x " : std::string()) << plan.jobs
               << (plan.jobs == 1 ? " thread" : " threads") << ":\n"
               << fractionsTable(fractions, opt.samples) << "files: " << dir.path() << "/ (";
     for (size_t k = 0; k < files.size(); ++k) std::cout << (k ? ", " : "") << files[k];
@@ -275,11 +276,31 @@ CLI::App* addBasinCommand(CLI::App& app, BasinOptions& opt) {
 }
 
 int basinCommand(const BasinOptions& opt) {
+  const SweepScheduler threads = [](long size, const std::function<bool(long)>& wanted, int jobs,
+                                    const SweepPointRunner& run, const SweepPointSink& finished,
+                                    const std::function<bool()>& stop) {
+    runSweepPoints(size, wanted, jobs, run, finished, stop);
+  };
+  return basinCommand(opt, threads, 1);
+}
+
+int basinCommand(const BasinOptions& opt, const SweepScheduler& schedule, int ranks) {
   try {
-    return basinImpl(opt);
+    return basinImpl(opt, schedule, ranks);
   } catch (const SweepInputError& e) {
     throw UsageError(e.what());
   } catch (const FolderLockedError& e) {
+    throw UsageError(e.what());
+  }
+}
+
+SweepPointRunner basinSampleRunner(const BasinOptions& opt) {
+  try {
+    auto plan = std::make_shared<const BasinPlan>(planBasin(opt));
+    return [plan, opt](long k) {
+      return runSweepPointAt(plan->text, opt.run, sampleAt(opt, *plan, k, nullptr), plan->n, k);
+    };
+  } catch (const SweepInputError& e) {
     throw UsageError(e.what());
   }
 }

@@ -28,4 +28,12 @@ CLI::App* addBasinCommand(CLI::App& app, BasinOptions& opt);
 // a signal: exit 3 with nothing written. Failed runs are counted as the regime `failed`.
 int basinCommand(const BasinOptions& opt);
 
+// The command with its samples run by `schedule` (MPI: tools/cli/sweep_mpi.h) on `ranks`
+// processes; everything else as basinCommand(opt).
+int basinCommand(const BasinOptions& opt, const SweepScheduler& schedule, int ranks);
+
+// A process that only runs samples for another one: checks `opt` as basin does and returns how
+// sample k runs.
+SweepPointRunner basinSampleRunner(const BasinOptions& opt);
+
 }  // namespace metrosync::cli

@@ -15,6 +15,7 @@
 #include <optional>
 #include <thread>
 
+#include "tools/cli/basin.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/sweep_messages.h"
 #include "tools/report/outputs.h"
@@ -348,8 +349,11 @@ void workerLoop(const SweepPointRunner& run, int threads) {
 
 }  // namespace
 
-int mpiSweepCoordinator(const SweepOptions& options, int ranks) {
-  const SweepOptions opt = withRankJobs(options);
+namespace {
+
+// Rank 0 of `ranks`: `command` runs with its points scheduled over the ranks; every worker rank is
+// released (quit, or its `done` awaited) before this returns.
+int coordinate(int ranks, const std::function<int(const SweepScheduler&)>& command) {
   Coordinator c(ranks);
   const SweepScheduler schedule = [&c](long size, const std::function<bool(long)>& wanted, int jobs,
                                        const SweepPointRunner& run, const SweepPointSink& finished,
@@ -358,12 +362,7 @@ int mpiSweepCoordinator(const SweepOptions& options, int ranks) {
   };
   int code = 0;
   try {
-    // the points' envelope rows stay on the rank that ran them (sweep_messages.h carries none)
-    if (!opt.keep.empty())
-      throw UsageError("--keep " + opt.keep +
-                       ": not available under MPI; keep the envelopes per shard (--shard K/N, "
-                       "docs/cluster.md) or run without MPI");
-    code = sweepCommand(opt, schedule, ranks);
+    code = command(schedule);
   } catch (const std::exception& e) {
     c.release();
     if (!c.workersLeft()) throw;
@@ -379,24 +378,57 @@ int mpiSweepCoordinator(const SweepOptions& options, int ranks) {
   return code;
 }
 
-int mpiSweepWorker(const SweepOptions& options) {
-  const SweepOptions opt = withRankJobs(options);
+// A worker rank: waits for rank 0's start, then runs the points it is given with `runner()`'s
+// runner on `jobs` threads.
+int work(int jobs, const std::function<SweepPointRunner()>& runner) {
   if (receive(0, kTagStart) != "start") return kSuccess;  // rank 0 ended before running points
   SweepPointRunner run;
   try {
-    run = sweepPointRunner(opt);  // rank 0's checks passed: a failure here is this node's
+    run = runner();  // rank 0's checks passed: a failure here is this node's
   } catch (const std::exception& e) {
     std::cerr << "metrosync: error: rank " << worldRank() << ": " << e.what() << "\n";
     MPI_Abort(MPI_COMM_WORLD, kBadInput);
   }
   installStopHandlers();
   try {
-    workerLoop(run, std::max(1, opt.jobs));
+    workerLoop(run, std::max(1, jobs));
   } catch (const std::exception& e) {  // rank 0 would wait for this rank forever
     std::cerr << "metrosync: error: rank " << worldRank() << ": " << e.what() << "\n";
     MPI_Abort(MPI_COMM_WORLD, kOtherError);
   }
   return kSuccess;
+}
+
+}  // namespace
+
+int mpiSweepCoordinator(const SweepOptions& options, int ranks) {
+  const SweepOptions opt = withRankJobs(options);
+  return coordinate(ranks, [&](const SweepScheduler& schedule) {
+    // the points' envelope rows stay on the rank that ran them (sweep_messages.h carries none)
+    if (!opt.keep.empty())
+      throw UsageError("--keep " + opt.keep +
+                       ": not available under MPI; keep the envelopes per shard (--shard K/N, "
+                       "docs/cluster.md) or run without MPI");
+    return sweepCommand(opt, schedule, ranks);
+  });
+}
+
+int mpiSweepWorker(const SweepOptions& options) {
+  const SweepOptions opt = withRankJobs(options);
+  return work(opt.jobs, [&] { return sweepPointRunner(opt); });
+}
+
+int mpiBasinCoordinator(const BasinOptions& options, int ranks) {
+  BasinOptions opt = options;
+  opt.run = withRankJobs(options.run);
+  return coordinate(
+      ranks, [&](const SweepScheduler& schedule) { return basinCommand(opt, schedule, ranks); });
+}
+
+int mpiBasinWorker(const BasinOptions& options) {
+  BasinOptions opt = options;
+  opt.run = withRankJobs(options.run);
+  return work(opt.run.jobs, [&] { return basinSampleRunner(opt); });
 }
 
 }  // namespace metrosync::cli

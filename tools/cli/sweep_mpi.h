@@ -13,6 +13,7 @@
 // report says `done`. Only the main thread of a process calls MPI (MPI_THREAD_FUNNELED).
 #pragma once
 
+#include "tools/cli/basin.h"
 #include "tools/cli/sweep.h"
 
 namespace metrosync::cli {
@@ -23,5 +24,10 @@ int mpiSweepCoordinator(const SweepOptions& opt, int ranks);
 
 // The `sweep` command on a worker rank: waits for rank 0's start, runs what it is given, returns 0.
 int mpiSweepWorker(const SweepOptions& opt);
+
+// `mpirun -np P metrosync-mpi basin ...`: the samples scheduled over the ranks as grid points
+// are (sample k's draws depend only on the seed and k, so basin.csv is the one of `--jobs 1`).
+int mpiBasinCoordinator(const BasinOptions& opt, int ranks);
+int mpiBasinWorker(const BasinOptions& opt);
 
 }  // namespace metrosync::cli
