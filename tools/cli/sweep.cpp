@@ -933,15 +933,16 @@ void addSweepMapAndBasinOptions(CLI::App& sweep, SweepOptions& opt) {
 
 }  // namespace
 
-SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
-  SweepCommands c;
-  c.sweep = app.add_subcommand(
-      "sweep", "a grid of runs over one or more rig keys, in parallel and resumable: a regime map");
-  c.sweep->add_option("RIG", opt.rig_path,
-                      "rig file (YAML, SPEC section 1); default: the built-in rig (the paper's "
-                      "experiment)");
-  c.sweep
-      ->add_option(
+namespace {
+
+// sweep's inputs and how it runs: RIG, --vary, --set, --model, --engine, --jobs, --resume,
+// --shard, --out, -q.
+void addSweepRunOptions(CLI::App& sweep, SweepOptions& opt) {
+  sweep.add_option("RIG", opt.rig_path,
+                   "rig file (YAML, SPEC section 1); default: the built-in rig (the paper's "
+                   "experiment)");
+  sweep
+      .add_option(
           "--vary", opt.vary,
           "a key and its values: COUNT values from FROM to TO, both included; ':open' "
           "leaves TO out ([FROM, TO), for angles); ':log' spaces them evenly in log "
@@ -955,57 +956,62 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
       ->type_name("KEY=FROM:TO:COUNT[:open][:log]|V1,V2,..")
       ->required()
       ->allow_extra_args(false);
-  c.sweep
-      ->add_option("--set", opt.sets,
-                   "override a rig key for every point, e.g. --set simulation.tau=100; repeatable")
+  sweep
+      .add_option("--set", opt.sets,
+                  "override a rig key for every point, e.g. --set simulation.tau=100; repeatable")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
-  c.sweep
-      ->add_option("--model", opt.model,
-                   "slow: the slow flow; full: the full model (default: the --engine's model, "
-                   "else slow; full for a network of platforms, docs/networks.md)")
+  sweep
+      .add_option("--model", opt.model,
+                  "slow: the slow flow; full: the full model (default: the --engine's model, "
+                  "else slow; full for a network of platforms, docs/networks.md)")
       ->check(CLI::IsMember({"slow", "full"}));
-  c.sweep->add_option("--engine", opt.engine, anyEngineHelp());
-  c.sweep
-      ->add_option("--jobs", opt.jobs,
-                   "worker threads (default: the number of cores); the results do not "
-                   "depend on it")
+  sweep.add_option("--engine", opt.engine, anyEngineHelp());
+  sweep
+      .add_option("--jobs", opt.jobs,
+                  "worker threads (default: the number of cores); the results do not "
+                  "depend on it")
       ->type_name("N")
       ->check(CLI::Range(1, 4096));
-  c.sweep->add_flag("--resume", opt.resume,
-                    "continue the sweep in --out DIR: points already in its regimes.csv are "
-                    "kept, the others run (the command line must be the same)");
-  c.sweep
-      ->add_option("--shard", opt.shard,
-                   "run only the K-th of N slices of the grid (points with index mod N = "
-                   "K-1); join the slices with `metrosync merge`")
+  sweep.add_flag("--resume", opt.resume,
+                 "continue the sweep in --out DIR: points already in its regimes.csv are "
+                 "kept, the others run (the command line must be the same)");
+  sweep
+      .add_option("--shard", opt.shard,
+                  "run only the K-th of N slices of the grid (points with index mod N = "
+                  "K-1); join the slices with `metrosync merge`")
       ->type_name("K/N");
-  c.sweep
-      ->add_option("--out", opt.out,
-                   "output directory (default: runs/<rig name>-sweep); metrosync's own output "
-                   "files already there are replaced (unless --resume)")
+  sweep
+      .add_option("--out", opt.out,
+                  "output directory (default: runs/<rig name>-sweep); metrosync's own output "
+                  "files already there are replaced (unless --resume)")
       ->type_name("DIR");
-  c.sweep->add_flag("-q,--quiet", opt.quiet,
-                    "no progress bar and no summary (errors and warnings still go to stderr)");
-  addSweepMapAndBasinOptions(*c.sweep, opt);
-  c.sweep->add_flag("--boundaries", opt.boundaries,
-                    "with --model slow over two ranges: the slow flow's fold and Hopf curves "
-                    "(continuation) over the regime map, boundaries.csv");
-  c.sweep->add_flag("--no-plot", opt.no_plot,
-                    "draw no maps (regimes.csv, sweep.json and timings.csv only)");
-  c.sweep
-      ->add_option("--plot-format", opt.plot_format,
-                   "format of the maps: png (default), svg or pdf (gnuplot's pngcairo, svg and "
-                   "pdfcairo terminals)")
+  sweep.add_flag("-q,--quiet", opt.quiet,
+                 "no progress bar and no summary (errors and warnings still go to stderr)");
+}
+
+// sweep's outputs: the maps' axes and basin samples, --boundaries, --no-plot, --plot-format,
+// --keep, and the footer.
+void addSweepOutputOptions(CLI::App& sweep, SweepOptions& opt) {
+  addSweepMapAndBasinOptions(sweep, opt);
+  sweep.add_flag("--boundaries", opt.boundaries,
+                 "with --model slow over two ranges: the slow flow's fold and Hopf curves "
+                 "(continuation) over the regime map, boundaries.csv");
+  sweep.add_flag("--no-plot", opt.no_plot,
+                 "draw no maps (regimes.csv, sweep.json and timings.csv only)");
+  sweep
+      .add_option("--plot-format", opt.plot_format,
+                  "format of the maps: png (default), svg or pdf (gnuplot's pngcairo, svg and "
+                  "pdfcairo terminals)")
       ->check(CLI::IsMember(plotFormats()))
       ->capture_default_str();
-  c.sweep
-      ->add_option("--keep", opt.keep,
-                   "envelope: keep every point's envelope rows in DIR/envelopes.csv.gz (one "
-                   "gzip'd CSV with a point column; docs/sweep-points.md); `metrosync "
-                   "sweep-point DIR INDEX` re-runs one point with full outputs")
+  sweep
+      .add_option("--keep", opt.keep,
+                  "envelope: keep every point's envelope rows in DIR/envelopes.csv.gz (one "
+                  "gzip'd CSV with a point column; docs/sweep-points.md); `metrosync "
+                  "sweep-point DIR INDEX` re-runs one point with full outputs")
       ->check(CLI::IsMember({"envelope"}));
-  c.sweep->footer(
+  sweep.footer(
       "Files in --out DIR: regimes.csv (one row per grid point, appended as points finish, "
       "sorted by grid index at the end: the varied keys, regime, A_1..A_N, psi_2..psi_N (final, "
       "psi in [0, 2 pi)), r, s (= |Z|/mu: <= 1 a stuck platform), clusters, tau, complete, "
@@ -1021,26 +1027,41 @@ SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
       "after kill -9.\n"
       "Exit codes: 0 success; 2 bad command line or rig (nothing written); 3 interrupted; 1 "
       "anything else.");
+}
 
-  c.merge = app.add_subcommand("merge", "join the regimes.csv of sweep shards into one, with maps");
-  c.merge->add_option("DIR", opt.dirs, "output directories of `sweep --shard K/N` runs")
+CLI::App* addMergeCommand(CLI::App& app, SweepOptions& opt) {
+  CLI::App* merge =
+      app.add_subcommand("merge", "join the regimes.csv of sweep shards into one, with maps");
+  merge->add_option("DIR", opt.dirs, "output directories of `sweep --shard K/N` runs")
       ->required()
       ->check(CLI::ExistingDirectory);
-  c.merge->add_option("--out", opt.out, "output directory (default: runs/<rig name>-merge)")
+  merge->add_option("--out", opt.out, "output directory (default: runs/<rig name>-merge)")
       ->type_name("DIR");
-  c.merge->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
-  c.merge
+  merge->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
+  merge
       ->add_option("--plot-format", opt.plot_format,
                    "format of the maps: png (default), svg or pdf")
       ->check(CLI::IsMember(plotFormats()))
       ->capture_default_str();
-  c.merge->add_option("--map", opt.map, "the two --vary keys the maps draw (as for sweep)")
+  merge->add_option("--map", opt.map, "the two --vary keys the maps draw (as for sweep)")
       ->type_name("KEY1,KEY2");
-  c.merge->footer(
+  merge->footer(
       "The directories must hold the same sweep (rig, --set, model, grid: their sweep.json "
       "says); points missing from all of them are reported and left white in the maps.\n"
       "Exit codes: 0 success; 2 bad command line or directories that do not belong together "
       "(nothing written); 1 anything else.");
+  return merge;
+}
+
+}  // namespace
+
+SweepCommands addSweepCommands(CLI::App& app, SweepOptions& opt) {
+  SweepCommands c;
+  c.sweep = app.add_subcommand(
+      "sweep", "a grid of runs over one or more rig keys, in parallel and resumable: a regime map");
+  addSweepRunOptions(*c.sweep, opt);
+  addSweepOutputOptions(*c.sweep, opt);
+  c.merge = addMergeCommand(app, opt);
   return c;
 }
 
