@@ -310,9 +310,9 @@ TEST(SweepCli, ThreeMetronomesAreNamedByClustersWithTheirOrderParameter) {
   EXPECT_EQ(a[1], "uncoupled");
   EXPECT_EQ(b[1], "uncoupled");
   EXPECT_EQ(c[1], "uncoupled");
-  EXPECT_EQ(a[9], "2+1");  // 1 and 3 together
-  EXPECT_EQ(b[9], "2+1");  // 2 and 3 together
-  EXPECT_EQ(c[9], "1x3");  // a splay state
+  EXPECT_EQ(a[9], "2+1");                      // 1 and 3 together
+  EXPECT_EQ(b[9], "2+1");                      // 2 and 3 together
+  EXPECT_EQ(c[9], "1x3");                      // a splay state
   EXPECT_NEAR(std::stod(a[7]), 0.5774, 1e-3);  // |2 + e^{i 2 pi/3}| / 3 = 1/sqrt(3)
   EXPECT_NEAR(std::stod(c[7]), 0.0, 1e-6);
   EXPECT_EQ(a[8], "nan");  // s: no Coulomb platform
