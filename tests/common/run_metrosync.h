@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace metrosync::testing_support {
 
@@ -71,6 +72,21 @@ inline CommandResult runMetrosync(const std::string& args, const RunIn& in = {})
   r.err = slurp(err_path);
   std::remove(err_path.c_str());
   return r;
+}
+
+// The cells of every line of a CSV file (no quoting: metrosync's own CSVs), the header included.
+inline std::vector<std::vector<std::string>> csvRows(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string c;
+    while (std::getline(ss, c, ',')) cells.push_back(c);
+    rows.push_back(cells);
+  }
+  return rows;
 }
 
 }  // namespace metrosync::testing_support

@@ -28,19 +28,7 @@ Result metrosync(const std::string& args) {
   return testing_support::runMetrosync(args);
 }
 
-std::vector<std::vector<std::string>> csvRows(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    std::string c;
-    while (std::getline(ss, c, ',')) cells.push_back(c);
-    rows.push_back(cells);
-  }
-  return rows;
-}
+using testing_support::csvRows;
 
 // Two identical metronomes of the paper's experiment (scaled), a short run.
 std::string pairRig(const std::string& dir) {
