@@ -27,6 +27,9 @@ struct NetworkVerdict::Impl {
   std::vector<RegimeWindow> regimes;            // per platform
   NetworkWindow window;
   EnvelopeRow last;
+  std::vector<double> phi;    // the last sample's phases
+  std::vector<Order> groups;  // ... each platform's order parameter
+  Order all;                  // ... the network's
   bool seen = false;
 
   explicit Impl(const Network& n)
@@ -87,8 +90,11 @@ void NetworkVerdict::sample(double t, const std::vector<double>& y,
     m.regimes[p].add(row);
   }
   m.window.add(t, groups);
-  env.r = orderParameter(phi).r;
+  m.all = orderParameter(phi);
+  env.r = m.all.r;
   m.last = env;
+  m.phi = phi;
+  m.groups = groups;
   m.seen = true;
 }
 
@@ -115,6 +121,18 @@ std::vector<std::string> NetworkVerdict::platformRegimes() const {
 
 const EnvelopeRow& NetworkVerdict::last() const {
   return impl_->last;
+}
+
+const std::vector<double>& NetworkVerdict::phases() const {
+  return impl_->phi;
+}
+
+const std::vector<Order>& NetworkVerdict::groups() const {
+  return impl_->groups;
+}
+
+const Order& NetworkVerdict::overall() const {
+  return impl_->all;
 }
 
 }  // namespace metrosync

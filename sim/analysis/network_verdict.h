@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "models/network.h"
+#include "sim/analysis/order_parameter.h"
 #include "sim/record/envelope.h"
 #include "sim/record/network_report.h"
 
@@ -31,6 +32,12 @@ class NetworkVerdict : public NetworkSink {
   // The last sample's envelope row (tau, A_1..A_N, psi_2..psi_N unwrapped; 0 for locked ones) and
   // its overall order parameter r (in last().r).
   const EnvelopeRow& last() const;
+  // The last sample's phases of the swinging pendulums (network layout order, per platform
+  // block), each platform's order parameter (file order; empty before any sample) and the
+  // network's.
+  const std::vector<double>& phases() const;
+  const std::vector<Order>& groups() const;
+  const Order& overall() const;
 
  private:
   struct Impl;

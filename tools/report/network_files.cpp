@@ -1,11 +1,13 @@
 #include "tools/report/network_files.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "models/network_equations.h"
 #include "models/scaling.h"
 #include "sim/analysis/network_regime.h"
+#include "sim/analysis/network_verdict.h"
 #include "sim/analysis/order_parameter.h"
 #include "sim/analysis/regime.h"
 #include "sim/record/atomic_file.h"
@@ -15,7 +17,6 @@ namespace metrosync {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;
 // Rows kept for the plots: every other one is dropped when twice this many are held, so memory is
 // bounded whatever the run's length (as the envelope's EnvelopeDecimator).
 constexpr std::size_t kMaxPlotRows = 2000;
@@ -29,55 +30,32 @@ std::string csvLine(const std::vector<double>& v) {
 
 }  // namespace
 
+// The analysis (envelope, phases, order parameters, regime windows) is the sweep's own
+// (sim/analysis/network_verdict.h); this only adds the trajectory and writes.
 struct NetworkFiles::Impl {
   const Network& net;
   network::NetworkEquations eq;
   network::Layout lay;
-  ScaledParams sp;
-  double omega0 = 1.0;
-  std::vector<double> omega;        // (n) each swinging pendulum's frequency
-  std::vector<int> platform_of;     // (n) its platform
   std::vector<int> swinging_index;  // (N metronomes) -> swinging pendulum or -1 (locked)
   AtomicFile trajectory, envelope, order;
-  std::vector<PhaseUnwrapper> unwrap;           // (N-1) psi_2..psi_N
-  std::vector<PhaseUnwrapper> platform_unwrap;  // (n) psi within each platform
-  std::vector<RegimeWindow> regimes;            // per platform
-  NetworkWindow window;
-  std::vector<Order> last_groups;
-  Order last_all;
+  NetworkVerdict verdict;
   std::size_t stride = 1;
   long seen = 0;
 
   Impl(const OutputDir& dir, const Network& n);
   void writeHeaders();
-  std::vector<double> phases(const std::vector<double>& y) const;
-  void platformEnvelope(int p, double tau, const std::vector<double>& y,
-                        const std::vector<double>& phi);
 };
 
 NetworkFiles::Impl::Impl(const OutputDir& dir, const Network& n)
     : net(n),
       eq(n),
       lay(eq.layout()),
-      sp(computeScaled(n.scalesRig())),
       trajectory(dir.file("trajectory.csv")),
       envelope(dir.file("envelope.csv")),
       order(dir.file("order.csv")),
-      window(static_cast<int>(n.platforms.size()), n.sim.t_end_s, kTwoPi * sp.time_scale_s) {
-  omega0 = 1.0 / sp.time_scale_s;
+      verdict(n) {
   swinging_index.assign(n.numMetronomes(), -1);
-  for (int j = 0; j < lay.n; ++j) {
-    const direct::PendulumConstants& q = eq.pendulum(j);
-    omega.push_back(std::sqrt(q.mgL / q.inertia));
-    swinging_index[q.rig_index] = j;
-    int p = 0;
-    while (j >= eq.block(p).first + eq.block(p).count) ++p;
-    platform_of.push_back(p);
-  }
-  unwrap.resize(std::max(0, n.numMetronomes() - 1));
-  platform_unwrap.resize(lay.n);
-  const double tau_end = n.sim.t_end_s * omega0 * sp.epsilon;
-  for (std::size_t p = 0; p < n.platforms.size(); ++p) regimes.emplace_back(tau_end, sp.epsilon);
+  for (int j = 0; j < lay.n; ++j) swinging_index[eq.pendulum(j).rig_index] = j;
   writeHeaders();
 }
 
@@ -95,27 +73,6 @@ void NetworkFiles::Impl::writeHeaders() {
   order.writeLine(o + ",r,Phi,t_s");
 }
 
-std::vector<double> NetworkFiles::Impl::phases(const std::vector<double>& y) const {
-  std::vector<double> phi(lay.n);
-  for (int j = 0; j < lay.n; ++j)
-    phi[j] = pendulumPhase(y[lay.theta(j)], y[lay.omega(j)], omega[j]);
-  return phi;
-}
-
-// Platform p's own envelope row (its metronomes, the first as reference) for its regime.
-void NetworkFiles::Impl::platformEnvelope(int p, double tau, const std::vector<double>& y,
-                                          const std::vector<double>& phi) {
-  const network::Block& b = eq.block(p);
-  EnvelopeRow row;
-  row.tau = tau;
-  for (int j = b.first; j < b.first + b.count; ++j) {
-    const double a = std::hypot(y[lay.theta(j)], y[lay.omega(j)] / omega[j]);
-    row.A.push_back(a / sp.angle_scale);
-    if (j > b.first) row.psi.push_back(platform_unwrap[j](phi[b.first] - phi[j]));
-  }
-  if (b.count > 0) regimes[p].add(row);
-}
-
 NetworkFiles::NetworkFiles(const OutputDir& dir, const Network& net)
     : impl_(std::make_unique<Impl>(dir, net)) {}
 NetworkFiles::~NetworkFiles() = default;
@@ -123,7 +80,7 @@ NetworkFiles::~NetworkFiles() = default;
 void NetworkFiles::sample(double t, const std::vector<double>& y,
                           const std::vector<PlatformMode>& modes) {
   Impl& m = *impl_;
-  const double tau = t * m.omega0 * m.sp.epsilon;
+  m.verdict.sample(t, y, modes);
   std::vector<double> row{t};
   for (int p = 0; p < m.lay.platforms; ++p) {
     const bool coulomb = m.eq.block(p).friction.setValued() && m.eq.block(p).moves;
@@ -132,37 +89,26 @@ void NetworkFiles::sample(double t, const std::vector<double>& y,
                            coulomb ? static_cast<double>(static_cast<int>(modes[p]))
                                    : static_cast<double>((u > 0) - (u < 0))});
   }
-  const std::vector<double> phi = m.phases(y);
-  EnvelopeRow env;
-  env.tau = tau;
   for (int i = 0; i < m.net.numMetronomes(); ++i) {
     const int j = m.swinging_index[i];
     row.push_back(j < 0 ? 0.0 : y[m.lay.theta(j)]);
     row.push_back(j < 0 ? 0.0 : y[m.lay.omega(j)]);
-    env.A.push_back(j < 0 ? 0.0
-                          : std::hypot(y[m.lay.theta(j)], y[m.lay.omega(j)] / m.omega[j]) /
-                                m.sp.angle_scale);
-    const int j1 = m.swinging_index[0];
-    if (i > 0) env.psi.push_back(j < 0 || j1 < 0 ? 0.0 : m.unwrap[i - 1](phi[j1] - phi[j]));
   }
   m.trajectory.writeLine(csvLine(row));
+  EnvelopeRow env = m.verdict.last();
+  env.r = std::numeric_limits<double>::quiet_NaN();  // formatEnvelopeRow computes it, as before
   m.envelope.writeLine(formatEnvelopeRow(env) + "," + csvLine({t}));
 
-  std::vector<double> orow{tau}, raster{tau};
-  m.last_groups.clear();
+  const std::vector<double>& phi = m.verdict.phases();
+  std::vector<double> orow{env.tau}, raster{env.tau};
   for (int p = 0; p < m.lay.platforms; ++p) {
     const network::Block& b = m.eq.block(p);
-    const Order o =
-        orderParameter(std::vector<double>(phi.begin() + b.first, phi.begin() + b.first + b.count));
-    m.last_groups.push_back(o);
+    const Order& o = m.verdict.groups()[p];
     orow.insert(orow.end(), {o.r, o.Phi});
     for (int j = b.first; j < b.first + b.count; ++j) raster.push_back(wrapToPi(phi[j] - o.Phi));
-    m.platformEnvelope(p, tau, y, phi);
   }
-  m.last_all = orderParameter(phi);
-  orow.insert(orow.end(), {m.last_all.r, m.last_all.Phi});
+  orow.insert(orow.end(), {m.verdict.overall().r, m.verdict.overall().Phi});
   m.order.writeLine(csvLine(orow) + "," + csvLine({t}));
-  m.window.add(t, m.last_groups);
   keepForPlots(orow, raster);
 }
 
@@ -196,29 +142,22 @@ std::vector<std::string> NetworkFiles::fileNames() const {
 
 nlohmann::json NetworkFiles::summary(const NetworkRunReport& report) const {
   const Impl& m = *impl_;
+  const std::vector<std::string> regimes = m.verdict.platformRegimes();
+  const std::vector<Order>& groups = m.verdict.groups();
   nlohmann::json platforms = nlohmann::json::object();
   for (int p = 0; p < m.lay.platforms; ++p) {
     const NetworkPlatform& np = m.net.platforms[p];
     std::vector<int> numbers;
-    std::vector<double> theta_c;
-    std::vector<bool> locked;
-    for (std::size_t i = 0; i < np.rig.metronomes.size(); ++i) {
-      const MetronomeSpec& ms = np.rig.metronomes[i];
+    for (std::size_t i = 0; i < np.rig.metronomes.size(); ++i)
       numbers.push_back(m.net.firstMetronome(p) + static_cast<int>(i) + 1);
-      if (ms.locked) continue;
-      theta_c.push_back(ms.theta_c_rad / m.sp.angle_scale);
-    }
-    std::string regime = "unknown";
-    if (report.complete && !theta_c.empty())
-      regime = regimeName(classifyRegime(m.regimes[p], theta_c));
-    platforms[np.name] = {{"regime", regime},
+    platforms[np.name] = {{"regime", report.complete ? regimes[p] : "unknown"},
                           {"metronomes", numbers},
-                          {"r", m.last_groups.empty() ? 0.0 : m.last_groups[p].r}};
+                          {"r", groups.empty() ? 0.0 : groups[p].r}};
   }
   nlohmann::json j;
   j["platforms"] = platforms;
-  j["network"] = {{"regime", report.complete ? classifyNetwork(m.window) : "unknown"},
-                  {"r", m.last_all.r}};
+  j["network"] = {{"regime", report.complete ? m.verdict.label() : "unknown"},
+                  {"r", m.verdict.overall().r}};
   j["complete"] = report.complete;
   if (!report.complete) j["failure"] = report.failure;
   j["engine"] = report.engine;
