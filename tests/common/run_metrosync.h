@@ -49,20 +49,13 @@ struct RunIn {
   std::string env;  // prefix such as "VAR=value"
 };
 
-// Runs `[env] metrosync ARGS` with no standard input; captures stdout and stderr.
-inline CommandResult runMetrosync(const std::string& args, const RunIn& in = {}) {
+// Runs the shell command `cmd` with no standard input; captures stdout and stderr.
+inline CommandResult runCommand(const std::string& cmd) {
   static int counter = 0;
   const std::string err_path = ::testing::TempDir() + "/metrosync_stderr_" +
                                std::to_string(::getpid()) + "_" + std::to_string(counter++);
-  std::string cmd;
-  if (!in.cwd.empty()) {
-    std::filesystem::create_directories(in.cwd);
-    cmd = "cd " + shellQuote(in.cwd) + " && ";
-  }
-  cmd += in.env + " " + shellQuote(METROSYNC_BINARY) + " " + args + " 2>" + shellQuote(err_path) +
-         " </dev/null";
   CommandResult r;
-  FILE* p = ::popen(cmd.c_str(), "r");
+  FILE* p = ::popen((cmd + " 2>" + shellQuote(err_path) + " </dev/null").c_str(), "r");
   if (!p) return r;
   char buf[4096];
   size_t n;
@@ -72,6 +65,16 @@ inline CommandResult runMetrosync(const std::string& args, const RunIn& in = {})
   r.err = slurp(err_path);
   std::remove(err_path.c_str());
   return r;
+}
+
+// Runs `[env] metrosync ARGS` with no standard input; captures stdout and stderr.
+inline CommandResult runMetrosync(const std::string& args, const RunIn& in = {}) {
+  std::string cmd;
+  if (!in.cwd.empty()) {
+    std::filesystem::create_directories(in.cwd);
+    cmd = "cd " + shellQuote(in.cwd) + " && ";
+  }
+  return runCommand(cmd + in.env + " " + shellQuote(METROSYNC_BINARY) + " " + args);
 }
 
 // The cells of every line of a CSV file (no quoting: metrosync's own CSVs), the header included.

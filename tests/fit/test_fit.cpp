@@ -104,7 +104,7 @@ nlohmann::json readJson(const std::string& path) {
 nlohmann::json fit(const std::string& dir, const std::string& data, const std::string& args) {
   writeText(dir + "/rig.yaml", kPairRig);
   writeText(dir + "/data.csv", data);
-  const auto r = runMetrosync("fit rig.yaml data.csv --out out --no-plot -q " + args, {dir});
+  const auto r = runMetrosync("fit rig.yaml data.csv --out out --no-plot -q " + args, {dir, ""});
   EXPECT_EQ(r.code, 0) << r.err;
   return readJson(dir + "/out/fit.json");
 }
@@ -159,7 +159,7 @@ TEST(Fit, TheFittedRigReproducesTheData) {
   const std::string data = noisyData(kPairRig, {}, 11);
   fit(dir, data, "--free metronomes.1.start.rate --set metronomes.1.start.rate=0.2");
   const auto r = runMetrosync(
-      "run out/fitted.yaml --out rerun --no-plot -q --set simulation.sample=0.01", {dir});
+      "run out/fitted.yaml --out rerun --no-plot -q --set simulation.sample=0.01", {dir, ""});
   ASSERT_EQ(r.code, 0) << r.err;
   std::istringstream d(data), m(slurp(dir + "/rerun/trajectory.csv"));
   std::string dl, ml;
@@ -213,7 +213,7 @@ TEST(Fit, SlowModelRecoversAFreeDecay) {
   const auto r = runMetrosync(
       "fit rig.yaml data.csv --model slow --out out --no-plot -q "
       "--free metronomes.0.pendulum.decay_rate --set metronomes.0.pendulum.decay_rate=0.3",
-      {dir});
+      {dir, ""});
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = readJson(dir + "/out/fit.json");
   const std::string key = "metronomes.0.pendulum.decay_rate";
@@ -232,7 +232,7 @@ TEST(Measure, FreeDecayGivesTheDecayRate) {
   const std::string dir = scratchDir("measure", "decay", true);
   writeText(dir + "/rig.yaml", kDecayRig);
   writeText(dir + "/decay.csv", noisyData(kDecayRig, {}, 5));
-  const auto r = runMetrosync("measure rig.yaml --decay decay.csv --out out -q", {dir});
+  const auto r = runMetrosync("measure rig.yaml --decay decay.csv --out out -q", {dir, ""});
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = readJson(dir + "/out/measure.json")["free_decay"];
   const double b = j["decay_rate_per_s"]["value"], sb = j["decay_rate_per_s"]["std_error"];
@@ -268,7 +268,7 @@ TEST(Measure, LinearDecayOfTheBoardGivesMuBar) {
   writeText(dir + "/x.csv", os.str());
   const auto r = runMetrosync("measure " + std::string(METROSYNC_SOURCE_DIR) +
                                   "/yaml/rigs/experiment.yaml --friction x.csv --out out -q",
-                              {dir});
+                              {dir, ""});
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = readJson(dir + "/out/measure.json")["linear_decay"];
   const double m = j["mu_bar"]["value"], sm = j["mu_bar"]["std_error"];
@@ -286,7 +286,7 @@ TEST(Measure, SteadyAmplitudeGivesTheImpulse) {
   const std::string dir = scratchDir("measure", "steady", true);
   writeText(dir + "/rig.yaml", rig);
   writeText(dir + "/steady.csv", noisyData(rig, {}, 9));
-  const auto r = runMetrosync("measure rig.yaml --steady steady.csv --out out -q", {dir});
+  const auto r = runMetrosync("measure rig.yaml --steady steady.csv --out out -q", {dir, ""});
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = readJson(dir + "/out/measure.json")["steady_amplitude"];
   const double A = j["amplitude_rad"]["value"];
@@ -329,7 +329,7 @@ TEST(Fit, BadDataFilesAndKeysExit2WithTheLine) {
     writeText(dir + "/rig.yaml", kPairRig);
     writeText(dir + "/data.csv", c.data);
     const auto r =
-        runMetrosync("fit rig.yaml data.csv --out out --free " + std::string(c.free), {dir});
+        runMetrosync("fit rig.yaml data.csv --out out --free " + std::string(c.free), {dir, ""});
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir + "/out"));

@@ -30,22 +30,9 @@ std::string scratch(const std::string& name) {
 // cores than ranks); captures stdout and stderr.
 CommandResult mpiMetrosync(int ranks, const std::string& args, const std::string& env = "",
                            const std::string& binary = METROSYNC_MPI_BINARY) {
-  const std::string err =
-      ::testing::TempDir() + "/metrosync_mpi_stderr_" + std::to_string(::getpid());
-  const std::string cmd = env + " " + shellQuote(METROSYNC_MPIEXEC) + " -np " +
-                          std::to_string(ranks) + " --oversubscribe --allow-run-as-root " +
-                          shellQuote(binary) + " " + args + " 2>" + shellQuote(err) + " </dev/null";
-  CommandResult r;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
-  const int status = ::pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  r.err = slurp(err);
-  std::remove(err.c_str());
-  return r;
+  return metrosync::testing_support::runCommand(
+      env + " " + shellQuote(METROSYNC_MPIEXEC) + " -np " + std::to_string(ranks) +
+      " --oversubscribe --allow-run-as-root " + shellQuote(binary) + " " + args);
 }
 
 std::vector<std::string> lines(const std::string& path) {
