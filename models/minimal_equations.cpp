@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "models/vector_trig.h"
+
 namespace metrosync {
 
 PlatformFriction platformFriction(const Rig& rig) {
@@ -43,19 +45,36 @@ MetronomeEquations::MetronomeEquations(const Rig& rig)
     if (!(mass_ > 0)) throw std::invalid_argument("the platform's total mass must be > 0");
     spring_ = rig.platform.spring_N_m;
   }
-  c_.resize(layout_.n);
-  r_.resize(layout_.n);
+  for (const PendulumConstants& p : pend_) {
+    mL_.push_back(p.mL);
+    mgL_.push_back(p.mgL);
+    inv_inertia_.push_back(p.inv_inertia);
+    damping_.push_back(p.damping);
+  }
+  for (auto* v : {&sin_, &cos_, &c_, &r_}) v->resize(layout_.n);
+}
+
+void MetronomeEquations::angleTrig(const double* y) const {
+  sinCos(y + 2, sin_.data(), cos_.data(), layout_.n);
 }
 
 void MetronomeEquations::rhs(const double* y, PlatformMode mode, double* dy) const {
   const int n = layout_.n;
-  const double* th = y + 2;
-  const double* w = y + 2 + n;
-  double* dth = dy + 2;
-  double* dw = dy + 2 + n;
+  const double* __restrict w = y + 2 + n;
+  double* __restrict dth = dy + 2;
+  double* __restrict dw = dy + 2 + n;
+  const double* __restrict mL = mL_.data();
+  const double* __restrict mgL = mgL_.data();
+  const double* __restrict inv_I = inv_inertia_.data();
+  const double* __restrict damp = damping_.data();
   const double v = y[StateLayout::kV];
+  angleTrig(y);
+  const double* __restrict sn = sin_.data();
+  const double* __restrict cs = cos_.data();
+  double* __restrict c = c_.data();
+  double* __restrict r = r_.data();
   double damping_power = 0.0;
-  for (int j = 0; j < n; ++j) damping_power += pend_[j].damping * w[j] * w[j];
+  for (int j = 0; j < n; ++j) damping_power += damp[j] * w[j] * w[j];
 
   double a = 0.0;  // xddot
   double friction_power = 0.0;
@@ -65,26 +84,20 @@ void MetronomeEquations::rhs(const double* y, PlatformMode mode, double* dy) con
     // pass 1: c_j, r_j and the platform's Schur-reduced equation Meff xddot = G + F
     double G = -spring_ * y[StateLayout::kX], schur = 0.0;
     for (int j = 0; j < n; ++j) {
-      const PendulumConstants& p = pend_[j];
-      const double s = std::sin(th[j]), co = std::cos(th[j]);
-      const double c = p.mL * co, r = -p.mgL * s - p.damping * w[j];
-      const double c_over_I = c * p.inv_inertia;
-      G += p.mL * s * w[j] * w[j] - c_over_I * r;
-      schur += c_over_I * c;
-      c_[j] = c;
-      r_[j] = r;
+      c[j] = mL[j] * cs[j];
+      r[j] = -mgL[j] * sn[j] - damp[j] * w[j];
+      const double c_over_I = c[j] * inv_I[j];
+      G += mL[j] * sn[j] * w[j] * w[j] - c_over_I * r[j];
+      schur += c_over_I * c[j];
     }
     const double F = friction_.force(v, mode);  // the law's force (contact/platform_friction.h)
     friction_power = friction_.power(v, mode);
     a = (G + F) / (mass_ - schur);
     // pass 2: the pendulums
-    for (int j = 0; j < n; ++j) dw[j] = (r_[j] - c_[j] * a) * pend_[j].inv_inertia;
+    for (int j = 0; j < n; ++j) dw[j] = (r[j] - c[j] * a) * inv_I[j];
   } else {
     // platform still (fixed, or stuck): each pendulum on its own
-    for (int j = 0; j < n; ++j) {
-      const PendulumConstants& p = pend_[j];
-      dw[j] = (-p.mgL * std::sin(th[j]) - p.damping * w[j]) * p.inv_inertia;
-    }
+    for (int j = 0; j < n; ++j) dw[j] = (-mgL[j] * sn[j] - damp[j] * w[j]) * inv_I[j];
   }
   for (int j = 0; j < n; ++j) dth[j] = w[j];
   dy[StateLayout::kX] = platform_moves ? v : 0.0;
@@ -95,12 +108,12 @@ void MetronomeEquations::rhs(const double* y, PlatformMode mode, double* dy) con
 
 double MetronomeEquations::holdingForce(const double* y) const {
   const int n = layout_.n;
-  const double* th = y + 2;
   const double* w = y + 2 + n;
+  angleTrig(y);
   double G = -spring_ * y[StateLayout::kX];
   for (int j = 0; j < n; ++j) {
     const PendulumConstants& p = pend_[j];
-    const double s = std::sin(th[j]), co = std::cos(th[j]);
+    const double s = sin_[j], co = cos_[j];
     const double r = -p.mgL * s - p.damping * w[j];
     G += p.mL * s * w[j] * w[j] - p.mL * co / p.inertia * r;
   }
@@ -111,12 +124,12 @@ double MetronomeEquations::holdingForceRate(const double* y) const {
   // d/dt of G = sum_j [mL s w^2 - mL co r / I] - k x with xdot = xddot = 0,
   // w' = r / I, r' = -mgL co w - b w'
   const int n = layout_.n;
-  const double* th = y + 2;
   const double* w = y + 2 + n;
+  angleTrig(y);
   double dG = 0.0;
   for (int j = 0; j < n; ++j) {
     const PendulumConstants& p = pend_[j];
-    const double s = std::sin(th[j]), co = std::cos(th[j]);
+    const double s = sin_[j], co = cos_[j];
     const double r = -p.mgL * s - p.damping * w[j];
     const double dw = r / p.inertia;
     const double dr = -p.mgL * co * w[j] - p.damping * dw;
@@ -135,8 +148,9 @@ double MetronomeEquations::applyImpulse(double* y, const double* pin_impulse,
   if (has_platform_) {
     // [[M, c^T], [c, diag(I)]] [dv; dw] = [p_x; p]: platform first (Schur complement)
     double schur = 0.0, rhs = platform_impulse;
+    angleTrig(y);
     for (int j = 0; j < n; ++j) {
-      c_[j] = pend_[j].mL * std::cos(y[layout_.theta(j)]);
+      c_[j] = pend_[j].mL * cos_[j];
       schur += c_[j] * c_[j] * pend_[j].inv_inertia;
       rhs -= c_[j] * pend_[j].inv_inertia * pin_impulse[j];
     }
@@ -156,8 +170,9 @@ double MetronomeEquations::applyImpulse(double* y, const double* pin_impulse,
 double MetronomeEquations::platformMobility(const double* y) const {
   if (!has_platform_) return 0.0;
   double schur = 0.0;
+  angleTrig(y);
   for (int j = 0; j < layout_.n; ++j) {
-    const double c = pend_[j].mL * std::cos(y[layout_.theta(j)]);
+    const double c = pend_[j].mL * cos_[j];
     schur += c * c * pend_[j].inv_inertia;
   }
   return 1.0 / (mass_ - schur);

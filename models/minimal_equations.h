@@ -98,9 +98,14 @@ class MetronomeEquations {
   std::vector<PendulumConstants> pend_;  // (n x 1)
   bool has_platform_ = false;
   PlatformFriction friction_;
-  double mass_ = 0.0;                  // M (kg)
-  double spring_ = 0.0;                // k (N/m)
-  mutable std::vector<double> c_, r_;  // scratch of rhs(), (n x 1)
+  double mass_ = 0.0;    // M (kg)
+  double spring_ = 0.0;  // k (N/m)
+  // the pendulums' constants again as arrays (n x 1), for the vectorized loops of rhs()
+  std::vector<double> mL_, mgL_, inv_inertia_, damping_;
+  // scratch of rhs() and the holding force, (n x 1): sin and cos of the angles, c_j, r_j
+  mutable std::vector<double> sin_, cos_, c_, r_;
+  // sin_ and cos_ of the angles in y (models/vector_trig.h)
+  void angleTrig(const double* y) const;
 };
 
 }  // namespace metrosync::direct

@@ -41,11 +41,11 @@ RkStepper::RkStepper(const RkTableau& tableau, int dim, OdeRhs& rhs)
     dense_stage_.push_back(j);
     dense_p_.insert(dense_p_.end(), tab_.p[j].begin(), tab_.p[j].end());
   }
-  w_.assign(dense_stage_.size(), 0.0);
   // degree-major copies for stageWeights, zero-padded to kPadRows rows when they fit: p_rq, and
   // (q + 1) p_rq for the rate
   const int rows = static_cast<int>(dense_stage_.size()), deg = tab_.dense_degree;
   padded_rows_ = rows <= kPadRowsSmall ? kPadRowsSmall : (rows <= kPadRows ? kPadRows : rows);
+  w_.assign(padded_rows_, 0.0);  // padded: hornerRows stores whole vectors (the pads are 0)
   dense_pt_.assign(static_cast<size_t>(padded_rows_) * deg, 0.0);
   dense_rate_pt_ = dense_pt_;
   for (int r = 0; r < rows; ++r)
@@ -101,6 +101,7 @@ void RkStepper::combine(const Weights& w, double h, double* __restrict out) cons
 }
 
 void RkStepper::restart(double t, const double* y) {
+  w_th_ = -1.0;
   t_ = t;
   h_ = 0.0;
   std::copy(y, y + dim_, y_.begin());
@@ -109,6 +110,7 @@ void RkStepper::restart(double t, const double* y) {
 }
 
 double RkStepper::attempt(double h) {
+  w_th_ = -1.0;
   h_ = h;
   extra_stages_ = false;
   const int s = tab_.stages;
@@ -145,6 +147,7 @@ double RkStepper::attempt(double h) {
 }
 
 void RkStepper::advance() {
+  w_th_ = -1.0;
   t_ += h_;
   std::swap(y_, y1_);
   std::copy(stage(tab_.stages - 1), stage(tab_.stages - 1) + dim_, stage(0));
@@ -230,13 +233,18 @@ void hornerRows(const double* __restrict pt, int rows, double th, double scale, 
     for (int r = 0; r < R; ++r) acc[r] = acc[r] * th + pt[q * R + r];
   if (!rate)
     for (int r = 0; r < R; ++r) acc[r] *= scale;
-  for (int r = 0; r < rows; ++r) w[r] = acc[r];
+  for (int r = 0; r < R; ++r) w[r] = acc[r];  // all R: a fixed-size store, not a memcpy call
 }
 
 }  // namespace
 
 void RkStepper::stageWeights(double th, bool rate) {
   ensureStages();
+  // the same weights again (a witness and the state at one window end, several witnesses at
+  // one th): the step's stages have not changed since (attempt() and restart() reset this)
+  if (th == w_th_ && rate == w_rate_) return;
+  w_th_ = th;
+  w_rate_ = rate;
   const int rows = static_cast<int>(dense_stage_.size());
   const double scale = h_ * th;
   const double* p = rate ? dense_rate_pt_.data() : dense_pt_.data();

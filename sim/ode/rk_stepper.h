@@ -96,7 +96,9 @@ class RkStepper {
   std::vector<double> y_, y1_, tmp_;
   std::vector<double> k_;  // (dense_stages x dim), stage-major; k_0 = f(y)
   bool extra_stages_ = false;
-  std::vector<double> w_;  // (rows): the interpolant's stage weights
+  std::vector<double> w_;  // (padded rows): the interpolant's stage weights
+  double w_th_ = -1.0;     // the th and kind w_ holds (th < 0: none)
+  bool w_rate_ = false;
   double err_old_ = 1e-4;
   long evals_ = 0;
 };

@@ -11,28 +11,35 @@ EnvelopeRecorder::EnvelopeRecorder(double epsilon, std::vector<bool> active, Run
       sink_(sink),
       n_(static_cast<int>(active_.size())),
       sum_A_(n_, 0.0),
-      sum_e_(n_, 0.0),
+      sum_er_(n_, 0.0),
+      sum_ei_(n_, 0.0),
       unwrap_(n_ > 1 ? n_ - 1 : 0) {
-  prev_.A.resize(n_);
-  prev_.e.resize(n_);
+  prev_.resize(n_);
   cur_ = prev_;
 }
 
 void EnvelopeRecorder::eval(double t, const double* theta, const double* thetadot,
                             Values& out) const {
-  const std::complex<double> rot(std::cos(t), -std::sin(t));  // exp(-i t)
+  const double cr = std::cos(t), ci = -std::sin(t);  // exp(-i t)
+  double* __restrict A = out.A.data();
+  double* __restrict er = out.er.data();
+  double* __restrict ei = out.ei.data();
   for (int i = 0; i < n_; ++i) {
-    if (!active_[i]) {
-      out.A[i] = 0.0;
-      out.e[i] = 1.0;
-      continue;
-    }
-    const double a = std::hypot(theta[i], thetadot[i]);
-    out.A[i] = a;
-    // exp(i atan2(theta, thetadot)) = (thetadot + i theta) / A
-    const std::complex<double> u =
-        a > 0 ? std::complex<double>(thetadot[i] / a, theta[i] / a) : std::complex<double>(1, 0);
-    out.e[i] = u * rot;
+    // A_i = |(theta, thetadot)| (scaled: O(1), no overflow to guard against as hypot does);
+    // exp(i atan2(theta, thetadot)) = (thetadot + i theta) / A, turned by exp(-i t)
+    const double th = theta[i], w = thetadot[i];
+    const double a = std::sqrt(th * th + w * w);
+    const bool some = a > 0;
+    const double ur = some ? w / a : 1.0, ui = some ? th / a : 0.0;
+    A[i] = a;
+    er[i] = ur * cr - ui * ci;
+    ei[i] = ur * ci + ui * cr;
+  }
+  for (int i = 0; i < n_; ++i) {
+    if (active_[i]) continue;  // a locked metronome: A = 0, phase 0
+    A[i] = 0.0;
+    er[i] = 1.0;
+    ei[i] = 0.0;
   }
 }
 
@@ -43,7 +50,7 @@ void EnvelopeRecorder::sample(double t, const double* theta, const double* theta
     EnvelopeRow start;
     start.tau = epsilon_ * t;
     start.A = cur_.A;
-    emit(std::move(start), cur_.e);
+    emit(std::move(start), cur_.er, cur_.ei);
   }
   if (have_prev_) {
     if (t <= nextBoundary()) {
@@ -62,7 +69,8 @@ void EnvelopeRecorder::sample(double t, const double* theta, const double* theta
           const double w = (tb - ta) / (t - ta);
           for (int i = 0; i < n_; ++i) {
             b.A[i] = a.A[i] + w * (cur_.A[i] - a.A[i]);
-            b.e[i] = a.e[i] + w * (cur_.e[i] - a.e[i]);
+            b.er[i] = a.er[i] + w * (cur_.er[i] - a.er[i]);
+            b.ei[i] = a.ei[i] + w * (cur_.ei[i] - a.ei[i]);
           }
         }
         integrate(tb - ta, a, b);
@@ -80,9 +88,11 @@ void EnvelopeRecorder::sample(double t, const double* theta, const double* theta
 }
 
 void EnvelopeRecorder::integrate(double h, const Values& a, const Values& b) {
+  const double half = 0.5 * h;
   for (int i = 0; i < n_; ++i) {
-    sum_A_[i] += 0.5 * h * (a.A[i] + b.A[i]);
-    sum_e_[i] += 0.5 * h * (a.e[i] + b.e[i]);
+    sum_A_[i] += half * (a.A[i] + b.A[i]);
+    sum_er_[i] += half * (a.er[i] + b.er[i]);
+    sum_ei_[i] += half * (a.ei[i] + b.ei[i]);
   }
   covered_ += h;
 }
@@ -93,18 +103,18 @@ void EnvelopeRecorder::closePeriod() {
   row.A.resize(n_);
   const double len = covered_ > 0 ? covered_ : 1.0;
   for (int i = 0; i < n_; ++i) row.A[i] = sum_A_[i] / len;
-  emit(std::move(row), sum_e_);
-  std::fill(sum_A_.begin(), sum_A_.end(), 0.0);
-  std::fill(sum_e_.begin(), sum_e_.end(), std::complex<double>(0.0));
+  emit(std::move(row), sum_er_, sum_ei_);
+  for (auto* sum : {&sum_A_, &sum_er_, &sum_ei_}) std::fill(sum->begin(), sum->end(), 0.0);
   covered_ = 0.0;
   ++period_;
 }
 
 // Completes a row with A set: psi_j = phi_1 - phi_j from the phases' sums (unit complex numbers,
 // averaged: only their direction counts), unwrapped against the rows before, and r.
-void EnvelopeRecorder::emit(EnvelopeRow row, const std::vector<std::complex<double>>& phase_sum) {
+void EnvelopeRecorder::emit(EnvelopeRow row, const std::vector<double>& phase_re,
+                            const std::vector<double>& phase_im) {
   std::vector<double> phi(n_);
-  for (int i = 0; i < n_; ++i) phi[i] = active_[i] ? std::arg(phase_sum[i]) : 0.0;
+  for (int i = 0; i < n_; ++i) phi[i] = active_[i] ? std::atan2(phase_im[i], phase_re[i]) : 0.0;
   row.psi.clear();
   for (int j = 1; j < n_; ++j) row.psi.push_back(unwrap_[j - 1](phi[0] - phi[j]));
   row.r = orderParameter(row.A, row.psi);
@@ -114,14 +124,19 @@ void EnvelopeRecorder::emit(EnvelopeRow row, const std::vector<std::complex<doub
 
 // Keeps the samples of [t - 2 pi, t] and the last one before (to interpolate at t - 2 pi).
 void EnvelopeRecorder::keepTrailing(double t) {
-  std::pair<double, Values> entry;  // reuses the storage of a dropped sample
   while (trailing_.size() > 1 && trailing_[1].first <= t - kTwoPi) {
-    entry = std::move(trailing_.front());
+    spare_.push_back(std::move(trailing_.front().second));  // its storage, for a later sample
     trailing_.pop_front();
+  }
+  std::pair<double, Values> entry;
+  if (!spare_.empty()) {
+    entry.second = std::move(spare_.back());
+    spare_.pop_back();
   }
   entry.first = t;
   entry.second.A = cur_.A;
-  entry.second.e = cur_.e;
+  entry.second.er = cur_.er;
+  entry.second.ei = cur_.ei;
   trailing_.push_back(std::move(entry));
 }
 
@@ -131,8 +146,7 @@ EnvelopeRow EnvelopeRecorder::finish() {
   const double t_from = std::max(trailing_.front().first, t_end - kTwoPi);
   Values a = trailing_.front().second, b;
   double ta = trailing_.front().first;
-  std::vector<double> sum_A(n_, 0.0);
-  std::vector<std::complex<double>> sum_e(n_, 0.0);
+  std::vector<double> sum_A(n_, 0.0), sum_er(n_, 0.0), sum_ei(n_, 0.0);
   for (size_t k = 1; k < trailing_.size(); ++k) {
     const double tb = trailing_[k].first;
     b = trailing_[k].second;
@@ -140,14 +154,16 @@ EnvelopeRow EnvelopeRecorder::finish() {
       const double w = (t_from - ta) / (tb - ta);
       for (int i = 0; i < n_; ++i) {
         a.A[i] += w * (b.A[i] - a.A[i]);
-        a.e[i] += w * (b.e[i] - a.e[i]);
+        a.er[i] += w * (b.er[i] - a.er[i]);
+        a.ei[i] += w * (b.ei[i] - a.ei[i]);
       }
       ta = t_from;
     }
     if (ta >= t_from) {  // the trapezoid rule, as for the period rows
       for (int i = 0; i < n_; ++i) {
         sum_A[i] += 0.5 * (tb - ta) * (a.A[i] + b.A[i]);
-        sum_e[i] += 0.5 * (tb - ta) * (a.e[i] + b.e[i]);
+        sum_er[i] += 0.5 * (tb - ta) * (a.er[i] + b.er[i]);
+        sum_ei[i] += 0.5 * (tb - ta) * (a.ei[i] + b.ei[i]);
       }
     }
     a = b;
@@ -160,9 +176,11 @@ EnvelopeRow EnvelopeRecorder::finish() {
   for (int i = 0; i < n_; ++i) {
     // one sample only (a run of length 0): the instantaneous envelope
     row.A[i] = final_span_ > 0 ? sum_A[i] / final_span_ : a.A[i];
-    if (!(final_span_ > 0)) sum_e[i] = a.e[i];
+    if (final_span_ > 0) continue;
+    sum_er[i] = a.er[i];
+    sum_ei[i] = a.ei[i];
   }
-  emit(std::move(row), sum_e);
+  emit(std::move(row), sum_er, sum_ei);
   return last_row_;
 }
 

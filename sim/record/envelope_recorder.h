@@ -45,14 +45,22 @@ class EnvelopeRecorder {
   static constexpr double kTwoPi = 6.283185307179586;
 
  private:
+  // A_i and exp(i phi_i) = er_i + i ei_i at one sample, (N x 1) each: split into real arrays so
+  // that the per-metronome loops vectorize (one sample per envelope point and two per event)
   struct Values {
-    std::vector<double> A;
-    std::vector<std::complex<double>> e;
+    std::vector<double> A, er, ei;
+    void resize(int n) {
+      A.resize(n);
+      er.resize(n);
+      ei.resize(n);
+    }
   };
   void eval(double t, const double* theta, const double* thetadot, Values& out) const;
   void closePeriod();
   void integrate(double h, const Values& a, const Values& b);
-  void emit(EnvelopeRow row, const std::vector<std::complex<double>>& phase_sum);
+  // phase_re, phase_im: the sums of exp(i phi_i) (only their directions count)
+  void emit(EnvelopeRow row, const std::vector<double>& phase_re,
+            const std::vector<double>& phase_im);
   void keepTrailing(double t);
 
   double epsilon_;
@@ -63,12 +71,13 @@ class EnvelopeRecorder {
   bool have_prev_ = false;
   double t_prev_ = 0.0;
   Values prev_, cur_;
-  std::vector<double> sum_A_;                // integral of A_i over the period so far
-  std::vector<std::complex<double>> sum_e_;  // integral of exp(i phi_i)
-  double covered_ = 0.0;                     // length of the period integrated so far
+  std::vector<double> sum_A_;            // integral of A_i over the period so far
+  std::vector<double> sum_er_, sum_ei_;  // integral of exp(i phi_i), real and imaginary parts
+  double covered_ = 0.0;                 // length of the period integrated so far
   std::vector<PhaseUnwrapper> unwrap_;
   EnvelopeRow last_row_;
   std::deque<std::pair<double, Values>> trailing_;  // samples of the last period (and one before)
+  std::vector<Values> spare_;  // storage of dropped samples, reused (no allocation per sample)
   double final_span_ = 0.0;
 };
 

@@ -385,12 +385,18 @@ void DirectRun::recordTrajectory(const double* y, double t) {
 }
 
 void DirectRun::recordEnvelope(const double* y, double t) {
-  int j = 0;
-  for (int i = 0; i < n_rig_; ++i) {
-    if (rig_.metronomes[i].locked) continue;
-    env_th_[i] = y[lay_.theta(j)] / sp_.angle_scale;
-    env_w_[i] = y[lay_.omega(j)] / (sp_.angle_scale * omega0_);
-    ++j;
+  const double* th = y + lay_.theta(0);
+  const double* w = y + lay_.omega(0);
+  const double w_scale = sp_.angle_scale * omega0_;
+  if (lay_.n == n_rig_) {  // no locked metronome: the angles and rates in rig order
+    for (int i = 0; i < n_rig_; ++i) env_th_[i] = th[i] / sp_.angle_scale;
+    for (int i = 0; i < n_rig_; ++i) env_w_[i] = w[i] / w_scale;
+  } else {
+    for (int j = 0; j < lay_.n; ++j) {
+      const int i = eq_.pendulum(j).rig_index;
+      env_th_[i] = th[j] / sp_.angle_scale;
+      env_w_[i] = w[j] / w_scale;
+    }
   }
   env_.sample(t * omega0_, env_th_.data(), env_w_.data());
 }
