@@ -189,7 +189,7 @@ std::vector<SlopeRow> nSlope(const std::vector<VerdictScene>& scenes,
 }
 
 bool Agreement::flagged() const {
-  return !validated || !(err_final <= kPeerAgreement);
+  return !self && (!validated || !(err_final <= kPeerAgreement));
 }
 
 std::vector<Agreement> peerAgreement(const std::vector<VerdictScene>& scenes, const Sides& sides) {
@@ -199,17 +199,20 @@ std::vector<Agreement> peerAgreement(const std::vector<VerdictScene>& scenes, co
     const bool ref_peer = s.reference_engine == sides.peer;
     bool any = false;
     for (const CrossCheck& cc : s.cross_checks) {
-      if (!((ref_ours && cc.engine == sides.peer) || (ref_peer && cc.engine == sides.ours)))
-        continue;
+      const bool across =
+          (ref_ours && cc.engine == sides.peer) || (ref_peer && cc.engine == sides.ours);
+      const bool self = cc.engine == s.reference_engine;
+      if (!across && !self) continue;
       Agreement a;
       a.scene = s.name;
       a.reference = s.reference;
       a.check = cc.method;
-      a.validated = true;
+      a.validated = across;
+      a.self = self;
       a.err_final = cc.err_final;
       a.err_envelope = cc.err_envelope;
       out.push_back(a);
-      any = true;
+      any = any || across;
     }
     if (!any) {
       Agreement a;

@@ -127,12 +127,14 @@ std::vector<SlopeRow> nSlope(const std::vector<VerdictScene>& scenes,
                              const std::vector<double>& errors, ErrorMeasure m, Clock c);
 
 // The peer's validation on one scene: a cross-check of one side against a reference on the
-// other. `validated` is false (with nothing else set) when the scene has none.
+// other. `validated` is false (with nothing else set) when the scene has none. A cross-check on
+// the reference's own engine is listed too, as `self`: the reference's own uncertainty, the
+// scale against which a peer's difference is read (never flagged, never a validation).
 struct Agreement {
   std::string scene, reference, check;
-  bool validated = false;
+  bool validated = false, self = false;
   double err_final = 0.0, err_envelope = 0.0;
-  bool flagged() const;  // err_final > kPeerAgreement (or not validated)
+  bool flagged() const;  // a validation above kPeerAgreement in final state, or none at all
 };
 std::vector<Agreement> peerAgreement(const std::vector<VerdictScene>& scenes, const Sides& sides);
 

@@ -37,6 +37,30 @@ std::string joined(const std::vector<std::string>& v, const std::string& sep) {
   return s;
 }
 
+// The command as a shell block: lines of at most ~92 characters joined by backslashes, never
+// breaking a single-quoted argument.
+std::string wrapCommand(const std::string& cmd) {
+  std::vector<std::string> words(1);
+  bool quoted = false;
+  for (char c : cmd) {
+    if (c == '\'') quoted = !quoted;
+    if (c == ' ' && !quoted) {
+      if (!words.back().empty()) words.emplace_back();
+    } else {
+      words.back() += c;
+    }
+  }
+  std::string out, line;
+  for (const std::string& w : words) {
+    if (!line.empty() && line.size() + 1 + w.size() > 92) {
+      out += line + " \\\n        ";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + w;
+  }
+  return out + line;
+}
+
 std::string methodsOf(const std::vector<VerdictScene>& scenes, bool ours) {
   std::vector<std::string> all;
   for (const VerdictScene& s : scenes)
@@ -112,15 +136,16 @@ std::string agreementMarkdown(const std::vector<Agreement>& ag, const Sides& sid
      << "|---|---|---|---|---|---|\n";
   for (const Agreement& a : ag) {
     os << "| " << a.scene << " | " << a.reference << " | ";
-    if (!a.validated) {
+    if (!a.validated && !a.self) {
       os << " |  |  | **not validated**: no cross-check of " << sides.peer << " against "
          << sides.ours << " (add `--cross-check " << sides.peer << ":rkf78:1e-13`) |\n";
       continue;
     }
     os << a.check << " | " << num(a.err_final, "%.1e") << " | " << num(a.err_envelope, "%.1e")
        << " | "
-       << (a.flagged() ? "**FLAG: above " + num(kPeerAgreement, "%.0e") + "**"
-                       : "agrees (<= " + num(kPeerAgreement, "%.0e") + ")")
+       << (a.self        ? std::string("the reference's own uncertainty (same engine)")
+           : a.flagged() ? "**FLAG: above " + num(kPeerAgreement, "%.0e") + "**"
+                         : "agrees (<= " + num(kPeerAgreement, "%.0e") + ")")
        << " |\n";
   }
   return os.str();
@@ -140,7 +165,7 @@ std::string headerMarkdown(const std::vector<VerdictScene>& scenes, const Verdic
      << "shared, and the CPU time of these single-threaded runs carries much less of the other "
      << "sessions' preemption than the wall time) and of the wall time. 1-minute load during the "
      << "timed runs: " << loadRange(scenes) << ".\n\n";
-  if (!o.command.empty()) os << "Made by:\n\n    " << o.command << "\n\n";
+  if (!o.command.empty()) os << "Made by:\n\n    " << wrapCommand(o.command) << "\n\n";
   return os.str();
 }
 
@@ -211,14 +236,22 @@ VerdictPages verdictPages(const std::vector<VerdictScene>& scenes, const Verdict
                          "): the ratio table is not a result; rerun with --repeat " +
                          std::to_string(kMinRunsForResult) + " or more");
   const std::vector<Agreement> ag = peerAgreement(scenes, o.sides);
-  for (const Agreement& a : ag)
-    if (a.flagged())
-      p.warnings.push_back(
-          a.scene + ": " +
-          (a.validated ? "the peer's cross-check " + a.check + " differs from the reference " +
-                             a.reference + " by " + num(a.err_final, "%.1e") +
-                             " in final state (> " + num(kPeerAgreement, "%.0e") + ")"
-                       : "the peer is not validated (no cross-check against metrosync)"));
+  for (const Agreement& a : ag) {
+    if (!a.flagged()) continue;  // self-checks never are
+    std::string w = a.scene + ": ";
+    if (!a.validated) {
+      p.warnings.push_back(w + "the peer is not validated (no cross-check against metrosync)");
+      continue;
+    }
+    w += "the peer's cross-check " + a.check + " differs from the reference " + a.reference +
+         " by " + num(a.err_final, "%.1e") + " in final state (> " + num(kPeerAgreement, "%.0e") +
+         ")";
+    for (const Agreement& b : ag)
+      if (b.self && b.scene == a.scene)
+        w += "; the reference's own engine differs from it by " + num(b.err_final, "%.1e") + " (" +
+             b.check + ")";
+    p.warnings.push_back(w);
+  }
   p.ratios_csv =
       "measure,clock,scene,n,error,time_metrosync_s,time_peer_s,ratio,below_target,reason\n";
   p.slope_csv = "measure,clock,error,side,scene,n,time_per_period_s,slope\n";

@@ -207,15 +207,20 @@ TEST(PeerVerdict, GuardsOnRunsAndThePeersValidation) {
     s->ours = curve("direct:x", {1e-3, 0.3}, -11, -3, 2);
     s->peer = curve("odeint:y", {3e-3, 0.3}, -11, -3, 2);
   }
-  b.cross_checks = {{"odeint", "odeint:rkf78:1e-13", 2e-8, 1e-10}};        // above 1e-8
-  c.cross_checks = {{"simbody", "simbody:rk-merson:1e-12", 1e-9, 1e-10}};  // not the peer
+  b.cross_checks = {{"odeint", "odeint:rkf78:1e-13", 2e-8, 1e-10}};  // above 1e-8
+  // c: a check of another engine (ignored) and one of the reference's own (its uncertainty, not
+  // a validation of the peer)
+  c.cross_checks = {{"simbody", "simbody:rk-merson:1e-12", 1e-9, 1e-10},
+                    {"direct", "direct:dopri5:1e-13", 3e-8, 1e-9}};
   const auto ag = mb::peerAgreement({a, b, c}, mb::Sides{});
-  ASSERT_EQ(ag.size(), 3u);
+  ASSERT_EQ(ag.size(), 4u);
   EXPECT_TRUE(ag[0].validated);
   EXPECT_FALSE(ag[0].flagged());
   EXPECT_TRUE(ag[1].flagged());
-  EXPECT_FALSE(ag[2].validated);
-  EXPECT_TRUE(ag[2].flagged());
+  EXPECT_TRUE(ag[2].self);
+  EXPECT_FALSE(ag[2].flagged());  // 3e-8, but the reference against itself
+  EXPECT_FALSE(ag[3].validated);
+  EXPECT_TRUE(ag[3].flagged());
 
   mb::VerdictPages p = mb::verdictPages({a, b, c}, mb::VerdictOptions{});
   ASSERT_EQ(p.warnings.size(), 2u);  // b's agreement, c's missing validation; runs are 5
