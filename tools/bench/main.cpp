@@ -141,11 +141,21 @@ mb::Record measure(const mb::Scene& scene, const mb::Method& m, const mb::RunRes
   return rec;
 }
 
+// A comma-separated list of numbers; std::invalid_argument naming the item that is not one.
 std::vector<double> parseList(const std::string& s) {
   std::vector<double> v;
   std::stringstream ss(s);
-  for (std::string item; std::getline(ss, item, ',');)
-    if (!item.empty()) v.push_back(std::stod(item));
+  for (std::string item; std::getline(ss, item, ',');) {
+    if (item.empty()) continue;
+    size_t used = 0;
+    try {
+      v.push_back(std::stod(item, &used));
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size())
+      throw std::invalid_argument("'" + item + "' in the list '" + s + "' is not a number");
+  }
   return v;
 }
 
