@@ -12,8 +12,10 @@
 #include <string>
 
 #include "tools/bench/bench_metrics.h"
+#include "tools/bench/bench_report.h"
 #include "tools/bench/bench_run.h"
 #include "tools/bench/siconos_peer.h"
+#include "tools/bench/wp_csv.h"
 
 namespace mb = metrosync::bench;
 namespace fs = std::filesystem;
@@ -68,6 +70,58 @@ TEST(BenchMetrics, RatiosOnTheOverlapOnly) {
   EXPECT_NEAR(r.back().error, 1e-3, 1e-15);
   for (const auto& x : r) EXPECT_LT(x.ratio(), 1.0);
   EXPECT_TRUE(mb::ratiosAtEqualError(a, mb::paretoFront({{1e-2, 1.0}, {1e-1, 0.5}})).empty());
+}
+
+TEST(BenchReport, TheVerdictReadsTheRecordsCsvBack) {
+  // what precision writes (recordsCsv) is what the verdict reads (parseWorkPrecisionCsv): every
+  // field it needs by its header name, quoting included
+  auto record = [](const std::string& spec, const std::string& status, double err_env,
+                   double err_final, double cpu_s, int runs) {
+    mb::Record r;
+    r.scene = "s";
+    r.n_metronomes = 3;
+    r.periods = 12.5;
+    r.method = mb::parseMethod(spec);
+    r.status = status;
+    r.note = "a note, with a comma";
+    r.runs = runs;
+    r.cpu_median_s = cpu_s;
+    r.wall_median_s = 2 * cpu_s;
+    r.load_min = 1.25;
+    r.load_max = 2.5;
+    r.error.envelope = err_env;
+    r.error.final_state = err_final;
+    r.error.rows = 10;
+    return r;
+  };
+  const std::vector<mb::Record> recs = {
+      record("direct:verner76:1e-13", "reference", 0, 0, 0.5, 1),
+      record("simbody:rk-merson:1e-12", "cross-check", 2.5e-10, 7.5e-9, 0.5, 1),
+      record("direct:dopri5:1e-6", "ok", 1.5e-7, 3.25e-6, 0.00125, 5),
+      record("simbody:rk-merson:1e-6", "ok", 2.5e-6, 4.5e-5, 0.75, 4),
+      record("direct:verner65:1e-12", "skipped (predicted over budget)", 0, 0, 0, 0)};
+  const auto scenes =
+      mb::parseWorkPrecisionCsv(mb::recordsCsv(recs), "wp-s.csv", mb::Sides{"direct", "simbody"});
+  ASSERT_EQ(scenes.size(), 1u);
+  const mb::VerdictScene& s = scenes[0];
+  EXPECT_EQ(s.n, 3);
+  EXPECT_DOUBLE_EQ(s.periods, 12.5);
+  ASSERT_EQ(s.ours.size(), 1u);
+  ASSERT_EQ(s.peer.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.ours[0].err_envelope, 1.5e-7);
+  EXPECT_DOUBLE_EQ(s.ours[0].err_final, 3.25e-6);
+  EXPECT_DOUBLE_EQ(s.ours[0].cpu_s, 0.00125);
+  EXPECT_DOUBLE_EQ(s.ours[0].wall_s, 0.0025);
+  EXPECT_EQ(s.ours[0].runs, 5);
+  EXPECT_EQ(s.peer[0].method, "simbody:rk-merson:1e-06");
+  EXPECT_EQ(s.peer[0].runs, 4);
+  EXPECT_DOUBLE_EQ(s.load_min, 1.25);
+  const auto ag = mb::peerAgreement(scenes, mb::Sides{"direct", "simbody"});
+  ASSERT_EQ(ag.size(), 1u);
+  EXPECT_TRUE(ag[0].validated);
+  EXPECT_EQ(ag[0].reference, "direct:verner76:1e-13");
+  EXPECT_DOUBLE_EQ(ag[0].err_final, 7.5e-9);
+  EXPECT_FALSE(ag[0].flagged());
 }
 
 TEST(BenchRun, EnginesAgreeOnAShortScene) {

@@ -9,11 +9,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <random>
+#include <sstream>
 #include <string>
 
+#include "tests/common/run_metrosync.h"
 #include "tools/bench/bench_run.h"
 #include "tools/bench/odeint_peer.h"
+#include "tools/bench/wp_csv.h"
 
 namespace mb = metrosync::bench;
 
@@ -149,6 +153,49 @@ TEST(OdeintPeer, UnknownStepperIsRejected) {
   metrosync::MemorySink sink;
   EXPECT_THROW(mb::runOdeintPeer(scene.rig, sink, {"euler", kTight}), std::invalid_argument);
   EXPECT_THROW(mb::parseMethod("odeint:euler"), std::invalid_argument);
+}
+
+TEST(OdeintPeer, TheBenchPrintsTheVerdictAgainstThePeer) {
+  // one run of metrosync_bench precision with both sides: the ratio tables, the N-slope, the
+  // guards; then `ratios` recomputes the same cells from the files written
+  namespace fs = std::filesystem;
+  namespace ts = metrosync::testing_support;
+  const fs::path out =
+      fs::path(::testing::TempDir()) / ("metrosync-bench-verdict-" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  const std::string bench = ts::shellQuote(METROSYNC_BENCH_BINARY);
+  const auto r = ts::runCommand(
+      bench + " precision --scene " + ts::shellQuote(benchRig("experiment-short")) +
+      " --methods direct:dopri5,odeint:dopri5 --accuracies 1e-5,1e-7,1e-9,1e-11 --repeat 2 "
+      "--max-load 0 --reference direct:verner76:1e-13 --cross-check odeint:rkf78:1e-13 --out " +
+      ts::shellQuote(out.string()));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("--repeat 2 < 5"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("as few as 2 runs"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("Verdict at equal final-state error (CPU medians"), std::string::npos);
+  const std::string md = ts::slurp((out / "ratios.md").string());
+  // the peer validated against the reference on this scene (it agrees to ~1e-12)
+  EXPECT_NE(md.find("| experiment-short | direct:verner76:1e-13 | odeint:rkf78:1e-13 |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("agrees (<= 1e-08)"), std::string::npos) << md;
+  // every cell of the four tables, and some filled: both sides reach the decades 1e-6 ... 1e-8
+  const std::string csv = ts::slurp((out / "ratios.csv").string());
+  std::istringstream lines(csv);
+  int rows = 0, filled = 0;
+  for (std::string line; std::getline(lines, line); ++rows)
+    if (rows > 0 && !mb::splitCsvLine(line).at(7).empty()) ++filled;
+  EXPECT_EQ(rows, 1 + 7 * 4);
+  EXPECT_GE(filled, 4 * 3) << csv;
+  EXPECT_TRUE(fs::exists(out / "nslope.csv"));
+
+  const auto again = ts::runCommand(
+      bench + " ratios -q " + ts::shellQuote((out / "wp-experiment-short.csv").string()) + " " +
+      ts::shellQuote((out / "wp-experiment-short-equal-error.csv").string()) + " --out " +
+      ts::shellQuote((out / "again").string()));
+  ASSERT_EQ(again.code, 0) << again.err;
+  EXPECT_EQ(ts::slurp((out / "again" / "ratios.csv").string()), csv);
+  fs::remove_all(out);
 }
 
 }  // namespace

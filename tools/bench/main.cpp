@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <random>
 #include <sstream>
@@ -19,7 +20,9 @@
 
 #include "tools/bench/bench_report.h"
 #include "tools/bench/bench_run.h"
+#include "tools/bench/peer_verdict_report.h"
 #include "tools/bench/siconos_peer.h"
+#include "tools/bench/wp_csv.h"
 #include "tools/report/outputs.h"
 
 namespace mb = metrosync::bench;
@@ -138,11 +141,21 @@ mb::Record measure(const mb::Scene& scene, const mb::Method& m, const mb::RunRes
   return rec;
 }
 
+// A comma-separated list of numbers; std::invalid_argument naming the item that is not one.
 std::vector<double> parseList(const std::string& s) {
   std::vector<double> v;
   std::stringstream ss(s);
-  for (std::string item; std::getline(ss, item, ',');)
-    if (!item.empty()) v.push_back(std::stod(item));
+  for (std::string item; std::getline(ss, item, ',');) {
+    if (item.empty()) continue;
+    size_t used = 0;
+    try {
+      v.push_back(std::stod(item, &used));
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size())
+      throw std::invalid_argument("'" + item + "' in the list '" + s + "' is not a number");
+  }
   return v;
 }
 
@@ -161,6 +174,44 @@ std::string loadRange(const std::vector<mb::Record>& recs) {
   return std::isfinite(lo) ? fmt(lo, "%.2f") + " ... " + fmt(hi, "%.2f") : "n/a";
 }
 
+// The verdict against the peer over `scenes`: ratios.md, ratios.csv, nslope.csv in c.out, the page
+// on stdout, its failed guards on stderr. Nothing (and a note) when no scene has both sides.
+void writeVerdict(const std::vector<mb::VerdictScene>& scenes, const mb::VerdictOptions& o,
+                  const Common& c) {
+  const bool any = std::any_of(scenes.begin(), scenes.end(), [](const mb::VerdictScene& s) {
+    return !s.ours.empty() && !s.peer.empty();
+  });
+  if (!any) {
+    if (!c.quiet)
+      std::cerr << "(no scene has timed points of both " << o.sides.ours << " and " << o.sides.peer
+                << ": no ratio table)\n";
+    return;
+  }
+  const mb::VerdictPages p = mb::verdictPages(scenes, o);
+  std::filesystem::create_directories(c.out);
+  metrosync::writeFileAtomically(c.out + "/ratios.md", p.markdown);
+  metrosync::writeFileAtomically(c.out + "/ratios.csv", p.ratios_csv);
+  metrosync::writeFileAtomically(c.out + "/nslope.csv", p.slope_csv);
+  if (!c.quiet) std::cout << p.markdown << "\n";
+  for (const std::string& w : p.warnings) std::cerr << "metrosync_bench: warning: " << w << "\n";
+  if (!c.quiet) std::cerr << p.verdict_line << "\n";
+}
+
+// The command line as typed, for the pages (arguments with spaces or quotes single-quoted).
+std::string commandLine(int argc, char** argv) {
+  std::string s;
+  for (int k = 0; k < argc; ++k) {
+    std::string a = argv[k];
+    if (a.find_first_of(" '\"$*?") != std::string::npos) {
+      std::string q = "'";
+      for (char ch : a) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+      a = q + "'";
+    }
+    s += (k ? " " : "") + a;
+  }
+  return s;
+}
+
 // ---------------------------------------------------------------------------------------------
 struct PrecisionOptions {
   std::vector<std::string> scenes, sets;
@@ -171,9 +222,14 @@ struct PrecisionOptions {
   std::string reference = "direct:verner76:1e-12";
   std::vector<std::string> cross_checks = {"simbody:rk-merson:1e-12"};
   double ref_budget_s = 1800;
+  mb::VerdictOptions verdict;
 };
 
 int precision(const PrecisionOptions& o, const Common& c) {
+  if (c.repeat < mb::kMinRunsForResult)
+    std::cerr << "metrosync_bench: warning: --repeat " << c.repeat << " < " << mb::kMinRunsForResult
+              << ": medians of fewer runs than issue 11 asks for; the "
+              << "ratio table will not be a result\n";
   std::vector<mb::Method> methods;
   if (o.methods.empty()) {
     for (const char* e : {"direct", "simbody", "siconos", "odeint"})
@@ -192,6 +248,7 @@ int precision(const PrecisionOptions& o, const Common& c) {
   std::vector<mb::Method> cross;
   for (const auto& s : o.cross_checks) cross.push_back(mb::parseMethod(s));
   std::filesystem::create_directories(c.out);
+  std::vector<mb::VerdictScene> verdict_scenes;  // read back from each scene's CSV
 
   for (const std::string& path : o.scenes) {
     const mb::Scene scene = mb::loadScene(path, o.sets);
@@ -289,7 +346,32 @@ int precision(const PrecisionOptions& o, const Common& c) {
                               " (N = " + std::to_string(scene.rig.metronomes.size()) + ", " +
                               fmt(scene.periods, "%.0f") + " fast periods)");
     if (!c.quiet) std::cout << md.str() << "\n";
+    for (auto& v : mb::parseWorkPrecisionCsv(mb::recordsCsv(recs), base + ".csv", o.verdict.sides))
+      verdict_scenes.push_back(std::move(v));
   }
+  writeVerdict(verdict_scenes, o.verdict, c);
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The verdict recomputed from precision's CSV files (*-equal-error.csv files are skipped).
+int ratios(const std::vector<std::string>& files, const mb::VerdictOptions& o, const Common& c) {
+  std::vector<mb::VerdictScene> scenes;
+  for (const std::string& f : files) {
+    const std::string tail = "-equal-error.csv";
+    if (f.size() >= tail.size() && f.compare(f.size() - tail.size(), tail.size(), tail) == 0)
+      continue;
+    std::ifstream in(f);
+    if (!in) throw std::invalid_argument(f + ": cannot be read");
+    std::stringstream text;
+    text << in.rdbuf();
+    for (auto& v : mb::parseWorkPrecisionCsv(text.str(), f, o.sides)) {
+      for (const auto& s : scenes)
+        if (s.name == v.name) throw std::invalid_argument(f + ": scene " + v.name + " given twice");
+      scenes.push_back(std::move(v));
+    }
+  }
+  writeVerdict(scenes, o, c);
   return 0;
 }
 
@@ -386,6 +468,32 @@ void addCommon(CLI::App* cmd, Common& c) {
       ->type_name("DIR");
 }
 
+// The verdict's options as typed (lists as comma-separated strings).
+struct VerdictArgs {
+  std::string errors = "1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10";
+  std::string slope_scenes = "experiment-short,n8,n32,n128";
+  std::string slope_errors = "1e-5,1e-6,1e-8";
+  mb::VerdictOptions options(const std::string& command) const {
+    mb::VerdictOptions o;
+    o.errors = parseList(errors);
+    o.slope_scenes = splitList(slope_scenes);
+    o.slope_errors = parseList(slope_errors);
+    o.command = command;
+    return o;
+  }
+};
+
+void addVerdictOptions(CLI::App* cmd, VerdictArgs& v) {
+  cmd->add_option("--ratio-errors", v.errors,
+                  "errors of the ratio table's columns (metrosync against the odeint peer)")
+      ->capture_default_str();
+  cmd->add_option("--slope-scenes", v.slope_scenes,
+                  "the scenes that differ only in N: the N-slope's points")
+      ->capture_default_str();
+  cmd->add_option("--slope-errors", v.slope_errors, "errors at which the N-slope is fitted")
+      ->capture_default_str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -413,7 +521,21 @@ int main(int argc, char** argv) {
                  "engine:integrator:accuracy checked against the reference (repeatable)");
   pc->add_option("--ref-budget", po.ref_budget_s, "seconds the reference runs may take")
       ->capture_default_str();
+  VerdictArgs verdict_args;
+  addVerdictOptions(pc, verdict_args);
   addCommon(pc, common);
+
+  std::vector<std::string> ratio_files;
+  CLI::App* rc = app.add_subcommand(
+      "ratios", "the verdict against the odeint peer recomputed from precision's wp-*.csv files");
+  rc->add_option("csv", ratio_files, "wp-<scene>.csv files (*-equal-error.csv are skipped)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  rc->add_option("--out", common.out,
+                 "output directory of ratios.md, ratios.csv, nslope.csv (default: the first "
+                 "file's)");
+  rc->add_flag("-q,--quiet", common.quiet, "no tables on stdout");
+  addVerdictOptions(rc, verdict_args);
 
   NScaleOptions no;
   CLI::App* nc = app.add_subcommand("nscale", "cost per fast period against N");
@@ -427,7 +549,14 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
+    if (pc->parsed() || rc->parsed()) po.verdict = verdict_args.options(commandLine(argc, argv));
     if (pc->parsed()) return precision(po, common);
+    if (rc->parsed()) {
+      if (rc->count("--out") == 0)
+        common.out = std::filesystem::path(ratio_files.front()).parent_path().string();
+      if (common.out.empty()) common.out = ".";
+      return ratios(ratio_files, po.verdict, common);
+    }
     return nscale(no, common);
   } catch (const std::exception& e) {
     std::cerr << "metrosync_bench: error: " << e.what() << "\n";

@@ -1,0 +1,283 @@
+#include "tools/bench/peer_verdict_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace metrosync::bench {
+
+namespace {
+
+std::string num(double v, const char* f = "%.3g") {
+  if (!std::isfinite(v)) return "";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+// "33.2 us", "1.09 ms", "2.5 s"
+std::string duration(double s) {
+  if (!std::isfinite(s)) return "";
+  if (s < 1e-3) return num(s * 1e6) + " us";
+  if (s < 1) return num(s * 1e3) + " ms";
+  return num(s) + " s";
+}
+
+std::string field(const std::string& s) {
+  if (s.find_first_of(",\"") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string joined(const std::vector<std::string>& v, const std::string& sep) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
+  return s;
+}
+
+// The command as a shell block: lines of at most ~92 characters joined by backslashes, never
+// breaking a single-quoted argument.
+std::string wrapCommand(const std::string& cmd) {
+  std::vector<std::string> words(1);
+  bool quoted = false;
+  for (char c : cmd) {
+    if (c == '\'') quoted = !quoted;
+    if (c == ' ' && !quoted) {
+      if (!words.back().empty()) words.emplace_back();
+    } else {
+      words.back() += c;
+    }
+  }
+  std::string out, line;
+  for (const std::string& w : words) {
+    if (!line.empty() && line.size() + 1 + w.size() > 92) {
+      out += line + " \\\n        ";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + w;
+  }
+  return out + line;
+}
+
+std::string methodsOf(const std::vector<VerdictScene>& scenes, bool ours) {
+  std::vector<std::string> all;
+  for (const VerdictScene& s : scenes)
+    for (const std::string& m : ours ? s.our_methods : s.peer_methods)
+      if (std::find(all.begin(), all.end(), m) == all.end()) all.push_back(m);
+  return joined(all, ", ");
+}
+
+std::string loadRange(const std::vector<VerdictScene>& scenes) {
+  double lo = NAN, hi = NAN;
+  for (const VerdictScene& s : scenes)
+    lo = std::fmin(lo, s.load_min), hi = std::fmax(hi, s.load_max);
+  return std::isfinite(lo) ? num(lo, "%.2f") + " ... " + num(hi, "%.2f") : "not recorded";
+}
+
+std::string ratiosCsvRows(const RatioTable& t) {
+  std::string s;
+  for (const RatioRow& row : t.rows)
+    for (const RatioCell& c : row.cells)
+      s += measureName(t.measure) + "," + clockName(t.clock) + "," + field(row.scene) + "," +
+           std::to_string(row.n) + "," + num(c.error, "%.6g") + "," + num(c.time_ours_s, "%.6g") +
+           "," + num(c.time_peer_s, "%.6g") + "," + num(c.ratio, "%.6g") + "," +
+           (c.filled() ? (c.ratio < kTargetRatio ? "1" : "0") : "") + "," + field(c.reason) + "\n";
+  return s;
+}
+
+std::string slopeCsvRows(const std::vector<SlopeRow>& rows, ErrorMeasure m, Clock c) {
+  std::string s;
+  for (const SlopeRow& r : rows)
+    for (int side = 0; side < 2; ++side)
+      for (size_t k = 0; k < r.ns.size(); ++k)
+        s += measureName(m) + "," + clockName(c) + "," + num(r.error, "%.6g") + "," +
+             (side == 0 ? "metrosync" : "peer") + "," + field(r.scenes[k]) + "," +
+             std::to_string(r.ns[k]) + "," +
+             num((side == 0 ? r.ours_per_period_s : r.peer_per_period_s)[k], "%.6g") + "," +
+             num(side == 0 ? r.slope_ours : r.slope_peer, "%.4g") + "\n";
+  return s;
+}
+
+std::string slopeMarkdown(const std::vector<SlopeRow>& rows, ErrorMeasure m, Clock c) {
+  std::ostringstream os;
+  if (rows.empty()) return "No N-scaling scene in this run.\n";
+  os << "Cost per fast period at equal " << measureName(m) << " error (" << clockName(c)
+     << " time of the run / fast periods; metrosync, the peer in parentheses) and the "
+     << "least-squares slope of log(time per period) against log N (linear in N: slope 1):\n\n"
+     << "| error |";
+  for (size_t k = 0; k < rows[0].ns.size(); ++k)
+    os << " " << rows[0].scenes[k] << " (N = " << rows[0].ns[k] << ") |";
+  os << " slope metrosync | slope peer |\n|---|";
+  for (size_t k = 0; k < rows[0].ns.size() + 2; ++k) os << "---|";
+  os << "\n";
+  for (const SlopeRow& r : rows) {
+    os << "| " << errorLabel(r.error) << " |";
+    for (size_t k = 0; k < r.ns.size(); ++k) {
+      const double o = r.ours_per_period_s[k], p = r.peer_per_period_s[k];
+      os << " " << (std::isfinite(o) ? duration(o) : "not reached")
+         << (std::isfinite(p) ? " (" + duration(p) + ")" : " (peer: not reached)") << " |";
+    }
+    os << " " << (std::isfinite(r.slope_ours) ? num(r.slope_ours, "%.2f") : "n/a") << " | "
+       << (std::isfinite(r.slope_peer) ? num(r.slope_peer, "%.2f") : "n/a") << " |\n";
+  }
+  os << "\nA cell reads \"not reached\" where the side's front does not cover that error on that "
+        "scene; the slope is fitted over the scenes that do.\n";
+  return os.str();
+}
+
+std::string agreementMarkdown(const std::vector<Agreement>& ag, const Sides& sides) {
+  std::ostringstream os;
+  os << "The peer validated against metrosync at tight tolerance (a `--cross-check` of one side "
+        "against the other side's reference; the issue's bound: final-state difference <= "
+     << num(kPeerAgreement, "%.0e") << "):\n\n"
+     << "| scene | reference | cross-check | final-state difference | envelope difference | |\n"
+     << "|---|---|---|---|---|---|\n";
+  for (const Agreement& a : ag) {
+    os << "| " << a.scene << " | " << a.reference << " | ";
+    if (!a.validated && !a.self) {
+      os << " |  |  | **not validated**: no cross-check of " << sides.peer << " against "
+         << sides.ours << " (add `--cross-check " << sides.peer << ":rkf78:1e-13`) |\n";
+      continue;
+    }
+    os << a.check << " | " << num(a.err_final, "%.1e") << " | " << num(a.err_envelope, "%.1e")
+       << " | "
+       << (a.self        ? std::string("the reference's own uncertainty (same engine)")
+           : a.flagged() ? "**FLAG: above " + num(kPeerAgreement, "%.0e") + "**"
+                         : "agrees (<= " + num(kPeerAgreement, "%.0e") + ")")
+       << " |\n";
+  }
+  return os.str();
+}
+
+std::string headerMarkdown(const std::vector<VerdictScene>& scenes, const VerdictOptions& o) {
+  std::ostringstream os;
+  os << "# metrosync against the peer at equal error (issue 11)\n\n"
+     << "ratio = peer time / metrosync time to reach the same error (> 1: metrosync is faster; "
+     << "the issue's target is >= " << num(kTargetRatio, "%.1f") << ", **bold**: below it). "
+     << "Each side's front is its cheapest run at each error over all its integrators "
+     << "(metrosync: " << methodsOf(scenes, true) << "; the peer: " << methodsOf(scenes, false)
+     << "), interpolated linearly in log(time) against log(error) between measured points and "
+     << "never extrapolated: a cell is empty where a side's points do not bracket the error (the "
+     << "reasons follow each table). Times are medians of " << fewestRuns(scenes)
+     << " or more runs per point, of the process's CPU time (the headline: the machine is "
+     << "shared, and the CPU time of these single-threaded runs carries much less of the other "
+     << "sessions' preemption than the wall time) and of the wall time. 1-minute load during the "
+     << "timed runs: " << loadRange(scenes) << ".\n\n";
+  if (!o.command.empty()) os << "Made by:\n\n    " << wrapCommand(o.command) << "\n\n";
+  return os.str();
+}
+
+}  // namespace
+
+std::string verdictLine(const RatioTable& t, const Verdict& v) {
+  std::ostringstream os;
+  os << "Verdict at equal " << measureName(t.measure) << " error (" << clockName(t.clock)
+     << " medians, target >= " << num(kTargetRatio, "%.1f") << " from "
+     << (t.errors.empty() ? "" : errorLabel(t.errors.front())) << " to "
+     << (t.errors.empty() ? "" : errorLabel(t.errors.back())) << " on " << t.rows.size()
+     << " scenes): ";
+  if (v.met) return os.str() + "MET in all " + std::to_string(v.cells) + " cells.";
+  os << "NOT MET";
+  if (v.cells == 0) return os.str() + " (no scene has points on both sides).";
+  os << ": below " << num(kTargetRatio, "%.1f") << " in " << v.below << " of " << v.cells
+     << " cells";
+  if (std::isfinite(v.worst)) os << " (worst " << num(v.worst, "%.2f") << ", " << v.worst_at << ")";
+  if (!v.below_where.empty()) os << " at " << joined(v.below_where, "; ");
+  if (v.empty > 0)
+    os << (v.below ? "; " : ", ") << v.empty << " not measured on both sides at "
+       << joined(v.empty_where, "; ");
+  return os.str() + ".";
+}
+
+std::string ratioTableMarkdown(const RatioTable& t) {
+  std::ostringstream os;
+  os << "| scene | N |";
+  for (double e : t.errors) os << " " << errorLabel(e) << " |";
+  os << "\n|---|---|";
+  for (size_t k = 0; k < t.errors.size(); ++k) os << "---|";
+  os << "\n";
+  std::vector<std::string> reasons;
+  for (const RatioRow& row : t.rows) {
+    os << "| " << row.scene << " | " << row.n << " |";
+    // the reasons of this row's empty cells, each once with the errors it explains
+    std::vector<std::pair<std::string, std::string>> why;
+    for (const RatioCell& c : row.cells) {
+      if (c.filled()) {
+        const std::string r = num(c.ratio, "%.2f");
+        os << " " << (c.ratio < kTargetRatio ? "**" + r + "**" : r) << " |";
+        continue;
+      }
+      os << "  |";
+      auto it =
+          std::find_if(why.begin(), why.end(), [&](const auto& w) { return w.first == c.reason; });
+      if (it == why.end())
+        why.push_back({c.reason, errorLabel(c.error)});
+      else
+        it->second += ", " + errorLabel(c.error);
+    }
+    os << "\n";
+    for (const auto& [reason, errs] : why)
+      reasons.push_back("- " + row.scene + ", " + errs + ": " + reason);
+  }
+  if (!reasons.empty()) os << "\nEmpty cells:\n\n" << joined(reasons, "\n") << "\n";
+  return os.str();
+}
+
+VerdictPages verdictPages(const std::vector<VerdictScene>& scenes, const VerdictOptions& o) {
+  VerdictPages p;
+  std::ostringstream md;
+  md << headerMarkdown(scenes, o);
+  const int runs = fewestRuns(scenes);
+  if (runs < kMinRunsForResult)
+    p.warnings.push_back("medians of as few as " + std::to_string(runs) + " runs (fewer than " +
+                         std::to_string(kMinRunsForResult) +
+                         "): the ratio table is not a result; rerun with --repeat " +
+                         std::to_string(kMinRunsForResult) + " or more");
+  const std::vector<Agreement> ag = peerAgreement(scenes, o.sides);
+  for (const Agreement& a : ag) {
+    if (!a.flagged()) continue;  // self-checks never are
+    std::string w = a.scene + ": ";
+    if (!a.validated) {
+      p.warnings.push_back(w + "the peer is not validated (no cross-check against metrosync)");
+      continue;
+    }
+    w += "the peer's cross-check " + a.check + " differs from the reference " + a.reference +
+         " by " + num(a.err_final, "%.1e") + " in final state (> " + num(kPeerAgreement, "%.0e") +
+         ")";
+    for (const Agreement& b : ag)
+      if (b.self && b.scene == a.scene)
+        w += "; the reference's own engine differs from it by " + num(b.err_final, "%.1e") + " (" +
+             b.check + ")";
+    p.warnings.push_back(w);
+  }
+  p.ratios_csv =
+      "measure,clock,scene,n,error,time_metrosync_s,time_peer_s,ratio,below_target,reason\n";
+  p.slope_csv = "measure,clock,error,side,scene,n,time_per_period_s,slope\n";
+  std::ostringstream body;
+  for (ErrorMeasure m : {ErrorMeasure::FinalState, ErrorMeasure::Envelope}) {
+    for (Clock c : {Clock::Cpu, Clock::Wall}) {
+      const RatioTable t = ratioTable(scenes, m, c, o.errors);
+      const std::string line = verdictLine(t, verdictOf(t));
+      if (m == ErrorMeasure::FinalState && c == Clock::Cpu) p.verdict_line = line;
+      body << "## Equal " << measureName(m) << " error, " << clockName(c) << " time"
+           << (m == ErrorMeasure::FinalState && c == Clock::Cpu ? " (the headline)" : "") << "\n\n"
+           << line << "\n\n"
+           << ratioTableMarkdown(t) << "\n";
+      p.ratios_csv += ratiosCsvRows(t);
+      const auto slope = nSlope(scenes, o.slope_scenes, o.slope_errors, m, c);
+      p.slope_csv += slopeCsvRows(slope, m, c);
+      if (c == Clock::Cpu)
+        body << "### Cost per fast period against N (" << measureName(m) << " error)\n\n"
+             << slopeMarkdown(slope, m, c) << "\n";
+    }
+  }
+  md << "**" << p.verdict_line << "**\n\n";
+  for (const std::string& w : p.warnings) md << "**Warning: " << w << ".**\n\n";
+  md << body.str() << "## Validation of the peer\n\n" << agreementMarkdown(ag, o.sides);
+  p.markdown = md.str();
+  return p;
+}
+
+}  // namespace metrosync::bench

@@ -1,0 +1,39 @@
+// The peer verdict (tools/bench/peer_verdict.h) as text: ratios.md (the ratio tables at equal
+// final-state and envelope error, CPU and wall, the verdict line, the N-slope, the guards),
+// ratios.csv (every cell) and nslope.csv (every point of the N-slope).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tools/bench/peer_verdict.h"
+
+namespace metrosync::bench {
+
+struct VerdictOptions {
+  std::vector<double> errors = {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+  // the scenes that differ only in N (yaml/rigs/bench/)
+  std::vector<std::string> slope_scenes = {"experiment-short", "n8", "n32", "n128"};
+  std::vector<double> slope_errors = {1e-5, 1e-6, 1e-8};
+  Sides sides;
+  std::string command;  // how the data was made, for the page ("" = not said)
+};
+
+// Everything the verdict computes, once.
+struct VerdictPages {
+  std::string markdown;  // ratios.md
+  std::string ratios_csv, slope_csv;
+  std::string verdict_line;           // the headline verdict (final-state error, CPU)
+  std::vector<std::string> warnings;  // the guards that failed, one line each
+};
+
+VerdictPages verdictPages(const std::vector<VerdictScene>& scenes, const VerdictOptions& o);
+
+// One line: "MET ..." or "NOT MET ...: where".
+std::string verdictLine(const RatioTable& t, const Verdict& v);
+
+// The Markdown table of one measure and clock, cells below the target in bold, then the reason
+// of every empty cell.
+std::string ratioTableMarkdown(const RatioTable& t);
+
+}  // namespace metrosync::bench
