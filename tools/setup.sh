@@ -43,7 +43,7 @@ command -v ccache >/dev/null 2>&1 && launcher="-DCMAKE_CXX_COMPILER_LAUNCHER=cca
 # -O1: a third of -O3's compile time, and what the sanitizers' documentation recommends for
 # readable reports at a small run-time cost.
 if [ "$mode" = sanitize ]; then
-  fast_tests=(test_contact test_models test_sim test_yaml test_layout)
+  fast_tests=(test_contact test_models test_sim test_yaml test_layout test_bench_fast)
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
         -DMETROSYNC_SANITIZE=ON $launcher >/dev/null
   cmake --build build-asan -j"$jobs" --target "${fast_tests[@]}"
