@@ -51,7 +51,7 @@ MetronomeEquations::MetronomeEquations(const Rig& rig)
     inv_inertia_.push_back(p.inv_inertia);
     damping_.push_back(p.damping);
   }
-  for (auto* v : {&sin_, &cos_, &c_, &r_}) v->resize(layout_.n);
+  for (auto* v : {&sin_, &cos_, &c_, &r_, &g_term_, &s_term_}) v->resize(layout_.n);
 }
 
 void MetronomeEquations::angleTrig(const double* y) const {
@@ -82,13 +82,20 @@ void MetronomeEquations::rhs(const double* y, PlatformMode mode, double* dy) con
       has_platform_ && !(friction_.setValued() && mode == PlatformMode::Stuck);
   if (platform_moves) {
     // pass 1: c_j, r_j and the platform's Schur-reduced equation Meff xddot = G + F
-    double G = -spring_ * y[StateLayout::kX], schur = 0.0;
+    // the terms in vectorizable loops, then the sums in order
+    double* __restrict g_term = g_term_.data();
+    double* __restrict s_term = s_term_.data();
     for (int j = 0; j < n; ++j) {
       c[j] = mL[j] * cs[j];
       r[j] = -mgL[j] * sn[j] - damp[j] * w[j];
       const double c_over_I = c[j] * inv_I[j];
-      G += mL[j] * sn[j] * w[j] * w[j] - c_over_I * r[j];
-      schur += c_over_I * c[j];
+      g_term[j] = mL[j] * sn[j] * w[j] * w[j] - c_over_I * r[j];
+      s_term[j] = c_over_I * c[j];
+    }
+    double G = -spring_ * y[StateLayout::kX], schur = 0.0;
+    for (int j = 0; j < n; ++j) {
+      G += g_term[j];
+      schur += s_term[j];
     }
     const double F = friction_.force(v, mode);  // the law's force (contact/platform_friction.h)
     friction_power = friction_.power(v, mode);

@@ -103,7 +103,8 @@ class MetronomeEquations {
   // the pendulums' constants again as arrays (n x 1), for the vectorized loops of rhs()
   std::vector<double> mL_, mgL_, inv_inertia_, damping_;
   // scratch of rhs() and the holding force, (n x 1): sin and cos of the angles, c_j, r_j
-  mutable std::vector<double> sin_, cos_, c_, r_;
+  // and the terms of the platform's sums G and sum c_j^2 / I_j
+  mutable std::vector<double> sin_, cos_, c_, r_, g_term_, s_term_;
   // sin_ and cos_ of the angles in y (models/vector_trig.h)
   void angleTrig(const double* y) const;
 };

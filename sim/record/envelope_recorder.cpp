@@ -13,7 +13,8 @@ EnvelopeRecorder::EnvelopeRecorder(double epsilon, std::vector<bool> active, Run
       sum_A_(n_, 0.0),
       sum_er_(n_, 0.0),
       sum_ei_(n_, 0.0),
-      unwrap_(n_ > 1 ? n_ - 1 : 0) {
+      unwrap_(n_ > 1 ? n_ - 1 : 0),
+      trailing_(3 * n_) {
   prev_.resize(n_);
   cur_ = prev_;
 }
@@ -29,8 +30,10 @@ void EnvelopeRecorder::eval(double t, const double* theta, const double* thetado
     // exp(i atan2(theta, thetadot)) = (thetadot + i theta) / A, turned by exp(-i t)
     const double th = theta[i], w = thetadot[i];
     const double a = std::sqrt(th * th + w * w);
-    const bool some = a > 0;
-    const double ur = some ? w / a : 1.0, ui = some ? th / a : 0.0;
+    // the divisions on a safe divisor, then a select: vectorizable (a division is not
+    // speculated by the compiler)
+    const double d = a > 0 ? a : 1.0, ur0 = w / d, ui0 = th / d;
+    const double ur = a > 0 ? ur0 : 1.0, ui = a > 0 ? ui0 : 0.0;
     A[i] = a;
     er[i] = ur * cr - ui * ci;
     ei[i] = ur * ci + ui * cr;
@@ -124,32 +127,28 @@ void EnvelopeRecorder::emit(EnvelopeRow row, const std::vector<double>& phase_re
 
 // Keeps the samples of [t - 2 pi, t] and the last one before (to interpolate at t - 2 pi).
 void EnvelopeRecorder::keepTrailing(double t) {
-  while (trailing_.size() > 1 && trailing_[1].first <= t - kTwoPi) {
-    spare_.push_back(std::move(trailing_.front().second));  // its storage, for a later sample
-    trailing_.pop_front();
-  }
-  std::pair<double, Values> entry;
-  if (!spare_.empty()) {
-    entry.second = std::move(spare_.back());
-    spare_.pop_back();
-  }
-  entry.first = t;
-  entry.second.A = cur_.A;
-  entry.second.er = cur_.er;
-  entry.second.ei = cur_.ei;
-  trailing_.push_back(std::move(entry));
+  while (trailing_.size() > 1 && trailing_.time(1) <= t - kTwoPi) trailing_.popFront();
+  trailing_.push(t, {cur_.A.data(), cur_.er.data(), cur_.ei.data()}, {n_, n_, n_});
+}
+
+void EnvelopeRecorder::trailingValues(size_t k, Values& out) const {
+  const double* v = trailing_.values(k);
+  out.A.assign(v, v + n_);
+  out.er.assign(v + n_, v + 2 * n_);
+  out.ei.assign(v + 2 * n_, v + 3 * n_);
 }
 
 EnvelopeRow EnvelopeRecorder::finish() {
   if (trailing_.empty()) return {};
-  const double t_end = trailing_.back().first;
-  const double t_from = std::max(trailing_.front().first, t_end - kTwoPi);
-  Values a = trailing_.front().second, b;
-  double ta = trailing_.front().first;
+  const double t_end = trailing_.time(trailing_.size() - 1);
+  const double t_from = std::max(trailing_.time(0), t_end - kTwoPi);
+  Values a, b;
+  trailingValues(0, a);
+  double ta = trailing_.time(0);
   std::vector<double> sum_A(n_, 0.0), sum_er(n_, 0.0), sum_ei(n_, 0.0);
   for (size_t k = 1; k < trailing_.size(); ++k) {
-    const double tb = trailing_[k].first;
-    b = trailing_[k].second;
+    const double tb = trailing_.time(k);
+    trailingValues(k, b);
     if (tb > t_from && ta < t_from) {  // the window starts inside [ta, tb]: linear interpolation
       const double w = (t_from - ta) / (tb - ta);
       for (int i = 0; i < n_; ++i) {

@@ -15,13 +15,11 @@
 //     run shorter than one period is averaged over what there is (finalSpan() < 2 pi says so).
 #pragma once
 
-#include <complex>
-#include <deque>
-#include <utility>
 #include <vector>
 
 #include "sim/record/envelope.h"
 #include "sim/record/run_report.h"
+#include "sim/record/sample_ring.h"
 
 namespace metrosync {
 
@@ -76,8 +74,9 @@ class EnvelopeRecorder {
   double covered_ = 0.0;                 // length of the period integrated so far
   std::vector<PhaseUnwrapper> unwrap_;
   EnvelopeRow last_row_;
-  std::deque<std::pair<double, Values>> trailing_;  // samples of the last period (and one before)
-  std::vector<Values> spare_;  // storage of dropped samples, reused (no allocation per sample)
+  // samples of the last period (and one before): t, then A, er, ei (3N values)
+  SampleRing trailing_;
+  void trailingValues(size_t k, Values& out) const;
   double final_span_ = 0.0;
 };
 

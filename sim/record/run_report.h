@@ -64,6 +64,9 @@ struct RunSink {
   // Full model: one call per event, with the state just after it in the trajectory format.
   // kind: "tick" (escapement), "stick", "slip" (platform mode after a switch).
   virtual void eventRow(const char* kind, const std::vector<double>& row) {}
+  // false: eventRow() ignores its rows, and an engine need not build them (asked once, at the
+  // start of a run)
+  virtual bool wantsEventRows() const { return true; }
   // Full model: the event record (events.csv), when wantsEventRecords(): one call per tick of
   // each metronome and per platform switch, with the states just before and just after it in
   // the trajectory format. metronome: 0-based rig index; -1 for the platform ("stick", "slip").

@@ -32,6 +32,7 @@ class BenchSink : public RunSink {
  public:
   explicit BenchSink(double budget_s)
       : budget_s_(budget_s), start_(std::chrono::steady_clock::now()) {}
+  bool wantsEventRows() const override { return false; }  // as the peer, which builds none
   void envelopeRow(const EnvelopeRow& row) override {
     rows.push_back(row);
     if (budget_s_ > 0 &&

@@ -94,8 +94,14 @@ class DirectRun : public EventSystem {
   double applyImpulse(const std::vector<double>& pin, double platform) override {
     return eq_.applyImpulse(ev_y_, pin.data(), platform);
   }
-  double platformMobility() override { return eq_.platformMobility(ev_y_); }
-  void eventRow(const char* kind) override { sink_.eventRow(kind, makeRow(ev_y_, ev_t_)); }
+  // the angles do not change while a window is resolved: one evaluation per window
+  double platformMobility() override {
+    if (!(mobility_ > 0)) mobility_ = eq_.platformMobility(ev_y_);
+    return mobility_;
+  }
+  void eventRow(const char* kind) override {
+    if (event_rows_) sink_.eventRow(kind, makeRow(ev_y_, ev_t_));
+  }
   void snapshotBefore() override {
     if (sink_.wantsEventRecords()) before_ = makeRow(ev_y_, ev_t_);
   }
@@ -156,6 +162,7 @@ class DirectRun : public EventSystem {
   MetronomeEquations eq_;
   StateLayout lay_;
   RunSink& sink_;
+  bool event_rows_;  // sink_.wantsEventRows()
   int n_rig_;
   EnvelopeRecorder env_;
   Dynamics dyn_;
@@ -165,11 +172,13 @@ class DirectRun : public EventSystem {
   double omega0_ = 1.0, period_ = 1.0;
   std::vector<Witness> witnesses_;
   std::vector<Crossing> found_;
+  std::vector<char> maybe_;  // (n x 1): may pendulum j's tick witnesses report in this step?
   std::optional<EventResolver> resolver_;
   std::optional<SampleSchedule> schedule_;
   double* ev_y_ = nullptr;      // the state the resolver acts on, at time ev_t_
   std::vector<double> before_;  // the state before the event being recorded (events.csv)
   double ev_t_ = 0.0;
+  double mobility_ = 0.0;        // platformMobility() at ev_y_'s angles (0: not computed yet)
   std::vector<double> ya_, yb_;  // scratch states (dim): the event's, the witnesses'
   std::vector<double> env_th_, env_w_;
   std::vector<double> row_;         // the trajectory row being written
@@ -186,6 +195,7 @@ DirectRun::DirectRun(const Rig& rig, RunSink& sink, const DirectOptions& opt)
       eq_(rig),
       lay_(eq_.layout()),
       sink_(sink),
+      event_rows_(sink.wantsEventRows()),
       n_rig_(static_cast<int>(rig.metronomes.size())),
       env_(
           sp_.epsilon,
@@ -439,6 +449,7 @@ std::vector<double> DirectRun::startState() {
   resolver_.emplace(esc, coulomb, period_, theta0);
   if (coulomb) {
     ev_y_ = y.data();
+    mobility_ = 0.0;
     ev_t_ = 0.0;
     resolver_->settleAtStart(*this);
   }
@@ -480,10 +491,28 @@ bool DirectRun::attemptStep(double step, double& h, double& err) {
   return false;
 }
 
+// A pendulum's tick witnesses (side * theta - theta_c) can report only if |theta| ends at or past
+// theta_c, or if its rate theta' = thetadot changes sign inside the step (a grazing maximum, or a
+// dip before a crossing): detectComponent() reports nothing else (its rates at the step's ends are
+// f(y0) and f(y1), whose angle rows are the rates). One pass over the pendulums finds those; with
+// N pendulums most steps have none, and the 2N witnesses are not looked at one by one.
 void DirectRun::findCrossings() {
   found_.clear();
-  for (int w = 0; w < static_cast<int>(witnesses_.size()); ++w)
+  const double* y0 = stepper_.y();
+  const double* y1 = stepper_.y1();
+  const int n = lay_.n;
+  maybe_.resize(n);
+  for (int j = 0; j < n; ++j) {
+    const double th1 = y1[lay_.theta(j)];
+    const double w0 = y0[lay_.omega(j)], w1 = y1[lay_.omega(j)];
+    const bool turns = (w0 > 0 && w1 < 0) || (w0 < 0 && w1 > 0);  // not w0 * w1: underflow
+    maybe_[j] = std::abs(th1) >= eq_.pendulum(j).theta_c || turns;
+  }
+  for (int w = 0; w < static_cast<int>(witnesses_.size()); ++w) {
+    const Witness& wi = witnesses_[w];
+    if (wi.kind == WitnessKind::Tick && !maybe_[wi.pendulum]) continue;
     if (auto c = detect(w)) found_.push_back(*c);
+  }
 }
 
 // The window (sim/events/window.h): every crossing bracketed, the end at the earliest.
@@ -509,6 +538,7 @@ void DirectRun::resolveWindow(double t_e, double th_e) {
   recordEnvelope(ya_.data(), t_e);  // the last state before the event
   ev_y_ = ya_.data();
   ev_t_ = t_e;
+  mobility_ = 0.0;
   const WindowOutcome out = resolver_->resolve(*this, platform);
   for (int j : out.ticked) ++report_.counts.escapements[eq_.pendulum(j).rig_index];
   report_.counts.stick_slip += out.stick_slip;
