@@ -1,0 +1,100 @@
+// models/vector_trig.h against the scalar sin and cos: every length (so every vector width and
+// every tail), angles from the pendulums' range out to the large arguments where libmvec switches
+// to its slow path, and the special values.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "models/vector_trig.h"
+
+namespace metrosync {
+namespace {
+
+// libmvec documents a 4 ulp bound for its double sin and cos
+constexpr double kUlpBound = 4.0;
+
+double ulps(double got, double want) {
+  if (got == want) return 0.0;
+  const double ulp =
+      std::nextafter(std::abs(want), std::numeric_limits<double>::infinity()) - std::abs(want);
+  return std::abs(got - want) / std::max(ulp, std::numeric_limits<double>::denorm_min());
+}
+
+void expectMatchesScalar(const std::vector<double>& x) {
+  const int n = static_cast<int>(x.size());
+  std::vector<double> s(n, -7.0), c(n, -7.0);
+  sinCos(x.data(), s.data(), c.data(), n);
+  for (int i = 0; i < n; ++i) {
+    EXPECT_LE(ulps(s[i], std::sin(x[i])), kUlpBound) << "sin, n = " << n << ", x = " << x[i];
+    EXPECT_LE(ulps(c[i], std::cos(x[i])), kUlpBound) << "cos, n = " << n << ", x = " << x[i];
+  }
+}
+
+TEST(VectorTrig, EveryLengthAndTailMatchesTheScalarFunctions) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> angle(-3.5, 3.5);
+  for (int n = 0; n <= 41; ++n) {
+    std::vector<double> x(n);
+    for (double& v : x) v = angle(rng);
+    expectMatchesScalar(x);
+  }
+}
+
+TEST(VectorTrig, LargeAndTinyArgumentsMatchTheScalarFunctions) {
+  std::vector<double> x = {0.0,
+                           -0.0,
+                           1e-300,
+                           -1e-20,
+                           1e-8,
+                           1e5,
+                           -3e7,
+                           1e15,
+                           1e300,
+                           -1e300,
+                           std::numeric_limits<double>::denorm_min(),
+                           6.283185307179586,
+                           3.141592653589793,
+                           1.5707963267948966};
+  for (int k = 0; k < 19; ++k) x.push_back(std::ldexp(1.0, 3 * k) + 0.25);  // up to 2^54
+  expectMatchesScalar(x);
+}
+
+TEST(VectorTrig, NonFiniteArgumentsGiveNaN) {
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> x = {
+      inf, -inf, std::numeric_limits<double>::quiet_NaN(), 0.5, inf, 0.25, -inf, 1.0, 2.0};
+  std::vector<double> s(x.size()), c(x.size());
+  sinCos(x.data(), s.data(), c.data(), static_cast<int>(x.size()));
+  for (size_t i = 0; i < x.size(); ++i) {
+    if (std::isfinite(x[i])) {
+      EXPECT_LE(ulps(s[i], std::sin(x[i])), kUlpBound);
+      continue;
+    }
+    EXPECT_TRUE(std::isnan(s[i])) << i;
+    EXPECT_TRUE(std::isnan(c[i])) << i;
+  }
+}
+
+TEST(VectorTrig, BelowTheVectorWidthTheScalarBitsAreKept) {
+  // n < kVectorTrigMin goes through std::sin and std::cos themselves: the same bits
+  const double x[3] = {0.3, -2.1, 1e-3};
+  double s[3], c[3];
+  for (int n = 1; n < kVectorTrigMin && n <= 3; ++n) {
+    sinCos(x, s, c, n);
+    for (int i = 0; i < n; ++i) {
+      EXPECT_EQ(s[i], std::sin(x[i]));
+      EXPECT_EQ(c[i], std::cos(x[i]));
+    }
+  }
+}
+
+TEST(VectorTrig, NamesTheVariantInUse) {
+  const std::string v = sinCosVariant();
+  EXPECT_TRUE(v == "avx512" || v == "avx2" || v == "sse2" || v == "scalar") << v;
+}
+
+}  // namespace
+}  // namespace metrosync
