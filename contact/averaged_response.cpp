@@ -1,10 +1,10 @@
 #include "contact/averaged_response.h"
 
-#include "contact/slip_duration.h"
-
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+
+#include "contact/slip_duration.h"
 
 namespace metrosync {
 namespace {

@@ -24,8 +24,8 @@ double coulombSlipFunction(double u);
 // evaluates this at every right-hand side in the stick-slip regime, so for q <= pi/2 it starts
 // from a piecewise Chebyshev interpolant of u(q)/q in q^2 (relative error ~2e-15) and takes one
 // Newton step, which squares that error (g is smooth and g' >= 1/3 on the range): the result
-// agrees with the converged iteration to a few ulp (tests/contact/test_slip_duration.cpp). Beyond pi/2
-// (the analytic continuation) it runs the reference iteration.
+// agrees with the converged iteration to a few ulp (tests/contact/test_slip_duration.cpp). Beyond
+// pi/2 (the analytic continuation) it runs the reference iteration.
 double coulombSlipDuration(double q);
 
 // The reference: bisection beyond pi/2, then Newton from the right of the root (monotone, since

@@ -33,8 +33,10 @@ struct Element {
     const double a0 = f(t), a1 = f(t + 0.5 * h), a2 = f(t + h);
     // v' = a(t) does not depend on v: RK4 is Simpson's rule, as are the projections
     v1 = v + h / 6.0 * (a0 + 4.0 * a1 + a2);
-    ps1 = ps + h / 6.0 * (a0 * std::sin(t) + 4.0 * a1 * std::sin(t + 0.5 * h) + a2 * std::sin(t + h));
-    pc1 = pc + h / 6.0 * (a0 * std::cos(t) + 4.0 * a1 * std::cos(t + 0.5 * h) + a2 * std::cos(t + h));
+    ps1 =
+        ps + h / 6.0 * (a0 * std::sin(t) + 4.0 * a1 * std::sin(t + 0.5 * h) + a2 * std::sin(t + h));
+    pc1 =
+        pc + h / 6.0 * (a0 * std::cos(t) + 4.0 * a1 * std::cos(t + 0.5 * h) + a2 * std::cos(t + h));
   }
   void advance(double h) {
     double v1, ps1, pc1;

@@ -64,7 +64,8 @@ TEST(SlipDuration, SolvesTheSlipEquation) {
   EXPECT_EQ(coulombSlipDuration(0.0), 0.0);
   EXPECT_EQ(coulombSlipDuration(-1.0), 0.0);
   EXPECT_TRUE(std::isnan(coulombSlipDuration(std::numeric_limits<double>::infinity())));
-  EXPECT_EQ(coulombSlipDuration(std::numeric_limits<double>::quiet_NaN()), 0.0);  // as the reference
+  EXPECT_EQ(coulombSlipDuration(std::numeric_limits<double>::quiet_NaN()),
+            0.0);  // as the reference
 }
 
 TEST(SlipDuration, ContinuationBeyondTheSlipThresholdIsTheReference) {

@@ -56,10 +56,10 @@ void checkOptions(const ScaledParams& p, const SlowFlowOptions& opt) {
 // the amplitude-weighted mean phase velocity: the frame turns with the metronomes, so that a
 // phase-locked state (a relative equilibrium of the flow, turning at a constant rate) is an
 // equilibrium of w and the step size is no longer limited by the common rotation (~A^2/16 rad per
-// unit tau, which made the steps ~0.1 long at rtol 1e-8). A_i = |w_i|, the phase differences and the
-// switching functions are rotation invariant; theta is carried as the last, uncontrolled component
-// (atol < 0: a quadrature nothing depends on) so that z = w e^{i theta} is available for the rows.
-// y = (Re w_a, Im w_a) over the unlocked a, then theta.
+// unit tau, which made the steps ~0.1 long at rtol 1e-8). A_i = |w_i|, the phase differences and
+// the switching functions are rotation invariant; theta is carried as the last, uncontrolled
+// component (atol < 0: a quadrature nothing depends on) so that z = w e^{i theta} is available for
+// the rows. y = (Re w_a, Im w_a) over the unlocked a, then theta.
 struct FlowRhs : ode::OdeRhs {
   explicit FlowRhs(const SlowFlow& flow) : f(flow), zs(flow.size()), dzs(flow.size()) {}
 
@@ -214,7 +214,7 @@ void SlowFlowRun::emitRowsUpTo(double tau_hi, double h) {
 }
 
 RunReport SlowFlowRun::run() {
-  rows_.emit(0.0, z_);  // the start's envelope
+  rows_.emit(0.0, z_);           // the start's envelope
   if (flow_.active().empty()) {  // every metronome locked: nothing moves
     emitRowsUpTo(opt_.tau_end, 0.0);
     tau_ = opt_.tau_end;
