@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "contact/chebyshev_table.h"
+
 namespace metrosync {
 namespace {
 
@@ -62,46 +64,13 @@ constexpr double kTableEnd = 0.25 * kPi * kPi;
 // below this q, u = 3q to double precision (and u^3 would underflow in g)
 constexpr double kTinyQ = 1e-20;
 
-class SlipDurationTable {
- public:
-  SlipDurationTable() {
-    const int n = kDegree + 1;
-    for (int p = 0; p < kPieces; ++p) {
-      const double a = kTableEnd * p / kPieces, b = kTableEnd * (p + 1) / kPieces;
-      std::array<double, kDegree + 1> f{};
-      for (int j = 0; j < n; ++j) {
-        const double x = 0.5 * (a + b) + 0.5 * (b - a) * std::cos(kPi * (j + 0.5) / n);
+const ChebyshevTable& slipDurationTable() {
+  static const ChebyshevTable table(
+      [](double x) {
         const double q = std::sqrt(x);
-        f[j] = coulombSlipDurationReference(q) / q;
-      }
-      for (int k = 0; k < n; ++k) {
-        double c = 0.0;
-        for (int j = 0; j < n; ++j) c += f[j] * std::cos(kPi * k * (j + 0.5) / n);
-        coef_[p][k] = (k == 0 ? 1.0 : 2.0) * c / n;
-      }
-    }
-  }
-  // u(q) / q at x = q^2 in [0, kTableEnd] (Clenshaw)
-  double ratio(double x) const {
-    const double scaled = x * (kPieces / kTableEnd);
-    const int p = std::min(kPieces - 1, static_cast<int>(scaled));
-    const double t = 2.0 * (scaled - p) - 1.0;
-    const auto& c = coef_[p];
-    double b1 = 0.0, b2 = 0.0;
-    for (int k = kDegree; k >= 1; --k) {
-      const double b0 = 2.0 * t * b1 - b2 + c[k];
-      b2 = b1;
-      b1 = b0;
-    }
-    return t * b1 - b2 + c[0];
-  }
-
- private:
-  std::array<std::array<double, kDegree + 1>, kPieces> coef_{};
-};
-
-const SlipDurationTable& slipDurationTable() {
-  static const SlipDurationTable table;
+        return coulombSlipDurationReference(q) / q;
+      },
+      kTableEnd, kPieces, kDegree);
   return table;
 }
 
@@ -161,7 +130,7 @@ double coulombSlipDuration(double q) {
   if (!(q > 0.0)) return 0.0;
   if (!(q <= 0.5 * kPi)) return coulombSlipDurationReference(q);  // NaN, inf included
   if (q < kTinyQ) return 3.0 * q;  // g(u) = u/3 + u^3/135 + ...: relative error below 1e-40
-  const double u0 = q * slipDurationTable().ratio(q * q);
+  const double u0 = q * slipDurationTable()(q * q);
   const SlipResidual r = slipResidual(u0, q);
   return u0 - r.f / r.dg;
 }
