@@ -164,6 +164,7 @@ class SlowFlowRun {
   long attempts_ = 0;
   bool last_rejected_ = false;
   std::vector<double> y_;
+  std::vector<double> scratch_;  // (y_.size()): dense-output samples, no allocation per step
   std::vector<cplx> z_;
   std::vector<std::vector<cplx>> samples_;  // the dense output at th = j / kSwitchSamples
   std::vector<WindowCrossing> found_;
@@ -189,6 +190,7 @@ SlowFlowRun::SlowFlowRun(const ScaledParams& p, const SlowFlowOptions& opt, RunS
     y_.push_back(z_[i].imag());
   }
   y_.push_back(0.0);  // the frame's angle theta: w = z at tau = 0
+  scratch_.resize(y_.size());
   switches_ = flow_.switches(z_.data());
   rhs_.modes = flow_.modesOf(switches_);
   std::vector<double> atol(y_.size(), opt.atol);
@@ -199,7 +201,7 @@ SlowFlowRun::SlowFlowRun(const ScaledParams& p, const SlowFlowOptions& opt, RunS
 
 // Grid rows tau_k <= min(tau_hi, tau_end), from the attempted step's dense output when h > 0.
 void SlowFlowRun::emitRowsUpTo(double tau_hi, double h) {
-  std::vector<double> yr(y_.size());
+  std::vector<double>& yr = scratch_;
   for (;;) {
     const double tk = envelopeTau(p_.epsilon, next_row_);
     if (tk > tau_hi || tk > opt_.tau_end) break;
@@ -264,9 +266,8 @@ std::string SlowFlowRun::step(double& h) {
 }
 
 double SlowFlowRun::switchAt(int e, double th) {
-  std::vector<double> yd(y_.size());
-  stepper_.interpolate(th, yd.data());
-  rhs_.unpack(yd.data(), z_);
+  stepper_.interpolate(th, scratch_.data());
+  rhs_.unpack(scratch_.data(), z_);
   return SlowFlowSwitchWitness::value(flow_, switches_[e], z_.data());
 }
 
@@ -276,10 +277,9 @@ double SlowFlowRun::switchAt(int e, double th) {
 std::optional<double> SlowFlowRun::findWindow(double h) {
   found_.clear();
   if (switches_.empty()) return std::nullopt;
-  std::vector<double> yd(y_.size());
   for (int j = 1; j <= kSwitchSamples; ++j) {
-    stepper_.interpolate(static_cast<double>(j) / kSwitchSamples, yd.data());
-    rhs_.unpack(yd.data(), samples_[j]);
+    stepper_.interpolate(static_cast<double>(j) / kSwitchSamples, scratch_.data());
+    rhs_.unpack(scratch_.data(), samples_[j]);
   }
   rhs_.unpack(y_.data(), z_);
   for (int e = 0; e < static_cast<int>(switches_.size()); ++e) {
