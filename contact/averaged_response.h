@@ -22,7 +22,8 @@
 //   beta1 = N1(u) / (4 pi s^2),  N1 = (g^2 - 1)(2u - sin 2u) + 4 g sin^2 u   ~ 2 u^5 / 135
 //   beta2 = N2(u) / (pi s^2),    N2 = (1 - cos u)(1 - g sin u) + (g^2 - 1) sin^2(u) / 2 ~ u^4 / 72
 // evaluated from their Taylor series for small u, so that they keep full relative accuracy as
-// s -> 1+ (s - 1 ~ u^2 / 18).
+// s -> 1+ (s - 1 ~ u^2 / 18). u comes from contact/slip_duration.h; on 1 < s <= s_b the betas
+// are interpolated (to ~1e-14 relative) from tables of N1 / q^5 and N2 / q^4 in q^2.
 #pragma once
 
 #include "contact/coulomb.h"
@@ -73,6 +74,11 @@ double coulombBeta2(double s);
 // sqrt clamped at 0 below). For an integrator that keeps the regime fixed over a step and
 // switches it at a located event.
 AveragedResponse coulombResponseIn(CoulombRegime regime, double s);
+
+// The stick-slip formula of eq. d2 at s > 1 evaluated from u = t1 - t0 of the converged
+// iteration (contact/slip_duration.h), the function coulombResponseIn(StickSlip, s) interpolates
+// on 1 < s <= s_b (the slow flow's hot path; see averaged_response.cpp). (0, 0) for s <= 1.
+AveragedResponse coulombStickSlipReference(double s);
 
 // Viscous platform x'' = -c x' + A sin t: beta1 = 1 / (2 (1 + c^2)), beta2 = c / (2 (1 + c^2)).
 AveragedResponse viscousResponse(double c);

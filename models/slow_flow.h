@@ -17,8 +17,10 @@
 //
 // The right-hand side switches where A_i crosses theta_c,i (escapement on/off: dphi_i/dtau jumps
 // by J_i / (pi theta_c,i)) and has kinks where s crosses 1 and s_b = sqrt(1 + pi^2/4) (platform
-// regime). The integrator (sim/engines/slow_flow/) holds these modes fixed over a step, locates the
-// crossings of the switching functions (SlowFlowSwitch) on the dense output and restarts there.
+// regime). The equations commute with a common rotation z_i -> z_i e^{i theta} (beta depends on
+// |Z| only), which the integrator uses to step in a co-rotating frame. The integrator
+// (sim/engines/slow_flow/) holds these modes fixed over a step, locates the crossings of the
+// switching functions (SlowFlowSwitch) on the dense output and restarts there.
 // Everything that says what the equations are lives here (models/slow_flow.cpp); the engine only
 // steps, locates switches and writes rows.
 #pragma once

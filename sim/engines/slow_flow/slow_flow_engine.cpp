@@ -49,25 +49,50 @@ void checkOptions(const ScaledParams& p, const SlowFlowOptions& opt) {
         "slow flow: max_steps, storm_events must be >= 1, storm_window >= 0");
 }
 
-// The flow in the stepper's real coordinates y = (Re z_a, Im z_a) over the unlocked a, with the
-// modes held fixed.
+// The flow in a co-rotating frame, in the stepper's real coordinates. The slow flow is equivariant
+// under a common rotation z -> z e^{i theta} (the betas depend on |Z| only), so w = z e^{-i theta}
+// with theta' = Omega(w) obeys
+//   dw/dtau = f(w) - i Omega(w) w,   Omega(w) = sum Im(conj(w_a) f_a(w)) / sum |w_a|^2,
+// the amplitude-weighted mean phase velocity: the frame turns with the metronomes, so that a
+// phase-locked state (a relative equilibrium of the flow, turning at a constant rate) is an
+// equilibrium of w and the step size is no longer limited by the common rotation (~A^2/16 rad per
+// unit tau, which made the steps ~0.1 long at rtol 1e-8). A_i = |w_i|, the phase differences and
+// the switching functions are rotation invariant; theta is carried as the last, uncontrolled
+// component (atol < 0: a quadrature nothing depends on) so that z = w e^{i theta} is available for
+// the rows. y = (Re w_a, Im w_a) over the unlocked a, then theta.
 struct FlowRhs : ode::OdeRhs {
   explicit FlowRhs(const SlowFlow& flow) : f(flow), zs(flow.size()), dzs(flow.size()) {}
 
+  int frameIndex() const { return 2 * static_cast<int>(f.active().size()); }
+  // w (the co-rotating amplitudes) from y
   void unpack(const double* y, std::vector<cplx>& z) const {
     z.assign(f.size(), 0.0);
     const auto& act = f.active();
     for (size_t m = 0; m < act.size(); ++m) z[act[m]] = cplx(y[2 * m], y[2 * m + 1]);
+  }
+  // z = w e^{i theta} (the amplitudes in the fixed frame) from y
+  void unpackFixed(const double* y, std::vector<cplx>& z) const {
+    unpack(y, z);
+    const cplx rot = std::polar(1.0, y[frameIndex()]);
+    for (int i : f.active()) z[i] *= rot;
   }
   void eval(const double* y, double* dy) override {
     ++evaluations;
     unpack(y, zs);
     f.rhs(modes, zs.data(), dzs.data());
     const auto& act = f.active();
-    for (size_t m = 0; m < act.size(); ++m) {
-      dy[2 * m] = dzs[act[m]].real();
-      dy[2 * m + 1] = dzs[act[m]].imag();
+    double num = 0.0, den = 0.0;
+    for (int i : act) {
+      num += zs[i].real() * dzs[i].imag() - zs[i].imag() * dzs[i].real();  // Im(conj(w) f)
+      den += std::norm(zs[i]);
     }
+    const double omega = den > 0.0 ? num / den : 0.0;
+    for (size_t m = 0; m < act.size(); ++m) {
+      const cplx w = zs[act[m]], d = dzs[act[m]];
+      dy[2 * m] = d.real() + omega * w.imag();  // f - i Omega w
+      dy[2 * m + 1] = d.imag() - omega * w.real();
+    }
+    dy[frameIndex()] = omega;
   }
 
   const SlowFlow& f;
@@ -139,6 +164,7 @@ class SlowFlowRun {
   long attempts_ = 0;
   bool last_rejected_ = false;
   std::vector<double> y_;
+  std::vector<double> scratch_;  // (y_.size()): dense-output samples, no allocation per step
   std::vector<cplx> z_;
   std::vector<std::vector<cplx>> samples_;  // the dense output at th = j / kSwitchSamples
   std::vector<WindowCrossing> found_;
@@ -149,7 +175,7 @@ SlowFlowRun::SlowFlowRun(const ScaledParams& p, const SlowFlowOptions& opt, RunS
       opt_(opt),
       flow_(p),
       rhs_(flow_),
-      stepper_(ode::rkTableau("dopri5"), 2 * static_cast<int>(flow_.active().size()), rhs_),
+      stepper_(ode::rkTableau("dopri5"), rhs_.frameIndex() + 1, rhs_),
       rows_(flow_, p, sink),
       storm_(kTwoPi * p.epsilon, opt.storm_events, opt.storm_window),  // a fast period in tau
       samples_(kSwitchSamples + 1) {
@@ -163,15 +189,19 @@ SlowFlowRun::SlowFlowRun(const ScaledParams& p, const SlowFlowOptions& opt, RunS
     y_.push_back(z_[i].real());
     y_.push_back(z_[i].imag());
   }
+  y_.push_back(0.0);  // the frame's angle theta: w = z at tau = 0
+  scratch_.resize(y_.size());
   switches_ = flow_.switches(z_.data());
   rhs_.modes = flow_.modesOf(switches_);
-  stepper_.setTolerances(opt.rtol, std::vector<double>(y_.size(), opt.atol));
+  std::vector<double> atol(y_.size(), opt.atol);
+  atol.back() = -1.0;  // theta is not error-controlled
+  stepper_.setTolerances(opt.rtol, atol);
   stepper_.setNorm(ode::RkStepper::Norm::Rms);  // as DOPRI5 and the slow flow always did
 }
 
 // Grid rows tau_k <= min(tau_hi, tau_end), from the attempted step's dense output when h > 0.
 void SlowFlowRun::emitRowsUpTo(double tau_hi, double h) {
-  std::vector<double> yr(y_.size());
+  std::vector<double>& yr = scratch_;
   for (;;) {
     const double tk = envelopeTau(p_.epsilon, next_row_);
     if (tk > tau_hi || tk > opt_.tau_end) break;
@@ -179,15 +209,15 @@ void SlowFlowRun::emitRowsUpTo(double tau_hi, double h) {
       stepper_.interpolate(std::clamp((tk - tau_) / h, 0.0, 1.0), yr.data());
     else
       yr = y_;
-    rhs_.unpack(yr.data(), z_);
+    rhs_.unpackFixed(yr.data(), z_);
     rows_.emit(tk, z_);
     ++next_row_;
   }
 }
 
 RunReport SlowFlowRun::run() {
-  rows_.emit(0.0, z_);  // the start's envelope
-  if (y_.empty()) {     // every metronome locked: nothing moves
+  rows_.emit(0.0, z_);           // the start's envelope
+  if (flow_.active().empty()) {  // every metronome locked: nothing moves
     emitRowsUpTo(opt_.tau_end, 0.0);
     tau_ = opt_.tau_end;
     return finish("");
@@ -236,9 +266,8 @@ std::string SlowFlowRun::step(double& h) {
 }
 
 double SlowFlowRun::switchAt(int e, double th) {
-  std::vector<double> yd(y_.size());
-  stepper_.interpolate(th, yd.data());
-  rhs_.unpack(yd.data(), z_);
+  stepper_.interpolate(th, scratch_.data());
+  rhs_.unpack(scratch_.data(), z_);
   return SlowFlowSwitchWitness::value(flow_, switches_[e], z_.data());
 }
 
@@ -248,10 +277,9 @@ double SlowFlowRun::switchAt(int e, double th) {
 std::optional<double> SlowFlowRun::findWindow(double h) {
   found_.clear();
   if (switches_.empty()) return std::nullopt;
-  std::vector<double> yd(y_.size());
   for (int j = 1; j <= kSwitchSamples; ++j) {
-    stepper_.interpolate(static_cast<double>(j) / kSwitchSamples, yd.data());
-    rhs_.unpack(yd.data(), samples_[j]);
+    stepper_.interpolate(static_cast<double>(j) / kSwitchSamples, scratch_.data());
+    rhs_.unpack(scratch_.data(), samples_[j]);
   }
   rhs_.unpack(y_.data(), z_);
   for (int e = 0; e < static_cast<int>(switches_.size()); ++e) {
@@ -306,7 +334,7 @@ RunReport SlowFlowRun::finish(const std::string& failure) {
   rep_.complete = failure.empty();
   rep_.failure = failure;
   rep_.counts.rhs_evals = rhs_.evaluations;
-  rhs_.unpack(y_.data(), z_);
+  rhs_.unpackFixed(y_.data(), z_);
   rep_.final_row = rows_.emit(tau_, z_);
   rep_.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();

@@ -20,8 +20,10 @@ struct SlowFlowOptions {
   double storm_window = StormGuard::kWindowPeriods;
 };
 
-// Integrates the slow flow from the scaled start with sim/ode's dopri5 stepper and emits envelope
-// rows (psi_j = phi_1 - phi_j unwrapped): first the start's at tau = 0, then the grid
+// Integrates the slow flow from the scaled start with sim/ode's dopri5 stepper, in a frame that
+// turns with the metronomes' mean phase (the flow is invariant under a common rotation; see
+// slow_flow_engine.cpp), and emits envelope rows (psi_j = phi_1 - phi_j unwrapped): first the
+// start's at tau = 0, then the grid
 // tau_k = envelopeTau(eps, k) <= opt.tau_end (interpolated from the dense output), last the state
 // where the run ended -- tau_end when it is complete -- which is also final_row (SPEC 3: final is
 // the state at the requested end; when tau_end falls exactly on the grid that row appears twice).
