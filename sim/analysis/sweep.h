@@ -161,7 +161,12 @@ struct SweepPoint {
   std::string message;   // why it failed
   // sweep --keep envelope: the point's envelope rows (formatEnvelopeRow), for the envelope store
   std::vector<std::string> kept_rows;
-  double wall_seconds = 0.0;  // not in regimes.csv (it changes from run to run): timings.csv
+  // How long the point took (not in regimes.csv: they change from run to run; timings.csv):
+  // wall and CPU seconds of the whole point (its rig loaded, run, judged, basin samples
+  // included), and the CPU seconds inside the engine's run (NaN when unknown: a network's point)
+  double wall_seconds = 0.0;
+  double cpu_seconds = 0.0;
+  double engine_cpu_seconds = std::numeric_limits<double>::quiet_NaN();
 };
 
 // psi wrapped to [0, 2 pi)

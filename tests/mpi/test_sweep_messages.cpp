@@ -29,7 +29,10 @@ SweepPoint oddPoint(long g) {
   p.tau = 1e300;
   p.complete = false;
   p.message = "stopped at t = 3: \"bad\",\nnext line";
+  p.in_phase_fraction = 0.375;
   p.wall_seconds = 0.125;
+  p.cpu_seconds = 0.0625;
+  p.engine_cpu_seconds = std::numeric_limits<double>::quiet_NaN();
   return p;
 }
 
@@ -55,7 +58,10 @@ TEST(SweepMessages, AReportCarriesEveryBitOfItsPoints) {
     EXPECT_TRUE(sameBits(a.r, b.r));
     EXPECT_TRUE(sameBits(a.s, b.s));
     EXPECT_TRUE(sameBits(a.tau, b.tau));
+    EXPECT_TRUE(sameBits(a.in_phase_fraction, b.in_phase_fraction));  // --basin-samples
     EXPECT_TRUE(sameBits(a.wall_seconds, b.wall_seconds));
+    EXPECT_TRUE(sameBits(a.cpu_seconds, b.cpu_seconds));
+    EXPECT_TRUE(sameBits(a.engine_cpu_seconds, b.engine_cpu_seconds));
     EXPECT_EQ(b.clusters, a.clusters);
     EXPECT_EQ(b.complete, a.complete);
     EXPECT_EQ(b.message, a.message);

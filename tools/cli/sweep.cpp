@@ -2,6 +2,7 @@
 
 #include <signal.h>
 #include <sys/ioctl.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -36,6 +37,7 @@
 #include "tools/report/progress_log.h"
 #include "tools/report/sweep_files.h"
 #include "tools/report/sweep_maps.h"
+#include "yaml/network_loader.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
@@ -47,6 +49,14 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// CPU seconds of the calling thread (a point runs on one thread): on a shared machine the measure
+// of what a point costs, where wall time also counts the other processes.
+double threadCpuSeconds() {
+  timespec ts{};
+  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 std::string fmt(double v, const char* f = "%.4g") {
@@ -132,6 +142,21 @@ std::string requestedModel(const SweepOptions& opt) {
   return opt.engine.empty() ? "slow" : "";
 }
 
+// Is the rig text a network of platforms? Decided once per thread for the text it last saw: every
+// point of a sweep (and every basin sample) has the same text, and parsing it once more per point
+// cost 1.5% of a slow-flow point (docs/bench/sweep-throughput.md). --set and --vary cannot make a
+// text a network: only the text's own `platforms` key does (yaml/network_loader.h).
+bool isNetworkRig(const std::string& text) {
+  thread_local std::string last_text;
+  thread_local bool known = false, last = false;
+  if (!known || text != last_text) {
+    last = isNetworkText(text);
+    last_text = text;
+    known = true;
+  }
+  return last;
+}
+
 // The rig of one point: the base rig, --set, then the point's KEY=VALUE (a wildcard key
 // "metronomes.*.REST" set at each of the n metronomes); checked like `run` checks its rig.
 // `where` names the point ("grid point 12 (...)"); throws RigError naming it.
@@ -143,7 +168,7 @@ PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
   overrides.insert(overrides.end(), expanded.begin(), expanded.end());
   PointInput in;
   try {
-    in.net = loadSweepNetwork(text, displayName(opt), overrides);
+    if (isNetworkRig(text)) in.net = loadSweepNetwork(text, displayName(opt), overrides);
     in.rig = in.net ? networkSweepRig(*in.net) : loadRigText(text, displayName(opt), overrides);
   } catch (const RigError& e) {
     // the loader calls every override --set; the point's own ones come from --vary
@@ -216,16 +241,13 @@ bool failureInjected(long g) {
 
 // A network's point (tools/cli/network_sweep.h), with the test hook and the stop request.
 std::optional<SweepPoint> runNetworkPoint(const PointInput& in, long g) {
-  const Clock::time_point t0 = Clock::now();
   SweepPoint p = runNetworkSweepPoint(*in.net, *in.engine, g, failureInjected(g));
   if (FileSink::stopRequested()) return std::nullopt;
-  p.wall_seconds = secondsSince(t0);
   return p;
 }
 
 std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
   if (in.net) return runNetworkPoint(in, g);
-  const Clock::time_point t0 = Clock::now();
   const ScaledParams& sp = in.scaled;
   PointSink sink(sp.tau_end, sp.epsilon);
   // the `uncoupled` rule: the slow flow's averaged drive, the full model's own stick/slip
@@ -233,6 +255,7 @@ std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
   sink.x_unit = in.rig.units == Units::Physical ? sp.x_scale_m : 1.0;
   sink.keep = keep;
   RunReport rep;
+  const double engine_cpu0 = threadCpuSeconds();
   try {
     if (failureInjected(g))
       throw SimulationFailure{0.0, "failure injected by METROSYNC_SWEEP_FAIL_AT, a test hook"};
@@ -254,6 +277,7 @@ std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
   SweepPoint p;
   p.index = g;
   p.complete = rep.complete;
+  p.engine_cpu_seconds = threadCpuSeconds() - engine_cpu0;
   const EnvelopeRow last = sink.window.empty() ? rep.final_row : sink.window.last();
   if (static_cast<int>(last.A.size()) == n && static_cast<int>(last.psi.size()) == n - 1) {
     p.A = last.A;
@@ -278,7 +302,6 @@ std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
     p.message = rep.failure.empty() ? "the run stopped early" : rep.failure;
   }
   p.kept_rows = std::move(sink.kept);
-  p.wall_seconds = secondsSince(t0);
   return p;
 }
 
@@ -290,6 +313,7 @@ SweepPoint unloadablePoint(long g, int n, const std::string& why) {
   p.complete = false;
   p.regime = "failed";
   p.message = why;
+  p.engine_cpu_seconds = 0.0;  // no engine ran
   p.A.assign(n, std::nan(""));
   p.psi.assign(n > 0 ? n - 1 : 0, std::nan(""));
   return p;
@@ -379,17 +403,6 @@ void writeSweepJson(const OutputDir& dir, const nlohmann::json& j) {
 
 std::string timingsPath(const OutputDir& dir) {
   return dir.file("timings.csv");
-}
-
-// Length of `path` up to its last newline (0 when absent or without one).
-size_t wholeLinesBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return 0;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
-  const size_t nl = text.rfind('\n');
-  return nl == std::string::npos ? 0 : nl + 1;
 }
 
 // The test hook: METROSYNC_SWEEP_STOP_AFTER=K ends the process like kill -9 right after the K-th
@@ -634,7 +647,8 @@ struct SweepRun {
 
 // One point of the plan: its rig loaded here, in the worker, so that no list of the grid's rigs
 // is ever held.
-std::optional<SweepPoint> runGridPoint(const SweepPlan& plan, const SweepOptions& opt, long g) {
+std::optional<SweepPoint> runGridPointUntimed(const SweepPlan& plan, const SweepOptions& opt,
+                                              long g) {
   std::optional<PointInput> in;
   try {
     in = loadPoint(plan.text, opt, plan.grid, g, plan.n);
@@ -652,8 +666,21 @@ std::optional<SweepPoint> runGridPoint(const SweepPlan& plan, const SweepOptions
                                    basinSampleOverrides(plan.grid, plan.random, g, k), plan.n, g);
     if (!q) return std::nullopt;  // interrupted
     in_phase += q->regime == "in-phase";
+    p->engine_cpu_seconds += q->engine_cpu_seconds;
   }
   p->in_phase_fraction = static_cast<double>(in_phase) / static_cast<double>(samples);
+  return p;
+}
+
+// ... with its wall and CPU seconds (timings.csv).
+std::optional<SweepPoint> runGridPoint(const SweepPlan& plan, const SweepOptions& opt, long g) {
+  const Clock::time_point t0 = Clock::now();
+  const double cpu0 = threadCpuSeconds();
+  std::optional<SweepPoint> p = runGridPointUntimed(plan, opt, g);
+  if (p) {
+    p->cpu_seconds = threadCpuSeconds() - cpu0;
+    p->wall_seconds = secondsSince(t0);
+  }
   return p;
 }
 
@@ -664,8 +691,8 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
   const bool fresh = table.complete_bytes == 0;
   RegimesAppender regimes(plan.regimes_path, regimesHeader(plan.grid, plan.n), fresh,
                           table.complete_bytes);
-  const size_t timing_bytes = resuming ? wholeLinesBytes(timingsPath(dir)) : 0;
-  RegimesAppender timings(timingsPath(dir), "index,wall_seconds", timing_bytes == 0, timing_bytes);
+  const size_t timing_bytes = resuming ? resumableTimingsBytes(timingsPath(dir)) : 0;
+  RegimesAppender timings(timingsPath(dir), timingsHeader(), timing_bytes == 0, timing_bytes);
   run.jobs = opt.jobs > 0 ? opt.jobs : static_cast<int>(std::thread::hardware_concurrency());
   run.jobs = std::max(1, run.jobs);
   Progress progress(!opt.quiet && ::isatty(2), ProgressLog::wanted(opt.quiet), plan.mine,
@@ -684,7 +711,7 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
         if (store) store->append(p.index, p.kept_rows);  // before its row: a row has its rows
         const std::string line = formatRegimesRow(plan.grid, p);
         regimes.append(line);
-        timings.append(std::to_string(p.index) + "," + fmt(p.wall_seconds, "%.6g"));
+        timings.append(formatTimingsRow(p));
         run.lines[p.index] = line;
         run.points[p.index] = p;
         run.points[p.index].kept_rows.clear();
@@ -1016,7 +1043,8 @@ void addSweepOutputOptions(CLI::App& sweep, SweepOptions& opt) {
       "sorted by grid index at the end: the varied keys, regime, A_1..A_N, psi_2..psi_N (final, "
       "psi in [0, 2 pi)), r, s (= |Z|/mu: <= 1 a stuck platform), clusters, tau, complete, "
       "index, message), sweep.json (what was "
-      "swept, how far it got), timings.csv (wall seconds per point), regimes.png, "
+      "swept, how far it got), timings.csv (wall and CPU seconds per point, and the CPU seconds "
+      "inside the engine), regimes.png, "
       "amplitudes.png, phases.png, order.png (N >= 3), drive.png (Coulomb platforms); with more "
       "than two --vary one set of maps per value of the keys not drawn (regimes--KEY=VALUE.png); "
       "with --basin-samples the column in_phase_fraction (after tau) and basin.png.\n"

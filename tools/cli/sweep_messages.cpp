@@ -87,7 +87,10 @@ void putPoint(Writer& w, const SweepPoint& p) {
   w.put(p.tau);
   w.put<std::uint8_t>(p.complete ? 1 : 0);
   w.text(p.message);
+  w.put(p.in_phase_fraction);
   w.put(p.wall_seconds);
+  w.put(p.cpu_seconds);
+  w.put(p.engine_cpu_seconds);
 }
 
 SweepPoint getPoint(Reader& r) {
@@ -102,7 +105,10 @@ SweepPoint getPoint(Reader& r) {
   p.tau = r.get<double>();
   p.complete = r.get<std::uint8_t>() != 0;
   p.message = r.text();
+  p.in_phase_fraction = r.get<double>();
   p.wall_seconds = r.get<double>();
+  p.cpu_seconds = r.get<double>();
+  p.engine_cpu_seconds = r.get<double>();
   return p;
 }
 

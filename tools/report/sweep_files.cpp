@@ -127,6 +127,41 @@ std::string formatRegimesRow(const SweepGrid& grid, const SweepPoint& p) {
   return s;
 }
 
+// ---- timings.csv --------------------------------------------------------------------------------
+
+std::string timingsHeader() {
+  return "index,wall_seconds,cpu_seconds,engine_cpu_seconds";
+}
+
+std::string formatTimingsRow(const SweepPoint& p) {
+  auto cell = [](double v) { return std::isfinite(v) ? numberText(v, "%.6g") : std::string(); };
+  return std::to_string(p.index) + "," + cell(p.wall_seconds) + "," + cell(p.cpu_seconds) + "," +
+         cell(p.engine_cpu_seconds);
+}
+
+size_t resumableTimingsBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return 0;
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  text.resize(text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1);  // whole lines
+  const std::string header = timingsHeader() + "\n";
+  if (text.empty() || text.compare(0, header.size(), header) == 0) return text.size();
+  // an older layout: its rows keep their index and wall time, the other columns empty
+  const size_t columns = static_cast<size_t>(std::count(header.begin(), header.end(), ',')) + 1;
+  std::string out = header;
+  std::istringstream lines(text.substr(text.find('\n') + 1));
+  for (std::string line; std::getline(lines, line);) {
+    size_t have = static_cast<size_t>(std::count(line.begin(), line.end(), ',')) + 1;
+    if (line.empty() || have > columns) continue;
+    for (; have < columns; ++have) line += ",";
+    out += line + "\n";
+  }
+  writeFileAtomically(path, out);
+  return out.size();
+}
+
 SweepPoint parseRegimesRow(const SweepGrid& grid, int n, const std::string& line) {
   const std::vector<std::string> cells = csvCells(line);
   const std::vector<std::string> cols = regimesColumns(grid, n);

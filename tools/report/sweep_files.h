@@ -43,6 +43,19 @@ RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int 
 void writeSortedRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
                            const std::map<long, std::string>& lines);
 
+// ---- timings.csv --------------------------------------------------------------------------------
+
+// How long each point took, a line per point as it finishes (docs/bench/sweep-throughput.md):
+// "index,wall_seconds,cpu_seconds,engine_cpu_seconds": wall and CPU seconds of the whole point
+// (rig loaded, run, judged) and the CPU seconds inside the engine's run; an unknown time (a
+// network's engine time) is an empty field.
+std::string timingsHeader();
+std::string formatTimingsRow(const SweepPoint& p);
+// --resume: how many bytes of the timings.csv at `path` to keep before appending (its whole
+// lines; 0 when absent: start afresh). A file of an older layout (another header: "index,
+// wall_seconds") is first rewritten in this one, atomically, its rows' new columns empty.
+size_t resumableTimingsBytes(const std::string& path);
+
 // Appends whole lines to regimes.csv as points finish: one write(2) per line on an O_APPEND
 // descriptor, so that a kill at any moment leaves whole lines and at most one cut-off last line.
 class RegimesAppender {
