@@ -21,7 +21,9 @@ std::string executableDirectory() {
   return slash == std::string::npos ? "" : exe.substr(0, slash);
 }
 
-bool readable(const std::string& path) { return access(path.c_str(), R_OK) == 0; }
+bool readable(const std::string& path) {
+  return access(path.c_str(), R_OK) == 0;
+}
 
 }  // namespace
 

@@ -15,7 +15,8 @@ using Entry = const SimbodyPlugin* (*)();
 const SimbodyPlugin* loadTable() {
   Entry entry = &metrosync_simbody_plugin;
   if (!entry)
-    entry = reinterpret_cast<Entry>(loadPluginSymbol(kSimbodyPluginFile, "metrosync_simbody_plugin"));
+    entry =
+        reinterpret_cast<Entry>(loadPluginSymbol(kSimbodyPluginFile, "metrosync_simbody_plugin"));
   const SimbodyPlugin* table = entry();
   if (!table || table->abi != kSimbodyPluginAbi)
     throw PluginError(std::string("the plugin ") + kSimbodyPluginFile +

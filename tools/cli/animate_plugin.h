@@ -13,7 +13,8 @@ constexpr int kAnimatePluginAbi = 1;  // raised whenever the table changes
 
 struct AnimatePlugin {
   int abi = kAnimatePluginAbi;
-  // Draws every frame of `track` and encodes them through ffmpeg into spec.path (animate_render.cpp)
+  // Draws every frame of `track` and encodes them through ffmpeg into spec.path
+  // (animate_render.cpp)
   void (*render)(const AnimationTrack& track, const VideoSpec& spec, bool quiet) = nullptr;
 };
 

@@ -10,8 +10,8 @@
 #include <thread>
 
 #include "contact/simbody/driven_coulomb.h"
-#include "sim/engines/simbody_plugin.h"
 #include "sim/analysis/validation.h"
+#include "sim/engines/simbody_plugin.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/engines.h"
 #include "tools/report/outputs.h"

@@ -10,7 +10,9 @@ namespace {
 
 // the Simbody library the plugin is linked with, as it reported itself at configure time
 // (CMakeLists.txt): asking it at run time would load Simbody into every process
-std::string simbodyVersion() { return METROSYNC_SIMBODY_VERSION; }
+std::string simbodyVersion() {
+  return METROSYNC_SIMBODY_VERSION;
+}
 
 std::vector<std::string>& commandLineStore() {
   static std::vector<std::string> args;

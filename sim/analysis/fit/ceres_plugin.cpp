@@ -32,6 +32,8 @@ const CeresPlugin& ceresPlugin() {
   return *table;
 }
 
-FitResult fitLeastSquares(const FitSetup& setup) { return ceresPlugin().fit(setup); }
+FitResult fitLeastSquares(const FitSetup& setup) {
+  return ceresPlugin().fit(setup);
+}
 
 }  // namespace metrosync

@@ -1,4 +1,3 @@
-#include "sim/analysis/fit/ceres_plugin.h"
 #include "sim/analysis/fit/least_squares.h"
 
 #include <ceres/ceres.h>
@@ -7,6 +6,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <stdexcept>
+
+#include "sim/analysis/fit/ceres_plugin.h"
 
 namespace metrosync {
 
