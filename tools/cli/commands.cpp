@@ -134,9 +134,10 @@ RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::stri
 
 // summary.json's resolved_rig, command_line and build (docs/outputs.md)
 void addRunProvenance(nlohmann::json& summary, const Options& opt, const LoadedRig& r) {
-  addProvenance(
-      summary,
-      resolvedRigJson(r.text, opt.rig_path.empty() ? "<default rig>" : opt.rig_path, opt.sets));
+  addProvenance(summary,
+                // r is the rig loadAndCheck loaded from this text and these overrides
+                resolvedRigJson(r.text, opt.rig_path.empty() ? "<default rig>" : opt.rig_path,
+                                opt.sets, true));
 }
 
 // A line every 10% of a long run on stderr when it is not a terminal (logs, CI).
