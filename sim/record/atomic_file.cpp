@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <set>
 #include <stdexcept>
+#include <thread>
 
 namespace metrosync {
 
@@ -152,13 +153,23 @@ void CommitBatch::removeTemporaries(std::size_t from) {
 void CommitBatch::finish() {
   if (!active_) throw std::logic_error("CommitBatch::finish called twice");
   release();
-  // the data first: every write-back was started at commit, so the first fsync waits for the
-  // journal commit that covers them all and the others find nothing left to do
-  for (const Pending& p : pending_)
-    if (!syncPath(p.temp, 0)) {
-      const std::string e = errnoText();
+  // the data first, every file at once: their write-back was started at commit, and concurrent
+  // fsyncs share the device's cache flushes (one round trip instead of one per file, measured in
+  // docs/bench/process.md)
+  std::vector<int> errors(pending_.size(), 0);
+  {
+    std::vector<std::thread> syncs;
+    for (std::size_t k = 1; k < pending_.size(); ++k)
+      syncs.emplace_back(
+          [this, &errors, k] { errors[k] = syncPath(pending_[k].temp, 0) ? 0 : errno; });
+    if (!pending_.empty()) errors[0] = syncPath(pending_[0].temp, 0) ? 0 : errno;
+    for (std::thread& t : syncs) t.join();
+  }
+  for (std::size_t k = 0; k < pending_.size(); ++k)
+    if (errors[k] != 0) {
       removeTemporaries(0);
-      throw std::runtime_error("cannot write " + p.temp + ": " + e);
+      throw std::runtime_error("cannot write " + pending_[k].temp + ": " +
+                               std::strerror(errors[k]));
     }
   std::set<std::string> dirs;
   for (std::size_t k = 0; k < pending_.size(); ++k) {

@@ -46,12 +46,12 @@ class AtomicFile {
 // One sync for the output files of a run instead of one per file (docs/bench/process.md). While
 // a CommitBatch is alive, AtomicFile::commit() on the same thread flushes and closes the
 // temporary file, starts its write-back (sync_file_range) and queues it, renaming nothing;
-// finish() then waits for all the data at once (an fsync per file, of which only the first has
-// anything left to wait for), renames the files in the order they were committed, and fsyncs each
-// of their directories once. A crash at any point leaves every file either absent or old and
-// complete, or new and complete, as with single commits. Code that reads a committed file back
-// by its final name before finish() must not run inside a batch. Destroyed without finish() (an
-// exception), the batch removes the queued temporary files: nothing of it is written.
+// finish() then waits for all the data at once (the files' fsyncs run concurrently, so that they
+// share the device's cache flushes), renames the files in the order they were committed, and
+// fsyncs each of their directories once. A crash at any point leaves every file either absent or
+// old and complete, or new and complete, as with single commits. Code that reads a committed file
+// back by its final name before finish() must not run inside a batch. Destroyed without finish()
+// (an exception), the batch removes the queued temporary files: nothing of it is written.
 class CommitBatch {
  public:
   CommitBatch();
