@@ -173,6 +173,8 @@ Network buildNetwork(const Node& root, const RigSource& src, const std::string& 
 }
 
 bool isNetworkText(const std::string& yaml_text) {
+  // a text that never spells the key is no network: no parse (every run asks this first)
+  if (yaml_text.find("platforms") == std::string::npos) return false;
   try {
     const Node root = parseTree(yaml_text, 0);
     return root.kind == Node::Kind::Map && root.find("platforms") != nullptr;

@@ -1073,10 +1073,11 @@ void appendJson(std::string& out, const Node& n) {
 }  // namespace
 
 std::string resolvedRigJson(const std::string& yaml_text, const std::string& display_name,
-                            const std::vector<std::string>& overrides) {
+                            const std::vector<std::string>& overrides, bool already_loaded) {
   Node root = checkedRigTree(yaml_text, RigSource{display_name, overrides});
-  // a single rig is checked whole here; a network (platforms:) by its own loader, before
-  if (!root.find("platforms")) loadRigText(yaml_text, display_name, overrides);
+  // a single rig is checked whole here (unless the caller did); a network (platforms:) by its
+  // own loader, before
+  if (!already_loaded && !root.find("platforms")) loadRigText(yaml_text, display_name, overrides);
   if (!root.find("name")) {
     Entry name;
     name.key = "name";

@@ -63,8 +63,10 @@ std::optional<double> rigNumber(const std::string& yaml_text, const std::string&
 // display_name) as its first key, so the text names the same rig wherever it is saved. Throws
 // RigError for an invalid rig, like loadRigText (a network's tree, `platforms:`, is checked
 // against the schema only: its own loader, yaml/network_loader.h, checks the rest).
+// `already_loaded`: the caller has loaded this text with these overrides by loadRigText (the
+// rig is valid), which is then not done a second time.
 std::string resolvedRigJson(const std::string& yaml_text, const std::string& display_name,
-                            const std::vector<std::string>& overrides);
+                            const std::vector<std::string>& overrides, bool already_loaded = false);
 
 // The built-in default rig (SPEC section 2, the paper's experiment): the text of
 // yaml/rigs/experiment.yaml.

@@ -28,6 +28,10 @@ class Engine {
   virtual std::string defaultIntegrator(const Rig& rig) const = 0;
   // One line for --help: what the engine is and when to choose it.
   virtual std::string description() const = 0;
+  // Loads what the engine needs that the executable does not link (the simbody engine's plugin,
+  // sim/engines/plugin_loader.h); throws PluginError when it cannot. selectEngine() calls it, so
+  // that a missing plugin is reported before anything is written.
+  virtual void load() const {}
   // Runs the rig to its end (rig.sim.t_end_s, or its tau for the slow flow) into `sink`. As the
   // engines' own entry points: a failed simulation gives complete = false; RunInterrupted and
   // SimulationFailure thrown by the sink pass through.
@@ -60,7 +64,8 @@ struct EngineSelectionError : std::invalid_argument {
 // with `requested` ("" = the model's default: for the full model the direct engine, unless
 // `integrator` names a Simbody integrator) and the rig's simulation.integrator `integrator`
 // ("" = the engine's default). Throws EngineSelectionError for an unknown engine or integrator,
-// an engine of the other model, or an integrator of another engine.
+// an engine of the other model, or an integrator of another engine; PluginError (from
+// Engine::load) when the engine's plugin cannot be loaded.
 const Engine& selectEngine(const std::string& requested, const std::string& model,
                            const std::string& integrator);
 

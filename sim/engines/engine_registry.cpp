@@ -1,13 +1,14 @@
 // The registry of sim/engines/engine.h: the three engines as thin adapters over their entry
-// points (runDirectModel, runFullModel, runSlowFlow), whose internals live in their folders.
+// points (runDirectModel, runFullModel, runSlowFlow), whose internals live in their folders;
+// runFullModel through the Simbody plugin (sim/engines/simbody_plugin.h).
 #include <algorithm>
 
 #include "models/scaling.h"
 #include "sim/engines/direct/direct_engine.h"
 #include "sim/engines/direct/network_engine.h"
 #include "sim/engines/engine.h"
-#include "sim/engines/simbody/network_simbody_engine.h"
 #include "sim/engines/simbody/simbody_engine.h"
+#include "sim/engines/simbody_plugin.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 
 namespace metrosync {
@@ -49,10 +50,14 @@ class SimbodyEngine final : public Engine {
     return "the full model as a Simbody multibody system (the default when "
            "simulation.integrator names a Simbody integrator)";
   }
-  RunReport run(const Rig& rig, RunSink& sink) const override { return runFullModel(rig, sink); }
+  // Simbody itself is in a plugin (sim/engines/simbody_plugin.h), loaded when selected
+  void load() const override { simbodyPlugin(); }
+  RunReport run(const Rig& rig, RunSink& sink) const override {
+    return simbodyPlugin().run(rig, sink);
+  }
   bool runsNetworks() const override { return true; }
   NetworkRunReport runNetwork(const Network& net, NetworkSink& sink) const override {
-    return runNetworkSimbody(net, sink);
+    return simbodyPlugin().run_network(net, sink);
   }
 };
 
@@ -152,6 +157,7 @@ const Engine& selectEngine(const std::string& requested, const std::string& mode
                                    " model's engines: " + engineNames(model) + ")",
                                false);
   checkIntegrator(e, integrator);
+  e.load();
   return e;
 }
 

@@ -1,11 +1,14 @@
 #include "sim/record/atomic_file.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <set>
 #include <stdexcept>
+#include <thread>
 
 namespace metrosync {
 
@@ -23,6 +26,17 @@ namespace {
 
 std::string errnoText() {
   return std::strerror(errno);
+}
+
+thread_local CommitBatch* t_batch = nullptr;
+
+// fsync of a closed file by its name (a read-only descriptor syncs the file's data and inode)
+bool syncPath(const std::string& path, int flags) {
+  const int fd = ::open(path.c_str(), O_RDONLY | flags);
+  if (fd < 0) return false;
+  const bool ok = ::fsync(fd) == 0;
+  ::close(fd);
+  return ok;
 }
 
 }  // namespace
@@ -72,6 +86,19 @@ void AtomicFile::commit() {
   if (!file_) throw std::logic_error("commit of a closed file " + final_path_);
   std::FILE* f = file_;
   file_ = nullptr;
+  if (CommitBatch* batch = CommitBatch::current()) {
+    // flushed, closed and its write-back started; the batch syncs and renames it
+    const int fd = ::fileno(f);
+    const bool ok = std::fflush(f) == 0 &&
+                    (::sync_file_range(fd, 0, 0, SYNC_FILE_RANGE_WRITE) == 0 || errno == ENOSYS);
+    const std::string why = ok ? "" : errnoText();
+    if (std::fclose(f) != 0 || !ok) {
+      std::remove(temp_path_.c_str());
+      throw std::runtime_error("cannot write " + temp_path_ + ": " + (ok ? errnoText() : why));
+    }
+    batch->add(temp_path_, final_path_);
+    return;
+  }
   // sync before the rename, so that a crash cannot leave a final name on an empty file
   const bool ok = std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
   const std::string why = ok ? "" : errnoText();
@@ -91,6 +118,74 @@ void AtomicFile::discard() {
   std::fclose(file_);
   file_ = nullptr;
   std::remove(temp_path_.c_str());
+}
+
+// ---------------------------------------------------------------------------------------------
+// CommitBatch
+
+CommitBatch::CommitBatch() : previous_(t_batch) {
+  t_batch = this;
+}
+
+CommitBatch::~CommitBatch() {
+  if (!active_) return;
+  release();
+  removeTemporaries(0);
+}
+
+CommitBatch* CommitBatch::current() {
+  return t_batch;
+}
+
+void CommitBatch::add(const std::string& temp_path, const std::string& final_path) {
+  pending_.push_back({temp_path, final_path});
+}
+
+void CommitBatch::release() {
+  active_ = false;
+  if (t_batch == this) t_batch = previous_;
+}
+
+void CommitBatch::removeTemporaries(std::size_t from) {
+  for (std::size_t k = from; k < pending_.size(); ++k) std::remove(pending_[k].temp.c_str());
+}
+
+void CommitBatch::finish() {
+  if (!active_) throw std::logic_error("CommitBatch::finish called twice");
+  release();
+  // the data first, every file at once: their write-back was started at commit, and concurrent
+  // fsyncs share the device's cache flushes (one round trip instead of one per file, measured in
+  // docs/bench/process.md)
+  std::vector<int> errors(pending_.size(), 0);
+  {
+    std::vector<std::thread> syncs;
+    for (std::size_t k = 1; k < pending_.size(); ++k)
+      syncs.emplace_back(
+          [this, &errors, k] { errors[k] = syncPath(pending_[k].temp, 0) ? 0 : errno; });
+    if (!pending_.empty()) errors[0] = syncPath(pending_[0].temp, 0) ? 0 : errno;
+    for (std::thread& t : syncs) t.join();
+  }
+  for (std::size_t k = 0; k < pending_.size(); ++k)
+    if (errors[k] != 0) {
+      removeTemporaries(0);
+      throw std::runtime_error("cannot write " + pending_[k].temp + ": " +
+                               std::strerror(errors[k]));
+    }
+  std::set<std::string> dirs;
+  for (std::size_t k = 0; k < pending_.size(); ++k) {
+    const Pending& p = pending_[k];
+    if (std::rename(p.temp.c_str(), p.final_path.c_str()) != 0) {
+      const std::string e = errnoText();
+      removeTemporaries(k);
+      throw std::runtime_error("cannot rename " + p.temp + " to " + p.final_path + ": " + e);
+    }
+    const std::string dir = fs::path(p.final_path).parent_path().string();
+    dirs.insert(dir.empty() ? "." : dir);
+  }
+  // the renames: one fsync per directory
+  for (const std::string& d : dirs)
+    if (!syncPath(d, O_DIRECTORY))
+      throw std::runtime_error("cannot sync the directory " + d + ": " + errnoText());
 }
 
 void writeFileAtomically(const std::string& path, const std::string& contents) {

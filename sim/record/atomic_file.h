@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace metrosync {
 
@@ -27,8 +28,8 @@ class AtomicFile {
   void write(const std::string& text);
   // text + '\n'; flushes to disk about once a second, so a long run shows progress on disk
   void writeLine(const std::string& line);
-  // flush, sync, close and rename; throws std::runtime_error on an I/O error (the temporary
-  // file is then removed)
+  // flush, sync, close and rename (inside a CommitBatch: flush, close and queue); throws
+  // std::runtime_error on an I/O error (the temporary file is then removed)
   void commit();
   void discard();
 
@@ -40,6 +41,42 @@ class AtomicFile {
   std::string final_path_, temp_path_;
   std::FILE* file_ = nullptr;
   std::chrono::steady_clock::time_point last_flush_;
+};
+
+// One sync for the output files of a run instead of one per file (docs/bench/process.md). While
+// a CommitBatch is alive, AtomicFile::commit() on the same thread flushes and closes the
+// temporary file, starts its write-back (sync_file_range) and queues it, renaming nothing;
+// finish() then waits for all the data at once (the files' fsyncs run concurrently, so that they
+// share the device's cache flushes), renames the files in the order they were committed, and
+// fsyncs each of their directories once. A crash at any point leaves every file either absent or
+// old and complete, or new and complete, as with single commits. Code that reads a committed file
+// back by its final name before finish() must not run inside a batch. Destroyed without finish()
+// (an exception), the batch removes the queued temporary files: nothing of it is written.
+class CommitBatch {
+ public:
+  CommitBatch();
+  CommitBatch(const CommitBatch&) = delete;
+  CommitBatch& operator=(const CommitBatch&) = delete;
+  ~CommitBatch();
+
+  // Syncs, renames and syncs the directories; throws std::runtime_error on an I/O error (the
+  // temporary files not yet renamed are then removed). The batch is then no longer current.
+  void finish();
+  bool active() const { return active_; }  // not yet finished (nor destroyed)
+
+  // The batch AtomicFile::commit() queues into on this thread (nullptr: none).
+  static CommitBatch* current();
+  void add(const std::string& temp_path, const std::string& final_path);
+
+ private:
+  struct Pending {
+    std::string temp, final_path;
+  };
+  std::vector<Pending> pending_;
+  CommitBatch* previous_ = nullptr;
+  bool active_ = true;
+  void release();
+  void removeTemporaries(std::size_t from);
 };
 
 // The temporary name of `final_path` (".NAME.<pid>.part" in the same directory), for files that

@@ -53,6 +53,32 @@ std::string scaleJson(const std::string& bin, const std::string& rig) {
   return sh(shellQuote(bin) + " scale --json " + shellQuote(rig)).out;
 }
 
+// The installed binary and its installed plugins: all three there, and the simbody engine runs
+// through the installed plugin, found from the binary's own location (bin/../<libdir>/metrosync),
+// not the build tree's.
+void expectPluginsWork(const fs::path& prefix, const std::string& bin, const std::string& rig,
+                       const std::string& out) {
+  std::set<std::string> plugins;
+  for (const auto& e : fs::recursive_directory_iterator(prefix))
+    if (e.path().extension() == ".so" && e.path().parent_path().filename() == "metrosync")
+      plugins.insert(e.path().filename().string());
+  for (const char* f : {"metrosync-simbody.so", "metrosync-ceres.so", "metrosync-animate.so"})
+    EXPECT_EQ(plugins.count(f), 1u) << f << " not installed";
+  const CommandResult simbody =
+      sh("env -u METROSYNC_PLUGIN_DIR " + shellQuote(bin) + " run " + shellQuote(rig) +
+         " --engine simbody --set simulation.duration=2 --quiet --no-plot --out " +
+         shellQuote(out + "/simbody"));
+  EXPECT_EQ(simbody.code, 0) << simbody.out;
+  EXPECT_TRUE(fs::is_regular_file(out + "/simbody/summary.json"));
+  // the loader's trace names the installed plugin, not the build tree's
+  const CommandResult traced =
+      sh("LD_DEBUG=libs " + shellQuote(bin) + " run " + shellQuote(rig) +
+         " --engine simbody --set simulation.duration=0.5 --quiet --no-plot --out " +
+         shellQuote(out + "/traced"));
+  EXPECT_NE(traced.out.find(prefix.string()), std::string::npos);
+  EXPECT_EQ(traced.out.find(kBuild.string() + "/metrosync-simbody.so"), std::string::npos);
+}
+
 TEST(Install, PutsTheBinaryManPageCompletionsRigsAndDocsInPlace) {
   const std::string prefix = scratchDir("install", "prefix");
   const CommandResult inst =
@@ -92,6 +118,7 @@ TEST(Install, PutsTheBinaryManPageCompletionsRigsAndDocsInPlace) {
   const std::string installed = scaleJson(bin, rig);
   EXPECT_NE(installed.find("\"epsilon\""), std::string::npos) << installed;
   EXPECT_EQ(installed, scaleJson(METROSYNC_BINARY, rig));
+  expectPluginsWork(p, bin, rig, scratchDir("install", "plugin_runs", true));
 }
 
 TEST(Install, DebianPackageDeclaresItsDependenciesAndRunsFromItsFiles) {
@@ -131,6 +158,7 @@ TEST(Install, DebianPackageDeclaresItsDependenciesAndRunsFromItsFiles) {
          " --set simulation.duration=5 --quiet --out " + shellQuote(out + "/run"));
   EXPECT_EQ(run.code, 0) << run.out;
   EXPECT_TRUE(fs::is_regular_file(out + "/run/summary.json"));
+  expectPluginsWork(root + "/usr", bin, rig, out + "/plugin_runs");
 }
 
 }  // namespace

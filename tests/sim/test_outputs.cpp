@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "tools/report/outputs.h"
 
@@ -79,6 +80,54 @@ TEST(AtomicFile, ReplacesAnOlderFileOnlyOnCommit) {
     f.commit();
   }
   EXPECT_EQ(readLines(dir.file("summary.json")), std::vector<std::string>{"new"});
+}
+
+// CommitBatch: the files of a run made durable together. Until finish() every final name keeps
+// its old contents (or is absent); after it, every file is new and whole and no .part is left.
+TEST(CommitBatch, RenamesNothingUntilFinishThenEverythingInOrder) {
+  OutputDir dir(freshDir("batch"));
+  writeFileAtomically(dir.file("summary.json"), "old\n");
+  CommitBatch batch;
+  AtomicFile a(dir.file("trajectory.csv"));
+  for (int k = 0; k < 20000; ++k) a.writeLine(std::to_string(k));
+  a.commit();
+  writeFileAtomically(dir.file("summary.json"), "new\n");
+  // committed, not yet renamed: the old summary, no trajectory, two temporary files
+  EXPECT_EQ(readLines(dir.file("summary.json")), std::vector<std::string>{"old"});
+  EXPECT_FALSE(fs::exists(dir.file("trajectory.csv")));
+  EXPECT_EQ(listDir(dir.path()).size(), 3u);
+  batch.finish();
+  EXPECT_EQ(listDir(dir.path()), (std::vector<std::string>{"summary.json", "trajectory.csv"}));
+  EXPECT_EQ(readLines(dir.file("summary.json")), std::vector<std::string>{"new"});
+  const auto lines = readLines(dir.file("trajectory.csv"));
+  ASSERT_EQ(lines.size(), 20000u);
+  EXPECT_EQ(lines.back(), "19999");
+  // the batch is over: a later commit renames at once
+  writeFileAtomically(dir.file("late.txt"), "x\n");
+  EXPECT_TRUE(fs::exists(dir.file("late.txt")));
+}
+
+TEST(CommitBatch, WithoutFinishWritesNothingAndKeepsTheOldFiles) {
+  OutputDir dir(freshDir("batch_abort"));
+  writeFileAtomically(dir.file("summary.json"), "old\n");
+  {
+    CommitBatch batch;
+    writeFileAtomically(dir.file("envelope.csv"), "1,2\n");
+    writeFileAtomically(dir.file("summary.json"), "new\n");
+  }  // an exception before finish(): nothing of the batch is written
+  EXPECT_EQ(listDir(dir.path()), std::vector<std::string>{"summary.json"});
+  EXPECT_EQ(readLines(dir.file("summary.json")), std::vector<std::string>{"old"});
+}
+
+TEST(CommitBatch, BelongsToItsThreadOnly) {
+  OutputDir dir(freshDir("batch_thread"));
+  CommitBatch batch;
+  std::thread([&] { writeFileAtomically(dir.file("other.txt"), "x\n"); }).join();
+  EXPECT_TRUE(fs::exists(dir.file("other.txt")));  // another thread's commit is not queued
+  writeFileAtomically(dir.file("mine.txt"), "y\n");
+  EXPECT_FALSE(fs::exists(dir.file("mine.txt")));
+  batch.finish();
+  EXPECT_EQ(readLines(dir.file("mine.txt")), std::vector<std::string>{"y"});
 }
 
 TEST(OutputDir, CreatesParentsAndRefusesAFile) {

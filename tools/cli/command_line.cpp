@@ -4,6 +4,7 @@
 #include <iostream>
 #include <string>
 
+#include "sim/engines/plugin_loader.h"
 #include "sim/record/atomic_file.h"
 #include "tools/cli/engines.h"
 #include "tools/report/build_info.h"
@@ -124,6 +125,9 @@ int exitCodeOf(const std::function<int()>& handler) {
     std::cerr << "metrosync: error: " << e.what() << "\n";
     return kBadInput;
   } catch (const UsageError& e) {
+    std::cerr << "metrosync: error: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const PluginError& e) {  // a plugin missing from the installation
     std::cerr << "metrosync: error: " << e.what() << "\n";
     return kBadInput;
   } catch (const std::exception& e) {

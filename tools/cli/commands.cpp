@@ -15,6 +15,7 @@
 #include "sim/analysis/compare.h"
 #include "sim/analysis/linear_decay.h"
 #include "sim/analysis/regime.h"
+#include "sim/record/atomic_file.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/network_run.h"
 #include "tools/report/comparison_csv.h"
@@ -133,9 +134,10 @@ RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::stri
 
 // summary.json's resolved_rig, command_line and build (docs/outputs.md)
 void addRunProvenance(nlohmann::json& summary, const Options& opt, const LoadedRig& r) {
-  addProvenance(
-      summary,
-      resolvedRigJson(r.text, opt.rig_path.empty() ? "<default rig>" : opt.rig_path, opt.sets));
+  addProvenance(summary,
+                // r is the rig loadAndCheck loaded from this text and these overrides
+                resolvedRigJson(r.text, opt.rig_path.empty() ? "<default rig>" : opt.rig_path,
+                                opt.sets, true));
 }
 
 // A line every 10% of a long run on stderr when it is not a terminal (logs, CI).
@@ -246,6 +248,9 @@ int runCommand(const Options& opt) {
   const OutputDir dir = openOutputDir(opt, r.rig, "run");
   const bool full = model == "full";
 
+  // the run's files made durable with one sync (sim/record/atomic_file.h): all of them and
+  // summary.json with --no-plot; else the result files, then the plot and summary.json
+  CommitBatch durable;
   FileSink sink(dir, sinkOptions(r, full, "envelope.csv"));
   // section 3A (locked metronomes, board on springs): the extremes are the platform's stops
   LinearDecay decay;
@@ -261,6 +266,9 @@ int runCommand(const Options& opt) {
 
   std::vector<std::string> files = sink.fileNames();
   const std::string plot = "envelope." + opt.plot_format;
+  // the result files on disk before the plot (a gnuplot child, ~0.1 s); summary.json then
+  // follows on its own
+  if (!opt.no_plot) durable.finish();
   if (!opt.no_plot &&
       plotEnvelope(dir, plot, sink.plotRows(), r.scaled.theta_c,
                    r.rig.name + " - " + modelTitle(model) + " - " + regimeName(verdict),
@@ -277,6 +285,7 @@ int runCommand(const Options& opt) {
                             {"period", s3a->period_s},
                             {"extremes", s3a->extremes}};
   writeSummary(dir, summary);  // last: a summary.json means the run's files are all there
+  if (durable.active()) durable.finish();  // --no-plot: renamed in order, summary.json last
 
   if (!opt.quiet) {
     printRunSummary(model, r, report, verdict);

@@ -1,5 +1,6 @@
 #include "tools/cli/engines.h"
 
+#include "sim/engines/plugin_loader.h"
 #include "tools/cli/commands.h"
 #include "yaml/rig_loader.h"
 
@@ -12,6 +13,8 @@ const Engine& chooseEngine(const std::string& requested, const std::string& mode
   } catch (const EngineSelectionError& e) {
     if (e.about_integrator) throw RigError(rig_name + ": " + e.what());
     throw UsageError(e.what());
+  } catch (const PluginError& e) {
+    throw UsageError(e.what());  // exit 2, before anything is written
   }
 }
 

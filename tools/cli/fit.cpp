@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "models/scaling.h"
+#include "sim/analysis/fit/ceres_plugin.h"
 #include "sim/analysis/fit/data_file.h"
 #include "sim/analysis/fit/least_squares.h"
 #include "sim/analysis/fit/model_samples.h"
@@ -257,6 +258,7 @@ int fitCommand(const FitOptions& opt) {
   const Rig rig = loadPhysicalRig(text, opt.rig_path, opt.sets);
   const MeasuredData data = loadData(opt.data_path, rig);
   const Engine& engine = chooseEngine("", opt.model, rig, opt.rig_path);
+  ceresPlugin();  // Ceres loaded now: a missing plugin is said before anything is written
   FitSetup setup;
   FitContext ctx{opt.rig_path, opt.data_path, opt.model, {}, {}};
   for (std::size_t j = 0; j < opt.free.size(); ++j) {

@@ -11,6 +11,7 @@
 
 #include "contact/simbody/driven_coulomb.h"
 #include "sim/analysis/validation.h"
+#include "sim/engines/simbody_plugin.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/engines.h"
 #include "tools/report/outputs.h"
@@ -155,7 +156,7 @@ int validateCommand(const ValidateOptions& opt) {
 
   ValidationEngines engines;
   engines.full_model = [engine](const Rig& rig, RunSink& sink) { return engine->run(rig, sink); };
-  engines.coulomb_probe = [](double s) { return measureDrivenCoulomb(s); };
+  engines.coulomb_probe = [](double s) { return simbodyPlugin().coulomb_probe(s); };
 
   const auto t0 = std::chrono::steady_clock::now();
   auto progress = [&](const std::string& line) {

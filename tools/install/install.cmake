@@ -1,5 +1,5 @@
 # `cmake --install` and the Debian package (CPack), docs/install.md:
-#   bin/metrosync, share/man/man1/metrosync.1.gz (help2man, from the binary's --help texts),
+#   bin/metrosync, lib/<arch>/metrosync/*.so (its plugins), share/man/man1/metrosync.1.gz (help2man, from the binary's --help texts),
 #   bash and zsh completion (from the same texts), share/metrosync/rigs (the example rigs),
 #   share/doc/metrosync (README, CHANGELOG, docs/).
 # The generated files are made after the binary is linked, so they never disagree with it.
@@ -32,6 +32,9 @@ endif()
 add_custom_target(metrosync_install_files ALL DEPENDS ${install_generated})
 
 install(TARGETS metrosync RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# the plugins metrosync loads on demand (sim/engines/plugin_loader.h): <libdir>/metrosync, which
+# the executable finds relative to itself (METROSYNC_PLUGIN_RELATIVE_DIR)
+install(TARGETS ${METROSYNC_PLUGINS} LIBRARY DESTINATION ${METROSYNC_PLUGIN_INSTALL_DIR})
 install(FILES ${METROSYNC_GENERATED}/metrosync.bash
         DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions RENAME metrosync)
 install(FILES ${METROSYNC_GENERATED}/_metrosync

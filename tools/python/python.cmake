@@ -17,7 +17,7 @@ set(METROSYNC_PYTHON_DIR ${CMAKE_BINARY_DIR}/python)
 pybind11_add_module(_metrosync NO_EXTRAS ${CMAKE_SOURCE_DIR}/tools/python/module.cpp)
 target_include_directories(_metrosync PRIVATE ${CMAKE_SOURCE_DIR})
 target_link_libraries(_metrosync PRIVATE metrosync_tools_cli)
-metrosync_simbody_target(_metrosync)
+metrosync_link_heavy(_metrosync)
 set_target_properties(_metrosync PROPERTIES LIBRARY_OUTPUT_DIRECTORY
                                             ${METROSYNC_PYTHON_DIR}/metrosync)
 file(GLOB metrosync_py CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tools/python/metrosync/*.py)

@@ -1,7 +1,5 @@
 #include "tools/report/build_info.h"
 
-#include <simbody/internal/common.h>
-
 #include <Eigen/Core>
 
 #include "sim/record/atomic_file.h"
@@ -10,10 +8,10 @@ namespace metrosync {
 
 namespace {
 
+// the Simbody library the plugin is linked with, as it reported itself at configure time
+// (CMakeLists.txt): asking it at run time would load Simbody into every process
 std::string simbodyVersion() {
-  int major = 0, minor = 0, build = 0;
-  SimTK_version_simbody(&major, &minor, &build);
-  return std::to_string(major) + "." + std::to_string(minor) + "." + std::to_string(build);
+  return METROSYNC_SIMBODY_VERSION;
 }
 
 std::vector<std::string>& commandLineStore() {

@@ -13,8 +13,8 @@ namespace metrosync {
 struct BuildInfo {
   std::string metrosync;  // the project version (CMake's PROJECT_VERSION)
   std::string commit;     // full git hash, "-dirty" appended for a modified tree; or "unknown"
-  std::string simbody;    // the Simbody library linked (its own report at run time)
-  std::string eigen;      // the Eigen headers compiled against
+  std::string simbody;  // the Simbody library the plugin links (its own report, at configure time)
+  std::string eigen;    // the Eigen headers compiled against
 };
 
 const BuildInfo& buildInfo();

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "sim/analysis/fit/ceres_plugin.h"
+
 namespace metrosync {
 
 namespace {
@@ -242,7 +244,8 @@ FitResult results(const FitSetup& s, const std::vector<double>& x, const std::ve
 
 }  // namespace
 
-FitResult fitLeastSquares(const FitSetup& s) {
+// fitLeastSquares (ceres_plugin.cpp) calls this through the plugin metrosync-ceres.so
+FitResult fitLeastSquaresWithCeres(const FitSetup& s) {
   const std::size_t k = s.free.size(), m = s.observations.size();
   if (k == 0 || m <= k)
     throw std::invalid_argument(std::to_string(m) + " observations for " + std::to_string(k) +
@@ -281,3 +284,9 @@ FitResult fitLeastSquares(const FitSetup& s) {
 }
 
 }  // namespace metrosync
+
+extern "C" const metrosync::CeresPlugin* metrosync_ceres_plugin() {
+  static const metrosync::CeresPlugin table{metrosync::kCeresPluginAbi,
+                                            &metrosync::fitLeastSquaresWithCeres};
+  return &table;
+}

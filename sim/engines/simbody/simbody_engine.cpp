@@ -39,11 +39,7 @@ namespace metrosync {
 
 using namespace SimTK;
 
-const std::vector<std::string>& simbodyIntegratorNames() {
-  static const std::vector<std::string> names = {
-      "rk-merson", "rk-feldberg", "rk3", "rk2", "cpodes", "verlet", "semi-explicit-euler2"};
-  return names;
-}
+// simbodyIntegratorNames(): integrator_names.cpp
 
 namespace {
 
