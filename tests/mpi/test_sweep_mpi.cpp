@@ -168,7 +168,7 @@ TEST(BasinMpi, TwoRanksWriteTheSerialBasinCsvBitForBit) {
   const std::string want = slurp(d + "/serial/basin.csv");
   ASSERT_EQ(lines(d + "/serial/basin.csv").size(), 61u);
   const nlohmann::json s = nlohmann::json::parse(slurp(d + "/serial/basin.json"));
-  for (const std::string& jobs : {"1", "2"}) {
+  for (const std::string jobs : {"1", "2"}) {
     const std::string out = d + "/mpi-jobs" + jobs;
     const CommandResult mpi = mpiMetrosync(2, basin + " --jobs " + jobs + " --out " + out);
     ASSERT_EQ(mpi.code, 0) << mpi.err;

@@ -66,7 +66,9 @@ std::map<long, std::vector<std::string>> storeByGzip(const std::string& dir, boo
   const std::string cmd = "gzip -dc " + shellQuote(dir + "/envelopes.csv.gz") + " > " + out +
                           (damaged ? " 2>/dev/null" : "");
   const int status = std::system(cmd.c_str());
-  if (!damaged) EXPECT_EQ(status, 0);
+  if (!damaged) {
+    EXPECT_EQ(status, 0);
+  }
   std::map<long, std::vector<std::string>> points, open;
   const std::vector<std::string> lines = splitLines(slurp(out));
   EXPECT_FALSE(lines.empty());

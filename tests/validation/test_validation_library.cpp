@@ -236,7 +236,7 @@ TEST(ValidationLibrary, TinyPlanRunsEveryPartAndWritesTheReport) {
   const std::string dir = ::testing::TempDir() + "/metrosync_validation_tiny";
   std::filesystem::remove_all(dir);
   const OutputDir out(dir);
-  const auto files = writeValidationReport(out, r, {"tiny", "yaml/rigs", "now"});
+  const auto files = writeValidationReport(out, r, {"tiny", "yaml/rigs", "now", "direct"});
   EXPECT_TRUE(std::filesystem::exists(dir + "/report.md"));
   EXPECT_TRUE(std::filesystem::exists(dir + "/summary.json"));
   std::ifstream in(dir + "/summary.json");
