@@ -16,7 +16,7 @@ out=${1:-docs/bench/peer}
 bench=${BENCH:-./build/metrosync_bench}
 scenes=${SCENES:-experiment-short n8 n32 n128 suppression experiment}
 methods=${METHODS:-odeint:dopri5,odeint:rkf78,direct:verner76,direct:dopri5,direct:verner65}
-accuracies=${ACCURACIES:-1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10,1e-11}
+accuracies=${ACCURACIES:-1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10,1e-11,1e-12}
 
 if [ ! -x "$bench" ]; then
   echo "peer.sh: $bench not found: build it first (cmake --build build --target metrosync_bench)" >&2
