@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <random>
 #include <sstream>
@@ -225,128 +226,164 @@ struct PrecisionOptions {
   mb::VerdictOptions verdict;
 };
 
+// What precision runs: the methods, their settings, the reference and its cross-checks.
+struct PrecisionPlan {
+  std::vector<mb::Method> methods;
+  std::vector<double> accuracies, simbody_accuracies, siconos_steps;
+  mb::Method reference;
+  std::vector<mb::Method> cross_checks;
+  const std::vector<double>& settingsOf(const mb::Method& m) const {
+    if (m.engine == "siconos") return siconos_steps;
+    return m.engine == "simbody" ? simbody_accuracies : accuracies;
+  }
+};
+
+PrecisionPlan precisionPlan(const PrecisionOptions& o, const Common& c) {
+  PrecisionPlan plan;
+  if (o.methods.empty()) {
+    for (const char* e : {"direct", "simbody", "siconos", "odeint"})
+      if (mb::engineAvailable(e))
+        for (const auto& i : mb::integratorsOf(e))
+          plan.methods.push_back(mb::parseMethod(std::string(e) + ":" + i));
+  } else {
+    for (const auto& s : splitList(o.methods)) plan.methods.push_back(mb::parseMethod(s));
+  }
+  plan.methods = ofEngine(std::move(plan.methods), c);
+  plan.accuracies = parseList(o.accuracies);
+  plan.simbody_accuracies =
+      o.simbody_accuracies.empty() ? plan.accuracies : parseList(o.simbody_accuracies);
+  plan.siconos_steps = parseList(o.siconos_steps);
+  plan.reference = mb::parseMethod(o.reference);
+  for (const auto& s : o.cross_checks) plan.cross_checks.push_back(mb::parseMethod(s));
+  return plan;
+}
+
+// A record for a point that was not run (why: its status).
+mb::Record notRun(const mb::Scene& scene, const mb::Method& m, const std::string& status,
+                  const std::string& note = "") {
+  mb::Record r;
+  r.scene = scene.name;
+  r.n_metronomes = static_cast<int>(scene.rig.metronomes.size());
+  r.periods = scene.periods;
+  r.method = m;
+  r.status = status;
+  r.note = note;
+  return r;
+}
+
+// One method over its settings, in order; a setting predicted to exceed the budget (from the
+// growth of the last two) and every one after it is skipped.
+void measureSettings(const mb::Scene& scene, const mb::Method& base_m,
+                     const std::vector<double>& settings, const mb::RunResult& ref, const Common& c,
+                     std::vector<mb::Record>& recs, const std::function<void()>& save) {
+  double prev_wall = 0, last_wall = 0;
+  bool stop = false;
+  for (double s : settings) {
+    mb::Method m = base_m;
+    (m.engine == "siconos" ? m.steps_per_period : m.accuracy) = s;
+    if (stop) {
+      recs.push_back(notRun(scene, m, "skipped (predicted over budget)"));
+      continue;
+    }
+    mb::Record r = measure(scene, m, &ref, c, c.budget_s, c.repeat);
+    recs.push_back(r);
+    save();
+    if (r.status == "over budget") {
+      stop = true;
+      continue;
+    }
+    if (r.status != "ok") continue;
+    prev_wall = last_wall;
+    last_wall = r.wall_median_s;
+    // the next setting costs about as much more as this one did over the previous one
+    const double growth = prev_wall > 0 ? std::max(1.0, last_wall / prev_wall) : 1.0;
+    if (last_wall * growth > 3 * c.budget_s) stop = true;
+  }
+}
+
+// The scene's wp-<scene>.md (table and ratios), -equal-error.csv and .png.
+void writeSceneReport(const mb::Scene& scene, const mb::Method& ref_method,
+                      const std::vector<mb::Record>& recs, const std::string& base,
+                      const Common& c) {
+  std::string ratio_csv;
+  const std::string ratios = mb::ratiosMarkdown(recs, ratio_csv);
+  metrosync::writeFileAtomically(base + "-equal-error.csv",
+                                 "scene,a,b,error,time_a_s,time_b_s,ratio\n" + ratio_csv);
+  std::ostringstream md;
+  md << "### " << scene.name << "\n\n"
+     << "`" << (scene.path.empty() ? scene.name : scene.path)
+     << "`: N = " << scene.rig.metronomes.size()
+     << ", epsilon = " << fmt(scene.scaled.epsilon, "%.4g")
+     << ", tau_end = " << fmt(scene.scaled.tau_end, "%.4g") << " (" << fmt(scene.periods, "%.0f")
+     << " fast periods, " << fmt(scene.rig.sim.t_end_s, "%.4g") << " s). Reference "
+     << ref_method.label() << " at " << ref_method.setting() << "; 1-minute load during the "
+     << "timed runs " << loadRange(recs) << ".\n\n"
+     << mb::precisionTable(recs) << "\nTime ratios at equal envelope error (a / b; < 1: a is "
+     << "faster):\n\n"
+     << ratios << "\n![work-precision " << scene.name << "](wp-" << scene.name << ".png)\n";
+  metrosync::writeFileAtomically(base + ".md", md.str());
+  mb::plotWorkPrecision(base + ".png", recs,
+                        "work-precision: " + scene.name +
+                            " (N = " + std::to_string(scene.rig.metronomes.size()) + ", " +
+                            fmt(scene.periods, "%.0f") + " fast periods)");
+  if (!c.quiet) std::cout << md.str() << "\n";
+}
+
+// One scene: the reference (timed once: it is not on the curves) and its cross-checks, every
+// method over its settings, the scene's files. 3 if the reference did not finish, else 0.
+int precisionScene(const mb::Scene& scene, const PrecisionPlan& plan, const PrecisionOptions& o,
+                   const Common& c, std::vector<mb::Record>& recs) {
+  if (!c.quiet)
+    std::cerr << scene.name << ": N = " << scene.rig.metronomes.size() << ", "
+              << fmt(scene.periods, "%.0f")
+              << " fast periods, tau_end = " << fmt(scene.scaled.tau_end, "%.4g")
+              << ", epsilon = " << fmt(scene.scaled.epsilon, "%.4g") << "\n";
+  const std::string base = c.out + "/wp-" + scene.name;
+  const std::function<void()> save = [&]() {
+    metrosync::writeFileAtomically(base + ".csv", mb::recordsCsv(recs));
+  };
+  mb::RunResult ref;
+  mb::Record rr = measure(scene, plan.reference, nullptr, c, o.ref_budget_s, 1, &ref);
+  if (rr.status != "ok") {
+    std::cerr << "metrosync_bench: " << scene.name << ": the reference run "
+              << plan.reference.label() << " " << plan.reference.setting()
+              << " did not finish: " << rr.note << "\n";
+    return 3;
+  }
+  rr.status = "reference";
+  recs.push_back(rr);
+  for (const mb::Method& m : plan.cross_checks) {
+    mb::Record cr = measure(scene, m, &ref, c, o.ref_budget_s, 1);
+    if (cr.status == "ok") cr.status = "cross-check";
+    recs.push_back(cr);
+    save();
+  }
+  for (const mb::Method& m : plan.methods) {
+    if (m.engine == "siconos" && !mb::siconosUnsupported(scene.rig).empty()) {
+      recs.push_back(notRun(scene, m, "not run", mb::siconosUnsupported(scene.rig)));
+      continue;
+    }
+    measureSettings(scene, m, plan.settingsOf(m), ref, c, recs, save);
+  }
+  save();
+  writeSceneReport(scene, plan.reference, recs, base, c);
+  return 0;
+}
+
 int precision(const PrecisionOptions& o, const Common& c) {
   if (c.repeat < mb::kMinRunsForResult)
     std::cerr << "metrosync_bench: warning: --repeat " << c.repeat << " < " << mb::kMinRunsForResult
               << ": medians of fewer runs than issue 11 asks for; the "
               << "ratio table will not be a result\n";
-  std::vector<mb::Method> methods;
-  if (o.methods.empty()) {
-    for (const char* e : {"direct", "simbody", "siconos", "odeint"})
-      if (mb::engineAvailable(e))
-        for (const auto& i : mb::integratorsOf(e))
-          methods.push_back(mb::parseMethod(std::string(e) + ":" + i));
-  } else {
-    for (const auto& s : splitList(o.methods)) methods.push_back(mb::parseMethod(s));
-  }
-  methods = ofEngine(std::move(methods), c);
-  const std::vector<double> accuracies = parseList(o.accuracies);
-  const std::vector<double> simbody_accuracies =
-      o.simbody_accuracies.empty() ? accuracies : parseList(o.simbody_accuracies);
-  const std::vector<double> steps = parseList(o.siconos_steps);
-  const mb::Method ref_method = mb::parseMethod(o.reference);
-  std::vector<mb::Method> cross;
-  for (const auto& s : o.cross_checks) cross.push_back(mb::parseMethod(s));
+  const PrecisionPlan plan = precisionPlan(o, c);
   std::filesystem::create_directories(c.out);
   std::vector<mb::VerdictScene> verdict_scenes;  // read back from each scene's CSV
-
   for (const std::string& path : o.scenes) {
     const mb::Scene scene = mb::loadScene(path, o.sets);
-    if (!c.quiet)
-      std::cerr << scene.name << ": N = " << scene.rig.metronomes.size() << ", "
-                << fmt(scene.periods, "%.0f")
-                << " fast periods, tau_end = " << fmt(scene.scaled.tau_end, "%.4g")
-                << ", epsilon = " << fmt(scene.scaled.epsilon, "%.4g") << "\n";
     std::vector<mb::Record> recs;
-    const std::string base = c.out + "/wp-" + scene.name;
-    auto save = [&]() { metrosync::writeFileAtomically(base + ".csv", mb::recordsCsv(recs)); };
-
-    // the reference (timed once: it is not on the curves) and its cross-checks
-    mb::RunResult ref;
-    mb::Record rr = measure(scene, ref_method, nullptr, c, o.ref_budget_s, 1, &ref);
-    if (rr.status != "ok") {
-      std::cerr << "metrosync_bench: " << scene.name << ": the reference run " << ref_method.label()
-                << " " << ref_method.setting() << " did not finish: " << rr.note << "\n";
-      return 3;
-    }
-    rr.status = "reference";
-    recs.push_back(rr);
-    for (const mb::Method& m : cross) {
-      mb::Record cr = measure(scene, m, &ref, c, o.ref_budget_s, 1);
-      if (cr.status == "ok") cr.status = "cross-check";
-      recs.push_back(cr);
-      save();
-    }
-
-    for (const mb::Method& base_m : methods) {
-      if (base_m.engine == "siconos" && !mb::siconosUnsupported(scene.rig).empty()) {
-        mb::Record r;
-        r.scene = scene.name;
-        r.method = base_m;
-        r.status = "not run";
-        r.note = mb::siconosUnsupported(scene.rig);
-        recs.push_back(r);
-        continue;
-      }
-      const std::vector<double>& settings = base_m.engine == "siconos"   ? steps
-                                            : base_m.engine == "simbody" ? simbody_accuracies
-                                                                         : accuracies;
-      double prev_wall = 0, last_wall = 0;
-      bool stop = false;
-      for (double s : settings) {
-        mb::Method m = base_m;
-        (m.engine == "siconos" ? m.steps_per_period : m.accuracy) = s;
-        if (stop) {
-          mb::Record r;
-          r.scene = scene.name;
-          r.n_metronomes = static_cast<int>(scene.rig.metronomes.size());
-          r.periods = scene.periods;
-          r.method = m;
-          r.status = "skipped (predicted over budget)";
-          recs.push_back(r);
-          continue;
-        }
-        mb::Record r = measure(scene, m, &ref, c, c.budget_s, c.repeat);
-        recs.push_back(r);
-        save();
-        if (r.status == "over budget") {
-          stop = true;
-          continue;
-        }
-        if (r.status != "ok") continue;
-        prev_wall = last_wall;
-        last_wall = r.wall_median_s;
-        // the next setting costs about as much more as this one did over the previous one
-        const double growth = prev_wall > 0 ? std::max(1.0, last_wall / prev_wall) : 1.0;
-        if (last_wall * growth > 3 * c.budget_s) stop = true;
-      }
-    }
-    save();
-
-    // tables, ratios, plot
-    std::string ratio_csv;
-    const std::string ratios = mb::ratiosMarkdown(recs, ratio_csv);
-    metrosync::writeFileAtomically(base + "-equal-error.csv",
-                                   "scene,a,b,error,time_a_s,time_b_s,ratio\n" + ratio_csv);
-    std::ostringstream md;
-    md << "### " << scene.name << "\n\n"
-       << "`" << (scene.path.empty() ? scene.name : scene.path)
-       << "`: N = " << scene.rig.metronomes.size()
-       << ", epsilon = " << fmt(scene.scaled.epsilon, "%.4g")
-       << ", tau_end = " << fmt(scene.scaled.tau_end, "%.4g") << " (" << fmt(scene.periods, "%.0f")
-       << " fast periods, " << fmt(scene.rig.sim.t_end_s, "%.4g") << " s). Reference "
-       << ref_method.label() << " at " << ref_method.setting() << "; 1-minute load during the "
-       << "timed runs " << loadRange(recs) << ".\n\n"
-       << mb::precisionTable(recs) << "\nTime ratios at equal envelope error (a / b; < 1: a is "
-       << "faster):\n\n"
-       << ratios << "\n![work-precision " << scene.name << "](wp-" << scene.name << ".png)\n";
-    metrosync::writeFileAtomically(base + ".md", md.str());
-    mb::plotWorkPrecision(base + ".png", recs,
-                          "work-precision: " + scene.name +
-                              " (N = " + std::to_string(scene.rig.metronomes.size()) + ", " +
-                              fmt(scene.periods, "%.0f") + " fast periods)");
-    if (!c.quiet) std::cout << md.str() << "\n";
-    for (auto& v : mb::parseWorkPrecisionCsv(mb::recordsCsv(recs), base + ".csv", o.verdict.sides))
+    if (const int rc = precisionScene(scene, plan, o, c, recs)) return rc;
+    const std::string csv = c.out + "/wp-" + scene.name + ".csv";
+    for (auto& v : mb::parseWorkPrecisionCsv(mb::recordsCsv(recs), csv, o.verdict.sides))
       verdict_scenes.push_back(std::move(v));
   }
   writeVerdict(verdict_scenes, o.verdict, c);
