@@ -92,4 +92,18 @@ inline std::vector<std::vector<std::string>> csvRows(const std::string& path) {
   return rows;
 }
 
+// Two identical metronomes of the paper's experiment in scaled variables
+// (yaml/rigs/experiment-map.yaml), run to `tau`: DIR/pair.yaml, its path returned.
+inline std::string writePairRig(const std::string& dir, double tau) {
+  const std::string path = dir + "/pair.yaml";
+  std::ofstream(path) << "units: scaled\nname: pair\nepsilon: 0.07319\n"
+                         "platform:\n  friction: {law: coulomb, mu: 0.03283}\n"
+                         "metronomes:\n"
+                         "  - {nu: 0.6544, J: 3.138, theta_c: 0.9019, start: {A: 2.902, phi: 0}}\n"
+                         "  - {nu: 0.6544, J: 3.138, theta_c: 0.9019, start: {A: 2.902, phi: 0}}\n"
+                         "simulation:\n  tau: "
+                      << tau << "\n";
+  return path;
+}
+
 }  // namespace metrosync::testing_support

@@ -30,16 +30,8 @@ Result metrosync(const std::string& args) {
 
 using testing_support::csvRows;
 
-// Two identical metronomes of the paper's experiment (scaled), a short run.
 std::string pairRig(const std::string& dir) {
-  const std::string path = dir + "/pair.yaml";
-  std::ofstream(path) << "units: scaled\nname: pair\nepsilon: 0.07319\n"
-                         "platform:\n  friction: {law: coulomb, mu: 0.03283}\n"
-                         "metronomes:\n"
-                         "  - {nu: 0.6544, J: 3.138, theta_c: 0.9019, start: {A: 2.902, phi: 0}}\n"
-                         "  - {nu: 0.6544, J: 3.138, theta_c: 0.9019, start: {A: 2.902, phi: 0}}\n"
-                         "simulation:\n  tau: 30\n";
-  return path;
+  return metrosync::testing_support::writePairRig(dir, 30);
 }
 
 // ---- parsing ------------------------------------------------------------------------------------

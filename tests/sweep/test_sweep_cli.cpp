@@ -54,17 +54,8 @@ std::vector<std::string> cells(const std::string& line) {
   return v;
 }
 
-// The paper's experiment in scaled variables (yaml/rigs/experiment-map.yaml), shorter.
 std::string pairRig(const std::string& dir, double tau = 60) {
-  const std::string path = dir + "/pair.yaml";
-  std::ofstream(path) << "units: scaled\nname: pair\nepsilon: 0.07319\n"
-                         "platform:\n  friction: {law: coulomb, mu: 0.03283}\n"
-                         "metronomes:\n"
-                         "  - {nu: 0.6544, J: 3.138, theta_c: 0.9019, start: {A: 2.902, phi: 0}}\n"
-                         "  - {nu: 0.6544, J: 3.138, theta_c: 0.9019, start: {A: 2.902, phi: 0}}\n"
-                         "simulation:\n  tau: "
-                      << tau << "\n";
-  return path;
+  return metrosync::testing_support::writePairRig(dir, tau);
 }
 
 const std::string kGrid =

@@ -44,16 +44,8 @@ std::vector<std::string> cells(const std::string& line) {
   return v;
 }
 
-// The paper's experiment in scaled variables, short; values on the grid below print exactly.
 std::string pairRig(const std::string& dir) {
-  const std::string path = dir + "/pair.yaml";
-  std::ofstream(path) << "units: scaled\nname: pair\nepsilon: 0.07319\n"
-                         "platform:\n  friction: {law: coulomb, mu: 0.03283}\n"
-                         "metronomes:\n"
-                         "  - {nu: 0.6544, J: 3.138, theta_c: 0.9019, start: {A: 2.902, phi: 0}}\n"
-                         "  - {nu: 0.6544, J: 3.138, theta_c: 0.9019, start: {A: 2.902, phi: 0}}\n"
-                         "simulation:\n  tau: 40\n";
-  return path;
+  return metrosync::testing_support::writePairRig(dir, 40);
 }
 
 const std::string kGrid =

@@ -2,9 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace metrosync::bench {
+
+std::string benchNumber(double v, const char* f) {
+  if (!std::isfinite(v)) return "";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
 
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

@@ -7,6 +7,9 @@
 
 namespace metrosync::bench {
 
+// v printed with the printf format f; "" for a NaN or an infinity (an empty table cell).
+std::string benchNumber(double v, const char* f = "%.3g");
+
 double median(std::vector<double> v);  // NaN for an empty vector
 
 // One (error, time) point of a work-precision curve.

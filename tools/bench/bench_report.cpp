@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "tools/bench/bench_metrics.h"
 #include "tools/report/plot.h"
 
 namespace metrosync::bench {
@@ -20,10 +21,7 @@ namespace metrosync::bench {
 namespace {
 
 std::string num(double v, const char* f = "%.3g") {
-  if (!std::isfinite(v)) return "";
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
+  return benchNumber(v, f);
 }
 
 // CSV field: quoted when it holds a comma or a quote

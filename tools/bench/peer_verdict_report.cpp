@@ -5,15 +5,14 @@
 #include <cstdio>
 #include <sstream>
 
+#include "tools/bench/bench_metrics.h"
+
 namespace metrosync::bench {
 
 namespace {
 
 std::string num(double v, const char* f = "%.3g") {
-  if (!std::isfinite(v)) return "";
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
+  return benchNumber(v, f);
 }
 
 // "33.2 us", "1.09 ms", "2.5 s"
