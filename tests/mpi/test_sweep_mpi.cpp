@@ -46,15 +46,7 @@ std::vector<std::string> lines(const std::string& path) {
 // The paper's experiment in scaled variables (yaml/rigs/experiment-map.yaml), shorter: a 12 x 12
 // slow-flow map over the start phase and mu holds in-phase, antiphase, suppression and death.
 std::string pairRig(const std::string& dir, double tau) {
-  const std::string path = dir + "/pair.yaml";
-  std::ofstream(path) << "units: scaled\nname: pair\nepsilon: 0.07319\n"
-                         "platform:\n  friction: {law: coulomb, mu: 0.03283}\n"
-                         "metronomes:\n"
-                         "  - {nu: 0.6544, J: 3.138, theta_c: 0.9019, start: {A: 2.902, phi: 0}}\n"
-                         "  - {nu: 0.6544, J: 3.138, theta_c: 0.9019, start: {A: 2.902, phi: 0}}\n"
-                         "simulation:\n  tau: "
-                      << tau << "\n";
-  return path;
+  return metrosync::testing_support::writePairRig(dir, tau);
 }
 
 const std::string kMap =
