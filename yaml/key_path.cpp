@@ -61,6 +61,8 @@ KeyPath KeyPath::parse(const std::string& text) {
   KeyPath k;
   k.text_ = trimmed(text);
   if (k.text_.empty()) throw KeyError("no key (a key is a path such as platform.friction.mu)");
+  if (k.text_.find('=') != std::string::npos)
+    throw KeyError(printable(k.text_) + ": a key has no '=' (this option takes a key alone)");
   std::size_t from = 0;
   for (;;) {
     const std::size_t dot = k.text_.find('.', from);

@@ -37,7 +37,7 @@ class KeyPath {
 
   KeyPath() = default;
   // Parses `text` (spaces and tabs around it are dropped). Throws KeyError for an empty key or
-  // segment, or a '*' that is not a whole segment.
+  // segment, a '*' that is not a whole segment, or an '='.
   static KeyPath parse(const std::string& text);
   // The path of these segments (each already well formed).
   static KeyPath of(std::vector<Segment> segments);

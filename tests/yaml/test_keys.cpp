@@ -101,7 +101,7 @@ TEST(KeyPath, ParsesNamesIndicesAndWildcards) {
   const KeyAssignment a = parseAssignment("metronomes.*.nu=a=b");
   EXPECT_EQ(a.key.text(), "metronomes.*.nu");
   EXPECT_EQ(a.value, "a=b");  // the value is everything after the first '='
-  for (const char* bad : {"", " ", "a..b", "a.", ".a", "a.b*.c", "a.**", "m.123456789"})
+  for (const char* bad : {"", " ", "a..b", "a.", ".a", "a.b*.c", "a.**", "m.123456789", "a.b=1"})
     EXPECT_THROW(KeyPath::parse(bad), KeyError) << bad;
   for (const char* bad : {"a.b", "=1", " =1"}) EXPECT_THROW(parseAssignment(bad), KeyError) << bad;
 }

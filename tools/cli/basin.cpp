@@ -108,7 +108,7 @@ BasinPlan planBasin(const BasinOptions& opt) {
   // the keys resolved against the rig (docs/keys.md), no two setting one rig key
   std::vector<OptionKey> keys;
   for (const auto& r : opt.random)
-    keys.push_back(resolveOptionKey({plan.text, name, opt.run.sets}, "--random", r));
+    keys.push_back(resolveOptionKey({plan.text, name, opt.run.sets}, "--random", r, true));
   refuseSharedKeys(keys);
   for (size_t i = 0; i < keys.size(); ++i)
     plan.keys.push_back(parseRandom(opt.random[i], isPhaseName(keys[i].key.key.leaf())));

@@ -106,7 +106,7 @@ double startValue(const ContinueOptions& opt, const std::string& option = "--par
   const Rig rig = loadWith(opt, {});  // the rig itself must load
   const std::string display = rigDisplay(opt);
   const std::string text = rigText(opt);
-  const RigKey key = resolveOptionKey({text, display, opt.sets}, option, opt.param).key;
+  const RigKey key = resolveOptionKey({text, display, opt.sets}, option, opt.param, false).key;
   if (key.key.text() == "epsilon")
     throw UsageError(option +
                      " epsilon: epsilon has no effect on the slow flow (it only sets the "
@@ -193,8 +193,8 @@ double secondStart(const ContinueOptions& opt) {
   const std::string display = rigDisplay(opt);
   const std::string text = rigText(opt);
   const KeyedRig rig{text, display, opt.sets};
-  refuseSharedKeys(
-      {resolveOptionKey(rig, "--param", opt.param), resolveOptionKey(rig, "--fold", opt.fold_key)});
+  refuseSharedKeys({resolveOptionKey(rig, "--param", opt.param, false),
+                    resolveOptionKey(rig, "--fold", opt.fold_key, false)});
   ContinueOptions second = opt;
   second.param = opt.fold_key, second.to = opt.to2, second.from.reset();
   return startValue(second, "--fold");

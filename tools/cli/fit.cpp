@@ -82,7 +82,7 @@ FreeParameter freeParameter(const RigKey& key, double start) {
 std::vector<RigKey> freeKeys(const std::string& text, const FitOptions& opt) {
   std::vector<OptionKey> keys;
   for (const std::string& k : opt.free)
-    keys.push_back(resolveOptionKey({text, opt.rig_path, opt.sets}, "--free", k));
+    keys.push_back(resolveOptionKey({text, opt.rig_path, opt.sets}, "--free", k, false));
   refuseSharedKeys(keys);
   std::vector<RigKey> out;
   for (const OptionKey& k : keys) {

@@ -5,11 +5,12 @@
 
 namespace metrosync::cli {
 
-OptionKey resolveOptionKey(const KeyedRig& rig, const std::string& option,
-                           const std::string& value) {
+OptionKey resolveOptionKey(const KeyedRig& rig, const std::string& option, const std::string& value,
+                           bool assignment) {
   OptionKey k;
   k.typed = option + " " + value;
-  k.key = resolveRigKey(rig.text, rig.display_name, rig.sets, keyTextOf(value), k.typed);
+  k.key = resolveRigKey(rig.text, rig.display_name, rig.sets, assignment ? keyTextOf(value) : value,
+                        k.typed);
   return k;
 }
 

@@ -25,11 +25,11 @@ struct OptionKey {
   RigKey key;
 };
 
-// The key of `option VALUE` (VALUE is "KEY=..." for --vary and --random, KEY alone for the
-// others: the key is what precedes the first '=') resolved against `rig`; throws RigError
-// "<rig>: <option> <value>: <what is wrong with the key>".
-OptionKey resolveOptionKey(const KeyedRig& rig, const std::string& option,
-                           const std::string& value);
+// The key of `option VALUE` resolved against `rig`: VALUE is "KEY=..." when `assignment`
+// (--vary, --random: the key is what precedes the first '='), else KEY alone (--param, --fold,
+// --free). Throws RigError "<rig>: <option> <value>: <what is wrong with the key>".
+OptionKey resolveOptionKey(const KeyedRig& rig, const std::string& option, const std::string& value,
+                           bool assignment);
 
 // Throws UsageError when two of `keys` set one rig key, naming both as typed and the key, e.g.
 //   --vary metronomes.*.nu=0.5:0.8:4 and --vary metronomes.1.nu=0.6,0.7: both set metronomes.1.nu

@@ -524,8 +524,8 @@ std::vector<OptionKey> sweepKeys(const SweepOptions& opt, const std::string& tex
   const std::string name = displayName(opt);
   const KeyedRig rig{text, name, opt.sets};
   std::vector<OptionKey> keys;
-  for (const auto& v : opt.vary) keys.push_back(resolveOptionKey(rig, "--vary", v));
-  for (const auto& r : opt.random) keys.push_back(resolveOptionKey(rig, "--random", r));
+  for (const auto& v : opt.vary) keys.push_back(resolveOptionKey(rig, "--vary", v, true));
+  for (const auto& r : opt.random) keys.push_back(resolveOptionKey(rig, "--random", r, true));
   refuseSharedKeys(keys);
   return keys;
 }
