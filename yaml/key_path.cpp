@@ -106,8 +106,14 @@ std::string keyTextOf(const std::string& assignment) {
 }
 
 std::string sharedPath(const std::vector<KeyPath>& paths, const std::vector<KeyPath>& others) {
+  // `a` is `b` or holds it (a map or list above it)
+  const auto within = [](const std::string& a, const std::string& b) {
+    return b.compare(0, a.size(), a) == 0 && (b.size() == a.size() || b[a.size()] == '.');
+  };
   for (const KeyPath& p : paths)
-    if (std::find(others.begin(), others.end(), p) != others.end()) return p.text();
+    for (const KeyPath& q : others)
+      if (within(p.text(), q.text()) || within(q.text(), p.text()))
+        return p.size() > q.size() ? p.text() : q.text();
   return "";
 }
 

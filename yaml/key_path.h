@@ -75,7 +75,8 @@ KeyAssignment parseAssignment(const std::string& text);
 // options whose value part has a syntax of its own (--vary, --random).
 std::string keyTextOf(const std::string& assignment);
 
-// One path of `paths` that is also in `others` (two options setting the same rig key), or "".
+// A rig key that a path of `paths` and one of `others` both set (the same path, or one path
+// inside the other: platform.friction and platform.friction.mu), or "" if there is none.
 std::string sharedPath(const std::vector<KeyPath>& paths, const std::vector<KeyPath>& others);
 
 // Internal to yaml/: the concrete paths (names and indices only) that `key` stands for in the rig

@@ -184,6 +184,16 @@ TEST(KeyResolver, OptionKeysResolveToConcretePaths) {
           every.paths,
           resolveRigKey(kPhysical, "rig.yaml", {}, "metronomes.1.pendulum.damping", "x").paths),
       "metronomes.1.pendulum.damping");
+  // a key inside another: both set it; siblings with a common prefix do not
+  const auto paths = [](const char* key) {
+    return resolveRigKey(kPhysical, "rig.yaml", {}, key, "x").paths;
+  };
+  EXPECT_EQ(sharedPath(paths("platform.friction"), paths("platform.friction.mu")),
+            "platform.friction.mu");
+  EXPECT_EQ(sharedPath(paths("metronomes.1"), paths("metronomes.*.box_mass")),
+            "metronomes.1.box_mass");
+  EXPECT_EQ(sharedPath(paths("platform.mass"), paths("platform.friction.mu")), "");
+  EXPECT_EQ(sharedPath({KeyPath::parse("a.rate")}, {KeyPath::parse("a.rat")}), "");
   // the number at a key, and at a wildcard's first element
   EXPECT_EQ(rigNumber(kPhysical, "rig.yaml", {}, "metronomes.1.start.angle"), 0.5);
   EXPECT_EQ(rigNumber(kScaled, "rig.yaml", {}, "metronomes.*.nu"), 0.7);
