@@ -38,8 +38,11 @@ Jumped tickWindow(const ScaledModel& m, const EngineWindow& w) {
     Vec zp = m.tick(z, {j});
     PlatformMode mp = m.coulomb() ? slipWay(zp(ScaledModel::kV), mode) : mode;
     if (i + 1 == w.ticked.size()) {
+      // a platform held after the window (cancelling ticks, or a micro-slip the engine stopped
+      // at once): a perturbation's velocity is stopped by friction at once as well
       const double v_tick = zp(ScaledModel::kV), v_after = w.after(ScaledModel::kV);
-      if (m.coulomb() && v_tick != 0 && std::abs(v_after) <= kStoppedFraction * std::abs(v_tick)) {
+      const bool stopped = v_tick != 0 && std::abs(v_after) <= kStoppedFraction * std::abs(v_tick);
+      if (m.coulomb() && (stopped || w.mode_after == PlatformMode::Stuck)) {
         Dg = m.plasticStopJacobian(zp) * Dg;
         zp = m.plasticStop(zp);
       }

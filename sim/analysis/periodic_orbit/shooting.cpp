@@ -18,6 +18,9 @@ std::string fmt(double v) {
 // the orbit, or across an event that appears); after kMaxHalvings the full step is taken anyway.
 constexpr double kGrowth = 2.0;
 constexpr int kMaxHalvings = 4;
+// A column of dP/du this close to a unit vector is that of a neutral coordinate: the
+// variational equations give it to ~1e-12 (rounding), a coupled one differs by O(epsilon).
+constexpr double kNeutral = 1e-9;
 
 }  // namespace
 
@@ -37,31 +40,40 @@ CVec multipliersOf(const Mat& jacobian) {
   return m;
 }
 
+bool neutralVelocity(const Section& section, const Mat& jacobian) {
+  for (int k = 0; k < section.dim(); ++k) {
+    if (section.component(k) != ScaledModel::kV) continue;
+    return (jacobian.col(k) - Vec::Unit(section.dim(), k)).lpNorm<Eigen::Infinity>() < kNeutral;
+  }
+  return false;
+}
+
 std::optional<Orbit> shoot(const ReturnMap& map, const Vec& u0, double period_guess,
-                           const NewtonSettings& s, std::string* why) {
+                           const NewtonSettings& s, std::string* why, const Mat* basis) {
   auto fail = [&](const std::string& w) {
     if (why) *why = w;
     return std::nullopt;
   };
-  Vec u = u0;
+  const Mat B = basis ? *basis : Mat::Identity(u0.size(), u0.size());
+  auto reduced = [&](const Pass& p) { return Vec(B.transpose() * (p.u1 - p.u0)); };
   double period = period_guess;
   try {
-    Pass p = map.pass(u, period, true);
-    double res = (p.u1 - p.u0).lpNorm<Eigen::Infinity>();
+    Pass p = map.pass(B * (B.transpose() * u0), period, true);
+    double res = reduced(p).lpNorm<Eigen::Infinity>();
     for (int it = 0; it <= s.max_iterations; ++it) {
       if (res <= s.tolerance) {
-        Orbit o{p.u0, p.period, res, it, p, multipliersOf(p.jacobian)};
-        return o;
+        const double whole = (p.u1 - p.u0).lpNorm<Eigen::Infinity>();
+        return Orbit{p.u0, p.period, whole, it, p, multipliersOf(p.jacobian)};
       }
       if (it == s.max_iterations) break;
-      const Mat J = p.jacobian - Mat::Identity(p.u0.size(), p.u0.size());
-      const Vec step = J.fullPivLu().solve(-(p.u1 - p.u0));
+      const Mat J = B.transpose() * p.jacobian * B - Mat::Identity(B.cols(), B.cols());
+      const Vec step = B * J.fullPivLu().solve(-reduced(p));
       if (!step.allFinite()) return fail("singular Newton matrix dP/du - I");
-      Vec base = p.u0;
+      const Vec base = p.u0;
       period = p.period;
       for (int half = 0;; ++half) {
         Pass q = map.pass(base + step * std::ldexp(1.0, -half), period, true);
-        const double r = (q.u1 - q.u0).lpNorm<Eigen::Infinity>();
+        const double r = reduced(q).lpNorm<Eigen::Infinity>();
         if (r <= kGrowth * res || half == kMaxHalvings) {
           p = std::move(q);
           res = r;

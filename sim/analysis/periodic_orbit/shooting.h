@@ -35,8 +35,18 @@ struct Orbit {
 // The multipliers of a return map Jacobian, by decreasing modulus.
 CVec multipliersOf(const Mat& jacobian);
 
-// Newton from u0; nullopt (with `why`) when it does not converge or the orbit is lost.
+// Whether the platform's velocity on the section is neutral at this Jacobian: a perturbation of
+// it comes back unchanged and moves nothing else (its column of dP/du is the unit vector). So it
+// is where the platform slips throughout and its slip reverses only at ticks (Coulomb friction
+// then does not see the velocity's size), or on a platform without friction (Galilean
+// invariance): the orbits form a family in the platform's drift and are not isolated.
+bool neutralVelocity(const Section& section, const Mat& jacobian);
+
+// Newton from u0; nullopt (with `why`) when it does not converge or the orbit is lost. With a
+// `basis` B (m x k, orthonormal columns: a subspace the return map keeps, symmetry.h) Newton runs
+// in u = B w on B^T (P(u) - u) from B B^T u0; `residual` is still the whole max |P(u) - u|.
 std::optional<Orbit> shoot(const ReturnMap& map, const Vec& u0, double period_guess,
-                           const NewtonSettings& settings = {}, std::string* why = nullptr);
+                           const NewtonSettings& settings = {}, std::string* why = nullptr,
+                           const Mat* basis = nullptr);
 
 }  // namespace metrosync::orbit

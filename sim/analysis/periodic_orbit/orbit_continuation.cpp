@@ -1,0 +1,268 @@
+#include "sim/analysis/periodic_orbit/orbit_continuation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+
+#include "sim/analysis/periodic_orbit/family_map.h"
+#include "sim/analysis/periodic_orbit/special_points.h"
+
+namespace metrosync::orbit {
+
+namespace {
+
+// Step control: grow after an easy corrector, give up below kMinStepFraction of the first step.
+constexpr double kStepGrow = 1.5;
+constexpr int kEasyIterations = 3;
+constexpr double kMinStepFraction = 1e-6;
+// Special points are located to this arclength (y = (u, p / span)): 1e-9 of the range in p.
+constexpr double kLocateTolerance = 1e-9;
+constexpr int kLocateIterations = 60;
+// Two special points of one type closer than this share of the range in p are one (located to
+// 1e-9 of it: the same zero found again from the next step).
+constexpr double kSamePoint = 1e-6;
+
+std::string fmt(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+struct Walk {
+  std::vector<FamilyPoint> points;
+  std::vector<OrbitBifurcation> special;
+  std::string end;
+};
+
+class Walker {
+ public:
+  Walker(FamilyMap& fm, const FamilySettings& s) : fm_(fm), s_(s) {}
+  Walk walk(const FamilyPoint& start);
+
+ private:
+  std::optional<FamilyPoint> along(const FamilyPoint& a, double sigma, bool measures,
+                                   int* iterations = nullptr);
+  std::optional<FamilyPoint> toBound(const FamilyPoint& a, const FamilyPoint& b);
+  std::optional<FamilyPoint> locateZero(const FamilyPoint& a, double h, double ga, double gb,
+                                        const std::function<double(const FamilyPoint&)>& g);
+  std::optional<FamilyPoint> locateEvents(const FamilyPoint& a, double h, const EventCounts& eb);
+  // tests: the test functions too (not only the events)
+  void specials(const FamilyPoint& a, const FamilyPoint& b, double h, Walk& w, bool tests = true);
+  void add(Walk& w, OrbitBifurcation b) const;
+  bool outside(double p) const { return p > s_.p_max || p < s_.p_min; }
+
+  FamilyMap& fm_;
+  const FamilySettings& s_;
+};
+
+std::optional<FamilyPoint> Walker::along(const FamilyPoint& a, double sigma, bool measures,
+                                         int* iterations) {
+  const Vec y0 = fm_.yOf(a);
+  auto q = fm_.correct(y0 + sigma * a.tangent, a.tangent, a.tangent.dot(y0) + sigma, a.dFdp,
+                       a.orbit.period, iterations);
+  if (!q) return std::nullopt;
+  try {
+    fm_.complete(*q, a.tangent, measures);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  return q;
+}
+
+// The orbit at the end of the range, between a (inside) and b (outside).
+std::optional<FamilyPoint> Walker::toBound(const FamilyPoint& a, const FamilyPoint& b) {
+  const double bound = b.p > s_.p_max ? s_.p_max : s_.p_min;
+  if (a.p == bound) return std::nullopt;  // the start, on the bound, leaving the range
+  const Vec ya = fm_.yOf(a), yb = fm_.yOf(b);
+  const double w = (bound - a.p) / (b.p - a.p);
+  Vec c = Vec::Zero(ya.size());
+  c(ya.size() - 1) = 1.0;
+  auto q = fm_.correct(ya + w * (yb - ya), c, bound / fm_.span(), a.dFdp, a.orbit.period);
+  if (!q) return std::nullopt;
+  try {
+    fm_.complete(*q, a.tangent, true);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  return q;
+}
+
+// Illinois regula falsi on the arclength sigma in [0, h] for g(point(sigma)) = 0.
+std::optional<FamilyPoint> Walker::locateZero(const FamilyPoint& a, double h, double ga, double gb,
+                                              const std::function<double(const FamilyPoint&)>& g) {
+  double lo = 0.0, hi = h, flo = ga, fhi = gb;
+  int side = 0;
+  std::optional<FamilyPoint> best;
+  for (int it = 0; it < kLocateIterations && hi - lo > kLocateTolerance; ++it) {
+    double x = flo != fhi ? lo - flo * (hi - lo) / (fhi - flo) : 0.5 * (lo + hi);
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    auto q = along(a, x, false);
+    if (!q) {  // the corrector failed inside the step: shrink the bracket blindly
+      (it % 2 ? hi : lo) = x;
+      continue;
+    }
+    const double fx = g(*q);
+    best = q;
+    if ((fx > 0) == (fhi > 0)) {
+      hi = x, fhi = fx;
+      if (side == 1) flo *= 0.5;
+      side = 1;
+    } else {
+      lo = x, flo = fx;
+      if (side == -1) fhi *= 0.5;
+      side = -1;
+    }
+  }
+  if (!best) return std::nullopt;
+  auto final = along(a, 0.5 * (lo + hi), true);
+  return final ? final : best;
+}
+
+// Bisection for the first sigma whose orbit has b's events.
+std::optional<FamilyPoint> Walker::locateEvents(const FamilyPoint& a, double h,
+                                                const EventCounts& eb) {
+  double lo = 0.0, hi = h;
+  std::optional<FamilyPoint> best;
+  while (hi - lo > kLocateTolerance) {
+    const double x = 0.5 * (lo + hi);
+    auto q = along(a, x, true);
+    if (q && q->measures.events == eb) {
+      hi = x;
+      best = q;
+    } else {
+      lo = x;
+    }
+  }
+  return best;
+}
+
+void Walker::add(Walk& w, OrbitBifurcation b) const {
+  for (const OrbitBifurcation& o : w.special)
+    if (o.type == b.type && std::abs(o.point.p - b.point.p) < kSamePoint * fm_.span()) return;
+  w.special.push_back(std::move(b));
+}
+
+void Walker::specials(const FamilyPoint& a, const FamilyPoint& b, double h, Walk& w, bool tests) {
+  for (TestKind kind : tests ? testKinds() : std::vector<TestKind>{}) {
+    auto g = [&](const FamilyPoint& q) { return testFunction(kind, fm_, q); };
+    const double ga = g(a), gb = g(b);
+    if (!(ga * gb < 0)) continue;
+    auto q = s_.locate ? locateZero(a, h, ga, gb, g) : std::optional<FamilyPoint>(b);
+    if (!q) q = b;
+    if (auto bif = classify(kind, *q, a, b, fm_.mapAt(q->p).model(), fm_.symmetry().kind))
+      add(w, *bif);
+  }
+  if (a.measures.events != b.measures.events) {
+    auto q = s_.locate ? locateEvents(a, h, b.measures.events) : std::optional<FamilyPoint>(b);
+    add(w, classifyEvents(q ? *q : b, a, b));
+  }
+}
+
+Walk Walker::walk(const FamilyPoint& start) {
+  Walk w;
+  w.points.push_back(start);
+  FamilyPoint cur = start;
+  const double span = fm_.span();
+  const double h0 = std::min((s_.step > 0 ? s_.step : span / 50) / span, s_.step_max);
+  double h = h0;
+  while (static_cast<int>(w.points.size()) < s_.max_points) {
+    int iterations = 0;
+    auto next = along(cur, h, true, &iterations);
+    if (!next) {
+      h *= 0.5;
+      if (h >= kMinStepFraction * h0) continue;
+      w.end =
+          "the corrector fails after p = " + fmt(cur.p) + " (the orbit ends or the engine fails)";
+      return w;
+    }
+    if (outside(next->p)) {
+      if (auto last = toBound(cur, *next)) {
+        specials(cur, *last, cur.tangent.dot(fm_.yOf(*last) - fm_.yOf(cur)), w);
+        w.points.push_back(*last);
+      }
+      w.end = "reached the end of the range, p = " + fmt(w.points.back().p);
+      if (w.points.size() == 1) w.end = "the start lies on the end of the range";
+      return w;
+    }
+    const size_t before = w.special.size();
+    const bool neutral = neutralVelocity(fm_.mapAt(next->p).section(), next->orbit.pass.jacobian);
+    specials(cur, *next, h, w, !neutral);
+    if (neutral) {
+      w.end = "the orbits stop being isolated after p = " + fmt(cur.p) +
+              ": the platform's velocity becomes neutral (a multiplier is exactly 1: its slip "
+              "reverses only at ticks, or nothing brakes it)";
+      return w;
+    }
+    w.points.push_back(*next);
+    for (size_t k = before; k < w.special.size(); ++k)
+      if (w.special[k].meets_symmetric) {
+        w.end = "a symmetry-breaking branch point at p = " + fmt(w.special[k].point.p) +
+                ": beyond it the family is the mirror image of this one";
+        return w;
+      }
+    cur = *next;
+    if (iterations <= kEasyIterations) h = std::min(h * kStepGrow, s_.step_max);
+  }
+  w.end = "max points reached at p = " + fmt(cur.p);
+  return w;
+}
+
+}  // namespace
+
+namespace {
+
+// A start this close to a symmetric orbit (scaled section state) is followed as one: a settled
+// run reaches a stable symmetric orbit to ~1e-10 (its contraction over the run), while an
+// asymmetric orbit near a branch point is ~1e-2 away a step from it.
+constexpr double kSymmetricStart = 1e-7;
+
+SymmetryKind symmetryOfStart(const ReturnMap& map, const Orbit& start) {
+  const ScaledModel& m = map.model();
+  if (inPhaseDistance(m, start.pass.z0) < kSymmetricStart) return SymmetryKind::InPhase;
+  if (antiPhaseDistance(m, start.pass.z0) < kSymmetricStart) return SymmetryKind::AntiPhase;
+  return SymmetryKind::None;
+}
+
+}  // namespace
+
+Family continueFamily(const OrbitProblem& problem, const Orbit& start, double p0,
+                      const FamilySettings& settings) {
+  FamilyMap fm(problem, settings.p_max - settings.p_min);
+  const ReturnMap& map0 = fm.mapAt(p0);
+  Orbit first = start;
+  const SymmetryKind sym = symmetryOfStart(map0, start);
+  if (sym != SymmetryKind::None) {
+    const SymmetryReduction red = reduction(map0, sym);
+    if (auto s = shoot(map0, start.u, start.period, problem.newton, nullptr, &red.B)) {
+      first = *s;
+      fm.setSymmetry(sym);
+    }
+  }
+  FamilyPoint q0;
+  q0.p = p0;
+  q0.orbit = first;
+  const int k = static_cast<int>(fm.symmetry().B.cols());
+  Vec ref = Vec::Zero(k + 1);
+  ref(k) = 1.0;  // first along increasing p
+  fm.complete(q0, ref, true);
+  Walker walker(fm, settings);
+  const Walk fwd = walker.walk(q0);
+  FamilyPoint r0 = q0;
+  r0.tangent = -q0.tangent;
+  const Walk back = walker.walk(r0);
+  Family f;
+  f.symmetry = fm.symmetry().kind;
+  for (auto it = back.points.rbegin(); it != back.points.rend(); ++it) {
+    f.points.push_back(*it);
+    f.points.back().tangent = -it->tangent;
+  }
+  f.points.insert(f.points.end(), fwd.points.begin() + 1, fwd.points.end());
+  f.special = back.special;
+  f.special.insert(f.special.end(), fwd.special.begin(), fwd.special.end());
+  f.end_backward = back.end;
+  f.end_forward = fwd.end;
+  return f;
+}
+
+}  // namespace metrosync::orbit
