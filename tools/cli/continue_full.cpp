@@ -120,14 +120,19 @@ double startValue(const ContinueOptions& opt) {
 }
 
 void printSummary(const orbit::FullContinuation& r, const std::string& dir) {
+  size_t points = 0;
+  for (const orbit::Family& f : r.families) points += f.points.size();
   std::cout << "continue (full model) " << r.param << " from " << r.from << " to " << r.to << ": "
-            << r.family.points.size() << " periodic orbits (section " << r.section_name << "), "
-            << r.wall_seconds << " s\n";
-  for (const auto& s : r.family.special)
-    std::cout << "  " << s.type << " at " << r.param << " = " << shortFmt(s.point.p) << ": "
-              << s.detail << "\n";
-  std::cout << "  ends: " << r.family.end_backward << "; " << r.family.end_forward << "\n"
-            << "files in " << dir << "\n";
+            << r.families.size() << " branch(es), " << points << " periodic orbits (section "
+            << r.section_name << "), " << r.wall_seconds << " s\n";
+  for (size_t b = 0; b < r.families.size(); ++b) {
+    for (const auto& s : r.families[b].special)
+      std::cout << "  " << s.type << " at " << r.param << " = " << shortFmt(s.point.p)
+                << " (branch " << b << "): " << s.detail << "\n";
+    std::cout << "  branch " << b << " ends: " << r.families[b].end_backward << "; "
+              << r.families[b].end_forward << "\n";
+  }
+  std::cout << "files in " << dir << "\n";
 }
 
 }  // namespace

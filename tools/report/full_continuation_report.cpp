@@ -44,14 +44,20 @@ std::string plotRow(const FamilyPoint& q) {
   return d.str();
 }
 
-// the family's rows with "stable" last, then the special points with their type
+// the families' rows with "stable" last (a blank line between families), then the special
+// points with their type
 std::string plotData(const FullContinuation& r) {
   std::ostringstream d;
-  for (const FamilyPoint& q : r.family.points)
-    d << plotRow(q) << " " << (q.stable() ? 1 : 0) << "\n";
-  d << "\n\n";
-  for (const OrbitBifurcation& s : r.family.special) d << plotRow(s.point) << " " << s.type << "\n";
-  if (r.family.special.empty()) d << "nan" << std::string(2 * r.metronomes + 1, ' ') << "\n";
+  size_t specials = 0;
+  for (const orbit::Family& f : r.families) {
+    for (const FamilyPoint& q : f.points) d << plotRow(q) << " " << (q.stable() ? 1 : 0) << "\n";
+    d << "\n";
+    specials += f.special.size();
+  }
+  d << "\n";
+  for (const orbit::Family& f : r.families)
+    for (const OrbitBifurcation& s : f.special) d << plotRow(s.point) << " " << s.type << "\n";
+  if (specials == 0) d << "nan" << std::string(2 * r.metronomes + 1, ' ') << "\n";
   return d.str();
 }
 
@@ -113,45 +119,50 @@ std::string fullBranchesCsv(const FullContinuation& r) {
   c << ",max_multiplier,stable";
   for (int i = 1; i <= r.metronomes; ++i) c << ",ticks_" << i;
   c << ",stick_slip,reversals,at_ticks\n";
-  for (const FamilyPoint& q : r.family.points) {
-    c << 0 << "," << num(q.p) << "," << num(q.orbit.period);
-    for (int k = 0; k < q.orbit.u.size(); ++k) c << "," << num(q.orbit.u(k));
-    for (double a : q.measures.A) c << "," << num(a);
-    for (double p : q.measures.psi) c << "," << num(p);
-    c << "," << num(q.orbit.maxModulus()) << "," << (q.stable() ? 1 : 0);
-    for (int t : q.measures.events.ticks) c << "," << t;
-    c << "," << q.measures.events.stick_slip << "," << q.measures.events.reversals << ","
-      << q.measures.events.at_ticks << "\n";
-  }
+  for (size_t b = 0; b < r.families.size(); ++b)
+    for (const FamilyPoint& q : r.families[b].points) {
+      c << b << "," << num(q.p) << "," << num(q.orbit.period);
+      for (int k = 0; k < q.orbit.u.size(); ++k) c << "," << num(q.orbit.u(k));
+      for (double a : q.measures.A) c << "," << num(a);
+      for (double p : q.measures.psi) c << "," << num(p);
+      c << "," << num(q.orbit.maxModulus()) << "," << (q.stable() ? 1 : 0);
+      for (int t : q.measures.events.ticks) c << "," << t;
+      c << "," << q.measures.events.stick_slip << "," << q.measures.events.reversals << ","
+        << q.measures.events.at_ticks << "\n";
+    }
   return c.str();
 }
 
 nlohmann::json fullBifurcationsJson(const FullContinuation& r) {
   nlohmann::json list = nlohmann::json::array();
-  for (const OrbitBifurcation& s : r.family.special)
-    list.push_back({{"type", s.type},
-                    {"param", r.param},
-                    {"value", s.point.p},
-                    {"multipliers", multipliersJson(s.point.orbit.multipliers)},
-                    {"A", numbers(s.point.measures.A)},
-                    {"psi", numbers(s.point.measures.psi)},
-                    {"period", jnum(s.point.orbit.period)},
-                    {"detail", s.detail},
-                    {"branch", 0},
-                    {"stability_changes", s.stability_changes}});
+  for (size_t b = 0; b < r.families.size(); ++b)
+    for (const OrbitBifurcation& s : r.families[b].special)
+      list.push_back({{"type", s.type},
+                      {"param", r.param},
+                      {"value", s.point.p},
+                      {"multipliers", multipliersJson(s.point.orbit.multipliers)},
+                      {"A", numbers(s.point.measures.A)},
+                      {"psi", numbers(s.point.measures.psi)},
+                      {"period", jnum(s.point.orbit.period)},
+                      {"detail", s.detail},
+                      {"branch", b},
+                      {"stability_changes", s.stability_changes}});
   return list;
 }
 
 nlohmann::json fullContinuationSummaryJson(const FullContinuation& r, const std::string& rig_name) {
   std::map<std::string, int> counts = {{"fold", 0},   {"torus", 0},   {"period-doubling", 0},
                                        {"branch", 0}, {"grazing", 0}, {"sliding", 0}};
-  for (const OrbitBifurcation& s : r.family.special) ++counts[s.type];
   nlohmann::json branches = nlohmann::json::array();
-  branches.push_back({{"id", 0},
-                      {"points", r.family.points.size()},
-                      {"symmetry", orbit::toString(r.family.symmetry)},
-                      {"end_backward", r.family.end_backward},
-                      {"end_forward", r.family.end_forward}});
+  for (size_t b = 0; b < r.families.size(); ++b) {
+    const orbit::Family& f = r.families[b];
+    for (const OrbitBifurcation& s : f.special) ++counts[s.type];
+    branches.push_back({{"id", b},
+                        {"points", f.points.size()},
+                        {"symmetry", orbit::toString(f.symmetry)},
+                        {"end_backward", f.end_backward},
+                        {"end_forward", f.end_forward}});
+  }
   return {{"command", "continue"},
           {"model", "full"},
           {"version", metrosyncVersion()},

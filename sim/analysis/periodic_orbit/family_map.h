@@ -40,6 +40,8 @@ class FamilyMap {
   // oriented along `ref`) and, when `measures`, the orbit's averages and events. Throws
   // OrbitFailure.
   void complete(FamilyPoint& q, const Vec& ref, bool measures);
+  // B^T dF/d(p / span) at q's orbit (central differences in p). Throws OrbitFailure.
+  Vec parameterDerivative(const FamilyPoint& q) { return dFdp(q.orbit.u, q.p, q.orbit.period); }
   // The bordered matrix [[B^T dF/du B, dF/dp], [tangent^T]] of a completed point.
   Mat bordered(const FamilyPoint& q) const;
   // C^T (dP/du - I) C on the antisymmetric complement (empty without a symmetry).

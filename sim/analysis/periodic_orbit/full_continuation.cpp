@@ -104,7 +104,15 @@ FullContinuation continueFull(const std::function<Rig(double)>& rig_at, const st
   for (int k = 0; k < map.section().dim(); ++k) out.section.push_back(map.section().name(k));
   out.section_name =
       "theta_" + std::to_string(map.model().rigIndex(start.pendulum) + 1) + " = 0, rising";
-  out.family = continueFamily(prob, start.orbit, from, settings);
+  out.families.push_back(continueFamily(prob, start.orbit, from, settings));
+  const Family main = out.families.front();
+  for (const OrbitBifurcation& b : main.special) {
+    if (b.type != "branch" || main.symmetry == SymmetryKind::None ||
+        static_cast<int>(out.families.size()) > kMaxSwitches)
+      continue;
+    if (auto f = switchBranch(prob, main.symmetry, b.point, settings))
+      out.families.push_back(std::move(*f));
+  }
   out.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return out;

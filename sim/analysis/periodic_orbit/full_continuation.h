@@ -36,12 +36,16 @@ struct FullContinuation {
   int metronomes = 0;                // N, the rig's
   std::vector<std::string> section;  // the section coordinates' names ("xdot", "theta_2", ...)
   std::string section_name;          // "theta_1 = 0, rising"
-  Family family;
+  // the family of the start (first), then the asymmetric families switched onto at its
+  // symmetry-breaking branch points (orbit_continuation.h switchBranch)
+  std::vector<Family> families;
   double wall_seconds = 0.0;
 };
 
-// The family through the orbit that rig_at(from)'s start settles to, over [from, to]. Throws
-// NoOrbit for a start that does not settle.
+// The family through the orbit that rig_at(from)'s start settles to, over [from, to], and the
+// asymmetric families branching off it (at most kMaxSwitches). Throws NoOrbit for a start that
+// does not settle.
+constexpr int kMaxSwitches = 2;
 FullContinuation continueFull(const std::function<Rig(double)>& rig_at, const std::string& param,
                               double from, double to, const FamilySettings& settings);
 

@@ -115,8 +115,13 @@ std::optional<FamilyPoint> Walker::locateZero(const FamilyPoint& a, double h, do
     }
   }
   if (!best) return std::nullopt;
-  auto final = along(a, 0.5 * (lo + hi), true);
-  return final ? final : best;
+  if (auto final = along(a, 0.5 * (lo + hi), true)) return final;
+  try {  // the last zero's estimate that converged, with its averages
+    best->measures = measureOrbit(fm_.mapAt(best->p), best->orbit);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  return best;
 }
 
 // Bisection for the first sigma whose orbit has b's events.
@@ -226,6 +231,38 @@ SymmetryKind symmetryOfStart(const ReturnMap& map, const Orbit& start) {
 
 }  // namespace
 
+namespace {
+
+// The family through q0 (completed), both ways.
+Family bothWays(FamilyMap& fm, const FamilyPoint& q0, const FamilySettings& settings) {
+  Walker walker(fm, settings);
+  const Walk fwd = walker.walk(q0);
+  FamilyPoint r0 = q0;
+  r0.tangent = -q0.tangent;
+  const Walk back = walker.walk(r0);
+  Family f;
+  f.symmetry = fm.symmetry().kind;
+  for (auto it = back.points.rbegin(); it != back.points.rend(); ++it) {
+    f.points.push_back(*it);
+    f.points.back().tangent = -it->tangent;
+  }
+  f.points.insert(f.points.end(), fwd.points.begin() + 1, fwd.points.end());
+  f.special = back.special;
+  f.special.insert(f.special.end(), fwd.special.begin(), fwd.special.end());
+  f.end_backward = back.end;
+  f.end_forward = fwd.end;
+  return f;
+}
+
+// The first step off a symmetric branch point along its antisymmetric kernel direction (scaled
+// section state): far outside the engine's tick-merging slack (~1e-9), small against the
+// orbits' size (~1); then 4 and 16 times smaller if the corrector falls back or fails.
+constexpr double kSwitchStep = 0.02;
+// A switched orbit closer than this to the symmetric ones fell back onto them.
+constexpr double kOffSymmetric = 1e-6;
+
+}  // namespace
+
 Family continueFamily(const OrbitProblem& problem, const Orbit& start, double p0,
                       const FamilySettings& settings) {
   FamilyMap fm(problem, settings.p_max - settings.p_min);
@@ -246,23 +283,38 @@ Family continueFamily(const OrbitProblem& problem, const Orbit& start, double p0
   Vec ref = Vec::Zero(k + 1);
   ref(k) = 1.0;  // first along increasing p
   fm.complete(q0, ref, true);
-  Walker walker(fm, settings);
-  const Walk fwd = walker.walk(q0);
-  FamilyPoint r0 = q0;
-  r0.tangent = -q0.tangent;
-  const Walk back = walker.walk(r0);
-  Family f;
-  f.symmetry = fm.symmetry().kind;
-  for (auto it = back.points.rbegin(); it != back.points.rend(); ++it) {
-    f.points.push_back(*it);
-    f.points.back().tangent = -it->tangent;
+  return bothWays(fm, q0, settings);
+}
+
+std::optional<Family> switchBranch(const OrbitProblem& problem, SymmetryKind symmetry,
+                                   const FamilyPoint& at, const FamilySettings& settings) {
+  const double span = settings.p_max - settings.p_min;
+  FamilyMap sym(problem, span);
+  sym.mapAt(at.p);
+  sym.setSymmetry(symmetry);
+  const Mat A = sym.antisymmetric(at);
+  if (A.size() == 0) return std::nullopt;
+  Eigen::JacobiSVD<Mat> svd(A, Eigen::ComputeFullV);
+  const Vec d = sym.symmetry().C * svd.matrixV().col(A.cols() - 1);
+  FamilyMap fm(problem, span);
+  fm.mapAt(at.p);
+  const int m = static_cast<int>(d.size());
+  Vec t = Vec::Zero(m + 1);
+  t.head(m) = d.normalized();
+  FamilyPoint bp = at;
+  const Vec y0 = fm.yOf(bp);
+  try {
+    const Vec dFdp = fm.parameterDerivative(bp);
+    for (double h : {kSwitchStep, kSwitchStep / 4, kSwitchStep / 16}) {
+      auto q = fm.correct(y0 + h * t, t, t.dot(y0) + h, dFdp, at.orbit.period);
+      // (the map at q's p: mapAt replaces the one before)
+      if (!q || symmetryDistance(*q, fm.mapAt(q->p).model()) < kOffSymmetric) continue;
+      fm.complete(*q, t, true);
+      return bothWays(fm, *q, settings);
+    }
+  } catch (const std::exception&) {
   }
-  f.points.insert(f.points.end(), fwd.points.begin() + 1, fwd.points.end());
-  f.special = back.special;
-  f.special.insert(f.special.end(), fwd.special.begin(), fwd.special.end());
-  f.end_backward = back.end;
-  f.end_forward = fwd.end;
-  return f;
+  return std::nullopt;
 }
 
 }  // namespace metrosync::orbit

@@ -10,6 +10,8 @@
 // along the asymmetric orbits (beyond it lies their mirror image).
 #pragma once
 
+#include <optional>
+
 #include "sim/analysis/periodic_orbit/family.h"
 
 namespace metrosync::orbit {
@@ -17,5 +19,13 @@ namespace metrosync::orbit {
 // The family through `start` (a converged orbit at p0, on problem.rig_at(p0)'s section).
 Family continueFamily(const OrbitProblem& problem, const Orbit& start, double p0,
                       const FamilySettings& settings);
+
+// The asymmetric family that branches off a symmetric family of `symmetry` at its branch point
+// `at` (a located "branch"): the first orbit a step along the antisymmetric kernel direction of
+// dP/du - I (the corrector's hyperplane keeps it off the symmetric orbit), then both ways; the
+// way back through the branch point ends there (beyond it lies the mirror image). nullopt when
+// the corrector falls back onto the symmetric orbits or fails.
+std::optional<Family> switchBranch(const OrbitProblem& problem, SymmetryKind symmetry,
+                                   const FamilyPoint& at, const FamilySettings& settings);
 
 }  // namespace metrosync::orbit
