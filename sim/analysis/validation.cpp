@@ -417,6 +417,7 @@ ValidationPlan defaultValidationPlan(bool quick) {
                         : std::vector<double>{0.02, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5,
                                               0.6,  0.7,  0.8, 1.0,  1.5, 2.0,  3.0, 6.0};
   plan.bifurcations = paperBifurcationFamilies(quick);
+  plan.full_orbits = true;
   return plan;
 }
 
@@ -430,6 +431,7 @@ int ValidationResults::failedChecks() const {
   for (const auto& c : convergence) n += !c.pass;
   for (const auto& f : bifurcations)
     for (const auto& p : f.points) n += !p.pass;
+  if (full_orbits) n += full_orbits->failed();
   return n;
 }
 
@@ -720,6 +722,10 @@ ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Sc
   if (!plan.bifurcations.empty()) {
     log.say("bifurcations of the slow flow (continuation, slow-flow checks, full-model brackets)");
     res.bifurcations = runBifurcationFamilies(plan.bifurcations, scenarios, engines, jobs);
+  }
+  if (plan.full_orbits) {
+    log.say("bifurcations of the full model (periodic orbits, continuation at several epsilon)");
+    res.full_orbits = runFullOrbitBifurcations(plan.quick, scenarios, engines, jobs);
   }
   res.wall_seconds = secondsSince(t0);
   return res;

@@ -15,6 +15,7 @@
 
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@
 #include "models/scaling.h"
 #include "sim/analysis/regime.h"
 #include "sim/analysis/validation_bifurcations.h"
+#include "sim/analysis/validation_full_orbits.h"
 #include "sim/record/envelope.h"
 #include "sim/record/run_report.h"
 
@@ -149,6 +151,9 @@ struct ValidationPlan {
   std::vector<double> sweep_mu;
   // part 6: the slow flow's bifurcations (sim/analysis/validation_bifurcations.h)
   std::vector<BifurcationFamilySpec> bifurcations;
+  // part 7: the full model's bifurcations (sim/analysis/validation_full_orbits.h); on in both
+  // of defaultValidationPlan's plans
+  bool full_orbits = false;
 };
 
 // The full plan (`metrosync validate`) or the quick one (`--quick`).
@@ -209,6 +214,7 @@ struct ValidationResults {
   double sweep_epsilon = 0.0, sweep_tau = 0.0, sweep_psi0 = 0.0;  // of the sweep's base rig
   std::vector<FrictionSweepPoint> sweep;
   std::vector<BifurcationFamilyResult> bifurcations;  // part 6
+  std::optional<FullOrbitsResult> full_orbits;        // part 7
   double wall_seconds = 0.0;
 
   int failedChecks() const;    // betas, paper regimes, convergence orders

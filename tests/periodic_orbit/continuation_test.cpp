@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "sim/analysis/periodic_orbit/full_continuation.h"
 #include "sim/analysis/periodic_orbit/orbit_continuation.h"
 #include "sim/engines/direct/direct_engine.h"
 #include "sim/record/run_report.h"
@@ -107,6 +108,52 @@ TEST(FullContinuation, TorusConfirmedByDirectRuns) {
   EXPECT_GT(above, 1e-1) << "the state must leave above it";
   std::printf("torus at %.8f: distance after 1500 periods %.3g below, %.3g above\n", torus->point.p,
               below, above);
+}
+
+}  // namespace
+}  // namespace metrosync::orbit
+
+namespace metrosync::orbit {
+namespace {
+
+// Ticks of one metronome (rig index) in a run.
+struct TickCounter : RunSink {
+  int metronome = 0;
+  int ticks = 0;
+  bool wantsEventRows() const override { return false; }
+  bool wantsEventRecords() const override { return true; }
+  void eventRecord(const char* kind, int m, const std::vector<double>&,
+                   const std::vector<double>&) override {
+    ticks += std::string(kind) == "tick" && m == metronome;
+  }
+};
+
+// f4.3 at mu = 0.3 and epsilon = 0.02 settles into suppression: metronome 1 swings at A = 0.64,
+// below its theta_c = 0.9. Lowering its theta_c, the family ends where it starts reaching it.
+TEST(FullContinuation, GrazingConfirmedByDirectRuns) {
+  const OrbitProblem prob =
+      problemOf("yaml/rigs/paper/f4.3-mu0.3.yaml", "metronomes.0.theta_c", {"epsilon=0.02"});
+  const SettledOrbit st = settleOrbit(prob.rig_at(0.9), prob.ret, prob.newton);
+  OrbitProblem p = prob;
+  p.pendulum = st.pendulum;
+  FamilySettings s;
+  s.p_min = 0.5, s.p_max = 0.9;
+  const Family f = continueFamily(p, st.orbit, 0.9, s);
+  const OrbitBifurcation* g = find(f, "grazing");
+  ASSERT_TRUE(g) << f.end_backward;
+  EXPECT_NEAR(g->point.p, 0.642, 0.01);
+  // engine runs of 300 periods from the orbit at the point, its theta_c on either side
+  auto ticks = [&](double theta_c) {
+    Rig r = prob.rig_at(theta_c);
+    const ReturnMap map(r, p.pendulum);
+    map.model().setStart(r, g->point.orbit.pass.z0);
+    r.sim.t_end_s = map.model().seconds(300 * g->point.orbit.period);
+    TickCounter c;
+    EXPECT_TRUE(runDirectModel(r, c).complete);
+    return c.ticks;
+  };
+  EXPECT_EQ(ticks(g->point.p + 0.005), 0) << "above the point metronome 1 stays below theta_c";
+  EXPECT_GT(ticks(g->point.p - 0.005), 0) << "below it, it ticks: the state leaves";
 }
 
 }  // namespace

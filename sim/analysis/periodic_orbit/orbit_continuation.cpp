@@ -50,6 +50,7 @@ class Walker {
   // tests: the test functions too (not only the events)
   void specials(const FamilyPoint& a, const FamilyPoint& b, double h, Walk& w, bool tests = true);
   void add(Walk& w, OrbitBifurcation b) const;
+  void grazingEnd(const FamilyPoint& a, double h, Walk& w);
   bool outside(double p) const { return p > s_.p_max || p < s_.p_min; }
 
   FamilyMap& fm_;
@@ -164,6 +165,28 @@ void Walker::specials(const FamilyPoint& a, const FamilyPoint& b, double h, Walk
   }
 }
 
+// Where the corrector fails just past a: a pass from the last predictor; when a metronome's ticks
+// per period differ there, the family ended at a grazing point (the tick's energy appears or
+// vanishes at once, the return map jumps): reported at a.
+void Walker::grazingEnd(const FamilyPoint& a, double h, Walk& w) {
+  const Vec y = fm_.yOf(a) + h * a.tangent;
+  const int k = static_cast<int>(y.size()) - 1;
+  try {
+    const ReturnMap& map = fm_.mapAt(y(k) * fm_.span());
+    const Pass pass = map.pass(fm_.symmetry().B * y.head(k), a.orbit.period, false);
+    FamilyPoint b = a;
+    b.p = y(k) * fm_.span();
+    b.measures.events = countEvents(map, pass);
+    if (b.measures.events.ticks == a.measures.events.ticks) return;
+    OrbitBifurcation g = classifyEvents(a, a, b);
+    g.detail +=
+        " (the family ends here: the tick's impulse appears or vanishes at once, so "
+        "the return map jumps)";
+    add(w, g);
+  } catch (const std::exception&) {
+  }
+}
+
 Walk Walker::walk(const FamilyPoint& start) {
   Walk w;
   w.points.push_back(start);
@@ -171,16 +194,20 @@ Walk Walker::walk(const FamilyPoint& start) {
   const double span = fm_.span();
   const double h0 = std::min((s_.step > 0 ? s_.step : span / 50) / span, s_.step_max);
   double h = h0;
+  double first_failure = 0.0;  // the step at which the current run of corrector failures began
   while (static_cast<int>(w.points.size()) < s_.max_points) {
     int iterations = 0;
     auto next = along(cur, h, true, &iterations);
     if (!next) {
+      if (!(first_failure > 0)) first_failure = h;
       h *= 0.5;
       if (h >= kMinStepFraction * h0) continue;
       w.end =
           "the corrector fails after p = " + fmt(cur.p) + " (the orbit ends or the engine fails)";
+      grazingEnd(cur, first_failure, w);
       return w;
     }
+    first_failure = 0.0;
     if (outside(next->p)) {
       if (auto last = toBound(cur, *next)) {
         specials(cur, *last, cur.tangent.dot(fm_.yOf(*last) - fm_.yOf(cur)), w);
