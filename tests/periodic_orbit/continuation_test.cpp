@@ -158,3 +158,30 @@ TEST(FullContinuation, GrazingConfirmedByDirectRuns) {
 
 }  // namespace
 }  // namespace metrosync::orbit
+
+namespace metrosync::orbit {
+namespace {
+
+// f4.1: no friction at all (mu = 0). The platform's momentum is conserved, its velocity on the
+// section neutral (a multiplier exactly 1): the family is followed at the start's drift.
+TEST(FullContinuation, FrictionlessPlatformFollowedAtItsDrift) {
+  const OrbitProblem prob = problemOf("yaml/rigs/paper/f4.1.yaml", "metronomes.0.nu");
+  const SettledOrbit st = settleOrbit(prob.rig_at(0.5), prob.ret, prob.newton);
+  ASSERT_TRUE(
+      neutralVelocity(ReturnMap(prob.rig_at(0.5), st.pendulum).section(), st.orbit.pass.jacobian));
+  OrbitProblem p = prob;
+  p.pendulum = st.pendulum;
+  FamilySettings s;
+  s.p_min = 0.45, s.p_max = 0.55;
+  const Family f = continueFamily(p, st.orbit, 0.5, s);
+  ASSERT_GT(f.points.size(), 10u) << f.end_backward << " / " << f.end_forward;
+  EXPECT_NE(f.end_forward.find("reached the end of the range"), std::string::npos);
+  for (const FamilyPoint& q : f.points) {
+    EXPECT_LE(q.orbit.residual, 1e-10) << "at nu " << q.p;
+    EXPECT_EQ(q.orbit.pass.z0(ScaledModel::kV), st.orbit.pass.z0(ScaledModel::kV));
+    EXPECT_TRUE(q.orbit.neutral);
+  }
+}
+
+}  // namespace
+}  // namespace metrosync::orbit

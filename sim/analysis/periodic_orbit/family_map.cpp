@@ -21,6 +21,19 @@ void FamilyMap::setSymmetry(SymmetryKind kind) {
   red_ = reduction(*map_, kind);
 }
 
+void FamilyMap::pinVelocity(double velocity) {
+  const Section& sec = mapAt(map_p_).section();
+  Mat B = red_.B;
+  offset_ = Vec::Zero(sec.dim());
+  for (int k = 0; k < sec.dim(); ++k)
+    if (sec.component(k) == ScaledModel::kV) B.row(k).setZero(), offset_(k) = velocity;
+  // an orthonormal basis of what is left (a column that was the velocity alone drops out)
+  Eigen::ColPivHouseholderQR<Mat> qr(B);
+  const Mat Q = qr.householderQ();
+  red_.B = Q.leftCols(qr.rank());
+  pinned_ = true;
+}
+
 const ReturnMap& FamilyMap::mapAt(double p) {
   if (!map_ || p != map_p_) {
     map_ = std::make_unique<ReturnMap>(prob_.rig_at(p), prob_.pendulum, prob_.ret);
@@ -32,7 +45,7 @@ const ReturnMap& FamilyMap::mapAt(double p) {
 }
 
 Vec FamilyMap::yOf(const FamilyPoint& q) const {
-  const Vec w = red_.B.transpose() * q.orbit.u;
+  const Vec w = wOf(q.orbit.u);
   Vec y(w.size() + 1);
   y << w, q.p / span_;
   return y;
@@ -48,8 +61,8 @@ std::optional<FamilyPoint> FamilyMap::correct(const Vec& y0, const Vec& c, doubl
   try {
     for (int it = 0; it <= kMaxCorrections; ++it) {
       const double p = y(k) * span_;
-      Pass pass = mapAt(p).pass(B * y.head(k), period, true);
-      y.head(k) = B.transpose() * pass.u0;
+      Pass pass = mapAt(p).pass(uOf(y.head(k)), period, true);
+      y.head(k) = wOf(pass.u0);
       const Vec F = B.transpose() * (pass.u1 - pass.u0);
       const double res = F.lpNorm<Eigen::Infinity>();
       if (first < 0) first = res;
@@ -59,6 +72,7 @@ std::optional<FamilyPoint> FamilyMap::correct(const Vec& y0, const Vec& c, doubl
         q.p = p;
         const double whole = (pass.u1 - pass.u0).lpNorm<Eigen::Infinity>();
         q.orbit = Orbit{pass.u0, pass.period, whole, it, pass, multipliersOf(pass.jacobian)};
+        q.orbit.neutral = pinned_ && neutralVelocity(mapAt(p).section(), pass.jacobian);
         return q;
       }
       if (it == kMaxCorrections || res > kDiverged * std::max(first, 1e-8)) break;

@@ -22,6 +22,13 @@ class FamilyMap {
   // The symmetry the family keeps (set once, before the first point; None by default).
   void setSymmetry(SymmetryKind kind);
   const SymmetryReduction& symmetry() const { return red_; }
+  // The platform's velocity is neutral on the whole family (no friction on a free platform):
+  // it is held at `velocity` (u = offset + B w), its coordinate and its equation (redundant by
+  // the conservation of momentum) left out of the reduction B. After setSymmetry.
+  void pinVelocity(double velocity);
+  bool pinned() const { return pinned_; }
+  // the section state of reduced coordinates w
+  Vec uAt(const Vec& w) const { return uOf(w); }
   int dim() const { return dim_; }
   double span() const { return span_; }
   const OrbitProblem& problem() const { return prob_; }
@@ -54,6 +61,14 @@ class FamilyMap {
   double span_;
   int dim_ = 0;
   SymmetryReduction red_;
+  bool pinned_ = false;
+  Vec offset_;  // u = offset_ + B w (the pinned velocity; empty: 0)
+  Vec uOf(const Vec& w) const {
+    return offset_.size() ? Vec(offset_ + red_.B * w) : Vec(red_.B * w);
+  }
+  Vec wOf(const Vec& u) const {
+    return offset_.size() ? Vec(red_.B.transpose() * (u - offset_)) : Vec(red_.B.transpose() * u);
+  }
   double map_p_ = 0.0;
   std::unique_ptr<ReturnMap> map_;
 };

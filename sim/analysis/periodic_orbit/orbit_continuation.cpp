@@ -173,7 +173,7 @@ void Walker::grazingEnd(const FamilyPoint& a, double h, Walk& w) {
   const int k = static_cast<int>(y.size()) - 1;
   try {
     const ReturnMap& map = fm_.mapAt(y(k) * fm_.span());
-    const Pass pass = map.pass(fm_.symmetry().B * y.head(k), a.orbit.period, false);
+    const Pass pass = map.pass(fm_.uAt(y.head(k)), a.orbit.period, false);
     FamilyPoint b = a;
     b.p = y(k) * fm_.span();
     b.measures.events = countEvents(map, pass);
@@ -218,7 +218,8 @@ Walk Walker::walk(const FamilyPoint& start) {
       return w;
     }
     const size_t before = w.special.size();
-    const bool neutral = neutralVelocity(fm_.mapAt(next->p).section(), next->orbit.pass.jacobian);
+    const bool neutral =
+        !fm_.pinned() && neutralVelocity(fm_.mapAt(next->p).section(), next->orbit.pass.jacobian);
     specials(cur, *next, h, w, !neutral);
     if (neutral) {
       w.end = "the orbits stop being isolated after p = " + fmt(cur.p) +
@@ -248,6 +249,18 @@ namespace {
 // run reaches a stable symmetric orbit to ~1e-10 (its contraction over the run), while an
 // asymmetric orbit near a branch point is ~1e-2 away a step from it.
 constexpr double kSymmetricStart = 1e-7;
+
+// Whether the key keeps the pair identical (a key of one metronome breaks the exchange): the
+// rig a little away from p0 on either side.
+bool keepsSymmetry(const OrbitProblem& problem, double p0, double span) {
+  for (double side : {1.0, -1.0}) {
+    try {
+      return identicalPair(ScaledModel(problem.rig_at(p0 + side * 1e-3 * span)));
+    } catch (const std::exception&) {  // outside the rig's range that way
+    }
+  }
+  return false;
+}
 
 SymmetryKind symmetryOfStart(const ReturnMap& map, const Orbit& start) {
   const ScaledModel& m = map.model();
@@ -295,7 +308,9 @@ Family continueFamily(const OrbitProblem& problem, const Orbit& start, double p0
   FamilyMap fm(problem, settings.p_max - settings.p_min);
   const ReturnMap& map0 = fm.mapAt(p0);
   Orbit first = start;
-  const SymmetryKind sym = symmetryOfStart(map0, start);
+  const SymmetryKind sym = keepsSymmetry(problem, p0, settings.p_max - settings.p_min)
+                               ? symmetryOfStart(map0, start)
+                               : SymmetryKind::None;
   if (sym != SymmetryKind::None) {
     const SymmetryReduction red = reduction(map0, sym);
     if (auto s = shoot(map0, start.u, start.period, problem.newton, nullptr, &red.B)) {
@@ -303,9 +318,12 @@ Family continueFamily(const OrbitProblem& problem, const Orbit& start, double p0
       fm.setSymmetry(sym);
     }
   }
+  if (neutralVelocity(map0.section(), first.pass.jacobian))
+    fm.pinVelocity(first.pass.z0(ScaledModel::kV));
   FamilyPoint q0;
   q0.p = p0;
   q0.orbit = first;
+  q0.orbit.neutral = fm.pinned();
   const int k = static_cast<int>(fm.symmetry().B.cols());
   Vec ref = Vec::Zero(k + 1);
   ref(k) = 1.0;  // first along increasing p

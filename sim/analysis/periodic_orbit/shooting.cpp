@@ -25,7 +25,14 @@ constexpr double kNeutral = 1e-9;
 }  // namespace
 
 double Orbit::maxModulus() const {
-  return multipliers.size() ? std::abs(multipliers(0)) : 0.0;
+  int skip = -1;  // the neutral multiplier: the one nearest to 1
+  if (neutral)
+    for (int i = 0; i < multipliers.size(); ++i)
+      if (skip < 0 || std::abs(multipliers(i) - 1.0) < std::abs(multipliers(skip) - 1.0)) skip = i;
+  double m = 0.0;
+  for (int i = 0; i < multipliers.size(); ++i)
+    if (i != skip) m = std::max(m, std::abs(multipliers(i)));
+  return m;
 }
 
 CVec multipliersOf(const Mat& jacobian) {
@@ -63,7 +70,9 @@ std::optional<Orbit> shoot(const ReturnMap& map, const Vec& u0, double period_gu
     for (int it = 0; it <= s.max_iterations; ++it) {
       if (res <= s.tolerance) {
         const double whole = (p.u1 - p.u0).lpNorm<Eigen::Infinity>();
-        return Orbit{p.u0, p.period, whole, it, p, multipliersOf(p.jacobian)};
+        Orbit o{p.u0, p.period, whole, it, p, multipliersOf(p.jacobian)};
+        o.neutral = neutralVelocity(map.section(), p.jacobian);
+        return o;
       }
       if (it == s.max_iterations) break;
       const Mat J = B.transpose() * p.jacobian * B - Mat::Identity(B.cols(), B.cols());

@@ -29,6 +29,9 @@ struct Orbit {
   int iterations = 0;
   Pass pass;         // the pass from u (with its Jacobian)
   CVec multipliers;  // eigenvalues of dP/du, by decreasing modulus
+  // the platform's velocity is neutral (neutralVelocity): its multiplier 1 is left out of
+  // maxModulus, which then says whether the orbit attracts at its own drift
+  bool neutral = false;
   double maxModulus() const;
 };
 
