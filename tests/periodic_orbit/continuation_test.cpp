@@ -89,7 +89,7 @@ double distanceAfter(double mu, const Orbit& near, double periods) {
   map.model().setStart(r, z);
   r.sim.t_end_s = map.model().seconds(periods * orbit->period);
   r.sim.sample_s = r.sim.t_end_s;
-  RunSink none;
+  FinalStateSink none;
   const RunReport rep = runDirectModel(r, none);
   EXPECT_TRUE(rep.complete);
   const Pass back = map.firstCrossing(map.model().stateFromRow(rep.final_trajectory_row), 20.0);

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "sim/analysis/periodic_orbit/engine_trace.h"
 #include "sim/engines/direct/direct_engine.h"
 #include "sim/record/run_report.h"
 #include "yaml/rig_loader.h"
@@ -26,7 +27,7 @@ Vec finalState(const Rig& rig, const ScaledModel& model, double accuracy) {
   Rig r = rig;
   r.sim.accuracy = accuracy;
   r.sim.sample_s = r.sim.t_end_s;
-  RunSink none;
+  FinalStateSink none;
   const RunReport rep = runDirectModel(r, none);
   EXPECT_TRUE(rep.complete) << rep.failure;
   return model.stateFromRow(rep.final_trajectory_row);

@@ -10,10 +10,9 @@ namespace metrosync::orbit {
 
 namespace {
 
-// Keeps the event records only (no trajectory, no event rows).
-struct RecordSink : RunSink {
+// Keeps the event records only (no trajectory, no envelope, no event rows).
+struct RecordSink : FinalStateSink {
   std::vector<EventRecord> records;
-  bool wantsEventRows() const override { return false; }
   bool wantsEventRecords() const override { return true; }
   void eventRecord(const char* kind, int metronome, const std::vector<double>& before,
                    const std::vector<double>& after) override {

@@ -11,6 +11,7 @@
 
 #include "models/rig.h"
 #include "sim/analysis/periodic_orbit/scaled_model.h"
+#include "sim/record/run_report.h"
 
 namespace metrosync::orbit {
 
@@ -28,6 +29,14 @@ struct EngineTrace {
   PlatformMode start_mode = PlatformMode::Stuck;  // after the engine's settling at t = 0
   std::vector<EngineWindow> windows;              // t > 0, in order
   long steps = 0;
+};
+
+// A sink that takes nothing: the run's final state (RunReport::final_trajectory_row) is all a
+// caller wants; the engine then takes no samples at all.
+struct FinalStateSink : RunSink {
+  bool wantsEventRows() const override { return false; }
+  bool wantsTrajectory() const override { return false; }
+  bool wantsEnvelope() const override { return false; }
 };
 
 // Runs `rig` (its parameters; start and duration replaced) from the scaled state z0 for t_end

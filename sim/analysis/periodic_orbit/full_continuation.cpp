@@ -34,7 +34,7 @@ Vec runEnd(const Rig& rig, const ScaledModel& model, double factor) {
   Rig r = rig;
   r.sim.t_end_s *= factor;
   r.sim.sample_s = r.sim.t_end_s;
-  RunSink none;
+  FinalStateSink none;
   const RunReport rep = runDirectModel(r, none);
   if (!rep.complete) throw NoOrbit("the run of the rig's start failed: " + rep.failure);
   return model.stateFromRow(rep.final_trajectory_row);
