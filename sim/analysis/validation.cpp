@@ -59,12 +59,6 @@ double windowStart(double tau_end, double epsilon) {
   return RegimeWindow(tau_end, epsilon).tauStart();  // the regime's window (sim/analysis/regime.h)
 }
 
-const Scenario& findScenario(const std::vector<Scenario>& all, const std::string& name) {
-  for (const auto& s : all)
-    if (s.spec.name == name) return s;
-  throw std::invalid_argument("validation: no scenario named '" + name + "'");
-}
-
 }  // namespace
 
 // ---- scenarios --------------------------------------------------------------------------------
@@ -112,6 +106,12 @@ const std::vector<ScenarioSpec>& shippedScenarios() {
        "experiment, mu-bar = 4.6e-3, antiphase start: stays in antiphase (fig. exp1)"},
   };
   return specs;
+}
+
+const Scenario& findScenario(const std::vector<Scenario>& all, const std::string& name) {
+  for (const Scenario& s : all)
+    if (s.spec.name == name) return s;
+  throw std::invalid_argument("validation: no scenario named '" + name + "'");
 }
 
 Rig rigAtEpsilon(const ScaledParams& p, const std::string& name, double epsilon, double tau_end) {

@@ -62,6 +62,9 @@ struct Scenario {
   ScaledParams scaled;  // computeScaled of the shipped rig (epsilon, tau_end as shipped)
 };
 
+// The scenario of that name in `all`; throws std::invalid_argument when there is none.
+const Scenario& findScenario(const std::vector<Scenario>& all, const std::string& name);
+
 // The rig with the scaled parameters p (friction, metronomes, start) at another epsilon, run to
 // tau_end: the equivalent physical system of rigFromScaled. Throws std::invalid_argument when no
 // such system exists.

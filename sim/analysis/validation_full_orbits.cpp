@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "sim/analysis/periodic_orbit/full_continuation.h"
+#include "sim/analysis/periodic_orbit/number_text.h"
 #include "sim/analysis/periodic_orbit/orbit_continuation.h"
 #include "sim/analysis/validation.h"
 #include "sim/analysis/validation_bifurcations.h"
@@ -24,18 +25,6 @@ constexpr double kEpsLow = 0.005;
 constexpr double kMuHigh = 0.5;
 // the exact antiphase orbit's family is followed a little further down in epsilon
 constexpr double kAntiphaseEpsLow = 0.004;
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
-const Scenario& scenarioNamed(const std::vector<Scenario>& all, const std::string& name) {
-  for (const Scenario& s : all)
-    if (s.spec.name == name) return s;
-  throw std::invalid_argument("validation: no scenario named " + name);
-}
 
 // The rig of the scenario's scaled parameters with the key at p, at epsilon.
 std::function<Rig(double)> rigsOf(const ScaledParams& q, const std::string& name, double epsilon,
@@ -81,19 +70,20 @@ FamilyRun familyAt(const FullFamilySpec& spec, const ScaledParams& q, double eps
       s.p_min = std::min(spec.lo, start), s.p_max = spec.hi;
       out.family = orbit::continueFamily(prob, st.orbit, start, s);
       if (spec.suppressed && !isSuppressed(out.family, start, q)) {
-        out.note += (out.note.empty() ? "" : "; ") + spec.key + " = " + number(start) +
+        out.note += (out.note.empty() ? "" : "; ") + spec.key + " = " + orbit::numberText(start) +
                     ": the rig's start settles onto a state with every metronome ticking";
         continue;
       }
       out.found = true;
       const std::vector<double>& A = pointAt(out.family, start).measures.A;
-      out.note = "from the rig's start settled at " + spec.key + " = " + number(start) + " (A =";
-      for (double a : A) out.note += " " + number(a);
+      out.note = "from the rig's start settled at " + spec.key + " = " + orbit::numberText(start) +
+                 " (A =";
+      for (double a : A) out.note += " " + orbit::numberText(a);
       out.note += ")";
       return out;
     } catch (const std::exception& e) {
-      out.note +=
-          (out.note.empty() ? "" : "; ") + spec.key + " = " + number(start) + ": " + e.what();
+      out.note += (out.note.empty() ? "" : "; ") + spec.key + " = " + orbit::numberText(start) +
+                  ": " + e.what();
     }
   }
   return out;
@@ -155,8 +145,9 @@ std::vector<FullPointSeries> seriesOf(const FullFamilySpec& spec,
               runs[e].found ? nearest(runs[e].family, full_type, s.slow) : nullptr) {
         v.value = b->point.p, v.A = b->point.measures.A, v.psi = b->point.measures.psi;
       } else if (runs[e].found) {
-        v.note += "; no " + full_type + " on " + number(spec.lo) + " .. " + number(spec.hi) + " (" +
-                  runs[e].family.end_backward + "; " + runs[e].family.end_forward + ")";
+        v.note += "; no " + full_type + " on " + orbit::numberText(spec.lo) + " .. " +
+                  orbit::numberText(spec.hi) + " (" + runs[e].family.end_backward + "; " +
+                  runs[e].family.end_forward + ")";
       }
       s.values.push_back(v);
     }
@@ -228,7 +219,7 @@ Family settledFamily(const std::function<Rig(double)>& rig_at, double p0, double
 
 // The default rig's state in epsilon (and mu), and the exact antiphase orbit's branch point.
 void asymmetricState(const std::vector<Scenario>& scenarios, bool quick, AsymmetricState& a) {
-  const Scenario& sc = scenarioNamed(scenarios, "experiment-low-friction-antiphase");
+  const Scenario& sc = findScenario(scenarios, "experiment-low-friction-antiphase");
   const ScaledParams q = sc.scaled;
   const std::string name = sc.spec.name;
   a.scenario = name, a.epsilon = q.epsilon, a.mu = q.mu, a.eps_lo = kEpsLow;
@@ -256,7 +247,7 @@ void asymmetricState(const std::vector<Scenario>& scenarios, bool quick, Asymmet
       a.mu_from = m.points.front().p, a.mu_to = m.points.back().p;
       a.mu_ends = m.end_backward + "; " + m.end_forward;
       for (const OrbitBifurcation& b : m.special)
-        a.mu_specials.push_back(b.type + " at mu = " + number(b.point.p));
+        a.mu_specials.push_back(b.type + " at mu = " + orbit::numberText(b.point.p));
     }
   } catch (const std::exception& e) {
     a.start = e.what();
@@ -295,7 +286,7 @@ FullOrbitsResult runFullOrbitBifurcations(bool quick, const std::vector<Scenario
     if (k == specs.size() * ne) return asymmetricState(scenarios, quick, res.asymmetric);
     const FullFamilySpec& f = specs[k / ne];
     runs[k / ne][k % ne] =
-        familyAt(f, scenarioNamed(scenarios, f.scenario).scaled, res.epsilons[k % ne]);
+        familyAt(f, findScenario(scenarios, f.scenario).scaled, res.epsilons[k % ne]);
   });
   for (size_t f = 0; f < specs.size(); ++f)
     for (FullPointSeries& s : seriesOf(specs[f], slow[f], res.epsilons, runs[f]))

@@ -7,6 +7,7 @@
 
 #include "sim/record/atomic_file.h"
 #include "tools/report/plot.h"
+#include "tools/report/report_numbers.h"
 
 namespace metrosync {
 
@@ -16,31 +17,13 @@ using orbit::OrbitBifurcation;
 
 namespace {
 
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.12g", v);
-  return buf;
-}
-
-// JSON has no NaN or infinity: null there.
-nlohmann::json jnum(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
-
-nlohmann::json numbers(const std::vector<double>& v) {
-  nlohmann::json j = nlohmann::json::array();
-  for (double x : v) j.push_back(jnum(x));
-  return j;
-}
-
 // "KEY A_1..A_N psi_2..psi_N max|mu|" of a point
 std::string plotRow(const FamilyPoint& q) {
   std::ostringstream d;
-  d << num(q.p);
-  for (double a : q.measures.A) d << " " << num(a);
-  for (double p : q.measures.psi) d << " " << num(p);
-  d << " " << num(q.orbit.maxModulus());
+  d << reportNumber(q.p);
+  for (double a : q.measures.A) d << " " << reportNumber(a);
+  for (double p : q.measures.psi) d << " " << reportNumber(p);
+  d << " " << reportNumber(q.orbit.maxModulus());
   return d.str();
 }
 
@@ -104,7 +87,8 @@ std::string diagramScript(const FullContinuation& r, const std::string& data,
 
 nlohmann::json multipliersJson(const orbit::CVec& mu) {
   nlohmann::json m = nlohmann::json::array();
-  for (int i = 0; i < mu.size(); ++i) m.push_back({jnum(mu(i).real()), jnum(mu(i).imag())});
+  for (int i = 0; i < mu.size(); ++i)
+    m.push_back({jsonNumber(mu(i).real()), jsonNumber(mu(i).imag())});
   return m;
 }
 
@@ -121,11 +105,11 @@ std::string fullBranchesCsv(const FullContinuation& r) {
   c << ",stick_slip,reversals,at_ticks\n";
   for (size_t b = 0; b < r.families.size(); ++b)
     for (const FamilyPoint& q : r.families[b].points) {
-      c << b << "," << num(q.p) << "," << num(q.orbit.period);
-      for (int k = 0; k < q.orbit.u.size(); ++k) c << "," << num(q.orbit.u(k));
-      for (double a : q.measures.A) c << "," << num(a);
-      for (double p : q.measures.psi) c << "," << num(p);
-      c << "," << num(q.orbit.maxModulus()) << "," << (q.stable() ? 1 : 0);
+      c << b << "," << reportNumber(q.p) << "," << reportNumber(q.orbit.period);
+      for (int k = 0; k < q.orbit.u.size(); ++k) c << "," << reportNumber(q.orbit.u(k));
+      for (double a : q.measures.A) c << "," << reportNumber(a);
+      for (double p : q.measures.psi) c << "," << reportNumber(p);
+      c << "," << reportNumber(q.orbit.maxModulus()) << "," << (q.stable() ? 1 : 0);
       for (int t : q.measures.events.ticks) c << "," << t;
       c << "," << q.measures.events.stick_slip << "," << q.measures.events.reversals << ","
         << q.measures.events.at_ticks << "\n";
@@ -141,9 +125,9 @@ nlohmann::json fullBifurcationsJson(const FullContinuation& r) {
                       {"param", r.param},
                       {"value", s.point.p},
                       {"multipliers", multipliersJson(s.point.orbit.multipliers)},
-                      {"A", numbers(s.point.measures.A)},
-                      {"psi", numbers(s.point.measures.psi)},
-                      {"period", jnum(s.point.orbit.period)},
+                      {"A", jsonNumbers(s.point.measures.A)},
+                      {"psi", jsonNumbers(s.point.measures.psi)},
+                      {"period", jsonNumber(s.point.orbit.period)},
                       {"detail", s.detail},
                       {"branch", b},
                       {"stability_changes", s.stability_changes}});

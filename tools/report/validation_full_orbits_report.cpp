@@ -5,25 +5,20 @@
 #include <string>
 #include <vector>
 
+#include "tools/report/report_numbers.h"
+
 namespace metrosync {
 
 namespace {
 
 std::string num(double v, int digits = 6) {
-  if (!std::isfinite(v)) return "—";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
+  return reportNumber(v, digits, "—");
 }
 
 std::string list(const std::vector<double>& v, int digits = 3) {
   std::string s;
   for (double x : v) s += (s.empty() ? "" : ", ") + num(x, digits);
   return s;
-}
-
-nlohmann::json jnum(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
 const char* slowName(const std::string& type) {
@@ -145,15 +140,15 @@ nlohmann::json validationFullOrbitsJson(const FullOrbitsResult& r) {
   for (const FullPointSeries& s : r.series) {
     nlohmann::json values = nlohmann::json::array();
     for (const FullPointValue& v : s.values)
-      values.push_back({{"epsilon", v.epsilon}, {"value", jnum(v.value)}, {"note", v.note}});
+      values.push_back({{"epsilon", v.epsilon}, {"value", jsonNumber(v.value)}, {"note", v.note}});
     j["series"].push_back({{"family", s.family},
                            {"key", s.key},
                            {"full_type", s.full_type},
                            {"slow_type", s.slow_type},
-                           {"slow", jnum(s.slow)},
+                           {"slow", jsonNumber(s.slow)},
                            {"values", values},
-                           {"order", jnum(s.order)},
-                           {"constant", jnum(s.constant)},
+                           {"order", jsonNumber(s.order)},
+                           {"constant", jsonNumber(s.constant)},
                            {"pass", s.pass}});
   }
   const AsymmetricState& a = r.asymmetric;
@@ -164,14 +159,14 @@ nlohmann::json validationFullOrbitsJson(const FullOrbitsResult& r) {
                      {"mu", a.mu},
                      {"A", a.A},
                      {"psi", a.psi},
-                     {"max_multiplier", jnum(a.max_multiplier)},
+                     {"max_multiplier", jsonNumber(a.max_multiplier)},
                      {"epsilon_folds", folds},
                      {"A_at_eps_lo", a.A_lo},
                      {"eps_lo", a.eps_lo},
-                     {"mu_from", jnum(a.mu_from)},
-                     {"mu_to", jnum(a.mu_to)},
-                     {"antiphase_multiplier", jnum(a.antiphase_multiplier)},
-                     {"antiphase_branch_epsilon", jnum(a.antiphase_branch)}};
+                     {"mu_from", jsonNumber(a.mu_from)},
+                     {"mu_to", jsonNumber(a.mu_to)},
+                     {"antiphase_multiplier", jsonNumber(a.antiphase_multiplier)},
+                     {"antiphase_branch_epsilon", jsonNumber(a.antiphase_branch)}};
   return j;
 }
 

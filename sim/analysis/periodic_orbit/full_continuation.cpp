@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "sim/analysis/periodic_orbit/number_text.h"
 #include "sim/analysis/periodic_orbit/orbit_continuation.h"
 #include "sim/engines/direct/direct_engine.h"
 
@@ -22,12 +23,6 @@ constexpr double kSearchPeriods = 3.0;
 // Newton then takes the state the rest of the way, to the orbit the run is settling onto.
 constexpr double kSettled = 1e-3;
 constexpr double kTwoPi = 6.283185307179586;
-
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 // The rig run from its start for `factor` times its duration: the final state, scaled.
 Vec runEnd(const Rig& rig, const ScaledModel& model, double factor) {
@@ -59,23 +54,25 @@ SettledOrbit settleOrbit(const Rig& rig, const ReturnSettings& ret, const Newton
     const double amplitude = std::hypot(z(model.theta(r)), z(model.omega(r)));
     const double t_end = model.scaled().tau_end / model.scaled().epsilon * factor;
     if (amplitude < kStopped)
-      throw NoOrbit("every metronome has stopped by t = " + fmt(t_end) +
-                    " (scaled; largest amplitude " + fmt(amplitude) + "): no periodic orbit");
+      throw NoOrbit("every metronome has stopped by t = " + numberText(t_end, 6) +
+                    " (scaled; largest amplitude " + numberText(amplitude, 6) +
+                    "): no periodic orbit");
     const ReturnMap map(rig, r, ret);
     try {
       const Pass first = map.firstCrossing(z, kSearchPeriods * kTwoPi);
       const Pass again = map.pass(first.u1, kTwoPi, false);
       const double moves = (again.u1 - again.u0).lpNorm<Eigen::Infinity>();
       if (moves > kSettled) {
-        why = "at t = " + fmt(t_end) + " (scaled) its state on the section still moves by " +
-              fmt(moves) + " in one period";
+        why = "at t = " + numberText(t_end, 6) +
+              " (scaled) its state on the section still moves by " + numberText(moves, 6) +
+              " in one period";
         continue;
       }
       if (auto o = shoot(map, first.u1, again.period, newton, &why))
         return {*o, r,
-                "the rig's start run to t = " + fmt(t_end) + " (scaled), then Newton in " +
-                    std::to_string(o->iterations) + " iterations (residual " + fmt(o->residual) +
-                    ")"};
+                "the rig's start run to t = " + numberText(t_end, 6) +
+                    " (scaled), then Newton in " + std::to_string(o->iterations) +
+                    " iterations (residual " + numberText(o->residual, 6) + ")"};
     } catch (const OrbitFailure& e) {
       why = e.what();
     }

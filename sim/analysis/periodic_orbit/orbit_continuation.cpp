@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "sim/analysis/periodic_orbit/family_map.h"
+#include "sim/analysis/periodic_orbit/number_text.h"
 #include "sim/analysis/periodic_orbit/special_points.h"
 
 namespace metrosync::orbit {
@@ -22,12 +23,6 @@ constexpr int kLocateIterations = 60;
 // Two special points of one type closer than this share of the range in p are one (located to
 // 1e-9 of it: the same zero found again from the next step).
 constexpr double kSamePoint = 1e-6;
-
-std::string fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
 
 struct Walk {
   std::vector<FamilyPoint> points;
@@ -202,8 +197,8 @@ Walk Walker::walk(const FamilyPoint& start) {
       if (!(first_failure > 0)) first_failure = h;
       h *= 0.5;
       if (h >= kMinStepFraction * h0) continue;
-      w.end =
-          "the corrector fails after p = " + fmt(cur.p) + " (the orbit ends or the engine fails)";
+      w.end = "the corrector fails after p = " + numberText(cur.p, 10) +
+              " (the orbit ends or the engine fails)";
       grazingEnd(cur, first_failure, w);
       return w;
     }
@@ -213,7 +208,7 @@ Walk Walker::walk(const FamilyPoint& start) {
         specials(cur, *last, cur.tangent.dot(fm_.yOf(*last) - fm_.yOf(cur)), w);
         w.points.push_back(*last);
       }
-      w.end = "reached the end of the range, p = " + fmt(w.points.back().p);
+      w.end = "reached the end of the range, p = " + numberText(w.points.back().p, 10);
       if (w.points.size() == 1) w.end = "the start lies on the end of the range";
       return w;
     }
@@ -222,7 +217,7 @@ Walk Walker::walk(const FamilyPoint& start) {
         !fm_.pinned() && neutralVelocity(fm_.mapAt(next->p).section(), next->orbit.pass.jacobian);
     specials(cur, *next, h, w, !neutral);
     if (neutral) {
-      w.end = "the orbits stop being isolated after p = " + fmt(cur.p) +
+      w.end = "the orbits stop being isolated after p = " + numberText(cur.p, 10) +
               ": the platform's velocity becomes neutral (a multiplier is exactly 1: its slip "
               "reverses only at ticks, or nothing brakes it)";
       return w;
@@ -230,14 +225,14 @@ Walk Walker::walk(const FamilyPoint& start) {
     w.points.push_back(*next);
     for (size_t k = before; k < w.special.size(); ++k)
       if (w.special[k].meets_symmetric) {
-        w.end = "a symmetry-breaking branch point at p = " + fmt(w.special[k].point.p) +
+        w.end = "a symmetry-breaking branch point at p = " + numberText(w.special[k].point.p, 10) +
                 ": beyond it the family is the mirror image of this one";
         return w;
       }
     cur = *next;
     if (iterations <= kEasyIterations) h = std::min(h * kStepGrow, s_.step_max);
   }
-  w.end = "max points reached at p = " + fmt(cur.p);
+  w.end = "max points reached at p = " + numberText(cur.p, 10);
   return w;
 }
 

@@ -1,20 +1,12 @@
 #include "sim/analysis/periodic_orbit/return_map.h"
 
 #include <algorithm>
-#include <cstdio>
 
+#include "sim/analysis/periodic_orbit/number_text.h"
 #include "sim/analysis/periodic_orbit/piece_flow.h"
 #include "sim/analysis/periodic_orbit/saltation.h"
 
 namespace metrosync::orbit {
-
-namespace {
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-}  // namespace
 
 ReturnMap::ReturnMap(const Rig& rig, int pendulum, const ReturnSettings& settings)
     : rig_(rig), model_(rig), section_(model_, pendulum), settings_(settings) {}
@@ -54,7 +46,7 @@ Pass ReturnMap::around(const Vec& z0, double t_end, double t_min, bool with_jaco
   if (!back) back = flow.advanceToSection(at, t_end, mode, section);
   if (!back)
     throw OrbitFailure("pendulum " + std::to_string(model_.rigIndex(section_.pendulum()) + 1) +
-                       " does not come back to theta = 0 (rising) within t = " + fmt(t_end) +
+                       " does not come back to theta = 0 (rising) within t = " + numberText(t_end) +
                        " (scaled)");
   p.z1 = at.z;
   p.u1 = section_.coordinatesOf(at.z);

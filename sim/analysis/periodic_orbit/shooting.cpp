@@ -4,15 +4,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "sim/analysis/periodic_orbit/number_text.h"
+
 namespace metrosync::orbit {
 
 namespace {
-
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 
 // Newton's step is halved while the residual grows by more than this factor (a start far from
 // the orbit, or across an event that appears); after kMaxHalvings the full step is taken anyway.
@@ -91,7 +87,7 @@ std::optional<Orbit> shoot(const ReturnMap& map, const Vec& u0, double period_gu
       }
     }
     return fail("Newton did not converge in " + std::to_string(s.max_iterations) +
-                " iterations (residual " + fmt(res) + ")");
+                " iterations (residual " + numberText(res, 3) + ")");
   } catch (const OrbitFailure& e) {
     return fail(e.what());
   }

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "sim/analysis/periodic_orbit/number_text.h"
+
 namespace metrosync::orbit {
 
 namespace {
@@ -21,12 +23,6 @@ constexpr double kSymmetric = 1e-6;
 constexpr double kAsymmetric = 1e-8;
 // A complex pair needs this imaginary part to be a torus, not two real multipliers meeting.
 constexpr double kComplex = 1e-9;
-
-std::string fmt(double v, int digits = 6) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
 
 // The multiplier (or pair) that the zero of `kind` is about: the one nearest to +1, -1, or the
 // pair whose product is nearest to 1.
@@ -100,11 +96,11 @@ std::optional<OrbitBifurcation> classify(TestKind kind, const FamilyPoint& q, co
         out.detail =
             "symmetry-breaking branch point: the asymmetric family meets the symmetric "
             "orbits (multiplier " +
-            fmt(mu(i).real(), 9) + ")";
+            numberText(mu(i).real(), 9) + ")";
       } else {
         out.type = "fold";
         out.detail = "fold of cycles: the family turns back; a multiplier crosses +1 (" +
-                     fmt(mu(i).real(), 9) + ")";
+                     numberText(mu(i).real(), 9) + ")";
       }
       return out;
     case TestKind::Branch:
@@ -112,23 +108,24 @@ std::optional<OrbitBifurcation> classify(TestKind kind, const FamilyPoint& q, co
       if (symmetry != SymmetryKind::None)
         out.detail = std::string("symmetry-breaking branch point of the ") + toString(symmetry) +
                      " orbits: a multiplier of the antisymmetric modes crosses +1 (" +
-                     fmt(mu(i).real(), 9) + "); asymmetric orbits branch off";
+                     numberText(mu(i).real(), 9) + "); asymmetric orbits branch off";
       else
         out.detail = "branch point: another family of orbits crosses; a multiplier crosses +1 (" +
-                     fmt(mu(i).real(), 9) + ")";
+                     numberText(mu(i).real(), 9) + ")";
       return out;
     case TestKind::PeriodDoubling:
       if (std::abs(mu(i).imag()) > kComplex) return std::nullopt;
       out.type = "period-doubling";
-      out.detail = "period doubling: a multiplier crosses -1 (" + fmt(mu(i).real(), 9) + ")";
+      out.detail = "period doubling: a multiplier crosses -1 (" + numberText(mu(i).real(), 9) + ")";
       return out;
     case TestKind::Torus: {
       if (std::abs(mu(i).imag()) <= kComplex || j == i) return std::nullopt;  // neutral saddle
       const double angle = std::abs(std::arg(mu(i)));
       out.type = "torus";
-      out.detail = "Neimark-Sacker (torus): multipliers |mu| = " + fmt(std::abs(mu(i)), 9) +
-                   " at angles +-" + fmt(angle) + " rad: the amplitudes start to modulate, " +
-                   "period " + fmt(2 * M_PI / angle) + " orbits";
+      out.detail = "Neimark-Sacker (torus): multipliers |mu| = " + numberText(std::abs(mu(i)), 9) +
+                   " at angles +-" + numberText(angle, 6) +
+                   " rad: the amplitudes start to modulate, period " +
+                   numberText(2 * M_PI / angle, 6) + " orbits";
       return out;
     }
   }
