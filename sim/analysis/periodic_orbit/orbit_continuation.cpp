@@ -205,7 +205,10 @@ Walk Walker::walk(const FamilyPoint& start) {
     first_failure = 0.0;
     if (outside(next->p)) {
       if (auto last = toBound(cur, *next)) {
-        specials(cur, *last, cur.tangent.dot(fm_.yOf(*last) - fm_.yOf(cur)), w);
+        // a bound where the velocity turns neutral (mu = 0): its tangent is not defined there
+        const bool neutral = !fm_.pinned() && neutralVelocity(fm_.mapAt(last->p).section(),
+                                                              last->orbit.pass.jacobian);
+        specials(cur, *last, cur.tangent.dot(fm_.yOf(*last) - fm_.yOf(cur)), w, !neutral);
         w.points.push_back(*last);
       }
       w.end = "reached the end of the range, p = " + numberText(w.points.back().p, 10);
