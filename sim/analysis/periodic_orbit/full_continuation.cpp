@@ -73,7 +73,7 @@ SettledOrbit settleOrbit(const Rig& rig, const ReturnSettings& ret, const Newton
                 "the rig's start run to t = " + numberText(t_end, 6) +
                     " (scaled), then Newton in " + std::to_string(o->iterations) +
                     " iterations (residual " + numberText(o->residual, 6) + ")"};
-    } catch (const OrbitFailure& e) {
+    } catch (const std::exception& e) {  // OrbitFailure, or a piece that cannot be integrated
       why = e.what();
     }
   }

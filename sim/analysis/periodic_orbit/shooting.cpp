@@ -88,7 +88,7 @@ std::optional<Orbit> shoot(const ReturnMap& map, const Vec& u0, double period_gu
     }
     return fail("Newton did not converge in " + std::to_string(s.max_iterations) +
                 " iterations (residual " + numberText(res, 3) + ")");
-  } catch (const OrbitFailure& e) {
+  } catch (const std::exception& e) {  // OrbitFailure, or a piece that cannot be integrated
     return fail(e.what());
   }
 }
