@@ -6,6 +6,7 @@
 
 #include "sim/engines/plugin_loader.h"
 #include "sim/record/atomic_file.h"
+#include "sim/record/safe_open.h"
 #include "tools/cli/engines.h"
 #include "tools/report/build_info.h"
 #include "tools/report/plot.h"
@@ -125,6 +126,9 @@ int exitCodeOf(const std::function<int()>& handler) {
     std::cerr << "metrosync: error: " << e.what() << "\n";
     return kBadInput;
   } catch (const UsageError& e) {
+    std::cerr << "metrosync: error: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const UnsafeFileError& e) {  // a link or FIFO planted in the output folder
     std::cerr << "metrosync: error: " << e.what() << "\n";
     return kBadInput;
   } catch (const PluginError& e) {  // a plugin missing from the installation

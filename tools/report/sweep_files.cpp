@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "sim/record/atomic_file.h"
+#include "sim/record/safe_open.h"
 
 namespace metrosync {
 
@@ -140,11 +141,8 @@ std::string formatTimingsRow(const SweepPoint& p) {
 }
 
 size_t resumableTimingsBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return 0;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string text = ss.str();
+  std::string text = readRegularFile(path);  // a link or FIFO at the name: refused
+  if (text.empty()) return 0;
   text.resize(text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1);  // whole lines
   const std::string header = timingsHeader() + "\n";
   if (text.empty() || text.compare(0, header.size(), header) == 0) return text.size();
@@ -209,11 +207,7 @@ SweepPoint parseRegimesRow(const SweepGrid& grid, int n, const std::string& line
 RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
                             const std::string& dropped) {
   RegimesTable t;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return t;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
+  const std::string text = readRegularFile(path);  // a link or FIFO at the name: refused
   const size_t last_newline = text.rfind('\n');
   if (last_newline == std::string::npos) {  // not even a whole header: start afresh
     if (!text.empty()) t.partial_lines = 1;
@@ -266,9 +260,7 @@ void writeSortedRegimesCsv(const std::string& path, const SweepGrid& grid, int n
 RegimesAppender::RegimesAppender(const std::string& path, const std::string& header, bool fresh,
                                  size_t keep_bytes)
     : path_(path) {
-  fd_ =
-      ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | (fresh ? O_TRUNC : 0), 0644);
-  if (fd_ < 0) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+  fd_ = openOutputFile(path, fresh, true);  // never through a planted link or FIFO
   if (fresh) {
     append(header);
   } else if (::ftruncate(fd_, static_cast<off_t>(keep_bytes)) != 0) {
@@ -353,10 +345,15 @@ std::string sweepDifference(const SweepManifest& a, const SweepManifest& b) {
 }
 
 nlohmann::json readSweepJson(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw SweepInputError(path + ": cannot read (not a sweep output directory?)");
+  std::string text;
   try {
-    return nlohmann::json::parse(in);
+    text = readRegularFile(path);  // a link or FIFO at the name: refused
+  } catch (const std::runtime_error& e) {
+    throw SweepInputError(e.what());
+  }
+  if (text.empty()) throw SweepInputError(path + ": cannot read (not a sweep output directory?)");
+  try {
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw SweepInputError(path + ": not valid JSON: " + e.what());
   }
