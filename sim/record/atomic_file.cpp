@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <set>
 #include <stdexcept>
-#include <thread>
 
+#include "sim/parallel/worker_pool.h"
 #include "sim/record/safe_open.h"
 
 namespace metrosync {
@@ -202,16 +202,10 @@ void CommitBatch::finish() {
   release();
   // the data first, every file at once: their write-back was started at commit, and concurrent
   // fsyncs share the device's cache flushes (one round trip instead of one per file, measured in
-  // docs/bench/process.md)
+  // docs/bench/process.md); through the pool, so a thread the system refuses is no abort
   std::vector<int> errors(pending_.size(), 0);
-  {
-    std::vector<std::thread> syncs;
-    for (std::size_t k = 1; k < pending_.size(); ++k)
-      syncs.emplace_back(
-          [this, &errors, k] { errors[k] = syncPath(pending_[k].temp, 0) ? 0 : errno; });
-    if (!pending_.empty()) errors[0] = syncPath(pending_[0].temp, 0) ? 0 : errno;
-    for (std::thread& t : syncs) t.join();
-  }
+  parallelFor(static_cast<long>(pending_.size()), static_cast<int>(pending_.size()),
+              [&](long k) { errors[k] = syncPath(pending_[k].temp, 0) ? 0 : errno; });
   for (std::size_t k = 0; k < pending_.size(); ++k)
     if (errors[k] != 0) {
       removeTemporaries(0);

@@ -58,10 +58,10 @@ int createNewFile(const std::string& path) {
   return checkedRegular(fd, path);
 }
 
-int openOutputFile(const std::string& path, bool truncate, bool append) {
+int openOutputFile(const std::string& path, bool truncate, bool append, bool readable) {
   // O_NONBLOCK: a FIFO at the name is not waited on (it is refused below)
-  const int flags =
-      O_WRONLY | O_CREAT | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK | (append ? O_APPEND : 0);
+  const int flags = (readable ? O_RDWR : O_WRONLY) | O_CREAT | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK |
+                    (append ? O_APPEND : 0);
   const int fd = ::open(path.c_str(), flags, 0666);
   if (fd < 0) {
     if (errno == ELOOP || errno == ENXIO || errno == EISDIR) refuse(path);

@@ -22,9 +22,10 @@ struct UnsafeFileError : std::runtime_error {
 // Throws std::runtime_error on any other failure.
 int createNewFile(const std::string& path);
 
-// Opens an existing-or-new file for writing (append, or truncated when `truncate`); a symbolic
-// link, a non-regular file or a file with other hard links at `path` throws UnsafeFileError.
-int openOutputFile(const std::string& path, bool truncate, bool append);
+// Opens an existing-or-new file for writing (append, or truncated when `truncate`; for reading
+// too when `readable`); a symbolic link, a non-regular file or a file with other hard links at
+// `path` throws UnsafeFileError.
+int openOutputFile(const std::string& path, bool truncate, bool append, bool readable = false);
 
 // Opens `path` for reading if it is a regular file (never waits on a FIFO, never follows a link
 // at its last component); -1 with errno ENOENT when there is no such file; UnsafeFileError for

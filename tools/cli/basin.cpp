@@ -115,9 +115,6 @@ BasinPlan planBasin(const BasinOptions& opt) {
   plan.rig_name = base.name;
   checkCorners(opt, plan);
   plan.path = opt.run.out.empty() ? defaultOutputDir(base.name, "basin") : opt.run.out;
-  plan.jobs =
-      opt.run.jobs > 0 ? opt.run.jobs : static_cast<int>(std::thread::hardware_concurrency());
-  plan.jobs = std::max(1, plan.jobs);
   return plan;
 }
 
@@ -127,12 +124,13 @@ std::vector<std::string> sampleAt(const BasinOptions& opt, const BasinPlan& plan
   return sampleOverrides(plan, drawSample(plan.keys, opt.seed, k), texts);
 }
 
-// Every sample, run by `schedule` (threads, or MPI ranks) on plan.jobs threads.
-std::map<long, BasinSample> runSamples(const BasinOptions& opt, const BasinPlan& plan,
+// Every sample, run by `schedule` (threads, or MPI ranks) on up to --jobs threads; plan.jobs
+// becomes the number that ran.
+std::map<long, BasinSample> runSamples(const BasinOptions& opt, BasinPlan& plan,
                                        const SweepScheduler& schedule) {
   std::map<long, BasinSample> samples;
-  schedule(
-      opt.samples, [](long) { return true; }, plan.jobs,
+  plan.jobs = schedule(
+      opt.samples, [](long) { return true; }, opt.run.jobs,
       [&](long k) -> std::optional<SweepPoint> {
         return runSweepPointAt(plan.text, opt.run, sampleAt(opt, plan, k, nullptr), plan.n, k);
       },
@@ -185,7 +183,7 @@ OutputDir openBasinDir(const std::string& path) {
 
 int basinImpl(const BasinOptions& opt, const SweepScheduler& schedule, int ranks) {
   const auto t0 = std::chrono::steady_clock::now();
-  const BasinPlan plan = planBasin(opt);
+  BasinPlan plan = planBasin(opt);
   std::optional<FolderLock> lock;
   if (fs::is_directory(plan.path)) lock.emplace(plan.path, "metrosync basin");
   installStopHandlers();
@@ -279,7 +277,7 @@ int basinCommand(const BasinOptions& opt) {
   const SweepScheduler threads = [](long size, const std::function<bool(long)>& wanted, int jobs,
                                     const SweepPointRunner& run, const SweepPointSink& finished,
                                     const std::function<bool()>& stop) {
-    runSweepPoints(size, wanted, jobs, run, finished, stop);
+    return runSweepPoints(size, wanted, jobs, run, finished, stop);
   };
   return basinCommand(opt, threads, 1);
 }

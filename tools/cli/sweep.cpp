@@ -693,8 +693,6 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
                           table.complete_bytes);
   const size_t timing_bytes = resuming ? resumableTimingsBytes(timingsPath(dir)) : 0;
   RegimesAppender timings(timingsPath(dir), timingsHeader(), timing_bytes == 0, timing_bytes);
-  run.jobs = opt.jobs > 0 ? opt.jobs : static_cast<int>(std::thread::hardware_concurrency());
-  run.jobs = std::max(1, run.jobs);
   Progress progress(!opt.quiet && ::isatty(2), ProgressLog::wanted(opt.quiet), plan.mine,
                     static_cast<long>(run.points.size()));
   std::optional<EnvelopeStore> store;  // --keep envelope
@@ -704,9 +702,9 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
     store.emplace(dir.file(kEnvelopeStoreName), plan.n, !resuming, done);
   }
   const long stop_after = stopAfterHook();
-  schedule(
+  run.jobs = schedule(
       plan.grid.size(), [&](long g) { return plan.shard.contains(g) && !table.lines.count(g); },
-      run.jobs, [&](long g) { return runGridPoint(plan, opt, g); },
+      opt.jobs, [&](long g) { return runGridPoint(plan, opt, g); },
       [&](const SweepPoint& p) {
         if (store) store->append(p.index, p.kept_rows);  // before its row: a row has its rows
         const std::string line = formatRegimesRow(plan.grid, p);
@@ -1097,7 +1095,7 @@ int sweepCommand(const SweepOptions& opt) {
   const SweepScheduler threads = [](long size, const std::function<bool(long)>& wanted, int jobs,
                                     const SweepPointRunner& run, const SweepPointSink& finished,
                                     const std::function<bool()>& stop) {
-    runSweepPoints(size, wanted, jobs, run, finished, stop);
+    return runSweepPoints(size, wanted, jobs, run, finished, stop);
   };
   return sweepCommand(opt, threads, 1);
 }

@@ -15,6 +15,7 @@
 #include <optional>
 #include <thread>
 
+#include "sim/parallel/worker_pool.h"
 #include "tools/cli/basin.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/sweep_messages.h"
@@ -165,24 +166,25 @@ class Coordinator {
   explicit Coordinator(int ranks) : workers_(ranks - 1) {}
 
   // The SweepScheduler: rank 0's threads and the workers take points from one dispenser.
-  void schedule(long size, const std::function<bool(long)>& wanted, int jobs,
-                const SweepPointRunner& run, const SweepPointSink& finished,
-                const std::function<bool()>& stop) {
+  // Returns how many local threads ran points (the pool of sim/parallel/worker_pool.h: those
+  // the system refused to start are left out; with none, the workers run every point).
+  int schedule(long size, const std::function<bool(long)>& wanted, int jobs,
+               const SweepPointRunner& run, const SweepPointSink& finished,
+               const std::function<bool()>& stop) {
     started_ = true;
     for (int w = 1; w <= workers_; ++w) sendBytes("start", w, kTagStart);
     Dispenser points(size, wanted);
     Delivery delivery(finished);
-    std::vector<std::thread> local;
-    for (int t = 0; t < std::max(1, jobs); ++t)
-      local.emplace_back([&] { runLocally(points, delivery, run, stop); });
+    WorkerThreads local(workerCount(jobs, size), [&] { runLocally(points, delivery, run, stop); });
     try {
       serveWorkers(points, delivery, stop);
       served_ = true;
     } catch (...) {  // the local threads stop too; the workers are left to MPI_Abort
       delivery.fail(std::current_exception());
     }
-    for (auto& t : local) t.join();
+    local.join();
     delivery.rethrow();
+    return local.started();
   }
 
   // Workers that were never started are told to quit.
@@ -328,9 +330,11 @@ void workerLoop(const SweepPointRunner& run, int threads) {
   WorkerQueue q;
   long ran = 0;
   const long kill_after = killAfterHook(worldRank());
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t)
-    pool.emplace_back([&] { computeThread(q, run, kill_after, ran); });
+  WorkerThreads pool(threads, [&] { computeThread(q, run, kill_after, ran); });
+  if (pool.started() == 0)
+    throw std::runtime_error("rank " + std::to_string(worldRank()) +
+                             ": no worker thread could start (the process limit on threads)");
+  threads = pool.started();
   for (;;) {
     const SweepReport report = nextReport(q, threads);
     if (!report.done && report.points.empty() && report.unrun.empty() && report.want == 0) continue;
@@ -344,7 +348,7 @@ void workerLoop(const SweepPointRunner& run, int threads) {
     }
     q.cv.notify_all();
   }
-  for (auto& t : pool) t.join();
+  pool.join();
 }
 
 }  // namespace
@@ -358,7 +362,7 @@ int coordinate(int ranks, const std::function<int(const SweepScheduler&)>& comma
   const SweepScheduler schedule = [&c](long size, const std::function<bool(long)>& wanted, int jobs,
                                        const SweepPointRunner& run, const SweepPointSink& finished,
                                        const std::function<bool()>& stop) {
-    c.schedule(size, wanted, jobs, run, finished, stop);
+    return c.schedule(size, wanted, jobs, run, finished, stop);
   };
   int code = 0;
   try {

@@ -29,7 +29,7 @@ std::string readAll(int fd) {
 FolderLock::FolderLock(const std::string& dir, const std::string& command)
     : path_(dir + "/" + kFileName) {
   // never through a link or FIFO planted at the name (UnsafeFileError: exit 2)
-  fd_ = openOutputFile(path_, false, false);
+  fd_ = openOutputFile(path_, false, false, true);
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     const std::string holder = readAll(fd_);
     ::close(fd_);
