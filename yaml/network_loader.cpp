@@ -5,6 +5,7 @@
 #include <map>
 
 #include "yaml/rig_build.h"
+#include "yaml/utf8.h"
 
 namespace metrosync {
 
@@ -50,12 +51,11 @@ std::string platformName(const Node& p, const std::string& path, const RigSource
   const std::string& name = n->scalar;
   if (name.empty() || name.size() > kMaxNameBytes)
     failAt(src, n->at, path + ".name: must be 1 to " + std::to_string(kMaxNameBytes) + " bytes");
-  for (unsigned char ch : name)
-    if (ch <= 0x20 || ch == 0x7F || ch == ',' || ch == '"')
-      failAt(src, n->at,
-             path + ".name = " + name +
-                 ": must not contain spaces, commas, quotes or control characters "
-                 "(it names CSV columns)");
+  if (firstControl(name) || name.find_first_of(" ,\"") != std::string::npos)
+    failAt(src, n->at,
+           path + ".name = " + printable(name) +
+               ": must not contain spaces, commas, quotes or control characters "
+               "(it names CSV columns)");
   if (auto it = seen.find(name); it != seen.end())
     failAt(src, n->at,
            path + ".name = " + name + ": duplicate: platforms." + std::to_string(it->second) +

@@ -602,8 +602,8 @@ std::optional<std::string> optName(const Reader& r) {
   if (name->size() > kMaxNameBytes)
     r.bad("name", "is " + std::to_string(name->size()) + " bytes long (at most " +
                       std::to_string(kMaxNameBytes) + ")");
-  for (unsigned char ch : *name)
-    if (ch < 0x20 || ch == 0x7F) r.bad("name", "must not contain control characters");
+  if (firstControl(*name))  // C0, DEL and C1 (yaml/utf8.h)
+    r.bad("name", "must not contain control characters");
   return name;
 }
 

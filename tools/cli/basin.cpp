@@ -16,6 +16,7 @@
 #include "sim/record/atomic_file.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/network_sweep.h"
+#include "tools/cli/number_option.h"
 #include "tools/report/basin_files.h"
 #include "tools/report/folder_lock.h"
 #include "tools/report/outputs.h"
@@ -96,9 +97,7 @@ void checkCorners(const BasinOptions& opt, BasinPlan& plan) {
 
 BasinPlan planBasin(const BasinOptions& opt) {
   if (opt.random.empty()) throw UsageError("basin: give at least one --random KEY=FROM:TO");
-  if (opt.samples < 1 || opt.samples > kMaxSamples)
-    throw UsageError("--samples " + std::to_string(opt.samples) + ": must be from 1 to " +
-                     std::to_string(kMaxSamples));
+  if (opt.samples < 1) throw UsageError("basin: give --samples S");  // parsed by its rule
   BasinPlan plan;
   std::set<std::string> seen;
   for (const auto& r : opt.random) {
@@ -246,20 +245,20 @@ CLI::App* addBasinCommand(CLI::App& app, BasinOptions& opt) {
       ->type_name("KEY=FROM:TO")
       ->required()
       ->allow_extra_args(false);
-  c->add_option("--samples", opt.samples, "how many random starts")->type_name("S")->required();
-  c->add_option("--seed", opt.seed,
-                "the seed of the draws (default 1): sample k's values depend only on the seed "
-                "and k, not on --jobs")
-      ->type_name("N");
+  addInteger(c, "--samples", opt.samples, 1, kMaxSamples, "how many random starts")
+      ->type_name("S")
+      ->required();
+  addSeed(c, "--seed", opt.seed,
+          "the seed of the draws (default 1): sample k's values depend only on the seed "
+          "and k, not on --jobs");
   c->add_option("--set", opt.run.sets, "override a rig key for every sample; repeatable")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
   c->add_option("--model", opt.run.model, "slow: the slow flow (default); full: the full model")
       ->check(CLI::IsMember({"slow", "full"}));
   c->add_option("--engine", opt.run.engine, "the engine of the full model (as for sweep)");
-  c->add_option("--jobs", opt.run.jobs, "worker threads (default: the number of cores)")
-      ->type_name("N")
-      ->check(CLI::Range(1, 4096));
+  addInteger(c, "--jobs", opt.run.jobs, 1, kMaxJobs,
+             "worker threads (default: the number of cores; never more than the samples)");
   c->add_option("--out", opt.run.out, "output directory (default: runs/<rig name>-basin)")
       ->type_name("DIR");
   c->add_flag("--no-plot", opt.no_plot, "no basin.png");

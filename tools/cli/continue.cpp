@@ -13,10 +13,17 @@
 #include "sim/analysis/continuation/result.h"
 #include "sim/analysis/continuation/start_states.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/number_option.h"
 #include "tools/report/continuation_report.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
+
+namespace {
+// --max-points: a branch point is a Newton solve of 2N - 1 unknowns and one CSV row; 10^6 points
+// per direction bound a continuation to minutes and its branches.csv to ~100 MB per branch.
+constexpr long long kMaxContinuationPoints = 1000000;
+}  // namespace
 
 namespace {
 
@@ -400,14 +407,15 @@ CLI::App* addContinueCommand(CLI::App& app) {
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
   c->add_option("--param", opt.param, "the rig key to vary, e.g. metronomes.1.alpha")->required();
-  c->add_option("--to", opt.to, "the other end of the parameter range")->required();
-  c->add_option("--from", opt.from, "the start value (default: the rig's value of KEY)");
+  addNumber(c, "--to", opt.to, kAnyFinite, "the other end of the parameter range")->required();
+  addNumber(c, "--from", opt.from, kAnyFinite, "the start value (default: the rig's value of KEY)");
   c->add_option("--start", opt.start,
                 "the start state A_1,..,A_N,psi_2,..,psi_N (default: the "
                 "rig's start, integrated until it settles)");
-  c->add_option("--step", opt.step, "first arclength step (default |to - from| / 100)");
-  c->add_option("--max-points", opt.max_points, "points per direction of each branch")
-      ->capture_default_str();
+  addNumber(c, "--step", opt.step, kPositive, "first arclength step (default |to - from| / 100)");
+  addInteger(c, "--max-points", opt.max_points, 2, kMaxContinuationPoints,
+             "points per direction of each branch")
+      ->default_str(std::to_string(opt.max_points));
   c->add_flag("--all", opt.all, "every locked state at the start value (Newton from a grid)");
   c->add_option("--out", opt.out, "output directory (default runs/<rig name>-continue)");
   c->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
@@ -417,7 +425,7 @@ CLI::App* addContinueCommand(CLI::App& app) {
                                     "a second rig key: continue every fold and Hopf point found in "
                                     "KEY in (KEY, KEY2), from KEY2's value in the rig -> "
                                     "fold_curve.csv, hopf_curve.csv, fold_curve.png");
-  c->add_option("--to2", opt.to2, "KEY2's other end (with --fold)")->needs(fold);
+  addNumber(c, "--to2", opt.to2, kAnyFinite, "KEY2's other end (with --fold)")->needs(fold);
   fold->needs("--to2");
   c->footer(
       "Files in --out DIR: branches.csv, bifurcations.json, branches.png, cycles.csv, "

@@ -30,6 +30,7 @@
 #include "tools/cli/continue.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/network_sweep.h"
+#include "tools/cli/number_option.h"
 #include "tools/report/envelope_store.h"
 #include "tools/report/folder_lock.h"
 #include "tools/report/outputs.h"
@@ -549,7 +550,6 @@ std::vector<std::string> basinSampleOverrides(const SweepGrid& grid,
 }
 
 SweepPlan planSweep(const SweepOptions& opt) {
-  if (opt.jobs < 0) throw UsageError("--jobs " + std::to_string(opt.jobs) + ": must be >= 1");
   std::vector<SweepAxis> axes;
   for (const auto& v : opt.vary) axes.push_back(parseVary(v));
   SweepPlan plan;
@@ -940,20 +940,17 @@ void addSweepMapAndBasinOptions(CLI::App& sweep, SweepOptions& opt) {
                   "every combination of the other keys' values gets its own maps, "
                   "regimes--KEY=VALUE.png, ...")
       ->type_name("KEY1,KEY2");
-  sweep
-      .add_option("--basin-samples", opt.basin_samples,
-                  "with --random: also run S random starts at every point and give the fraction "
-                  "that ends in-phase (column in_phase_fraction, map basin.png; docs/basin.md)")
-      ->type_name("S")
-      ->check(CLI::Range(1L, 1000000L));
+  addInteger(&sweep, "--basin-samples", opt.basin_samples, 1, 1000000,
+             "with --random: also run S random starts at every point and give the fraction "
+             "that ends in-phase (column in_phase_fraction, map basin.png; docs/basin.md)")
+      ->type_name("S");
   sweep
       .add_option("--random", opt.random,
                   "with --basin-samples: a start key drawn uniformly from FROM to TO (angles on "
                   "the circle), as for `metrosync basin`; repeatable")
       ->type_name("KEY=FROM:TO")
       ->allow_extra_args(false);
-  sweep.add_option("--seed", opt.seed, "with --basin-samples: the seed of the draws (default 1)")
-      ->type_name("N");
+  addSeed(&sweep, "--seed", opt.seed, "with --basin-samples: the seed of the draws (default 1)");
 }
 
 }  // namespace
@@ -992,12 +989,9 @@ void addSweepRunOptions(CLI::App& sweep, SweepOptions& opt) {
                   "else slow; full for a network of platforms, docs/networks.md)")
       ->check(CLI::IsMember({"slow", "full"}));
   sweep.add_option("--engine", opt.engine, anyEngineHelp());
-  sweep
-      .add_option("--jobs", opt.jobs,
-                  "worker threads (default: the number of cores); the results do not "
-                  "depend on it")
-      ->type_name("N")
-      ->check(CLI::Range(1, 4096));
+  addInteger(&sweep, "--jobs", opt.jobs, 1, kMaxJobs,
+             "worker threads (default: the number of cores; never more than the points); the "
+             "results do not depend on it");
   sweep.add_flag("--resume", opt.resume,
                  "continue the sweep in --out DIR: points already in its regimes.csv are "
                  "kept, the others run (the command line must be the same)");

@@ -1,10 +1,12 @@
 #include "tools/cli/sweep_point.h"
 
 #include <filesystem>
+#include <limits>
 
 #include "sim/analysis/sweep.h"
 #include "sim/record/atomic_file.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/number_option.h"
 #include "tools/report/sweep_files.h"
 
 namespace metrosync::cli {
@@ -13,9 +15,9 @@ CLI::App* addSweepPointCommand(CLI::App& app, SweepPointOptions& opt) {
   CLI::App* c = app.add_subcommand("sweep-point",
                                    "re-run one grid point of a sweep with full outputs and plots");
   c->add_option("DIR", opt.dir, "the sweep's output directory (with its sweep.json)")->required();
-  c->add_option("INDEX", opt.index, "the grid index (regimes.csv's `index` column)")
-      ->required()
-      ->check(CLI::NonNegativeNumber);
+  addInteger(c, "INDEX", opt.index, 0, std::numeric_limits<long>::max(),
+             "the grid index (regimes.csv's `index` column)")
+      ->required();
   c->add_option("--out", opt.out, "output directory (default: DIR/point-INDEX)")->type_name("DIR");
   c->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
   c->add_flag("--no-plot", opt.no_plot, "write no plot");
