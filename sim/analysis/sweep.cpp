@@ -233,9 +233,6 @@ SweepAxis parseVary(const std::string& text) {
   return a;
 }
 
-namespace {
-
-// Do two keys name one rig key at some metronome ("metronomes.*.nu" and "metronomes.1.nu")?
 bool keysOverlap(const std::string& a, const std::string& b) {
   if (a == b) return true;
   const std::string& w = isWildcardKey(a) ? a : b;
@@ -249,8 +246,6 @@ bool keysOverlap(const std::string& a, const std::string& b) {
   const std::string index = o.substr(head.size(), o.size() - head.size() - tail.size());
   return index.find_first_not_of("0123456789") == std::string::npos;
 }
-
-}  // namespace
 
 SweepGrid::SweepGrid(std::vector<SweepAxis> axes, long max_points) : axes_(std::move(axes)) {
   if (axes_.empty()) throw SweepInputError("sweep: at least one --vary KEY=FROM:TO:COUNT");

@@ -69,6 +69,9 @@ std::vector<std::string> expandSweepOverride(const std::string& key_value, int n
 std::vector<std::string> expandSweepOverrides(const std::vector<std::string>& overrides, int n);
 // Does `key` hold the wildcard "*"?
 bool isWildcardKey(const std::string& key);
+// Do two keys name one rig key at some metronome ("metronomes.*.nu" and "metronomes.1.nu", or the
+// same key twice)? --vary, --random and basin's --random refuse such a pair.
+bool keysOverlap(const std::string& a, const std::string& b);
 
 // More grid points than this need --force (the default cap; a sweep keeps a line per point).
 constexpr long kMaxGridPoints = 10000000;

@@ -99,11 +99,13 @@ BasinPlan planBasin(const BasinOptions& opt) {
   if (opt.random.empty()) throw UsageError("basin: give at least one --random KEY=FROM:TO");
   if (opt.samples < 1) throw UsageError("basin: give --samples S");  // parsed by its rule
   BasinPlan plan;
-  std::set<std::string> seen;
   for (const auto& r : opt.random) {
     plan.keys.push_back(parseRandom(r));
-    if (!seen.insert(plan.keys.back().key).second)
-      throw UsageError("--random " + plan.keys.back().key + " given twice");
+    for (size_t k = 0; k + 1 < plan.keys.size(); ++k)  // as sweep's --vary pairs
+      if (keysOverlap(plan.keys[k].key, plan.keys.back().key))
+        throw UsageError("--random " + plan.keys[k].key + " and --random " + plan.keys.back().key +
+                         (plan.keys[k].key == plan.keys.back().key ? ": the key is given twice"
+                                                                   : ": both set the same key"));
   }
   plan.text = opt.run.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.run.rig_path);
   const std::optional<Network> net =

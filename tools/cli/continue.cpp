@@ -124,6 +124,23 @@ ParamsAt2 paramsAt2(const ContinueOptions& opt) {
   return [opt](double p1, double p2) { return scaledAt(opt, {opt.param, opt.fold_key}, {p1, p2}); };
 }
 
+// The scaled parameters with KEY = value; a value that makes one of them infinite or NaN (e.g.
+// --to 1e308) is refused naming `which` option gave it.
+ScaledParams scaledAt(const ContinueOptions& opt, double value, const std::string& which) {
+  const ScaledParams p = computeScaled(loadWith(opt, {opt.param + "=" + fmt(value)}));
+  const std::pair<const char*, const std::vector<double>*> lists[] = {
+      {"nu", &p.nu}, {"J", &p.J}, {"theta_c", &p.theta_c}, {"alpha", &p.alpha}, {"zeta", &p.zeta}};
+  std::string bad = std::isfinite(p.mu) ? "" : "mu";
+  if (!std::isfinite(p.c)) bad = "c";
+  for (const auto& [name, v] : lists)
+    for (double x : *v)
+      if (!std::isfinite(x)) bad = name;
+  if (!bad.empty())
+    throw UsageError(which + ": " + opt.param + " = " + fmt(value) + " makes the scaled " + bad +
+                     " infinite or undefined; choose a value nearer the rig's");
+  return p;
+}
+
 double startValue(const ContinueOptions& opt) {
   if (opt.param == "epsilon")
     throw UsageError(
@@ -137,15 +154,18 @@ double startValue(const ContinueOptions& opt) {
           ? "metronomes.0." + opt.param.substr(std::string(kEveryMetronome).size())
           : opt.param;
   const std::optional<double> in_rig = rigNumber(rigText(opt), display, opt.sets, key);
-  if (!opt.from && !in_rig)
+  if (!opt.from && !in_rig) {
+    // a key the rig does not know (a typo) gets the loader's message, naming --param
+    loadWith(opt, {opt.param + "=" + fmt(opt.to)});
     throw UsageError("--param " + opt.param +
                      ": the key is not set in the rig (its default applies); give --from VALUE");
-  const double from = opt.from ? *opt.from : *in_rig;
-  if (!std::isfinite(opt.to) || !std::isfinite(from) || opt.to == from)
+  }
+  const double from = opt.from ? *opt.from : *in_rig;  // both finite (tools/cli/number_option.h)
+  if (opt.to == from)
     throw UsageError("--to " + fmt(opt.to) + ": must differ from the start value " + opt.param +
                      " = " + fmt(from));
-  const ScaledParams a = computeScaled(loadWith(opt, {opt.param + "=" + fmt(from)}));
-  const ScaledParams b = computeScaled(loadWith(opt, {opt.param + "=" + fmt(opt.to)}));
+  const ScaledParams a = scaledAt(opt, from, opt.from ? "--from" : "the rig's value");
+  const ScaledParams b = scaledAt(opt, opt.to, "--to");
   if (sameSlowFlow(a, b))
     throw UsageError("--param " + opt.param + ": has no effect on the slow flow (its scaled " +
                      "parameters are the same at " + fmt(from) + " and " + fmt(opt.to) + ")");
@@ -200,8 +220,8 @@ std::vector<Cd> startState(const ContinueOptions& opt, const ScaledParams& sp, s
 }
 
 ContinuationSettings settingsFor(const ContinueOptions& opt, double from) {
-  if (opt.step < 0) throw UsageError("--step " + fmt(opt.step) + ": must be > 0");
-  if (opt.max_points < 2) throw UsageError("--max-points: must be >= 2");
+  // --step and --max-points are checked when parsed (tools/cli/number_option.h); a step of 0 is
+  // the option left out
   ContinuationSettings s;
   s.p_min = std::min(from, opt.to);
   s.p_max = std::max(from, opt.to);
@@ -451,16 +471,22 @@ int continueCommand(const ContinueOptions& opt) {
   result.metronomes = static_cast<int>(sp.nu.size());
   result.theta_c = sp.theta_c;
   std::vector<FoldSeed> folds;
-  if (opt.all) {
-    followAll(opt, sp, from, settings, result, folds);
-  } else {
-    const std::vector<Cd> z = startState(opt, sp, result.start);
-    const SlowFlowProblem prob(paramsAt(opt), from, largest(z));
-    const auto x = solveLocked(prob, prob.pack(z, prob.omegaGuess(from, z)), from);
-    if (!x) throw UsageError("Newton does not converge to a locked state from " + result.start);
-    record(opt, prob, continueFrom(prob.system(), *x, from, settings), settings, result, folds);
+  try {
+    if (opt.all) {
+      followAll(opt, sp, from, settings, result, folds);
+    } else {
+      const std::vector<Cd> z = startState(opt, sp, result.start);
+      const SlowFlowProblem prob(paramsAt(opt), from, largest(z));
+      const auto x = solveLocked(prob, prob.pack(z, prob.omegaGuess(from, z)), from);
+      if (!x) throw UsageError("Newton does not converge to a locked state from " + result.start);
+      record(opt, prob, continueFrom(prob.system(), *x, from, settings), settings, result, folds);
+    }
+    if (!opt.fold_key.empty()) foldCurves(opt, from2, folds, result);
+  } catch (const std::invalid_argument& e) {  // the slow flow at a value on the way: not finite
+    throw UsageError("--param " + opt.param + " from " + fmt(from) + " to " + fmt(opt.to) + ": " +
+                     e.what() + " on the way (the range leaves the range of the numbers); " +
+                     "choose a --to nearer the start");
   }
-  if (!opt.fold_key.empty()) foldCurves(opt, from2, folds, result);
   const OutputDir dir(outDir(opt, rig));
   writeContinuation(dir, result, rig.name);
   if (!opt.quiet) printSummary(result, dir.path());

@@ -532,8 +532,11 @@ std::vector<RandomKey> planPointBasin(const SweepOptions& opt, SweepGrid& grid) 
   for (const auto& r : opt.random) {
     keys.push_back(parseRandom(r));
     for (const auto& a : grid.axes())
-      if (a.key == keys.back().key)
+      if (keysOverlap(a.key, keys.back().key))
         throw UsageError("--random " + r + ": " + a.key + " is also a --vary key");
+    for (size_t k = 0; k + 1 < keys.size(); ++k)
+      if (keysOverlap(keys[k].key, keys.back().key))
+        throw UsageError("--random " + r + ": --random " + keys[k].key + " sets the same key");
   }
   grid.setBasin({opt.basin_samples, opt.seed, opt.random});
   return keys;
@@ -625,6 +628,26 @@ RegimesTable resumeTable(const SweepOptions& opt, const SweepPlan& plan, bool& r
     }
   }
   return table;
+}
+
+// --resume --keep envelope: a point in regimes.csv whose envelope rows are not whole in
+// envelopes.csv.gz (a damaged member, and every member after it, is cut) runs again, so that the
+// store holds every point it claims (issue 29).
+void dropPointsWithoutEnvelopes(RegimesTable& table, const std::string& store_path) {
+  const std::map<long, std::vector<std::string>> stored = readEnvelopeStore(store_path);
+  long dropped = 0;
+  for (auto it = table.lines.begin(); it != table.lines.end();) {
+    if (stored.count(it->first)) {
+      ++it;
+      continue;
+    }
+    table.points.erase(it->first);
+    it = table.lines.erase(it);
+    ++dropped;
+  }
+  if (dropped > 0)
+    table.warnings.push_back(std::to_string(dropped) + " points of regimes.csv have no whole " +
+                             "envelope in " + store_path + " (damaged or cut): they run again");
 }
 
 OutputDir openSweepDir(const std::string& path, bool resuming) {
@@ -750,7 +773,9 @@ int sweepImpl(const SweepOptions& opt, const SweepScheduler& schedule, int ranks
   std::optional<FolderLock> lock;
   if (fs::is_directory(plan.path)) lock.emplace(plan.path, "metrosync sweep");
   bool resuming = false;
-  const RegimesTable table = resumeTable(opt, plan, resuming);
+  RegimesTable table = resumeTable(opt, plan, resuming);
+  if (resuming && opt.keep == "envelope")
+    dropPointsWithoutEnvelopes(table, plan.path + "/" + kEnvelopeStoreName);
 
   // from here on files are written
   installStopHandlers();

@@ -8,6 +8,8 @@
 #include "tools/cli/commands.h"
 #include "tools/cli/number_option.h"
 #include "tools/report/sweep_files.h"
+#include "yaml/network_loader.h"
+#include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
 
@@ -48,18 +50,33 @@ int sweepPointCommand(const SweepPointOptions& opt) {
   run.engine = m.engine;
   run.quiet = opt.quiet;
   run.no_plot = opt.no_plot;
-  // the swept rig text, as recorded (the rig file may have changed since)
+  // the swept rig text, as recorded (the rig file may have changed since), checked with the
+  // point's overrides before anything is written (a bad rig: exit 2, no point-N/)
+  const std::string recorded = opt.dir + "/sweep.json (its rig_text)";
+  if (isNetworkText(m.rig_text))
+    loadNetworkText(m.rig_text, recorded, run.sets);
+  else
+    loadRigText(m.rig_text, recorded, run.sets);
+  const bool made = !std::filesystem::exists(run.out);
   std::error_code ec;
   std::filesystem::create_directories(run.out, ec);
   if (ec) throw UsageError("--out " + run.out + ": " + ec.message());
-  run.rig_path = run.out + "/sweep-rig.yaml";
-  writeFileAtomically(run.rig_path, m.rig_text);
-  if (!opt.quiet) {
-    std::string values;
-    for (const auto& o : m.grid.overrides(opt.index)) values += (values.empty() ? "" : ", ") + o;
-    std::cout << "grid point " << opt.index << " of " << opt.dir << ": " << values << "\n";
+  try {
+    run.rig_path = run.out + "/sweep-rig.yaml";
+    writeFileAtomically(run.rig_path, m.rig_text);
+    if (!opt.quiet) {
+      std::string values;
+      for (const auto& o : m.grid.overrides(opt.index)) values += (values.empty() ? "" : ", ") + o;
+      std::cout << "grid point " << opt.index << " of " << opt.dir << ": " << values << "\n";
+    }
+    return runCommand(run);
+  } catch (const RigError&) {  // refused after all (an engine the point cannot use): undo
+    if (made) std::filesystem::remove_all(run.out, ec);
+    throw;
+  } catch (const UsageError&) {
+    if (made) std::filesystem::remove_all(run.out, ec);
+    throw;
   }
-  return runCommand(run);
 }
 
 }  // namespace metrosync::cli
