@@ -29,6 +29,7 @@
 #include "tools/cli/commands.h"
 #include "tools/cli/continue.h"
 #include "tools/cli/engines.h"
+#include "tools/cli/fault_hooks.h"
 #include "tools/cli/network_sweep.h"
 #include "tools/cli/number_option.h"
 #include "tools/report/envelope_store.h"
@@ -225,24 +226,9 @@ struct PointSink : RunSink {
   std::vector<std::string> kept;
 };
 
-// The test hook METROSYNC_SWEEP_FAIL_AT=g1,g2,...: those grid points fail as a simulation
-// failure would (no rig makes the engines fail on demand).
-bool failureInjected(long g) {
-  static const std::vector<long> points = [] {
-    std::vector<long> v;
-    const char* e = std::getenv("METROSYNC_SWEEP_FAIL_AT");
-    std::stringstream ss(e ? e : "");
-    std::string item;
-    while (std::getline(ss, item, ','))
-      if (!item.empty()) v.push_back(std::atol(item.c_str()));
-    return v;
-  }();
-  return std::find(points.begin(), points.end(), g) != points.end();
-}
-
 // A network's point (tools/cli/network_sweep.h), with the test hook and the stop request.
 std::optional<SweepPoint> runNetworkPoint(const PointInput& in, long g) {
-  SweepPoint p = runNetworkSweepPoint(*in.net, *in.engine, g, failureInjected(g));
+  SweepPoint p = runNetworkSweepPoint(*in.net, *in.engine, g, injectedFailure(g));
   if (FileSink::stopRequested()) return std::nullopt;
   return p;
 }
@@ -258,8 +244,8 @@ std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
   RunReport rep;
   const double engine_cpu0 = threadCpuSeconds();
   try {
-    if (failureInjected(g))
-      throw SimulationFailure{0.0, "failure injected by METROSYNC_SWEEP_FAIL_AT, a test hook"};
+    if (const std::optional<std::string> why = injectedFailure(g))  // tools/cli/fault_hooks.h
+      throw SimulationFailure{0.0, *why};
     rep = in.engine->run(in.rig, sink);
   } catch (const RunInterrupted&) {
     return std::nullopt;
@@ -404,13 +390,6 @@ void writeSweepJson(const OutputDir& dir, const nlohmann::json& j) {
 
 std::string timingsPath(const OutputDir& dir) {
   return dir.file("timings.csv");
-}
-
-// The test hook: METROSYNC_SWEEP_STOP_AFTER=K ends the process like kill -9 right after the K-th
-// point of this invocation is written (no sorting, no maps, sweep.json still incomplete).
-long stopAfterHook() {
-  const char* v = std::getenv("METROSYNC_SWEEP_STOP_AFTER");
-  return v && *v ? std::atol(v) : -1;
 }
 
 nlohmann::json statusJson(const SweepManifest& m, long shard_points,
@@ -724,7 +703,6 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
     for (const auto& [g, line] : table.lines) done.insert(g);
     store.emplace(dir.file(kEnvelopeStoreName), plan.n, !resuming, done);
   }
-  const long stop_after = stopAfterHook();
   run.jobs = schedule(
       plan.grid.size(), [&](long g) { return plan.shard.contains(g) && !table.lines.count(g); },
       opt.jobs, [&](long g) { return runGridPoint(plan, opt, g); },
@@ -737,7 +715,8 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
         run.points[p.index] = p;
         run.points[p.index].kept_rows.clear();
         progress.finished(!p.complete);
-        if (++run.finished_now == stop_after) std::_Exit(137);
+        ++run.finished_now;
+        if (faultHooks().after_row) faultHooks().after_row(run.finished_now);
       },
       [] { return FileSink::stopRequested(); });
   progress.done();

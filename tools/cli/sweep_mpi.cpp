@@ -18,6 +18,7 @@
 #include "sim/parallel/worker_pool.h"
 #include "tools/cli/basin.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/fault_hooks.h"
 #include "tools/cli/sweep_messages.h"
 #include "tools/report/outputs.h"
 
@@ -266,18 +267,7 @@ struct WorkerQueue {
   bool last = false;
 };
 
-// The test hook METROSYNC_MPI_KILL_AFTER=R:K: rank R kills itself with SIGKILL (as kill -9 would)
-// once it has run K points, before reporting them.
-long killAfterHook(int rank) {
-  const char* v = std::getenv("METROSYNC_MPI_KILL_AFTER");
-  if (!v || !*v) return -1;
-  const std::string s = v;
-  const size_t colon = s.find(':');
-  if (colon == std::string::npos || std::atoi(s.substr(0, colon).c_str()) != rank) return -1;
-  return std::atol(s.substr(colon + 1).c_str());
-}
-
-void computeThread(WorkerQueue& q, const SweepPointRunner& run, long kill_after, long& ran) {
+void computeThread(WorkerQueue& q, const SweepPointRunner& run, long& ran) {
   for (;;) {
     long g = 0;
     {
@@ -296,7 +286,8 @@ void computeThread(WorkerQueue& q, const SweepPointRunner& run, long kill_after,
         q.finished.push_back(*p);
       else
         q.unrun.push_back(g);  // interrupted by a stop request
-      if (++ran == kill_after) ::raise(SIGKILL);
+      ++ran;  // a test's fault hook may end the rank here (tools/cli/fault_hooks.h)
+      if (faultHooks().after_worker_point) faultHooks().after_worker_point(worldRank(), ran);
     }
     q.cv.notify_all();
   }
@@ -329,8 +320,7 @@ SweepReport nextReport(WorkerQueue& q, long threads) {
 void workerLoop(const SweepPointRunner& run, int threads) {
   WorkerQueue q;
   long ran = 0;
-  const long kill_after = killAfterHook(worldRank());
-  WorkerThreads pool(threads, [&] { computeThread(q, run, kill_after, ran); });
+  WorkerThreads pool(threads, [&] { computeThread(q, run, ran); });
   if (pool.started() == 0)
     throw std::runtime_error("rank " + std::to_string(worldRank()) +
                              ": no worker thread could start (the process limit on threads)");
