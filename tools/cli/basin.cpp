@@ -17,6 +17,8 @@
 #include "tools/cli/commands.h"
 #include "tools/cli/network_sweep.h"
 #include "tools/cli/number_option.h"
+#include "tools/cli/sweep_point_run.h"
+#include "tools/cli/sweep_summary.h"
 #include "tools/report/basin_files.h"
 #include "tools/report/folder_lock.h"
 #include "tools/report/outputs.h"
@@ -35,10 +37,6 @@ constexpr size_t kMaxCornerKeys = 8;
 const std::vector<std::string>& basinFileNames() {
   static const std::vector<std::string> names = {"basin.csv", "basin.json", "basin.png"};
   return names;
-}
-
-std::string displayName(const SweepOptions& opt) {
-  return opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
 }
 
 // What is drawn and run, checked before any file is written.
@@ -142,10 +140,6 @@ std::map<long, BasinSample> runSamples(const BasinOptions& opt, BasinPlan& plan,
       },
       [] { return FileSink::stopRequested(); });
   return samples;
-}
-
-std::string modelTitle(const std::string& model) {
-  return model == "full" ? "full model" : "slow flow";
 }
 
 nlohmann::json basinJson(const BasinOptions& opt, const BasinPlan& plan,

@@ -1,0 +1,88 @@
+#include "tools/cli/sweep_summary.h"
+
+#include <time.h>
+
+#include <cstdio>
+
+#include "sim/record/atomic_file.h"
+#include "tools/report/sweep_maps.h"
+
+namespace metrosync::cli {
+
+double secondsSince(SweepClock::time_point t0) {
+  return std::chrono::duration<double>(SweepClock::now() - t0).count();
+}
+
+// CPU seconds of the calling thread (a point runs on one thread): on a shared machine the measure
+// of what a point costs, where wall time also counts the other processes.
+double threadCpuSeconds() {
+  timespec ts{};
+  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+std::string fmt(double v, const char* f) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string joined(const std::vector<std::string>& v, const std::string& sep) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
+  return s;
+}
+
+const char* modelTitle(const std::string& model) {
+  return model == "full" ? "full model" : "slow flow";
+}
+
+std::map<std::string, long> regimeCounts(const std::map<long, SweepPoint>& points) {
+  std::map<std::string, long> c;
+  for (const auto& [g, p] : points) ++c[p.regime];
+  return c;
+}
+
+std::string countsText(const std::map<long, SweepPoint>& points) {
+  const auto counts = regimeCounts(points);
+  std::string s;
+  for (const auto& name : regimeLegendOrder(points))
+    s += (s.empty() ? "" : ", ") + name + " " + std::to_string(counts.at(name));
+  return s.empty() ? "none yet" : s;
+}
+
+// "100 x 100 = 10000 points", "40 points"
+std::string gridText(const SweepGrid& grid) {
+  std::string s;
+  for (const auto& a : grid.axes()) s += (s.empty() ? "" : " x ") + std::to_string(a.count);
+  if (grid.axes().size() > 1) s += " = " + std::to_string(grid.size());
+  return s + (grid.size() == 1 ? " point" : " points");
+}
+
+std::string mapTitle(const SweepManifest& m) {
+  return m.rig_name + " - " + modelTitle(m.model) +
+         (m.model == "full" ? " (" + m.engine + ")" : "") + ", N = " + std::to_string(m.metronomes);
+}
+
+void writeSweepJson(const OutputDir& dir, const nlohmann::json& j) {
+  writeFileAtomically(dir.file("sweep.json"), j.dump(2) + "\n");
+}
+
+nlohmann::json statusJson(const SweepManifest& m, long shard_points,
+                          const std::map<long, SweepPoint>& points, bool complete) {
+  nlohmann::json j = m.toJson();
+  long failed = 0;
+  for (const auto& [g, p] : points) failed += !p.complete;
+  j["complete"] = complete;
+  j["points"] = {{"grid", m.grid.size()},
+                 {"this_run", shard_points},
+                 {"done", static_cast<long>(points.size())},
+                 {"failed", failed},
+                 {"missing", shard_points - static_cast<long>(points.size())}};
+  nlohmann::json counts = nlohmann::json::object();
+  for (const auto& [name, k] : regimeCounts(points)) counts[name] = k;
+  j["regimes"] = counts;
+  return j;
+}
+
+}  // namespace metrosync::cli
