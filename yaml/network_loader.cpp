@@ -113,7 +113,7 @@ void resolveOn(Network& net, const Node& list, const RigSource& src,
 }
 
 // Every platform's metronomes together within kMaxMetronomes (the engines couple them all), and
-// at least one of them swinging (the network's time scale is a swinging pendulum's).
+// in a network of several platforms at least one of them swinging.
 void checkNetworkSize(const Network& net, const Node& list, const RigSource& src) {
   std::size_t total = 0, swinging = 0;
   for (std::size_t i = 0; i < net.platforms.size(); ++i) {
@@ -125,7 +125,9 @@ void checkNetworkSize(const Network& net, const Node& list, const RigSource& src
                  " metronomes (at most " + std::to_string(kMaxMetronomes) +
                  " over all platforms, see docs/rig-limits.md)");
   }
-  if (swinging == 0)
+  // one platform with its metronomes locked is today's rig, a board on its springs (section 3A);
+  // a network of several needs a swinging pendulum for its time scale
+  if (swinging == 0 && net.platforms.size() > 1)
     failAt(src, list.at,
            "platforms: every metronome of the network is locked: nothing swings to simulate "
            "(unlock one: locked: false)");

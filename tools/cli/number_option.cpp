@@ -63,6 +63,20 @@ CLI::Option* addIntegerOf(CLI::App* app, const std::string& name, Int& target, l
       ->type_name("N");
 }
 
+// A real-valued option into `target` (a double, or an optional one).
+template <class Target>
+CLI::Option* addNumberOf(CLI::App* app, const std::string& name, Target& target, NumberRange range,
+                         const std::string& help) {
+  return app
+      ->add_option_function<std::string>(
+          name,
+          [&target, name, range](const std::string& text) {
+            target = parseNumberText(name, text, range);
+          },
+          help)
+      ->type_name("X");
+}
+
 }  // namespace
 
 double parseNumberText(const std::string& option, const std::string& text, NumberRange range) {
@@ -95,26 +109,12 @@ std::uint64_t parseUnsignedText(const std::string& option, const std::string& te
 
 CLI::Option* addNumber(CLI::App* app, const std::string& name, double& target, NumberRange range,
                        const std::string& help) {
-  return app
-      ->add_option_function<std::string>(
-          name,
-          [&target, name, range](const std::string& text) {
-            target = parseNumberText(name, text, range);
-          },
-          help)
-      ->type_name("X");
+  return addNumberOf(app, name, target, range, help);
 }
 
 CLI::Option* addNumber(CLI::App* app, const std::string& name, std::optional<double>& target,
                        NumberRange range, const std::string& help) {
-  return app
-      ->add_option_function<std::string>(
-          name,
-          [&target, name, range](const std::string& text) {
-            target = parseNumberText(name, text, range);
-          },
-          help)
-      ->type_name("X");
+  return addNumberOf(app, name, target, range, help);
 }
 
 CLI::Option* addInteger(CLI::App* app, const std::string& name, int& target, long long min,

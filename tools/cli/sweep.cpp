@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -37,12 +38,31 @@ std::string timingsPath(const OutputDir& dir) {
 }
 
 // What the run stage leaves: every point of this shard so far, in regimes.csv's text and as values.
+// What the run stage leaves in memory: counts only, whatever the number of points (the rows are
+// in regimes.csv, appended as they finish).
 struct SweepRun {
-  std::map<long, std::string> lines;
-  std::map<long, SweepPoint> points;
+  SweepTally tally;  // every point of this shard so far
   long finished_now = 0;
   int jobs = 1;
 };
+
+// What --resume found: the indices done (sorted), their tally, and where regimes.csv's whole
+// lines end; the rows themselves stay on disk.
+struct Resumed {
+  std::vector<long> done;
+  SweepTally tally;
+  RegimesTable table;  // complete_bytes and warnings; its rows dropped
+};
+
+Resumed resumed(RegimesTable table) {
+  Resumed r;
+  r.tally = tallyOf(table.points);
+  for (const auto& [g, line] : table.lines) r.done.push_back(g);  // ascending (a map)
+  table.lines.clear();
+  table.points.clear();
+  r.table = std::move(table);
+  return r;
+}
 
 // One point of the plan: its rig loaded here, in the worker, so that no list of the grid's rigs
 // is ever held.
@@ -84,33 +104,32 @@ std::optional<SweepPoint> runGridPoint(const SweepPlan& plan, const SweepOptions
 }
 
 SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir,
-                  const RegimesTable& table, bool resuming, const SweepScheduler& schedule) {
-  SweepRun run{table.lines, table.points};
-  writeSweepJson(dir, statusJson(plan.manifest, plan.mine, run.points, false));
+                  const Resumed& before, bool resuming, const SweepScheduler& schedule) {
+  const RegimesTable& table = before.table;
+  SweepRun run{before.tally};
+  writeSweepJson(dir, statusJson(plan.manifest, plan.mine, run.tally, false));
   const bool fresh = table.complete_bytes == 0;
   RegimesAppender regimes(plan.regimes_path, regimesHeader(plan.grid, plan.n), fresh,
                           table.complete_bytes);
   const size_t timing_bytes = resuming ? resumableTimingsBytes(timingsPath(dir)) : 0;
   RegimesAppender timings(timingsPath(dir), timingsHeader(), timing_bytes == 0, timing_bytes);
   SweepProgress progress(!opt.quiet && ::isatty(2), ProgressLog::wanted(opt.quiet), plan.mine,
-                         static_cast<long>(run.points.size()));
+                         run.tally.done);
   std::optional<EnvelopeStore> store;  // --keep envelope
-  if (opt.keep == "envelope") {
-    std::set<long> done;  // resumed points keep their rows; the others run again
-    for (const auto& [g, line] : table.lines) done.insert(g);
-    store.emplace(dir.file(kEnvelopeStoreName), plan.n, !resuming, done);
-  }
+  if (opt.keep == "envelope")          // resumed points keep their rows; the others run again
+    store.emplace(dir.file(kEnvelopeStoreName), plan.n, !resuming,
+                  std::set<long>(before.done.begin(), before.done.end()));
+  auto wanted = [&](long g) {
+    return plan.shard.contains(g) && !std::binary_search(before.done.begin(), before.done.end(), g);
+  };
   run.jobs = schedule(
-      plan.grid.size(), [&](long g) { return plan.shard.contains(g) && !table.lines.count(g); },
-      opt.jobs, [&](long g) { return runGridPoint(plan, opt, g); },
+      plan.grid.size(), wanted, opt.jobs, [&](long g) { return runGridPoint(plan, opt, g); },
       [&](const SweepPoint& p) {
         if (store) store->append(p.index, p.kept_rows);  // before its row: a row has its rows
         const std::string line = formatRegimesRow(plan.grid, p);
         regimes.append(line);
         timings.append(formatTimingsRow(p));
-        run.lines[p.index] = line;
-        run.points[p.index] = p;
-        run.points[p.index].kept_rows.clear();
+        run.tally.add(p);
         progress.finished(!p.complete);
         ++run.finished_now;
         if (faultHooks().after_row) faultHooks().after_row(run.finished_now);
@@ -132,13 +151,47 @@ void printSweepSummary(const SweepPlan& plan, const SweepRun& run, const OutputD
             << (shard.n > 1
                     ? ", shard " + shard.text() + ": " + std::to_string(plan.mine) + " of them"
                     : "")
-            << "; " << run.points.size() << " done (" << run.finished_now << " now, " << before
+            << "; " << run.tally.done << " done (" << run.finished_now << " now, " << before
             << " before), " << failed << " failed\n"
-            << "  regimes: " << countsText(run.points) << "\n"
+            << "  regimes: " << countsText(run.tally) << "\n"
             << "  wall time " << fmt(wall_s, "%.3g") << " s on "
             << (plan.ranks > 1 ? std::to_string(plan.ranks) + " MPI ranks x " : "") << run.jobs
             << (run.jobs == 1 ? " thread" : " threads") << "\n"
             << "files: " << dir.path() << "/ (" << joined(files) << ")\n";
+}
+
+// The finish: regimes.csv sorted (in bounded passes), the maps from it, sweep.json; returns
+// sweep.json's status.
+nlohmann::json finishSweep(const SweepOptions& opt, const SweepPlan& plan, const SweepRun& run,
+                           const OutputDir& dir, bool interrupted, int ranks) {
+  const bool complete = run.tally.done == plan.mine;
+  sortRegimesCsv(plan.regimes_path, plan.grid, plan.n,
+                 [&](long g) { return plan.shard.contains(g); });
+  std::vector<std::string> files = {"regimes.csv", "timings.csv"};
+  std::vector<continuation::FoldCurve> curves;
+  if (opt.boundaries && complete && !interrupted) {
+    curves = mapBoundaries(opt, plan);
+    writeFileAtomically(dir.file("boundaries.csv"),
+                        boundariesCsv(curves, plan.grid.axes()[0].key, plan.grid.axes()[1].key));
+    files.push_back("boundaries.csv");
+  }
+  if (!opt.no_plot && plan.grid.size() <= kMaxMapCells) {
+    // the maps' points read back from regimes.csv: at most kMaxMapCells, only while drawing
+    const std::map<long, SweepPoint> points =
+        readRegimesCsv(plan.regimes_path, plan.grid, plan.n).points;
+    for (const auto& f : plotSweepMaps(dir, plan.grid, plan.n, points, mapTitle(plan.manifest),
+                                       opt.plot_format, curves, plan.map_axes))
+      files.push_back(f);
+  }
+  files.push_back("sweep.json");
+  nlohmann::json status = statusJson(plan.manifest, plan.mine, run.tally, complete);
+  status["jobs"] = run.jobs;
+  if (ranks > 1) status["mpi_ranks"] = ranks;  // tools/cli/sweep_mpi.h
+  status["points"]["run_now"] = run.finished_now;
+  status["interrupted"] = interrupted;
+  status["files"] = files;
+  if (opt.boundaries) status["boundaries"] = boundariesJson(curves);
+  return status;
 }
 
 int sweepImpl(const SweepOptions& opt, const SweepScheduler& schedule, int ranks) {
@@ -152,6 +205,7 @@ int sweepImpl(const SweepOptions& opt, const SweepScheduler& schedule, int ranks
   RegimesTable table = resumeTable(opt, plan, resuming);
   if (resuming && opt.keep == "envelope")
     dropPointsWithoutEnvelopes(table, plan.path + "/" + kEnvelopeStoreName);
+  const Resumed before = resumed(std::move(table));
 
   // from here on files are written
   installStopHandlers();
@@ -160,44 +214,23 @@ int sweepImpl(const SweepOptions& opt, const SweepScheduler& schedule, int ranks
   if (!lock->takenOver().empty())
     std::cerr << "metrosync: note: took over the lock of " << plan.path
               << " from an ended process (" << lock->takenOver() << ")\n";
-  for (const auto& w : table.warnings) std::cerr << "metrosync: warning: " << w << "\n";
-  const SweepRun run = runSweep(opt, plan, dir, table, resuming, schedule);
+  for (const auto& w : before.table.warnings) std::cerr << "metrosync: warning: " << w << "\n";
+  const SweepRun run = runSweep(opt, plan, dir, before, resuming, schedule);
 
   const bool interrupted = FileSink::stopRequested();
-  const bool complete = static_cast<long>(run.points.size()) == plan.mine;
-  writeSortedRegimesCsv(plan.regimes_path, plan.grid, plan.n, run.lines);
-  std::vector<std::string> files = {"regimes.csv", "timings.csv"};
-  std::vector<continuation::FoldCurve> curves;
-  if (opt.boundaries && complete && !interrupted) {
-    curves = mapBoundaries(opt, plan);
-    writeFileAtomically(dir.file("boundaries.csv"),
-                        boundariesCsv(curves, plan.grid.axes()[0].key, plan.grid.axes()[1].key));
-    files.push_back("boundaries.csv");
-  }
-  if (!opt.no_plot)
-    for (const auto& f : plotSweepMaps(dir, plan.grid, plan.n, run.points, mapTitle(plan.manifest),
-                                       opt.plot_format, curves, plan.map_axes))
-      files.push_back(f);
-  files.push_back("sweep.json");
-  nlohmann::json status = statusJson(plan.manifest, plan.mine, run.points, complete);
-  status["jobs"] = run.jobs;
-  if (ranks > 1) status["mpi_ranks"] = ranks;  // tools/cli/sweep_mpi.h
+  nlohmann::json status = finishSweep(opt, plan, run, dir, interrupted, ranks);
   status["wall_seconds"] = secondsSince(t_start);
-  status["points"]["run_now"] = run.finished_now;
-  status["interrupted"] = interrupted;
-  status["files"] = files;
-  if (opt.boundaries) status["boundaries"] = boundariesJson(curves);
   writeSweepJson(dir, status);
-
-  const long failed = status["points"]["failed"].get<long>();
-  const long before = static_cast<long>(table.lines.size());
-  if (!opt.quiet) printSweepSummary(plan, run, dir, files, failed, before, secondsSince(t_start));
+  const long failed = run.tally.failed;
+  if (!opt.quiet)
+    printSweepSummary(plan, run, dir, status["files"].get<std::vector<std::string>>(), failed,
+                      before.tally.done, secondsSince(t_start));
   if (failed > 0)
     std::cerr << "metrosync: warning: " << failed
               << " grid points failed (regime 'failed', the reason in the message column of "
               << plan.regimes_path << ")\n";
   if (interrupted) {
-    std::cerr << "metrosync: error: interrupted by a signal with " << run.points.size() << " of "
+    std::cerr << "metrosync: error: interrupted by a signal with " << run.tally.done << " of "
               << plan.mine << " points done; continue with the same command and --resume\n";
     return kSimulationFailed;
   }

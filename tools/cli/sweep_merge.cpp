@@ -100,7 +100,7 @@ int mergeImpl(const SweepOptions& opt) {
     files.push_back(f);
   files.push_back("sweep.json");
   const bool complete = static_cast<long>(points.size()) == grid.size();
-  nlohmann::json status = statusJson(merged, grid.size(), points, complete);
+  nlohmann::json status = statusJson(merged, grid.size(), tallyOf(points), complete);
   status["sources"] = opt.dirs;
   status["files"] = files;
   writeSweepJson(dir, status);
@@ -109,8 +109,8 @@ int mergeImpl(const SweepOptions& opt) {
   if (!opt.quiet)
     std::cout << "merged " << opt.dirs.size() << " sweep directories of " << merged.rig_name << " ("
               << modelTitle(merged.model) << "): " << points.size() << " of " << grid.size()
-              << " points\n  regimes: " << countsText(points) << "\nfiles: " << dir.path() << "/ ("
-              << joined(files) << ")\n";
+              << " points\n  regimes: " << countsText(tallyOf(points)) << "\nfiles: " << dir.path()
+              << "/ (" << joined(files) << ")\n";
   if (missing > 0)
     std::cerr << "metrosync: warning: " << missing
               << " grid points are in none of the directories (white in the maps; sweep.json "

@@ -37,17 +37,22 @@ const char* modelTitle(const std::string& model) {
   return model == "full" ? "full model" : "slow flow";
 }
 
-std::map<std::string, long> regimeCounts(const std::map<long, SweepPoint>& points) {
-  std::map<std::string, long> c;
-  for (const auto& [g, p] : points) ++c[p.regime];
-  return c;
+void SweepTally::add(const SweepPoint& p) {
+  ++done;
+  failed += !p.complete;
+  ++regimes[p.regime];
 }
 
-std::string countsText(const std::map<long, SweepPoint>& points) {
-  const auto counts = regimeCounts(points);
+SweepTally tallyOf(const std::map<long, SweepPoint>& points) {
+  SweepTally t;
+  for (const auto& [g, p] : points) t.add(p);
+  return t;
+}
+
+std::string countsText(const SweepTally& tally) {
   std::string s;
-  for (const auto& name : regimeLegendOrder(points))
-    s += (s.empty() ? "" : ", ") + name + " " + std::to_string(counts.at(name));
+  for (const auto& name : regimeLegendOrder(tally.regimes))
+    s += (s.empty() ? "" : ", ") + name + " " + std::to_string(tally.regimes.at(name));
   return s.empty() ? "none yet" : s;
 }
 
@@ -68,19 +73,17 @@ void writeSweepJson(const OutputDir& dir, const nlohmann::json& j) {
   writeFileAtomically(dir.file("sweep.json"), j.dump(2) + "\n");
 }
 
-nlohmann::json statusJson(const SweepManifest& m, long shard_points,
-                          const std::map<long, SweepPoint>& points, bool complete) {
+nlohmann::json statusJson(const SweepManifest& m, long shard_points, const SweepTally& tally,
+                          bool complete) {
   nlohmann::json j = m.toJson();
-  long failed = 0;
-  for (const auto& [g, p] : points) failed += !p.complete;
   j["complete"] = complete;
   j["points"] = {{"grid", m.grid.size()},
                  {"this_run", shard_points},
-                 {"done", static_cast<long>(points.size())},
-                 {"failed", failed},
-                 {"missing", shard_points - static_cast<long>(points.size())}};
+                 {"done", tally.done},
+                 {"failed", tally.failed},
+                 {"missing", shard_points - tally.done}};
   nlohmann::json counts = nlohmann::json::object();
-  for (const auto& [name, k] : regimeCounts(points)) counts[name] = k;
+  for (const auto& [name, k] : tally.regimes) counts[name] = k;
   j["regimes"] = counts;
   return j;
 }

@@ -22,12 +22,20 @@ std::string fmt(double v, const char* f = "%.4g");
 std::string joined(const std::vector<std::string>& v, const std::string& sep = ", ");
 const char* modelTitle(const std::string& model);  // "full model", "slow flow"
 
-std::map<std::string, long> regimeCounts(const std::map<long, SweepPoint>& points);
-std::string countsText(const std::map<long, SweepPoint>& points);  // "in-phase 3, antiphase 1"
-std::string gridText(const SweepGrid& grid);                       // "100 x 100 = 10000 points"
+// What a sweep has done, without its rows (those are in regimes.csv, on disk): the memory of a
+// sweep does not grow with its points (issue 29).
+struct SweepTally {
+  long done = 0, failed = 0;
+  std::map<std::string, long> regimes;  // points per regime
+  void add(const SweepPoint& p);
+};
+SweepTally tallyOf(const std::map<long, SweepPoint>& points);
+
+std::string countsText(const SweepTally& tally);  // "in-phase 3, antiphase 1"
+std::string gridText(const SweepGrid& grid);      // "100 x 100 = 10000 points"
 std::string mapTitle(const SweepManifest& m);
 void writeSweepJson(const OutputDir& dir, const nlohmann::json& j);
-nlohmann::json statusJson(const SweepManifest& m, long shard_points,
-                          const std::map<long, SweepPoint>& points, bool complete);
+nlohmann::json statusJson(const SweepManifest& m, long shard_points, const SweepTally& tally,
+                          bool complete);
 
 }  // namespace metrosync::cli

@@ -11,8 +11,10 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 
@@ -247,6 +249,65 @@ RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int 
     }
   }
   return t;
+}
+
+namespace {
+
+// One pass of sortRegimesCsv: the rows of the smallest indices >= `from` that fit in
+// `pass_bytes` (the last row of an index wins); `whole`: every such row fitted.
+std::map<long, std::string> sortPass(const std::string& path, const SweepGrid& grid, int n,
+                                     const std::function<bool(long)>& keep, long from,
+                                     std::size_t pass_bytes, bool& whole) {
+  std::map<long, std::string> rows;
+  std::size_t bytes = 0;
+  whole = true;
+  const int fd = openRegularForReading(path);
+  if (fd < 0) return rows;
+  std::FILE* f = ::fdopen(fd, "r");
+  char* buf = nullptr;
+  std::size_t cap = 0;
+  bool header = true;
+  for (ssize_t len; (len = ::getline(&buf, &cap, f)) > 0;) {
+    if (header || buf[len - 1] != '\n') {  // the header; a last line cut short
+      header = false;
+      continue;
+    }
+    const std::string line(buf, static_cast<std::size_t>(len - 1));
+    long g = -1;
+    try {
+      g = parseRegimesRow(grid, n, line).index;
+    } catch (const SweepInputError&) {
+      continue;  // malformed: dropped (--resume warned when it read the file)
+    }
+    if (g < from || !keep(g) || (!whole && g > rows.rbegin()->first)) continue;
+    std::string& slot = rows[g];
+    bytes += line.size() - slot.size();
+    slot = line;
+    while (bytes > pass_bytes && rows.size() > 1) {  // the largest indices wait for a later pass
+      bytes -= rows.rbegin()->second.size();
+      rows.erase(std::prev(rows.end()));
+      whole = false;
+    }
+  }
+  std::free(buf);
+  std::fclose(f);
+  return rows;
+}
+
+}  // namespace
+
+void sortRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
+                    const std::function<bool(long)>& keep, std::size_t pass_bytes) {
+  AtomicFile out(path);
+  out.writeLine(regimesHeader(grid, n));
+  for (long from = 0;;) {
+    bool whole = true;
+    const std::map<long, std::string> rows = sortPass(path, grid, n, keep, from, pass_bytes, whole);
+    for (const auto& [g, line] : rows) out.writeLine(line);
+    if (whole || rows.empty()) break;
+    from = rows.rbegin()->first + 1;
+  }
+  out.commit();
 }
 
 void writeSortedRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
