@@ -17,6 +17,7 @@
 #include "tools/cli/commands.h"
 #include "tools/cli/network_sweep.h"
 #include "tools/cli/number_option.h"
+#include "tools/cli/option_keys.h"
 #include "tools/cli/sweep_point_run.h"
 #include "tools/cli/sweep_summary.h"
 #include "tools/report/basin_files.h"
@@ -97,19 +98,17 @@ BasinPlan planBasin(const BasinOptions& opt) {
   if (opt.random.empty()) throw UsageError("basin: give at least one --random KEY=FROM:TO");
   if (opt.samples < 1) throw UsageError("basin: give --samples S");  // parsed by its rule
   BasinPlan plan;
-  for (const auto& r : opt.random) {
-    plan.keys.push_back(parseRandom(r));
-    for (size_t k = 0; k + 1 < plan.keys.size(); ++k)  // as sweep's --vary pairs
-      if (keysOverlap(plan.keys[k].key, plan.keys.back().key))
-        throw UsageError("--random " + plan.keys[k].key + " and --random " + plan.keys.back().key +
-                         (plan.keys[k].key == plan.keys.back().key ? ": the key is given twice"
-                                                                   : ": both set the same key"));
-  }
   plan.text = opt.run.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.run.rig_path);
-  const std::optional<Network> net =
-      loadSweepNetwork(plan.text, displayName(opt.run), opt.run.sets);
-  const Rig base =
-      net ? networkSweepRig(*net) : loadRigText(plan.text, displayName(opt.run), opt.run.sets);
+  const std::string name = displayName(opt.run);
+  const std::optional<Network> net = loadSweepNetwork(plan.text, name, opt.run.sets);
+  const Rig base = net ? networkSweepRig(*net) : loadRigText(plan.text, name, opt.run.sets);
+  // the keys resolved against the rig (docs/keys.md), no two setting one rig key
+  std::vector<OptionKey> keys;
+  for (const auto& r : opt.random)
+    keys.push_back(resolveOptionKey({plan.text, name, opt.run.sets}, "--random", r, true));
+  refuseSharedKeys(keys);
+  for (size_t i = 0; i < keys.size(); ++i)
+    plan.keys.push_back(parseRandom(opt.random[i], isPhaseName(keys[i].key.key.leaf())));
   plan.n = static_cast<int>(base.metronomes.size());
   plan.rig_name = base.name;
   checkCorners(opt, plan);

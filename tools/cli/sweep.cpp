@@ -70,7 +70,7 @@ std::optional<SweepPoint> runGridPointUntimed(const SweepPlan& plan, const Sweep
                                               long g) {
   std::optional<PointInput> in;
   try {
-    in = loadPoint(plan.text, opt, plan.grid, g, plan.n);
+    in = loadPoint(plan.text, opt, plan.grid, g);
   } catch (const std::exception& e) {
     return unloadablePoint(g, plan.n, e.what());
   }

@@ -5,6 +5,7 @@
 #include "tools/cli/commands.h"
 #include "tools/cli/continue.h"
 #include "tools/cli/network_sweep.h"
+#include "tools/cli/option_keys.h"
 #include "tools/cli/sweep_point_run.h"
 #include "tools/report/outputs.h"
 #include "yaml/network_loader.h"
@@ -48,7 +49,7 @@ const Engine* checkGrid(const SweepPlan& plan, const SweepOptions& opt) {
   }
   const Engine* engine = nullptr;
   for (long g : probes) {
-    const PointInput in = loadPoint(plan.text, opt, plan.grid, g, plan.n);
+    const PointInput in = loadPoint(plan.text, opt, plan.grid, g);
     if (static_cast<int>(in.rig.metronomes.size()) != plan.n)
       throw UsageError("--vary changes the number of metronomes at grid point " +
                        std::to_string(g));
@@ -78,21 +79,30 @@ void checkBoundaries(const SweepOptions& opt, const SweepPlan& plan) {
   }
 }
 
-// --basin-samples S --random ... [--seed N]: the keys drawn at every point, kept in the grid (the
-// manifest) so that --resume and merge check them. Throws UsageError.
-std::vector<RandomKey> planPointBasin(const SweepOptions& opt, SweepGrid& grid) {
+// The --vary and --random keys resolved against the rig (docs/keys.md), in that order: a bad key
+// stops here with the same words as a --set of it, and so do two options that set one rig key.
+std::vector<OptionKey> sweepKeys(const SweepOptions& opt, const std::string& text) {
+  const std::string name = displayName(opt);
+  const KeyedRig rig{text, name, opt.sets};
+  std::vector<OptionKey> keys;
+  for (const auto& v : opt.vary) keys.push_back(resolveOptionKey(rig, "--vary", v, true));
+  for (const auto& r : opt.random) keys.push_back(resolveOptionKey(rig, "--random", r, true));
+  refuseSharedKeys(keys);
+  return keys;
+}
+
+// --basin-samples S --random ... [--seed N]: the keys drawn at every point (`resolved`: those of
+// sweepKeys), kept in the grid (the manifest) so that --resume and merge check them. Throws
+// UsageError.
+std::vector<RandomKey> planPointBasin(const SweepOptions& opt, SweepGrid& grid,
+                                      const std::vector<OptionKey>& resolved) {
   if (opt.basin_samples == 0 && opt.random.empty()) return {};
   if (opt.basin_samples < 1 || opt.random.empty())
     throw UsageError("--basin-samples S (S >= 1) and --random KEY=FROM:TO go together");
   std::vector<RandomKey> keys;
-  for (const auto& r : opt.random) {
-    keys.push_back(parseRandom(r));
-    for (const auto& a : grid.axes())
-      if (keysOverlap(a.key, keys.back().key))
-        throw UsageError("--random " + r + ": " + a.key + " is also a --vary key");
-    for (size_t k = 0; k + 1 < keys.size(); ++k)
-      if (keysOverlap(keys[k].key, keys.back().key))
-        throw UsageError("--random " + r + ": --random " + keys[k].key + " sets the same key");
+  for (size_t i = 0; i < opt.random.size(); ++i) {
+    const RigKey& k = resolved[opt.vary.size() + i].key;
+    keys.push_back(parseRandom(opt.random[i], isPhaseName(k.key.leaf())));
   }
   grid.setBasin({opt.basin_samples, opt.seed, opt.random});
   return keys;
@@ -122,13 +132,13 @@ SweepPlan planSweep(const SweepOptions& opt) {
   for (const auto& v : opt.vary) axes.push_back(parseVary(v));
   SweepPlan plan;
   plan.grid = SweepGrid(std::move(axes), opt.force ? kMaxForcedGridPoints : kMaxGridPoints);
-  plan.random = planPointBasin(opt, plan.grid);
   plan.map_axes = mapAxes(plan.grid, opt.map);
   plan.shard = opt.shard.empty() ? SweepShard{} : parseShard(opt.shard);
-  // the rig, and every grid point's rig: a bad key or value stops here, before any file
+  // the rig, its keys, and every grid point's rig: a bad key or value stops here, before any file
   plan.text = readRigText(opt);
   const std::optional<Network> net = loadSweepNetwork(plan.text, displayName(opt), opt.sets);
   plan.base = net ? networkSweepRig(*net) : loadRigText(plan.text, displayName(opt), opt.sets);
+  plan.random = planPointBasin(opt, plan.grid, sweepKeys(opt, plan.text));
   plan.n = static_cast<int>(plan.base.metronomes.size());
   if (net && !opt.keep.empty())
     throw UsageError("--keep envelope: not for a network of platforms (docs/sweep-points.md)");
@@ -141,7 +151,7 @@ SweepPlan planSweep(const SweepOptions& opt) {
       const double v = high ? r.to : r.from;
       point.push_back(r.key + "=" + sweepValueText(r.angle ? wrapToTwoPi(v) : v));
     }
-    loadPointRig(plan.text, opt, point, plan.n,
+    loadPointRig(plan.text, opt, point,
                  "grid point 0 with --random at " + std::string(high ? "TO" : "FROM"), "--random");
   }
   SweepManifest& m = plan.manifest;

@@ -81,11 +81,10 @@ std::string displayName(const SweepOptions& opt) {
 // "metronomes.*.REST" set at each of the n metronomes); checked like `run` checks its rig.
 // `where` names the point ("grid point 12 (...)"); throws RigError naming it.
 PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
-                        const std::vector<std::string>& point, int n, const std::string& where,
+                        const std::vector<std::string>& point, const std::string& where,
                         const std::string& source) {
   std::vector<std::string> overrides = opt.sets;
-  const std::vector<std::string> expanded = expandSweepOverrides(point, n);
-  overrides.insert(overrides.end(), expanded.begin(), expanded.end());
+  overrides.insert(overrides.end(), point.begin(), point.end());
   PointInput in;
   try {
     if (isNetworkRig(text)) in.net = loadSweepNetwork(text, displayName(opt), overrides);
@@ -93,13 +92,10 @@ PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
   } catch (const RigError& e) {
     // the loader calls every override --set; the point's own ones come from --vary
     std::string what = e.what();
-    for (const auto& o : expanded)
+    for (const auto& o : point)
       for (size_t at = what.find("--set " + o); at != std::string::npos;
            at = what.find("--set " + o, at))
         what.replace(at, 6 + o.size(), source + " " + o);
-    for (const auto& o : point)
-      if (isWildcardKey(o.substr(0, o.find('='))))
-        what += "\n  (from the wildcard --vary " + o.substr(0, o.find('=')) + ")";
     throw RigError(what + "\n  at " + where);
   }
   if (in.net) {  // docs/networks.md
@@ -117,9 +113,9 @@ PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
 }
 
 PointInput loadPoint(const std::string& text, const SweepOptions& opt, const SweepGrid& grid,
-                     long g, int n) {
+                     long g) {
   const std::vector<std::string> point = grid.overrides(g);
-  return loadPointRig(text, opt, point, n,
+  return loadPointRig(text, opt, point,
                       "grid point " + std::to_string(g) + " (" + joined(point) + ") of the sweep");
 }
 
@@ -200,7 +196,7 @@ std::pair<std::string, std::string> checkSweepPoint(const std::string& rig_text,
                                                     const SweepOptions& opt,
                                                     const std::vector<std::string>& point, int n,
                                                     const std::string& where) {
-  const PointInput in = loadPointRig(rig_text, opt, point, n, where, "the drawn");
+  const PointInput in = loadPointRig(rig_text, opt, point, where, "the drawn");
   if (static_cast<int>(in.rig.metronomes.size()) != n)
     throw UsageError(joined(point) + " changes the number of metronomes (at " + where + ")");
   return {in.engine->model(), in.engine->name()};
@@ -211,7 +207,7 @@ std::optional<SweepPoint> runSweepPointAt(const std::string& rig_text, const Swe
                                           long index) {
   std::optional<PointInput> in;
   try {
-    in = loadPointRig(rig_text, opt, point, n, "point " + std::to_string(index));
+    in = loadPointRig(rig_text, opt, point, "point " + std::to_string(index));
   } catch (const std::exception& e) {
     return unloadablePoint(index, n, e.what());
   }

@@ -27,16 +27,15 @@ struct PointInput {
   std::optional<Network> net;      // a network of platforms (tools/cli/network_sweep.h)
 };
 
-// The rig of one point: the base rig, --set, then the point's KEY=VALUE (a wildcard key
-// "metronomes.*.REST" set at each of the n metronomes); checked like `run` checks its rig.
-// `where` names the point ("grid point 12 (...)"), `source` what set its values; throws RigError
-// naming them.
+// The rig of one point: the base rig, --set, then the point's KEY=VALUE (keys as the user typed
+// them: the loader resolves them, docs/keys.md); checked like `run` checks its rig. `where` names
+// the point ("grid point 12 (...)"), `source` what set its values; throws RigError naming them.
 PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
-                        const std::vector<std::string>& point, int n, const std::string& where,
+                        const std::vector<std::string>& point, const std::string& where,
                         const std::string& source = "--vary point");
 // ... grid point g.
 PointInput loadPoint(const std::string& text, const SweepOptions& opt, const SweepGrid& grid,
-                     long g, int n);
+                     long g);
 
 // Runs one point: its row, or nullopt when a stop request interrupted it; a failed run is a row
 // of regime "failed" with the reason. keep: its envelope rows too (--keep envelope).
