@@ -223,7 +223,9 @@ TEST(NumberOptions, FuzzEveryNumericOptionOfEveryCommand) {
       const double v = std::strtod(value.c_str(), &end);
       EXPECT_TRUE(!value.empty() && *end == '\0' && std::isfinite(v))
           << o.name << " accepted '" << value << "'";
-      if (o.integer) EXPECT_EQ(value.find_first_of(".eExX"), std::string::npos) << value;
+      if (o.integer) {
+        EXPECT_EQ(value.find_first_of(".eExX"), std::string::npos) << value;
+      }
       continue;
     }
     ++refused;
