@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 namespace metrosync {
 
@@ -17,22 +16,16 @@ GroupLocking groupLocking(const RegimeWindow& w, const std::vector<int>& alive) 
   GroupLocking g;
   g.alive = static_cast<int>(idx.size());
   g.all_locked = true;
-  // clusters: connected groups of locked pairs (union-find over the alive metronomes)
-  std::vector<size_t> parent(idx.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&parent](size_t a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  };
+  // each alive metronome with those locked to it (itself included); the largest such set
+  std::vector<int> locked_to(idx.size(), 1);
   for (size_t a = 0; a < idx.size(); ++a)
     for (size_t b = a + 1; b < idx.size(); ++b) {
       const bool locked = w.pairRange(idx[a], idx[b]) < NetworkRules::kLocked;
       g.all_locked = g.all_locked && locked;
-      if (locked) parent[root(a)] = root(b);
+      locked_to[a] += locked;
+      locked_to[b] += locked;
     }
-  std::vector<int> size(idx.size(), 0);
-  for (size_t a = 0; a < idx.size(); ++a) ++size[root(a)];
-  g.largest_cluster = idx.empty() ? 0 : *std::max_element(size.begin(), size.end());
+  g.largest_locked = idx.empty() ? 0 : *std::max_element(locked_to.begin(), locked_to.end());
   return g;
 }
 

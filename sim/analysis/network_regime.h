@@ -4,12 +4,12 @@
 //
 // Locking. Two phases are locked over the window when their unwrapped difference varies by less
 // than NetworkRules::kLocked (max - min over the window), whatever the difference is: a pair in
-// antiphase is as locked as a pair in phase. Within a platform (a group) the alive metronomes
-// (RegimeVerdict::alive: A_i above theta_c,i somewhere in the window) form locked clusters: the
-// connected groups of locked pairs (single linkage). A group is
+// antiphase is as locked as a pair in phase. Within a platform (a group), among its alive
+// metronomes (RegimeVerdict::alive: A_i above theta_c,i somewhere in the window), a group is
 //   coherent    at least one alive metronome, and every pair of its alive metronomes locked;
-//   incoherent  at least two alive metronomes, and no locked cluster holds more than
-//               NetworkRules::kIncoherentShare of them (its metronomes drift against each other).
+//   incoherent  at least two alive metronomes, and none of them is locked to more than
+//               NetworkRules::kIncoherentShare of them, itself included (its metronomes drift
+//               against each other, with no locked majority).
 // A group can be neither (most locked, a few drifting; or every pair near the tolerance).
 //
 // With r_g the mean of group g's Kuramoto r over the window and dPhi_g the unwrapped
@@ -42,19 +42,20 @@ struct NetworkRules {
   // two swings of 15 (docs/regimes.md); a pair that slips by a twelfth of a cycle over the
   // window is not locked. The same bound holds the groups' mean phases to each other.
   static constexpr double kLocked = 0.5;
-  // incoherent: no locked cluster holds more than this share of a group's alive metronomes (no
-  // synchronized majority; a group with a few solitary drifters is not incoherent)
+  // incoherent: no alive metronome is locked to more than this share of its group's alive
+  // metronomes, itself included (no locked majority: a few solitary drifters beside a locked
+  // majority do not make a group incoherent)
   static constexpr double kIncoherentShare = 0.5;
 };
 
 // How one group's alive metronomes hold together over the window.
 struct GroupLocking {
   int alive = 0;            // alive swinging metronomes
-  int largest_cluster = 0;  // alive metronomes in the largest locked cluster
+  int largest_locked = 0;   // the most alive metronomes locked to one of them (itself included)
   bool all_locked = false;  // every pair of alive metronomes locked (true for one alive)
   bool coherent() const { return alive >= 1 && all_locked; }
   bool incoherent() const {
-    return alive >= 2 && largest_cluster <= NetworkRules::kIncoherentShare * alive;
+    return alive >= 2 && largest_locked <= NetworkRules::kIncoherentShare * alive;
   }
 };
 

@@ -149,6 +149,10 @@ TEST(NetworkLabel, ChimeraNeedsAnIncoherentGroupBesideALockedOne) {
               return g == 0 ? w0 * t : i < 7 ? w0 * t : i < 14 ? (w0 + 0.5) * t : drifting(i, t);
             }),
             "chimera");
+  // frequencies spread evenly: each metronome locked to its neighbours only (0.4 rad over the
+  // window), the rest drifting: incoherent, though a chain of locked pairs runs through the group
+  EXPECT_EQ(label([&](int g, int i, double t) { return g == 0 ? w0 * t : (w0 + 0.08 * i) * t; }),
+            "chimera");
   // a single alive metronome is no synchronous part: the other group drifts, no chimera
   EXPECT_EQ(label([&](int g, int i, double t) { return g == 0 ? w0 * t : drifting(i, t); },
                   [](int g, int i) { return g == 0 && i > 0; }),
