@@ -38,9 +38,10 @@ struct NetworkRules {
   static constexpr double kCoherent = 0.9;
   // locked: a phase difference varies by less than this over the window (rad). A locked pair's
   // difference still wobbles within each period (phases from theta = A sin phi with the
-  // pendulum's own small-angle frequency, ticks, the board's motion): 0.05-0.074 rad measured on
-  // two swings of 15 (docs/regimes.md); a pair that slips by a twelfth of a cycle over the
-  // window is not locked. The same bound holds the groups' mean phases to each other.
+  // pendulum's own small-angle frequency, ticks, the board's motion): 0.151 rad for the
+  // near-antiphase pair of two-boards-rollers.yaml, 0.049-0.066 rad for pairs locked at scattered
+  // phases (chimera-swings.yaml at k = 0; docs/regimes.md). A pair that slips by a twelfth of a
+  // cycle over the window is not locked. The same bound holds the groups' mean phases together.
   static constexpr double kLocked = 0.5;
   // incoherent: no alive metronome is locked to more than this share of its group's alive
   // metronomes, itself included (no locked majority: a few solitary drifters beside a locked
