@@ -232,7 +232,12 @@ std::string workPrecisionBlocks(const std::vector<Record>& records, bool final_s
   return data.str();
 }
 
-std::string curveStyle(const std::string& label) {
+// Point type and dash by engine; the colour by the label's place among all labels, so that a
+// method has the same colour in both panels.
+std::string curveStyle(const std::string& label, const std::vector<std::string>& all) {
+  static const char* const kColours[] = {"#9400d3", "#009e73", "#56b4e9", "#e69f00",
+                                         "#d55e00", "#0072b2", "#cc79a7", "#000000"};
+  const size_t k = std::find(all.begin(), all.end(), label) - all.begin();
   const bool siconos = label.rfind("siconos", 0) == 0;
   const bool direct = label.rfind("direct", 0) == 0;
   const bool peer = label.rfind("peer", 0) == 0;
@@ -245,24 +250,19 @@ std::string curveStyle(const std::string& label) {
          (siconos  ? "2"
           : direct ? "1"
           : peer   ? "3"
-                   : "4");
+                   : "4") +
+         " lc rgb '" + kColours[k % (sizeof kColours / sizeof kColours[0])] + "'";
 }
 
-// One panel: the blocks from `first` on, a dotted line at the reference's cross-check distance.
+// One panel: the blocks from `first` on.
 std::string workPrecisionPanel(const std::vector<std::string>& titles, size_t first,
-                               const std::string& xlabel, const std::string& ylabel,
-                               double floor_err) {
+                               const std::vector<std::string>& all, const std::string& xlabel,
+                               const std::string& ylabel) {
   std::ostringstream gp;
-  gp << "set xlabel " << gq(xlabel) << "\nset ylabel " << gq(ylabel) << "\nunset arrow\n"
-     << "unset label\n";
-  if (floor_err > 0)
-    gp << "set arrow from " << floor_err << ", graph 0 to " << floor_err
-       << ", graph 1 nohead dt 3 lc 'gray'\nset label 'reference cross-check' at " << floor_err
-       << ", graph 0.97 right offset -0.5,0 textcolor 'gray'\n";
-  gp << "plot ";
+  gp << "set xlabel " << gq(xlabel) << "\nset ylabel " << gq(ylabel) << "\nplot ";
   for (size_t k = 0; k < titles.size(); ++k)
     gp << (k ? ", " : "") << "@DATA@ index " << first + k << " using 1:2 with linespoints lw 2"
-       << curveStyle(titles[k]) << " title " << gq(titles[k]);
+       << curveStyle(titles[k], all) << " title " << gq(titles[k]);
   gp << "\n";
   return gp.str();
 }
@@ -275,29 +275,22 @@ bool plotWorkPrecision(const std::string& png_path, const std::vector<Record>& r
   const std::string data = workPrecisionBlocks(records, true, final_titles) +
                            workPrecisionBlocks(records, false, env_titles);
   if (final_titles.empty() && env_titles.empty()) return false;
-  // the reference's own uncertainty: the cross-checks' distance from it
-  double floor_final = 0, floor_env = 0;
-  for (const Record& r : records) {
-    if (r.status != "cross-check") continue;
-    if (std::isfinite(r.error.final_state))
-      floor_final = std::max(floor_final, r.error.final_state);
-    if (std::isfinite(r.error.envelope)) floor_env = std::max(floor_env, r.error.envelope);
-  }
+  const std::vector<std::string> all = labelsInOrder(records);
   std::ostringstream gp;
   gp << "set terminal pngcairo size 1600,700 font 'Sans,11'\nset output @PNG@\n"
      << "set multiplot layout 1," << (env_titles.empty() || final_titles.empty() ? 1 : 2)
      << " title " << gq(title) << "\nset logscale xy\nset format x '10^{%L}'\n"
      << "set format y '10^{%L}'\nset grid\nset key left top\nset xrange [*:*] reverse\n";
   if (!final_titles.empty())
-    gp << workPrecisionPanel(final_titles, 0,
+    gp << workPrecisionPanel(final_titles, 0, all,
                              "final-state error: max |d(xdot, theta_i, thetadot_i)| against the "
                              "reference (scaled)",
-                             "CPU time, median of the runs without samples (s)", floor_final);
+                             "CPU time, median of the runs without samples (s)");
   if (!env_titles.empty())
-    gp << workPrecisionPanel(env_titles, final_titles.size(),
+    gp << workPrecisionPanel(env_titles, final_titles.size(), all,
                              "envelope error: max(max |dA_i|, max |dpsi_j|) against the "
                              "reference (scaled)",
-                             "CPU time, median of the runs recording the envelope (s)", floor_env);
+                             "CPU time, median of the runs recording the envelope (s)");
   gp << "unset multiplot\n";
   return runGnuplot(png_path, data, gp.str());
 }
