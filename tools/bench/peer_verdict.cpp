@@ -253,7 +253,9 @@ std::vector<Agreement> peerAgreement(const std::vector<VerdictScene>& scenes, co
       out.push_back(a);
       any = any || across;
     }
-    if (!any) {
+    // a scene the peer ran without a cross-check is not validated; one it could not run says
+    // why; one where the peer was not asked for is not the validation's business
+    if (!any && (!s.peer.empty() || !s.peer_skipped.empty())) {
       Agreement a;
       a.scene = s.name;
       a.reference = s.reference;

@@ -17,9 +17,10 @@
 #
 # Needs build/metrosync and build/metrosync_bench (cmake --build build --target metrosync
 # metrosync_bench). Knobs (environment): SCENES, RUN_SCENES, METHODS, ACCURACIES, REPEAT (timed
-# runs per point, default 11), RUN_REPEAT (default 11), MAP_REPEAT (default 1), MAX_LOAD (wait
-# before each timed run until the 1-minute load is below it; default 0: never), BUDGET, BUILD
-# (the build directory), PEER. A quick look elsewhere:
+# runs per point, default 7), RUN_REPEAT (default 11), MAP_REPEAT (default 1), MAX_LOAD (wait
+# before each timed run until the 1-minute load is below it; default 0: never), MAX_WAIT (at most
+# this many seconds per run, default 600), BUDGET, BUILD (the build directory), PEER. A quick
+# look elsewhere:
 #   SCENES="peer-n2 experiment-short" ACCURACIES=1e-6,1e-8,1e-10 REPEAT=5 \
 #     tools/bench/speed.sh --no-maps --no-readme /tmp/speed
 set -euo pipefail
@@ -45,8 +46,9 @@ scenes=${SCENES:-peer-n2 peer-n8 experiment-short experiment suppression n8 n32 
 # `run`: the bench scenes, and the default rig itself (a name is a bench scene, a path a rig file)
 run_scenes=${RUN_SCENES:-peer-n2 peer-n8 experiment-short experiment suppression n8 yaml/rigs/experiment.yaml}
 accuracies=${ACCURACIES:-1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10,1e-11,1e-12}
-repeat=${REPEAT:-11}
+repeat=${REPEAT:-7}
 max_load=${MAX_LOAD:-0}
+max_wait=${MAX_WAIT:-600}  # seconds a timed run waits for the load at most
 for b in "$bench" "$metrosync"; do
   if [ ! -x "$b" ]; then
     echo "speed.sh: $b not found: build it first (cmake --build $build --target metrosync metrosync_bench)" >&2
@@ -59,11 +61,18 @@ commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 git diff --quiet HEAD 2>/dev/null || commit="$commit (with uncommitted changes)"
 load_start=$(cut -d' ' -f1-3 /proc/loadavg)
 commands=()
-step() {  # prints and records a command (quoted for the shell), then runs it
+quote() {  # the arguments as a shell reads them back (single quotes where needed)
+  local a out=
+  for a in "$@"; do
+    if [[ $a =~ ^[A-Za-z0-9_./:=,+@%-]+$ ]]; then out+=" $a"; else out+=" '${a//\'/\'\\\'\'}'"; fi
+  done
+  echo "${out# }"
+}
+step() {  # prints and records a command, then runs it
   local q
-  q=$(printf '%q ' "$@")
-  commands+=("${q% }")
-  echo "+ ${q% }" >&2
+  q=$(quote "$@")
+  commands+=("$q")
+  echo "+ $q" >&2
   "$@"
 }
 
@@ -92,9 +101,9 @@ methods=${METHODS:-direct:*${peer_methods:+,$peer_methods}}
 scene_args=()
 for s in $scenes; do scene_args+=(--scene "yaml/rigs/bench/$s.yaml"); done
 step "$bench" precision "${scene_args[@]}" --methods "$methods" --accuracies "$accuracies" \
-  --repeat "$repeat" --max-load "$max_load" --budget "${BUDGET:-30}" "${peer_args[@]}" \
-  --reference direct:verner76:1e-13 "${peer_checks[@]}" --cross-check direct:verner76:1e-12 \
-  --out "$out" >/dev/null
+  --repeat "$repeat" --max-load "$max_load" --max-wait "$max_wait" --budget "${BUDGET:-30}" \
+  "${peer_args[@]}" --reference direct:verner76:1e-13 "${peer_checks[@]}" \
+  --cross-check direct:verner76:1e-12 --out "$out" >/dev/null
 
 # 3. run against its engine
 run_args=()
@@ -102,12 +111,12 @@ for s in $run_scenes; do
   case $s in */*) run_args+=(--scene "$s") ;; *) run_args+=(--scene "yaml/rigs/bench/$s.yaml") ;; esac
 done
 step "$bench" runcost --metrosync "$metrosync" "${run_args[@]}" --repeat "${RUN_REPEAT:-11}" \
-  --max-load "$max_load" --out "$out" >/dev/null || true
+  --max-load "$max_load" --max-wait "$max_wait" --out "$out" >/dev/null || true
 
 # 4. the maps
 if [ "$maps" = 1 ]; then
   step "$bench" maps --metrosync "$metrosync" --repeat "${MAP_REPEAT:-1}" --max-load "$max_load" \
-    --out "$out" >/dev/null || true
+    --max-wait "$max_wait" --out "$out" >/dev/null || true
 fi
 
 # 5. provenance, the summary, README.md

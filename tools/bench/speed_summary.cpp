@@ -203,10 +203,12 @@ std::string otherSentences(const SpeedFacts& f) {
        << " its engine's time (`wall_seconds` / `engine_seconds` in summary.json; target <= "
        << num(f.run_target, "%.2f") << ", met in " << f.run_met << " of " << f.run_rows
        << " scenes and variants"
-       << (f.run_inconsistent > 0 ? "; " + std::to_string(f.run_inconsistent) +
-                                        " runs reported an impossible split, engine_seconds <= 0 "
-                                        "or above wall_seconds, and are left out"
-                                  : std::string())
+       << (f.run_inconsistent > 0
+               ? "; " + std::to_string(f.run_inconsistent) +
+                     (f.run_inconsistent == 1 ? " run" : " runs") +
+                     " reported an impossible split, engine_seconds <= 0 or above "
+                     "wall_seconds, left out"
+               : std::string())
        << "). ";
   if (std::isfinite(f.full_map_s) || std::isfinite(f.slow_map_s)) {
     os << "On 2 cores ";
@@ -235,6 +237,14 @@ SpeedInputs readSpeedInputs(const std::string& dir) {
   in.run_csv = slurp(d / "run.csv");
   in.maps_csv = slurp(d / "maps.csv");
   in.run_md = slurp(d / "run.md");
+  if (std::filesystem::is_directory(d))
+    for (const auto& e : std::filesystem::directory_iterator(d)) {
+      const std::string name = e.path().filename().string();
+      if (name.rfind("wp-", 0) == 0 && name.size() > 4 &&
+          name.compare(name.size() - 4, 4, ".csv") == 0 &&
+          name.find("-equal-error.csv") == std::string::npos)
+        in.wp_csvs.push_back(slurp(e.path()));
+    }
   in.maps_md = slurp(d / "maps.md");
   in.provenance_md = slurp(d / "provenance.md");
   return in;
@@ -251,6 +261,14 @@ SpeedFacts speedFacts(const SpeedInputs& in) {
   slopeFacts(parseCsv(in.nslope_csv, "nslope.csv"), f);
   runFacts(parseCsv(in.run_csv, "run.csv"), f);
   mapFacts(parseCsv(in.maps_csv, "maps.csv"), f);
+  for (const std::string& text : in.wp_csvs) {  // the work-precision points' loads
+    const Csv c = parseCsv(text, "wp-*.csv");
+    for (size_t r = 0; r < c.rows.size(); ++r) {
+      if (c.number(r, "runs") <= 0) continue;
+      widen(c.number(r, "load1_min"), f.load_lo, f.load_hi);
+      widen(c.number(r, "load1_max"), f.load_lo, f.load_hi);
+    }
+  }
   return f;
 }
 

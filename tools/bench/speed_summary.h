@@ -20,6 +20,7 @@ extern const char* const kSpeedEnd;
 struct SpeedInputs {
   std::string ratios_csv, nslope_csv, verdicts_md, run_csv, maps_csv, provenance_md;
   std::string run_md, maps_md;
+  std::vector<std::string> wp_csvs;         // every wp-<scene>.csv (their loads)
   std::string date, commit;                 // of the measurement, as the script gives them
   std::string folder = "docs/bench/speed";  // the folder, as README.md links it
 };

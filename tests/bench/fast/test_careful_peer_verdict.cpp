@@ -100,6 +100,11 @@ TEST(CarefulPeerVerdict, ASceneThePeerCannotRunIsARowWithItsReasonAndNoCells) {
   EXPECT_TRUE(ag[0].flagged()) << "peer-n2 has no cross-check of the peer";
   EXPECT_FALSE(ag[1].flagged());
   EXPECT_EQ(ag[1].skipped, big.peer_skipped);
+  // a scene where the peer was not asked for at all (no points, no reason) is not validated nor
+  // flagged: it is not in the table
+  mb::VerdictScene alone = scene("alone", 2);
+  alone.ours = a.ours;
+  EXPECT_TRUE(mb::peerAgreement({alone}, mb::Sides{}).empty());
 }
 
 TEST(CarefulPeerVerdict, EachSceneHasItsOwnVerdictLine) {

@@ -65,6 +65,12 @@ mb::SpeedInputs inputs() {
       "map,points,runs,wall_s,cpu_s,target_s,load1_min,load1_max,failure\n"
       "full,4096,1,52.5,104,45,0.3,1.4,\n"
       "slow,10000,1,2.5,4.9,3,0.2,0.2,\n";
+  // a work-precision file: its timed points' loads count, a point not run does not
+  in.wp_csvs = {
+      "scene,engine,runs,load1_min,load1_max\n"
+      "peer-n2,direct,5,0.1,0.7\n"
+      "peer-n2,peer,0,,\n"
+      "peer-n2,direct,0,9,9\n"};
   in.date = "2026-11-26";
   in.commit = "abc1234";
   return in;
@@ -125,12 +131,12 @@ TEST(SpeedSummary, QuotesTheNumbersOfTheCsvs) {
   EXPECT_DOUBLE_EQ(f.default_wall, 0.05);
   EXPECT_DOUBLE_EQ(f.full_map_s, 52.5);
   EXPECT_DOUBLE_EQ(f.slow_target_s, 3);
-  EXPECT_DOUBLE_EQ(f.load_lo, 0.2);
+  EXPECT_DOUBLE_EQ(f.load_lo, 0.1);
   EXPECT_DOUBLE_EQ(f.load_hi, 1.4);
 
   const std::string p = mb::speedParagraph(f, inputs());
   for (const char* want :
-       {"on 2026-11-26, commit abc1234", "load 0.2-1.4", "from 1e-05 to 1e-09",
+       {"on 2026-11-26, commit abc1234", "load 0.1-1.4", "from 1e-05 to 1e-09",
         "1.50-3.00x the peer's speed with 2 metronomes and 2.25-4.00x the peer's speed with 8 "
         "metronomes over 3 scenes",
         "target of 2x is not met (4 of 6 cells)", "N^1.04-1.12 from N = 2 to 128",
