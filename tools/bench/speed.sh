@@ -123,7 +123,7 @@ fi
 load_end=$(cut -d' ' -f1-3 /proc/loadavg)
 cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')
 {
-  echo "Measured $started to $(date -u '+%H:%M UTC') by \`tools/bench/speed.sh $*\`, commit" \
+  echo "Measured $started to $(date -u '+%H:%M UTC') by \`tools/bench/speed.sh${*:+ $*}\`, commit" \
     "$commit, on $(nproc) cores ($cpu) shared with the project's other sessions: load average" \
     "(1, 5, 15 min) $load_start at the start, $load_end at the end (every table gives the" \
     "1-minute load of its own timed runs). Medians of $repeat timed runs per point of the" \
@@ -132,9 +132,10 @@ cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')
   echo "The commands, in order:"
   echo
   for c in "${commands[@]}"; do echo "    $c"; done
+  summary_args=(--dir "$out" --date "${started%% *}" --commit "$commit")
+  [ "$readme" = 1 ] && summary_args+=(--readme README.md)
+  echo "    $(quote "$bench" summary "${summary_args[@]}")"
 } >"$out/provenance.md"
-summary_args=(--dir "$out" --date "${started%% *}" --commit "$commit")
-[ "$readme" = 1 ] && summary_args+=(--readme README.md)
 "$bench" summary "${summary_args[@]}"
 echo
 [ -f "$out/verdicts.md" ] && sed -n '1,/^| scene/p' "$out/verdicts.md" | head -n -1

@@ -226,6 +226,16 @@ std::string otherSentences(const SpeedFacts& f) {
   return os.str();
 }
 
+// Above this 1-minute load the 2-core machine was shared with other work during the timings.
+constexpr double kBusyLoad = 2.0;
+
+std::string loadSentence(const SpeedFacts& f) {
+  if (!(f.load_hi > kBusyLoad)) return "";
+  return " The machine was busy (1-minute load up to " + num(f.load_hi, "%.1f") +
+         " on 2 cores): the wall times of `run` and of the maps carry the other sessions' work; "
+         "the ratios at equal error are CPU medians, which carry much less of it.";
+}
+
 }  // namespace
 
 SpeedInputs readSpeedInputs(const std::string& dir) {
@@ -281,7 +291,7 @@ std::string speedParagraph(const SpeedFacts& f, const SpeedInputs& in) {
      << (std::isfinite(f.load_lo)
              ? " at 1-minute load " + num(f.load_lo, "%.1f") + "-" + num(f.load_hi, "%.1f")
              : std::string())
-     << "). " << ratioSentence(f) << otherSentences(f) << "\n";
+     << "). " << ratioSentence(f) << otherSentences(f) << loadSentence(f) << "\n";
   return os.str();
 }
 

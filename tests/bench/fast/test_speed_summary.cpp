@@ -144,6 +144,14 @@ TEST(SpeedSummary, QuotesTheNumbersOfTheCsvs) {
         "64 x 64 full-model map takes 52.5 s (target 45 s)",
         "100 x 100 slow-flow map 2.5 s (target 3 s)"})
     EXPECT_NE(p.find(want), std::string::npos) << want << "\n" << p;
+  EXPECT_EQ(p.find("The machine was busy"), std::string::npos) << "load 1.4 on 2 cores is not";
+  mb::SpeedFacts busy = f;
+  busy.load_hi = 9.5;
+  EXPECT_NE(
+      mb::speedParagraph(busy, inputs()).find("The machine was busy (1-minute load up to 9.5"),
+      std::string::npos);
+  for (const char* want : {"on 2026-11-26"})
+    EXPECT_NE(p.find(want), std::string::npos) << want << "\n" << p;
 }
 
 TEST(SpeedSummary, SaysWhatWasNotMeasured) {
