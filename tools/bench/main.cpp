@@ -101,7 +101,8 @@ std::string loadRange(const std::vector<mb::Record>& recs) {
 }
 
 // The verdict against the peer over `scenes`: ratios.md, ratios.csv, nslope.csv in c.out, the page
-// on stdout, its failed guards on stderr. Nothing (and a note) when no scene has both sides.
+// on stdout, its failed guards on stderr. Nothing (and a note) when no scene has both sides (or
+// the peer's reason for not running it) and fewer than two scenes of the N-slope were measured.
 void writeVerdict(const std::vector<mb::VerdictScene>& scenes, const mb::VerdictOptions& o,
                   const Common& c) {
   // the ratio tables need both sides (or a scene the peer could not run); the N-slope only
