@@ -65,7 +65,8 @@ std::vector<MapRow> timeMaps(const MapOptions& o, const BenchOptions& c) {
       const ProcessResult pr = runProcess(argv);
       fs::remove_all(tmp / map);
       if (!pr.ok()) {
-        row.failure = "exit " + std::to_string(pr.exit_code) + ": " + pr.err + pr.error;
+        const std::string why = pr.err.empty() ? pr.error : pr.err;
+        row.failure = "exit " + std::to_string(pr.exit_code) + ": " + why.substr(0, why.find('\n'));
         break;
       }
       row.walls.push_back(pr.wall_s);
@@ -90,7 +91,6 @@ std::string mapsCsv(const std::vector<MapRow>& rows) {
   for (const MapRow& r : rows) {
     std::string failure = r.failure;
     std::replace(failure.begin(), failure.end(), ',', ';');
-    std::replace(failure.begin(), failure.end(), '\n', ' ');
     s += r.map + "," + std::to_string(r.points) + "," + std::to_string(r.runs) + "," +
          num(r.wall_s, "%.6g") + "," + num(r.cpu_s, "%.6g") + "," + num(r.target_s, "%g") + "," +
          num(r.load_min, "%.2f") + "," + num(r.load_max, "%.2f") + "," + failure + "\n";

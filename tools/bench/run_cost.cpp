@@ -9,6 +9,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 
 #include "tools/bench/bench_metrics.h"
 #include "tools/bench/subprocess.h"
@@ -21,6 +22,10 @@ namespace fs = std::filesystem;
 
 std::string num(double v, const char* f = "%.3g") {
   return benchNumber(v, f);
+}
+
+std::string firstLine(const std::string& s) {
+  return s.substr(0, s.find('\n'));
 }
 
 std::vector<std::string> splitSets(const std::string& variant) {
@@ -79,7 +84,8 @@ RunCostRow measureOne(const RunCostOptions& o, const BenchOptions& c, const std:
     fs::remove_all(out);
     if (!read) {
       row.failure = pr.ok() ? "no wall_seconds / engine_seconds in summary.json"
-                            : "exit " + std::to_string(pr.exit_code) + ": " + pr.err + pr.error;
+                            : "exit " + std::to_string(pr.exit_code) + ": " +
+                                  firstLine(pr.err.empty() ? pr.error : pr.err);
       break;
     }
     if (k == 0) continue;  // the page cache's warm-up
@@ -104,6 +110,8 @@ RunCostRow measureOne(const RunCostOptions& o, const BenchOptions& c, const std:
 }  // namespace
 
 std::vector<RunCostRow> measureRunCost(const RunCostOptions& o, const BenchOptions& c) {
+  for (const std::string& scene : o.scenes)
+    if (!fs::is_regular_file(scene)) throw std::invalid_argument(scene + ": no such rig file");
   const fs::path tmp = fs::path(o.tmp.empty() ? fs::temp_directory_path().string() : o.tmp) /
                        ("metrosync-runcost-" + std::to_string(::getpid()));
   fs::create_directories(tmp);
