@@ -11,6 +11,8 @@
 #include "tools/cli/commands.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/fit_inputs.h"
+#include "tools/cli/option_keys.h"
+#include "yaml/key_path.h"
 #include "yaml/rig_loader.h"
 #include "yaml/rig_writer.h"
 
@@ -28,48 +30,19 @@ std::string fmt(double v, const char* f = "%.6g") {
   return buf;
 }
 
-std::vector<std::string> segments(const std::string& key) {
-  std::vector<std::string> segs;
-  std::size_t b = 0;
-  for (std::size_t e; (e = key.find('.', b)) != std::string::npos; b = e + 1)
-    segs.push_back(key.substr(b, e - b));
-  segs.push_back(key.substr(b));
-  return segs;
-}
-
-std::string lastSegment(const std::string& key, int from_end) {
-  const std::vector<std::string> segs = segments(key);
-  return from_end < static_cast<int>(segs.size()) ? segs[segs.size() - 1 - from_end] : "";
-}
-
-// The concrete keys of a --free key: `metronomes.*.X` is every metronome's X (one shared value).
-// TEMPORARY: the one key resolver of issue 24 (yaml/) replaces this function when it lands.
-std::vector<std::string> concreteKeys(const std::string& key, const Rig& rig) {
-  const std::size_t star = key.find(".*.");
-  if (key.find('*') == std::string::npos) return {key};
-  if (star == std::string::npos || key.find('*', star + 2) != std::string::npos ||
-      lastSegment(key.substr(0, star), 0) != "metronomes")
-    throw UsageError("--free " + key + ": '*' stands for every metronome, as in metronomes.*.X");
-  std::vector<std::string> keys;
-  for (std::size_t i = 0; i < rig.metronomes.size(); ++i)
-    keys.push_back(key.substr(0, star) + "." + std::to_string(i) + key.substr(star + 2));
-  return keys;
-}
-
-// Is `key` (or a map above it) given by one of the --set overrides?
-bool givenBySet(const std::vector<std::string>& sets, const std::string& key) {
-  for (const std::string& s : sets) {
-    const std::string k = s.substr(0, s.find('='));
-    if (k == key ||
-        (key.size() > k.size() && key.compare(0, k.size(), k) == 0 && key[k.size()] == '.'))
-      return true;
+// Is a rig key of `paths` (or a map above one) set by one of the --set overrides?
+bool givenBySet(const FitOptions& opt, const std::string& text, const std::vector<KeyPath>& paths) {
+  for (const std::string& set : opt.sets) {
+    const RigKey k = resolveRigKey(text, opt.rig_path, opt.sets, keyTextOf(set), "--set " + set);
+    if (!sharedPath(paths, k.paths).empty()) return true;
   }
   return false;
 }
 
 // Keys that cannot be negative are bounded at 0; a start value of 0 gets a typical scale.
-void boundsOf(FreeParameter& p) {
-  const std::string last = lastSegment(p.keys.front(), 0), parent = lastSegment(p.keys.front(), 1);
+void boundsOf(FreeParameter& p, const KeyPath& key) {
+  const std::string& last = key.leaf();
+  const std::string parent = key.parent();
   for (const char* k : {"damping", "decay_rate", "mu", "c", "impulse", "k", "inertia", "mass",
                         "box_mass", "steady_amplitude", "length"})
     if (last == k) p.lower = 0.0;
@@ -83,70 +56,66 @@ void boundsOf(FreeParameter& p) {
 
 // Where a key's start comes from: a --set (used as given), else a section-3 shortcut where one
 // applies, else the rig (0 for an absent start key). Checks that the key can be set to a number.
-double startOfKey(const std::string& key, const std::string& text, const FitOptions& opt,
+double startOfKey(const KeyPath& key, const std::string& text, const FitOptions& opt,
                   const Rig& rig, const MeasuredData& data, std::string& from) {
-  std::optional<double> v = rigNumber(text, opt.rig_path, opt.sets, key);
-  from = givenBySet(opt.sets, key) ? "--set" : "rig";
+  const std::string& path = key.text();  // names and indices only
+  std::optional<double> v = rigNumber(text, opt.rig_path, opt.sets, path);
+  from = givenBySet(opt, text, {key}) ? "--set" : "rig";
   if (!v) {
-    std::vector<std::string> probe = opt.sets;
-    probe.push_back(key + "=1");
-    if (lastSegment(key, 1) != "start") {
-      loadRigText(text, opt.rig_path, probe);  // a typo gets the loader's "did you mean"
-      throw UsageError("--free " + key + ": the rig gives no value for it (free the key the rig " +
-                       "gives: damping or decay_rate, impulse or steady_amplitude, as written " +
-                       "in " + opt.rig_path + ")");
-    }
+    if (key.parent() != "start")
+      throw UsageError("--free " + path + ": the rig gives no value for it (free the key the " +
+                       "rig gives: damping or decay_rate, impulse or steady_amplitude, as " +
+                       "written in " + opt.rig_path + ")");
     v = 0.0;
     from = "default";
   }
   if (from != "--set")
-    if (const std::optional<StartGuess> g = section3Guess(key, rig, data)) {
+    if (const std::optional<StartGuess> g = section3Guess(path, rig, data)) {
       v = g->value;
       from = g->from;
     }
   std::vector<std::string> sets = opt.sets;
-  sets.push_back(key + "=" + exactNumberText(*v));
-  loadRigText(text, opt.rig_path, sets);  // the key exists and takes this value
+  sets.push_back(path + "=" + exactNumberText(*v));
+  loadRigText(text, opt.rig_path, sets);  // the key takes this value
   return *v;
 }
 
-// One free parameter: its keys, and their mean start (one value for a shared key).
-FreeParameter freeParameter(const std::string& name, const std::string& text, const FitOptions& opt,
+// One free parameter: the rig keys a --free key stands for (every metronome's for
+// metronomes.*.X: one shared value) and their mean start.
+FreeParameter freeParameter(const OptionKey& k, const std::string& text, const FitOptions& opt,
                             const Rig& rig, const MeasuredData& data, std::string& from) {
   FreeParameter p;
-  p.name = name;
-  p.keys = concreteKeys(name, rig);
-  if (p.keys.empty()) throw UsageError("--free " + name + ": the rig has no metronome");
+  p.name = k.key.key.text();
   double sum = 0.0;
   bool differ = false;
-  for (std::size_t i = 0; i < p.keys.size(); ++i) {
+  for (std::size_t i = 0; i < k.key.paths.size(); ++i) {
     std::string f;
-    const double v = startOfKey(p.keys[i], text, opt, rig, data, f);
+    const double v = startOfKey(k.key.paths[i], text, opt, rig, data, f);
     differ = differ || (i > 0 && v != sum / i);
     from = i == 0 || f == from ? f : "mixed";
     sum += v;
+    p.keys.push_back(k.key.paths[i].text());
   }
   p.start = sum / p.keys.size();
   if (differ) from = "mean of " + from + " values";
-  boundsOf(p);
+  boundsOf(p, k.key.paths.front());
   return p;
 }
 
-// The free parameters, each key in at most one of them.
+// The free parameters: each --free key resolved by the one key resolver (docs/keys.md), two
+// that set one rig key refused.
 std::vector<FreeParameter> freeParameters(const FitOptions& opt, const std::string& text,
                                           const Rig& rig, const MeasuredData& data,
                                           std::vector<std::string>& start_from) {
+  std::vector<OptionKey> keys;
+  for (const std::string& k : opt.free)
+    keys.push_back(resolveOptionKey({text, opt.rig_path, opt.sets}, "--free", k, false));
+  refuseSharedKeys(keys);
   std::vector<FreeParameter> free;
-  for (const std::string& name : opt.free) {
+  for (const OptionKey& k : keys) {
+    if (k.key.paths.empty()) throw UsageError(k.typed + ": the key stands for no rig key");
     std::string from;
-    FreeParameter p = freeParameter(name, text, opt, rig, data, from);
-    for (const FreeParameter& q : free)
-      for (const std::string& k : p.keys)
-        for (const std::string& l : q.keys)
-          if (k == l)
-            throw UsageError("--free " + name + ": " + k + " is already free (--free " + q.name +
-                             ")");
-    free.push_back(std::move(p));
+    free.push_back(freeParameter(k, text, opt, rig, data, from));
     start_from.push_back(from);
   }
   return free;
