@@ -357,6 +357,52 @@ std::vector<Candidate> search(const FitProblem& p, const ModelFit& mf,
   return found;
 }
 
+// Probes around the best optimum along each principal axis of its covariance, at -+2 and -+4
+// standard deviations (no solve: one model run each). Where a long record makes the cost rugged a
+// lower optimum can lie a few standard deviations away behind a ridge; a probe lower than the
+// optimum is solved from, and what it reaches joins the list (first if better).
+void probe(const FitProblem& p, const ModelFit& mf, const Final& fin, const std::vector<bool>& held,
+           std::vector<Candidate>& found) {
+  const std::vector<double> x = found.front().optimum.values;
+  const std::size_t k = x.size();
+  Uncertainty u;
+  try {
+    u = uncertainty(linearize(fin.f, fin.m, x, p.free, false), x, p.free, held);
+  } catch (const std::exception&) {
+    return;
+  }
+  if (u.worst >= 0) return;  // a key undetermined: the hold loop's business
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(k, k);
+  for (std::size_t a = 0; a < k; ++a)
+    for (std::size_t b = 0; b < k; ++b)
+      if (u.std_errors[a] && u.std_errors[b] && u.correlation[a][b])
+        cov(a, b) = *u.std_errors[a] * *u.std_errors[b] * *u.correlation[a][b];
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov);
+  double best = fin.ssr(x);
+  std::vector<double> lowest;
+  for (std::size_t axis = 0; axis < k; ++axis)
+    for (const double sigmas : {-4.0, -2.0, 2.0, 4.0}) {
+      std::vector<double> y = x;
+      for (std::size_t j = 0; j < k; ++j)
+        y[j] = std::max(x[j] + sigmas * std::sqrt(std::max(eig.eigenvalues()(axis), 0.0)) *
+                                   eig.eigenvectors()(j, axis),
+                        p.free[j].lower);
+      const double s = fin.ssr(y);
+      if (s < best) best = s, lowest = y;
+    }
+  if (lowest.empty()) return;
+  Candidate c;
+  c.solution = fin.solve(lowest, held);
+  c.optimum = optimumOf(mf, lowest, c.solution.values);
+  c.strategy = found.front().strategy + ", then a probe around it";
+  for (const Candidate& f : found)
+    if (sameOptimum(p, f.optimum, c.optimum)) return;
+  found.push_back(c);
+  std::stable_sort(found.begin(), found.end(), [](const Candidate& a, const Candidate& b) {
+    return a.optimum.rms < b.optimum.rms;
+  });
+}
+
 // The outcome's values, residuals, noise and verdict at x.
 void describe(const ModelFit& mf, const std::vector<double>& x, const std::vector<bool>& held,
               const LocalSolution& best, FitOutcome& out) {
@@ -402,7 +448,8 @@ FitOutcome fitModel(const FitProblem& p) {
   std::vector<bool> held = unseenKeys(linearize(fin.f, fin.m, start, p.free, false).J);
   for (std::size_t j = 0; j < k; ++j)
     if (held[j]) out.not_identifiable_because[j] = "the data do not see it";
-  const std::vector<Candidate> found = search(p, mf, held);
+  std::vector<Candidate> found = search(p, mf, held);
+  probe(p, mf, fin, held, found);
   for (const Candidate& c : found) out.optima.push_back(c.optimum);
   LocalSolution best = found.front().solution;
   out.strategy = found.front().strategy;
