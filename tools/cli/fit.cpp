@@ -11,6 +11,7 @@
 #include "tools/cli/commands.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/fit_inputs.h"
+#include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
 #include "yaml/key_path.h"
 #include "yaml/rig_loader.h"
@@ -19,6 +20,10 @@
 namespace metrosync::cli {
 
 namespace {
+
+// --starts: each start is a whole search over growing windows (seconds to minutes); more than
+// this is a typo, not a budget.
+constexpr int kMaxStarts = 1000;
 
 const char* kFitExitCodes =
     "Exit codes: 0 fitted; 2 bad command line, rig or data file (nothing written); 3 the model "
@@ -258,13 +263,13 @@ CLI::App* addFitOptions(CLI::App* cmd, FitOptions& opt) {
                   "full: the governing equations, every sample (default); slow: the slow flow "
                   "on the swings' amplitudes (faster, for long records)")
       ->check(CLI::IsMember({"full", "slow"}));
-  cmd->add_option("--noise", opt.noise,
-                  "the angles' measurement noise (rad; m when only x is fitted); default: "
-                  "estimated from the data's high-frequency part")
+  addNumber(cmd, "--noise", opt.noise, kPositive,
+            "the angles' measurement noise (rad; m when only x is fitted); default: "
+            "estimated from the data's high-frequency part")
       ->type_name("SIGMA");
-  cmd->add_option("--starts", opt.starts,
-                  "try at most N starting points while no optimum is at the noise level "
-                  "(default 6)")
+  addInteger(cmd, "--starts", opt.starts, 1, kMaxStarts,
+             "try at most N starting points while no optimum is at the noise level "
+             "(default 6)")
       ->type_name("N");
   cmd->add_flag("--local", opt.local,
                 "only Levenberg-Marquardt on the whole record from each start (no envelopes, "
