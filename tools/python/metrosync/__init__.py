@@ -23,7 +23,8 @@ import numpy as np
 from . import _metrosync as _core
 
 __all__ = ["Rig", "Result", "CompareResult", "SweepResult", "ContinuationResult", "RigError",
-           "SimulationError", "load_rig", "run", "compare", "sweep", "continue_", "version"]
+           "SimulationError", "load_rig", "run", "compare", "sweep", "continue_", "fit",
+           "version"]
 
 RigError = _core.RigError  # a bad rig or option: the CLI's message (file:line:col: key: what)
 
@@ -338,5 +339,39 @@ def continue_(rig, param, to, from_=None, start=None, step=None, max_points=500,
                                float(step or 0.0), int(max_points), bool(all), fold or "",
                                float(to2 or 0.0))
         return ContinuationResult(target)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def _write_data(columns, path):
+    """A mapping of columns (t, theta_1, ..., x: equal-length sequences; NaN = a missing sample)
+    as the CSV file `metrosync fit` reads."""
+    names = list(columns)
+    values = [np.asarray(columns[n], dtype=float) for n in names]
+    with open(path, "w") as f:
+        f.write(",".join(names) + "\n")
+        for row in zip(*values):
+            f.write(",".join("" if np.isnan(v) else repr(float(v)) for v in row) + "\n")
+
+
+def fit(rig, data, free, model=None, noise=None, starts=6, local=False, profile=False):
+    """Rig keys from measured data (`metrosync fit`, the same C++ code; docs/fit.md): `data` is a
+    CSV file's path or a mapping of columns ({"t": ..., "theta_1": ..., "x": ...}, a pandas
+    DataFrame too); `free` one key or a list (metronomes.*.X: one shared value); the rig's
+    overrides give the starting values, as --set does. Returns fit.json's dictionary: values,
+    std_errors, identifiable, rms, noise, converged and its note, optima, ..."""
+    rig = rig if isinstance(rig, Rig) else load_rig(rig)
+    free = [free] if isinstance(free, str) else list(free)
+    folder = tempfile.mkdtemp(prefix="metrosync-")
+    try:
+        if isinstance(data, (str, os.PathLike)):
+            data_path = os.fspath(data)
+        else:
+            data_path = os.path.join(folder, "data.csv")
+            _write_data(data, data_path)
+        text = _core.fit_json(rig._materialize(folder), data_path, free, rig._sets(),
+                              model or "", None if noise is None else float(noise), int(starts),
+                              bool(local), bool(profile))
+        return json.loads(text)
     finally:
         shutil.rmtree(folder, ignore_errors=True)
