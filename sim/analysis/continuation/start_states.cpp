@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "sim/analysis/continuation/family.h"
 #include "sim/analysis/continuation/newton.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 
@@ -22,6 +23,8 @@ constexpr double kRestAmplitude = 1e-6;
 constexpr double kSameSolution = 1e-6;
 // Region re-solves before a seed is dropped: each moves the solution across at least one border.
 constexpr int kMaxRegionChanges = 4;
+// A start this close to a border (in its function: amplitude, |Z|) may belong to either side.
+constexpr double kNearBorder = 1e-2;
 
 double wrapped(double d) {
   return std::remainder(d, 2 * kPi);
@@ -90,17 +93,43 @@ SettledState settleOver(const ScaledParams& sp, double tau_end) {
   return st;
 }
 
+namespace {
+
+// A solution of region's formulas from x0 that lies in region, or a member of a neutral family
+// there moved inside it; nullopt otherwise (`found` then holds what Newton found, if anything).
+std::optional<Vec> solveIn(const SlowFlowProblem& prob, const Vec& x0, double p,
+                           const Region& region, std::optional<Vec>& found) {
+  const ContinuationSystem& sys = prob.system();
+  found = solveAt(sys, x0, p, region);
+  if (!found) return std::nullopt;
+  if (regionAt(sys, *found, p) == region) return found;
+  const auto nd = neutralDirections(sys, *found, p, region);
+  return nd ? memberInside(sys, *nd, *found, p, region) : std::nullopt;
+}
+
+}  // namespace
+
 std::optional<Vec> solveLocked(const SlowFlowProblem& prob, const Vec& x0, double p) {
   const ContinuationSystem& sys = prob.system();
   Region region = regionAt(sys, x0, p);
   Vec x = x0;
   for (int it = 0; it < kMaxRegionChanges; ++it) {
-    const auto sol = solveAt(sys, x, p, region);
-    if (!sol) return std::nullopt;
-    const Region there = regionAt(sys, *sol, p);
-    if (there == region) return prob.pack(prob.unpack(*sol), prob.omega(*sol));
-    region = there;
-    x = *sol;
+    std::optional<Vec> found;
+    std::optional<Vec> sol = solveIn(prob, x, p, region, found);
+    // a start within kNearBorder of a border (a run that stops where the platform sticks): the
+    // other side's formulas too
+    const Vec b = sys.borders(x, p);
+    for (int k = 0; !sol && !found && k < b.size(); ++k) {
+      if (std::abs(b(k)) > kNearBorder) continue;
+      Region other = region;
+      other[k] = 1 - other[k];
+      sol = solveIn(prob, x, p, other, found);
+      if (!sol && found) region = other;
+    }
+    if (sol) return prob.pack(prob.unpack(*sol), prob.omega(*sol));
+    if (!found) return std::nullopt;
+    region = regionAt(sys, *found, p);
+    x = *found;
   }
   return std::nullopt;
 }

@@ -40,7 +40,11 @@ std::optional<BranchPoint> pointAlong(const ContinuationSystem& sys, const Branc
   const auto c = correct(sys, from.y, from.tangent, h, from.region);
   if (!c) return std::nullopt;
   if (iterations) *iterations = c->iterations;
-  const Vec t = tangentAt(sys, c->y, from.tangent, from.region);
+  // an expensive Jacobian (multiple shooting): the corrector's last one gives the tangent (its
+  // error, O(the last Newton step), is far below what the predictor needs)
+  const Vec t = sys.jacobian && c->extended.size() > 0
+                    ? tangentOf(c->extended, from.tangent)
+                    : tangentAt(sys, c->y, from.tangent, from.region);
   return makePoint(sys, c->y, t, from.region);
 }
 
