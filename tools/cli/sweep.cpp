@@ -744,6 +744,20 @@ void printSweepSummary(const SweepPlan& plan, const SweepRun& run, const OutputD
             << "files: " << dir.path() << "/ (" << joined(files) << ")\n";
 }
 
+// --boundaries: a curve that could not be followed (or all of them) is said on stderr; the map is
+// written all the same (exit 0), sweep.json has the same in `boundaries` / `boundaries_error`.
+void warnAboutBoundaries(const std::vector<continuation::FoldCurve>& curves,
+                         const std::string& error) {
+  if (!error.empty())
+    std::cerr << "metrosync: warning: --boundaries: no curves (" << error
+              << "); the map is written without them\n";
+  for (size_t i = 0; i < curves.size(); ++i)
+    if (!curves[i].failure.empty())
+      std::cerr << "metrosync: warning: --boundaries: the " << toString(curves[i].kind) << " curve "
+                << i << " through (" << curves[i].seed_p1 << ", " << curves[i].seed_p2
+                << ") could not be followed: " << curves[i].failure << "\n";
+}
+
 int sweepImpl(const SweepOptions& opt, const SweepScheduler& schedule, int ranks) {
   const Clock::time_point t_start = Clock::now();
   SweepPlan plan = planSweep(opt);
@@ -769,8 +783,13 @@ int sweepImpl(const SweepOptions& opt, const SweepScheduler& schedule, int ranks
   writeSortedRegimesCsv(plan.regimes_path, plan.grid, plan.n, run.lines);
   std::vector<std::string> files = {"regimes.csv", "timings.csv"};
   std::vector<continuation::FoldCurve> curves;
+  std::string boundaries_error;  // the curves failed as a whole: the map is written without them
   if (opt.boundaries && complete && !interrupted) {
-    curves = mapBoundaries(opt, plan);
+    try {
+      curves = mapBoundaries(opt, plan);
+    } catch (const std::exception& e) {
+      boundaries_error = e.what();
+    }
     writeFileAtomically(dir.file("boundaries.csv"),
                         boundariesCsv(curves, plan.grid.axes()[0].key, plan.grid.axes()[1].key));
     files.push_back("boundaries.csv");
@@ -788,7 +807,9 @@ int sweepImpl(const SweepOptions& opt, const SweepScheduler& schedule, int ranks
   status["interrupted"] = interrupted;
   status["files"] = files;
   if (opt.boundaries) status["boundaries"] = boundariesJson(curves);
+  if (!boundaries_error.empty()) status["boundaries_error"] = boundaries_error;
   writeSweepJson(dir, status);
+  warnAboutBoundaries(curves, boundaries_error);
 
   const long failed = status["points"]["failed"].get<long>();
   const long before = static_cast<long>(table.lines.size());

@@ -287,6 +287,13 @@ Walk walkFrom(const ContinuationSystem& sys, const BranchPoint& start,
       reachedEnd(sys, s, w);
       return w;
     }
+    if (sys.stop) {
+      const std::string why = sys.stop(cur.y, st->point.y);
+      if (!why.empty()) {
+        w.end = why, w.end_p = cur.p();
+        return w;
+      }
+    }
     const auto cut = truncation(sys, cur, st->point, st->h, s);
     const BranchPoint& reached = cut ? cut->point : st->point;
     smoothEvents(sys, cur, reached, cut ? cut->h : st->h, w.special, w.switches);
@@ -313,6 +320,7 @@ Walk walkFrom(const ContinuationSystem& sys, const BranchPoint& start,
       return w;
     }
     cur = st->point;
+    if (sys.accepted) sys.accepted(cur.y);
     crawl = h < kCrawlFraction * s.step ? crawl + 1 : 0;
     if (crawl > kCrawlPoints) {
       w.end = "the steps stay below " + fmt(kCrawlFraction) +

@@ -1,10 +1,10 @@
 // A fold of cycles found by the shooting continuation, checked independently by the slow flow
 // itself (sim/engines/slow_flow: adaptive Dormand-Prince, every border of the vector field
-// switched where it is crossed, nothing shared with the shooting's fixed-step polar map): the
-// stable one of the two cycles meeting at the fold, at its own parameter value p_s, is a periodic
-// state -- a run started on it stays on its orbit -- while at the mirror value 2 p_f - p_s beyond
-// the fold the same start drifts away (no cycle there). A fold where neither neighbour is stable
-// cannot be followed by a forward run and is reported unconfirmed.
+// switched where it is crossed, nothing shared with the shooting's fixed-step polar map). Of the
+// two legs of cycles meeting at the fold, the stable one gives a periodic state: a run started on
+// its cycle halfway along its stable stretch, at p_s, stays on that cycle; at the mirror value
+// 2 p_f - p_s beyond the fold, where no cycle is, the same start drifts away. A fold where neither
+// leg is stable cannot be followed by a forward run and is reported unconfirmed.
 #pragma once
 
 #include <string>
@@ -25,8 +25,9 @@ struct FoldCheck {
   std::string check;  // what the runs did
 };
 
-// The fold at p_f between the branch's cycles `before` and `after` (both on one side of p_f).
-FoldCheck checkCycleFold(const SlowFlowProblem& prob, double p_f, const CycleOnBranch& before,
-                         const CycleOnBranch& after);
+// The fold at p_f between the branch's two legs (each ordered from the fold outwards).
+FoldCheck checkCycleFold(const SlowFlowProblem& prob, double p_f,
+                         const std::vector<CycleOnBranch>& leg_a,
+                         const std::vector<CycleOnBranch>& leg_b);
 
 }  // namespace metrosync::continuation

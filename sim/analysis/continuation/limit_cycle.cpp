@@ -4,6 +4,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 
@@ -115,27 +116,57 @@ std::optional<Vec> firstCycle(const MultipleShooting& ms, const Vec& y_h, double
 // The continuation system in u = (y_0, .., y_{M-1}, T): the arcs join, y_0 on the phase plane;
 // borders (exits) where the period passes kMaxPeriodFactor T_h and where the orbit touches the
 // region's border.
-ContinuationSystem shootingSystem(const MultipleShooting& ms, int n, const Vec& y_h, const Vec& d,
-                                  double T_h) {
+// y_0 relative to the orbit's centre (the mean of the arcs' starts).
+Vec fromCentre(const Vec& u, int n) {
+  Vec c = Vec::Zero(n);
+  for (int j = 0; j < kSegments; ++j) c += u.segment(j * n, n);
+  return u.head(n) - c / kSegments;
+}
+
+// A step through zero amplitude: the cycle shrank onto a Hopf point and the step came out on the
+// same cycles again (y_0 now on the other side of the centre: the phase condition's other
+// crossing). The branch ends there.
+std::string throughHopf(const Vec& y, const Vec& y_next, int n) {
+  if (fromCentre(y, n).dot(fromCentre(y_next, n)) >= 0) return "";
+  return "the cycle shrinks onto a Hopf point (the next step passed through zero amplitude)";
+}
+
+// The phase condition (y_0 - y_r) . d = 0: the hyperplane through the last cycle's y_0 across
+// the orbit there (d along the chord y_1 - y_{M-1}), moved with every accepted cycle. A fixed
+// hyperplane (through the Hopf point) stops cutting the cycles once they shrink around another
+// equilibrium, and the branch would turn back there on the same cycles.
+struct PhasePlane {
+  Vec y, d;
+  void through(const Vec& u, int n) {
+    y = u.head(n);
+    d = (u.segment(n, n) - u.segment((kSegments - 1) * n, n)).normalized();
+  }
+};
+
+ContinuationSystem shootingSystem(const MultipleShooting& ms, int n, const Vec& u0, double T_h) {
   const int N = ms.size() - 1;
+  auto plane = std::make_shared<PhasePlane>();
+  plane->through(u0, n);
   ContinuationSystem sys;
   sys.n = N + 1;
-  sys.residual = [&ms, y_h, d, n, N](const Vec& u, double p, const Region&) {
+  sys.residual = [&ms, plane, n, N](const Vec& u, double p, const Region&) {
     Vec r(N + 1);
-    r << ms.residual(u, p), (u.head(n) - y_h).dot(d);
+    r << ms.residual(u, p), (u.head(n) - plane->y).dot(plane->d);
     return r;
   };
-  sys.jacobian = [&ms, d, n, N](const Vec& u, double p, const Region&) {
+  sys.jacobian = [&ms, plane, n, N](const Vec& u, double p, const Region&) {
     Mat J = Mat::Zero(N + 1, N + 1);
     J.topRows(N) = ms.jacobian(u, p);
-    J.block(N, 0, 1, n) = d.transpose();
+    J.block(N, 0, 1, n) = plane->d.transpose();
     return J;
   };
+  sys.accepted = [plane, n](const Vec& y) { plane->through(y, n); };
   sys.borders = [&ms, T_h, N](const Vec& u, double p) {
     Vec b(2);
     b << kMaxPeriodFactor * T_h - u(N), std::min(ms.margin(u, p), 1.0) - kMarginStop;
     return b;
   };
+  sys.stop = [n](const Vec& y, const Vec& y_next) { return throughHopf(y, y_next, n); };
   sys.exits = [](int) { return true; };
   sys.eigenvalues = [](const Vec&, double, const Region&) { return CVec(); };
   sys.tolerance = kCycleTolerance;
@@ -223,7 +254,7 @@ CycleBranch continueCycleFromHopf(const CycleField& f, const Vec& y_h, double p_
   const int N = ms.size();  // unknowns: arcs and T
   const double T_h = 2 * M_PI / q.omega, p0 = (*v)(N);
   const ParameterScale scale(p0, s);
-  const ContinuationSystem sys = scale.system(shootingSystem(ms, f.n, y_h, q.im, T_h));
+  const ContinuationSystem sys = scale.system(shootingSystem(ms, f.n, v->head(N), T_h));
   Vec y(N + 1), ref = Vec::Zero(N + 1);
   y << v->head(N), 0.0;
   ref.head(f.n) = q.re;  // outwards: the amplitude along Re q grows
@@ -248,6 +279,7 @@ CycleBranch continueCycleFromHopf(const CycleField& f, const Vec& y_h, double p_
   }
   dropFoldChanges(out);
   out.end = endOf(w, out.points.back().p, T_h);
+  out.into_hopf = w.end.rfind("the cycle shrinks onto a Hopf point", 0) == 0;
   return out;
 }
 

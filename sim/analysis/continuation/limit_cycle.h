@@ -41,6 +41,7 @@ struct CycleBranch {
   std::vector<CyclePoint> points;  // in order along the branch, from the Hopf point outwards
   std::string end;                 // why the branch stopped
   bool max_points = false;         // stopped by the point budget
+  bool into_hopf = false;          // it ended shrinking onto a Hopf point (near its last point)
   std::vector<CyclePoint> folds;   // the folds of cycles, located
   // where the stability changes between consecutive points other than at a fold, in words (the
   // multiplier type: -1 period doubling, a complex pair Neimark-Sacker / torus)

@@ -39,6 +39,7 @@ ContinuationSystem ParameterScale::system(const ContinuationSystem& sys) const {
     out.lyapunov = [sys, m](const Vec& x, double q, const Region& r) {
       return sys.lyapunov(x, m.p(q), r);
     };
+  // stop and accepted see (x, q): they do not use the parameter's value
   if (sys.stableOnBorder)
     out.stableOnBorder = [sys, m](const Vec& x, double q) { return sys.stableOnBorder(x, m.p(q)); };
   return out;

@@ -79,6 +79,7 @@ struct ContinuationResult {
   std::vector<ResultFamily> families;
   // the limit cycle born at each Hopf point (one per distinct Hopf point)
   std::vector<ResultCycle> cycles;
+  int cycle_budget = 0;  // each cycle's point budget
   // --fold: the second key and the curve of each fold and Hopf point in (param, param2)
   std::string param2;
   std::vector<FoldCurve> fold_curves;

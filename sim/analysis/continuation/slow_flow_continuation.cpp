@@ -98,13 +98,37 @@ std::vector<Seed> distinctSeeds(const std::vector<Seed>& seeds, const Continuati
   return out;
 }
 
+// The Hopf seed nearest p (its index in seeds), -1 when there is none.
+int nearestHopf(const std::vector<Seed>& seeds, double p) {
+  int best = -1;
+  for (size_t k = 0; k < seeds.size(); ++k)
+    if (seeds[k].kind == CurveKind::Hopf &&
+        (best < 0 || std::abs(seeds[k].at.p() - p) < std::abs(seeds[best].at.p() - p)))
+      best = static_cast<int>(k);
+  return best;
+}
+
+// The cycle of each Hopf seed, but for one a cycle already followed ends on (the same cycles).
 void cycles(const SlowFlowContinuationSpec& spec, const std::vector<Seed>& seeds,
             ContinuationResult& r) {
   ContinuationSettings s = spec.settings;
   if (spec.cycle_points > 0) s.max_points = spec.cycle_points;
-  for (const Seed& seed : seeds) {
-    if (seed.kind != CurveKind::Hopf) continue;
-    r.cycles.push_back(followSlowFlowCycle(*seed.prob, seed.at, s));
+  r.cycle_budget = s.max_points;
+  for (size_t k = 0; k < seeds.size(); ++k) {
+    if (seeds[k].kind != CurveKind::Hopf) continue;
+    const auto joined = std::find_if(r.cycles.begin(), r.cycles.end(), [&](const ResultCycle& c) {
+      return c.into_hopf && !c.points.empty() &&
+             nearestHopf(seeds, c.points.back().value) == static_cast<int>(k);
+    });
+    if (joined != r.cycles.end()) {
+      ResultCycle same;
+      same.hopf_value = seeds[k].at.p();
+      same.end = "not followed: the cycles of cycle " + std::to_string(joined->id) +
+                 " end on this Hopf point (one family joins the two)";
+      r.cycles.push_back(same);
+    } else {
+      r.cycles.push_back(followSlowFlowCycle(*seeds[k].prob, seeds[k].at, s));
+    }
     r.cycles.back().id = static_cast<int>(r.cycles.size()) - 1;
   }
 }

@@ -40,26 +40,28 @@ ResultCyclePoint resultPoint(const SlowFlowProblem& prob, const CyclePoint& q) {
   return r;
 }
 
-// The fold f of the branch c, with the check by runs of the slow flow on its two neighbours
-// (the branch points on either side of it along the branch).
+// The fold f of the branch c, with the check by runs of the slow flow on its two legs (the
+// branch's points on either side of the point where p turns back at f).
 ResultCycleFold checkedFold(const SlowFlowProblem& prob, const CycleBranch& c,
                             const CyclePoint& f) {
   ResultCycleFold out;
   out.at = resultPoint(prob, f);
-  // the neighbours: the two consecutive points between which p turns back at f
-  size_t k = 1;
+  size_t k = 0;
   double best = std::numeric_limits<double>::infinity();
   for (size_t i = 1; i + 1 < c.points.size(); ++i) {
     const double turn = (c.points[i].p - c.points[i - 1].p) * (c.points[i + 1].p - c.points[i].p);
     const double d = std::abs(c.points[i].p - f.p);
     if (turn <= 0 && d < best) best = d, k = i;
   }
-  if (c.points.size() < 3) {
+  if (k == 0) {
     out.check = "not confirmed: too few cycles beside it";
     return out;
   }
   auto on = [](const CyclePoint& q) { return CycleOnBranch{q.p, q.period, q.stable, q.orbit}; };
-  const FoldCheck check = checkCycleFold(prob, f.p, on(c.points[k - 1]), on(c.points[k + 1]));
+  std::vector<CycleOnBranch> a, b;
+  for (size_t i = k; i-- > 0;) a.push_back(on(c.points[i]));
+  for (size_t i = k + 1; i < c.points.size(); ++i) b.push_back(on(c.points[i]));
+  const FoldCheck check = checkCycleFold(prob, f.p, a, b);
   out.confirmed = check.confirmed, out.check = check.check;
   return out;
 }
@@ -104,7 +106,7 @@ ResultCycle followSlowFlowCycle(const SlowFlowProblem& prob, const BranchPoint& 
     return out;
   }
   out.frequency = c.hopf_frequency, out.end = c.end, out.changes = c.changes;
-  out.max_points = c.max_points;
+  out.max_points = c.max_points, out.into_hopf = c.into_hopf;
   for (const CyclePoint& q : c.points) out.points.push_back(resultPoint(prob, q));
   for (const CyclePoint& q : c.folds) out.folds.push_back(checkedFold(prob, c, q));
   return out;

@@ -39,6 +39,7 @@ struct ResultCycle {
   std::vector<ResultCyclePoint> points;  // from the Hopf point outwards
   std::string end;
   bool max_points = false;  // stopped by its point budget
+  bool into_hopf = false;   // it ended on a Hopf point (at its last point's parameter)
   std::vector<ResultCycleFold> folds;
   std::vector<std::string> changes;  // other changes of the cycle's stability, in words
 };

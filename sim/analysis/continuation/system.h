@@ -33,6 +33,13 @@ struct ContinuationSystem {
   std::function<Mat(const Vec& x, double p, const Region& region)> jacobian;
   // Whether to watch for branch points (det [F_x F_p; t^T], a Jacobian per step).
   bool branch_points = true;
+  // A stop rule on each step from y (accepted) to y_next (not yet): a reason ends the walk at y
+  // (e.g. a limit cycle shrinking through zero amplitude within the step). Empty: none.
+  std::function<std::string(const Vec& y, const Vec& y_next)> stop;
+  // Called with each point the walk goes on from (y = (x, p)): a system whose equations follow
+  // the branch (a limit cycle's phase condition through the last cycle) updates them here; the
+  // point itself must still solve them.
+  std::function<void(const Vec& y)> accepted;
   // Stability eigenvalues at a solution, formulas of `region` (the symmetry's zero removed).
   std::function<CVec(const Vec& x, double p, const Region& region)> eigenvalues;
   // First Lyapunov coefficient at a Hopf point (optional; NaN when unavailable).
