@@ -87,7 +87,10 @@ std::string cyclesCsv(const ContinuationResult& r) {
   c << "cycle," << r.param << ",period";
   for (int i = 1; i <= r.metronomes; ++i) c << ",A_" << i << "_min,A_" << i << "_max";
   for (int j = 2; j <= r.metronomes; ++j) c << ",psi_" << j << "_min,psi_" << j << "_max";
-  c << ",stable,max_multiplier\n";
+  c << ",stable,max_multiplier";
+  for (int i = 1; i <= r.metronomes; ++i) c << ",A_" << i << "_0";
+  for (int j = 2; j <= r.metronomes; ++j) c << ",psi_" << j << "_0";
+  c << "\n";
   for (const auto& cycle : r.cycles)
     for (const auto& q : cycle.points) {
       c << cycle.id << "," << num(q.value) << "," << num(q.period);
@@ -95,7 +98,10 @@ std::string cyclesCsv(const ContinuationResult& r) {
         c << "," << num(q.A_min[i]) << "," << num(q.A_max[i]);
       for (size_t j = 0; j < q.psi_min.size(); ++j)
         c << "," << num(q.psi_min[j]) << "," << num(q.psi_max[j]);
-      c << "," << (q.stable ? 1 : 0) << "," << num(q.max_multiplier) << "\n";
+      c << "," << (q.stable ? 1 : 0) << "," << num(q.max_multiplier);
+      for (double a : q.A0) c << "," << num(a);
+      for (double p : q.psi0) c << "," << num(p);
+      c << "\n";
     }
   return c.str();
 }
@@ -105,13 +111,13 @@ std::string branchesCsv(const ContinuationResult& r) {
   c << "branch," << r.param;
   for (int i = 1; i <= r.metronomes; ++i) c << ",A_" << i;
   for (int j = 2; j <= r.metronomes; ++j) c << ",psi_" << j;
-  c << ",stable,max_real,ticking,platform,s\n";
+  c << ",stable,max_real,ticking,platform,s,weight\n";
   for (const ResultPoint& q : r.points) {
     c << q.branch << "," << num(q.value);
     for (double a : q.A) c << "," << num(a);
     for (double p : q.psi) c << "," << num(p);
     c << "," << (q.stable ? 1 : 0) << "," << num(q.max_real) << "," << q.ticking << ","
-      << q.platform << "," << num(q.s) << "\n";
+      << q.platform << "," << num(q.s) << "," << num(q.weight) << "\n";
   }
   return c.str();
 }

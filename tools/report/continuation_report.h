@@ -1,9 +1,10 @@
 // The files of `metrosync continue` (issue 12), written atomically into the output directory:
-//   branches.csv       branch,KEY,A_1..A_N,psi_2..psi_N,stable,max_real,ticking,platform,s
+//   branches.csv       branch,KEY,A_1..A_N,psi_2..psi_N,stable,max_real,ticking,platform,s,weight
 //                      (one row per point, in order along each branch; stable 1/0; max_real the
 //                      largest real part of the eigenvalues; ticking the metronomes whose
 //                      escapement is on; platform beta's regime: stuck s <= 1, stick-slip
-//                      1 < s <= sqrt(1 + pi^2/4), slip above; s = |Z| / mu)
+//                      1 < s <= sqrt(1 + pi^2/4), slip above; s = |Z| / mu; weight the
+//                      escapement formula's weight of a border state, nan otherwise)
 //   bifurcations.json  a list of {type: fold|hopf|branch|border, param, value, A, psi,
 //                      eigenvalues [[re, im]...], detail, branch, stability_changes, lyapunov
 //                      (hopf)}
@@ -15,7 +16,7 @@
 //   families.csv       family,KEY,A_i_min,A_i_max..,psi_j_min,psi_j_max..,closed: each neutral
 //                      family's extent
 //   cycles.csv         cycle,KEY,period,A_i_min,A_i_max..,psi_j_min,psi_j_max..,stable,
-//                      max_multiplier
+//                      max_multiplier,A_i_0..,psi_j_0..: (A_i_0, psi_j_0) a state on the cycle
 //   fold_curve.csv     (--fold) fold,KEY,KEY2,A_1..A_N,psi_2..psi_N: each fold's curve
 //   fold_curve.png     (--fold) the curves in the (KEY, KEY2) plane
 #pragma once
