@@ -15,6 +15,7 @@
 #include "contact/averaged_response.h"
 #include "sim/analysis/compare.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
+#include "sim/parallel/worker_pool.h"
 
 namespace metrosync {
 
@@ -57,12 +58,6 @@ class KeepingSink : public RunSink {
 
 double windowStart(double tau_end, double epsilon) {
   return RegimeWindow(tau_end, epsilon).tauStart();  // the regime's window (sim/analysis/regime.h)
-}
-
-const Scenario& findScenario(const std::vector<Scenario>& all, const std::string& name) {
-  for (const auto& s : all)
-    if (s.spec.name == name) return s;
-  throw std::invalid_argument("validation: no scenario named '" + name + "'");
 }
 
 }  // namespace
@@ -112,6 +107,12 @@ const std::vector<ScenarioSpec>& shippedScenarios() {
        "experiment, mu-bar = 4.6e-3, antiphase start: stays in antiphase (fig. exp1)"},
   };
   return specs;
+}
+
+const Scenario& findScenario(const std::vector<Scenario>& all, const std::string& name) {
+  for (const Scenario& s : all)
+    if (s.spec.name == name) return s;
+  throw std::invalid_argument("validation: no scenario named '" + name + "'");
 }
 
 Rig rigAtEpsilon(const ScaledParams& p, const std::string& name, double epsilon, double tau_end) {
@@ -417,6 +418,7 @@ ValidationPlan defaultValidationPlan(bool quick) {
                         : std::vector<double>{0.02, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5,
                                               0.6,  0.7,  0.8, 1.0,  1.5, 2.0,  3.0, 6.0};
   plan.bifurcations = paperBifurcationFamilies(quick);
+  plan.full_orbits = true;
   return plan;
 }
 
@@ -430,6 +432,7 @@ int ValidationResults::failedChecks() const {
   for (const auto& c : convergence) n += !c.pass;
   for (const auto& f : bifurcations)
     for (const auto& p : f.points) n += !p.pass;
+  if (full_orbits) n += full_orbits->failed();
   return n;
 }
 
@@ -457,36 +460,6 @@ bool finalStatesAgree(const ModelRun& full, const ModelRun& slow, double distanc
     default:
       return true;  // death (no state left), drift and unsettled (no state to compare)
   }
-}
-
-// Runs task(k) for k in `order` on `jobs` threads (dynamic: each takes the next index when it
-// is free, so long tasks listed first balance best). The first exception is rethrown at the end.
-void parallelFor(int jobs, const std::vector<size_t>& order,
-                 const std::function<void(size_t)>& task) {
-  std::atomic<size_t> next{0};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  auto worker = [&] {
-    for (;;) {
-      const size_t k = next++;
-      if (k >= order.size()) return;
-      try {
-        task(order[k]);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
-      }
-    }
-  };
-  const size_t threads = std::min<size_t>(std::max(jobs, 1), order.size());
-  if (threads <= 1) {
-    worker();
-  } else {
-    std::vector<std::thread> pool;
-    for (size_t t = 0; t < threads; ++t) pool.emplace_back(worker);
-    for (auto& t : pool) t.join();
-  }
-  if (error) std::rethrow_exception(error);
 }
 
 std::vector<size_t> identity(size_t n) {
@@ -540,7 +513,7 @@ struct Task {
 void runBetas(const ValidationPlan& plan, const ValidationEngines& engines, ProgressLog& log,
               int jobs, ValidationResults& res) {
   res.betas.resize(plan.beta_s.size());
-  parallelFor(jobs, identity(plan.beta_s.size()), [&](size_t k) {
+  parallelFor(static_cast<long>(plan.beta_s.size()), jobs, [&](long k) {
     BetaRow& row = res.betas[k];
     const double s = plan.beta_s[k];
     row.s = s;
@@ -713,13 +686,19 @@ ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Sc
   std::vector<size_t> order = identity(tasks.size());
   std::stable_sort(order.begin(), order.end(),
                    [&](size_t a, size_t b) { return tasks[a].cost > tasks[b].cost; });
-  parallelFor(jobs, order, [&](size_t k) { tasks[k].run(); });
+  // the pool (sim/parallel/worker_pool.h): each thread takes the next task when free, so the
+  // longest, listed first, balance best
+  parallelFor(static_cast<long>(order.size()), jobs, [&](long k) { tasks[order[k]].run(); });
 
   finishConvergence(plan, log, res);
   finishRegimes(scenarios, res);
   if (!plan.bifurcations.empty()) {
     log.say("bifurcations of the slow flow (continuation, slow-flow checks, full-model brackets)");
     res.bifurcations = runBifurcationFamilies(plan.bifurcations, scenarios, engines, jobs);
+  }
+  if (plan.full_orbits) {
+    log.say("bifurcations of the full model (periodic orbits, continuation at several epsilon)");
+    res.full_orbits = runFullOrbitBifurcations(plan.quick, scenarios, engines, jobs);
   }
   res.wall_seconds = secondsSince(t0);
   return res;

@@ -9,6 +9,7 @@
 #include "sim/analysis/continuation/arclength.h"
 #include "sim/analysis/continuation/start_states.h"
 #include "sim/analysis/validation.h"
+#include "sim/parallel/worker_pool.h"
 
 namespace metrosync {
 
@@ -27,12 +28,6 @@ std::string number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
-}
-
-const Scenario& scenarioNamed(const std::vector<Scenario>& all, const std::string& name) {
-  for (const Scenario& s : all)
-    if (s.spec.name == name) return s;
-  throw std::invalid_argument("validation: no scenario named " + name);
 }
 
 EnvelopeRow rowOf(const SlowFlowProblem& prob, const Vec& x) {
@@ -126,7 +121,7 @@ void bracket(const BifurcationFamilySpec& spec, const ParamsAt& at,
       b.regimes.assign(b.values.size(), "");
       out.full[i].push_back(b);
     }
-  parallelFor(jobs, identity(jobs_list.size()), [&](size_t j) {
+  parallelFor(static_cast<long>(jobs_list.size()), jobs, [&](long j) {
     const Job& job = jobs_list[j];
     FullBracket& b = out.full[job.point][job.eps];
     const ScaledParams q = at(b.values[job.k]);
@@ -181,7 +176,7 @@ std::vector<BifurcationFamilyResult> runBifurcationFamilies(
   for (const BifurcationFamilySpec& spec : families) {
     BifurcationFamilyResult r;
     r.spec = spec;
-    const ScaledParams base = scenarioNamed(scenarios, spec.scenario).scaled;
+    const ScaledParams base = findScenario(scenarios, spec.scenario).scaled;
     const ParamsAt at = [base, set = spec.set](double v) {
       ScaledParams q = base;
       set(q, v);

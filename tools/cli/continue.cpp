@@ -12,10 +12,19 @@
 #include "sim/analysis/continuation/slow_flow_continuation.h"
 #include "sim/analysis/continuation/start_states.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/continue_full.h"
+#include "tools/cli/number_option.h"
+#include "tools/cli/option_keys.h"
 #include "tools/report/continuation_report.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
+
+namespace {
+// --max-points: a branch point is a Newton solve of 2N - 1 unknowns and one CSV row; 10^6 points
+// per direction bound a continuation to minutes and its branches.csv to ~100 MB per branch.
+constexpr long long kMaxContinuationPoints = 1000000;
+}  // namespace
 
 namespace {
 
@@ -33,31 +42,10 @@ std::string fmt(double v) {
   return buf;
 }
 
-constexpr const char* kEveryMetronome = "metronomes.*.";
-
-// "metronomes.*.X=V" as one override per metronome (n of them); any other override as it is.
-std::vector<std::string> expandWildcards(const std::vector<std::string>& overrides, size_t n) {
-  std::vector<std::string> out;
-  const std::string every = kEveryMetronome;
-  for (const std::string& kv : overrides) {
-    if (kv.compare(0, every.size(), every) != 0) {
-      out.push_back(kv);
-      continue;
-    }
-    for (size_t i = 0; i < n; ++i)
-      out.push_back("metronomes." + std::to_string(i) + "." + kv.substr(every.size()));
-  }
-  return out;
-}
-
-// The rig with --set, then `extra` (the parameter's KEY=VALUE, named --param in messages; a key
-// metronomes.*.X sets X of every metronome).
+// The rig with --set, then `extra` (the parameter's KEY=VALUE, named --param in messages; keys
+// as in docs/keys.md: metronomes.*.X sets X of every metronome).
 Rig loadWith(const ContinueOptions& opt, std::vector<std::string> extra) {
   std::vector<std::string> o = opt.sets;
-  const bool wildcard = std::any_of(extra.begin(), extra.end(), [](const std::string& kv) {
-    return kv.rfind(kEveryMetronome, 0) == 0;
-  });
-  if (wildcard) extra = expandWildcards(extra, loadWith(opt, {}).metronomes.size());
   o.insert(o.end(), extra.begin(), extra.end());
   try {
     return opt.rig_path.empty() ? defaultRig(o) : loadRigFile(opt.rig_path, o);
@@ -69,6 +57,10 @@ Rig loadWith(const ContinueOptions& opt, std::vector<std::string> extra) {
         what.replace(at, 5, "--param");
     throw RigError(what);
   }
+}
+
+std::string rigDisplay(const ContinueOptions& opt) {
+  return opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
 }
 
 std::string rigText(const ContinueOptions& opt) {
@@ -109,30 +101,46 @@ ParamsAt2 paramsAt2(const ContinueOptions& opt) {
   return [opt](double p1, double p2) { return scaledAt(opt, {opt.param, opt.fold_key}, {p1, p2}); };
 }
 
-double startValue(const ContinueOptions& opt) {
-  if (opt.param == "epsilon")
-    throw UsageError(
-        "--param epsilon: epsilon has no effect on the slow flow (it only sets the "
-        "time scale of the full model); choose a key the slow flow depends on");
+// The scaled parameters with KEY = value; a value that makes one of them infinite or NaN (e.g.
+// --to 1e308) is refused naming `which` option gave it.
+ScaledParams finiteScaledAt(const ContinueOptions& opt, double value, const std::string& which) {
+  const ScaledParams p = scaledAt(opt, {opt.param}, {value});
+  const std::pair<const char*, const std::vector<double>*> lists[] = {
+      {"nu", &p.nu}, {"J", &p.J}, {"theta_c", &p.theta_c}, {"alpha", &p.alpha}, {"zeta", &p.zeta}};
+  std::string bad = std::isfinite(p.mu) ? "" : "mu";
+  if (!std::isfinite(p.c)) bad = "c";
+  for (const auto& [name, v] : lists)
+    for (double x : *v)
+      if (!std::isfinite(x)) bad = name;
+  if (!bad.empty())
+    throw UsageError(which + ": " + opt.param + " = " + fmt(value) + " makes the scaled " + bad +
+                     " infinite or undefined; choose a value nearer the rig's");
+  return p;
+}
+
+// The start value of opt.param, typed after `option` (--param, or --fold for KEY2).
+double startValue(const ContinueOptions& opt, const std::string& option = "--param") {
   const Rig rig = loadWith(opt, {});  // the rig itself must load
-  const std::string display = opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
-  // metronomes.*.X: the rig's value of metronome 1 (0-based 0)
-  const std::string key =
-      opt.param.rfind(kEveryMetronome, 0) == 0
-          ? "metronomes.0." + opt.param.substr(std::string(kEveryMetronome).size())
-          : opt.param;
-  const std::optional<double> in_rig = rigNumber(rigText(opt), display, opt.sets, key);
+  const std::string display = rigDisplay(opt);
+  const std::string text = rigText(opt);
+  const RigKey key = resolveOptionKey({text, display, opt.sets}, option, opt.param, false).key;
+  if (key.key.text() == "epsilon")
+    throw UsageError(option +
+                     " epsilon: epsilon has no effect on the slow flow (it only sets the "
+                     "time scale of the full model); choose a key the slow flow depends on");
+  // a key with '*': the rig's value at its first element (metronome 1 for metronomes.*.X)
+  const std::optional<double> in_rig = rigNumber(text, display, opt.sets, key.paths[0].text());
   if (!opt.from && !in_rig)
-    throw UsageError("--param " + opt.param +
+    throw UsageError(option + " " + opt.param +
                      ": the key is not set in the rig (its default applies); give --from VALUE");
-  const double from = opt.from ? *opt.from : *in_rig;
-  if (!std::isfinite(opt.to) || !std::isfinite(from) || opt.to == from)
+  const double from = opt.from ? *opt.from : *in_rig;  // both finite (tools/cli/number_option.h)
+  if (opt.to == from)
     throw UsageError("--to " + fmt(opt.to) + ": must differ from the start value " + opt.param +
                      " = " + fmt(from));
-  const ScaledParams a = computeScaled(loadWith(opt, {opt.param + "=" + fmt(from)}));
-  const ScaledParams b = computeScaled(loadWith(opt, {opt.param + "=" + fmt(opt.to)}));
+  const ScaledParams a = finiteScaledAt(opt, from, opt.from ? "--from" : "the rig's value");
+  const ScaledParams b = finiteScaledAt(opt, opt.to, "--to");
   if (sameSlowFlow(a, b))
-    throw UsageError("--param " + opt.param + ": has no effect on the slow flow (its scaled " +
+    throw UsageError(option + " " + opt.param + ": has no effect on the slow flow (its scaled " +
                      "parameters are the same at " + fmt(from) + " and " + fmt(opt.to) + ")");
   return from;
 }
@@ -178,8 +186,8 @@ std::vector<Cd> startState(const ContinueOptions& opt, const ScaledParams& sp, s
 }
 
 ContinuationSettings settingsFor(const ContinueOptions& opt, double from) {
-  if (opt.step < 0) throw UsageError("--step " + fmt(opt.step) + ": must be > 0");
-  if (opt.max_points < 2) throw UsageError("--max-points: must be >= 2");
+  // --step and --max-points are checked when parsed (tools/cli/number_option.h); a step of 0 is
+  // the option left out
   ContinuationSettings s;
   s.p_min = std::min(from, opt.to);
   s.p_max = std::max(from, opt.to);
@@ -195,11 +203,14 @@ ContinuationSettings settingsFor(const ContinueOptions& opt, double from) {
 
 // KEY2's start (the rig's value), checked like KEY's.
 double secondStart(const ContinueOptions& opt) {
-  if (opt.fold_key == opt.param)
-    throw UsageError("--fold " + opt.fold_key + ": the same as --param");
+  const std::string display = rigDisplay(opt);
+  const std::string text = rigText(opt);
+  const KeyedRig rig{text, display, opt.sets};
+  refuseSharedKeys({resolveOptionKey(rig, "--param", opt.param, false),
+                    resolveOptionKey(rig, "--fold", opt.fold_key, false)});
   ContinueOptions second = opt;
   second.param = opt.fold_key, second.to = opt.to2, second.from.reset();
-  return startValue(second);
+  return startValue(second, "--fold");
 }
 
 std::string outDir(const ContinueOptions& opt, const Rig& rig) {
@@ -333,31 +344,38 @@ CLI::App* addContinueCommand(CLI::App& app) {
       "follow the slow flow's locked states in one rig key: stability, folds, Hopf "
       "points, branch points, border crossings");
   c->add_option("RIG", opt.rig_path, "rig file (YAML); default: the built-in rig");
+  c->add_option("--model", opt.model,
+                "slow (the slow flow's locked states) or full (the full model's periodic orbits, "
+                "docs/continuation.md)")
+      ->check(CLI::IsMember({"slow", "full"}))
+      ->capture_default_str();
   c->add_option("--set", opt.sets, "override a rig key (as in run); repeatable")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
   c->add_option("--param", opt.param, "the rig key to vary, e.g. metronomes.1.alpha")->required();
-  c->add_option("--to", opt.to, "the other end of the parameter range")->required();
-  c->add_option("--from", opt.from, "the start value (default: the rig's value of KEY)");
+  addNumber(c, "--to", opt.to, kAnyFinite, "the other end of the parameter range")->required();
+  addNumber(c, "--from", opt.from, kAnyFinite, "the start value (default: the rig's value of KEY)");
   c->add_option("--start", opt.start,
                 "the start state A_1,..,A_N,psi_2,..,psi_N (default: the "
                 "rig's start, integrated until it settles)");
-  c->add_option("--step", opt.step,
-                "first step, in KEY's units (default |to - from| / 100); steps then adapt");
-  c->add_option("--max-points", opt.max_points, "points per direction of each branch")
-      ->capture_default_str();
+  addNumber(c, "--step", opt.step, kPositive,
+            "first step, in KEY's units (default |to - from| / 100); steps then adapt");
+  addInteger(c, "--max-points", opt.max_points, 2, kMaxContinuationPoints,
+             "points per direction of each branch")
+      ->default_str(std::to_string(opt.max_points));
   c->add_flag("--all", opt.all, "every locked state at the start value (Newton from a grid)");
   c->add_option("--out", opt.out, "output directory (default runs/<rig name>-continue)");
   c->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
   c->add_flag("--no-cycles", opt.no_cycles,
               "do not follow the limit cycle born at each Hopf point (cycles.csv)");
-  c->add_option("--cycle-points", opt.cycle_points, "points of each limit cycle's branch at most")
-      ->capture_default_str();
+  addInteger(c, "--cycle-points", opt.cycle_points, 2, kMaxContinuationPoints,
+             "points of each limit cycle's branch at most")
+      ->default_str(std::to_string(opt.cycle_points));
   CLI::Option* fold = c->add_option("--fold", opt.fold_key,
                                     "a second rig key: continue every fold and Hopf point found in "
                                     "KEY in (KEY, KEY2), from KEY2's value in the rig -> "
                                     "fold_curve.csv, hopf_curve.csv, fold_curve.png");
-  c->add_option("--to2", opt.to2, "KEY2's other end (with --fold)")->needs(fold);
+  addNumber(c, "--to2", opt.to2, kAnyFinite, "KEY2's other end (with --fold)")->needs(fold);
   fold->needs("--to2");
   c->footer(
       "Files in --out DIR: branches.csv, bifurcations.json, branches.png, cycles.csv, "
@@ -382,6 +400,10 @@ ContinuationResult slowFlowContinuation(const ContinueOptions& opt) {
   } catch (const NoLockedState& e) {
     throw UsageError(std::string(e.what()) + " at " + opt.param + " = " + fmt(from) +
                      (opt.all ? "" : " (" + how + ")"));
+  } catch (const std::invalid_argument& e) {  // the slow flow at a value on the way: not finite
+    throw UsageError("--param " + opt.param + " from " + fmt(from) + " to " + fmt(opt.to) + ": " +
+                     e.what() + " on the way (the range leaves the range of the numbers); " +
+                     "choose a --to nearer the start");
   }
   result.param = opt.param;
   result.param2 = opt.fold_key;
@@ -390,6 +412,7 @@ ContinuationResult slowFlowContinuation(const ContinueOptions& opt) {
 }
 
 int continueCommand(const ContinueOptions& opt) {
+  if (opt.model == "full") return continueFullCommand(opt);
   const ContinuationResult result = slowFlowContinuation(opt);
   const Rig rig = loadWith(opt, {opt.param + "=" + fmt(result.from)});
   const OutputDir dir(outDir(opt, rig));
