@@ -16,6 +16,7 @@
 #include "models/scaling.h"
 #include "models/slow_flow.h"
 #include "tests/common/run_metrosync.h"
+#include "tests/continuation/fixtures.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync {
@@ -33,25 +34,6 @@ ScaledParams f41(double mu) {
   char kv[64];
   std::snprintf(kv, sizeof kv, "platform.friction.mu=%.17g", mu);
   return computeScaled(loadRigFile(kRig, {kv}));
-}
-
-// RK4 on dz/dtau = f(z), modes held, over [0, T] in n steps.
-std::vector<Cd> integrate(const ScaledParams& p, const SlowFlowModes& modes, std::vector<Cd> z,
-                          double T, int n) {
-  const double h = T / n;
-  auto f = [&](const std::vector<Cd>& w) { return slowFlowRhs(p, modes, w); };
-  auto axpy = [](const std::vector<Cd>& a, double s, const std::vector<Cd>& b) {
-    std::vector<Cd> r(a.size());
-    for (size_t i = 0; i < a.size(); ++i) r[i] = a[i] + s * b[i];
-    return r;
-  };
-  for (int k = 0; k < n; ++k) {
-    const auto k1 = f(z), k2 = f(axpy(z, h / 2, k1)), k3 = f(axpy(z, h / 2, k2)),
-               k4 = f(axpy(z, h, k3));
-    for (size_t i = 0; i < z.size(); ++i)
-      z[i] += h / 6 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-  }
-  return z;
 }
 
 // Distance between two states up to the common phase.
@@ -106,11 +88,14 @@ TEST(CycleFold, ConfirmedByTheSlowFlowAndByAnIndependentIntegration) {
   const ScaledParams on = f41(s->mu), off = f41(mu_b);
   const SlowFlowModes modes = slowFlowModesAt(on, s->z);
   const int steps = 2000;  // per period: RK4's error ~ (T / 2000)^4, far below the tolerances
-  EXPECT_LT(distance(integrate(on, modes, s->z, 10 * s->period, 10 * steps), s->z), 1e-3);
+  EXPECT_LT(
+      distance(continuation::testing::rk4SlowFlow(on, modes, s->z, 10 * s->period, 10 * steps),
+               s->z),
+      1e-3);
   double off_distance = 0;
   std::vector<Cd> z = s->z;
   for (int k = 0; k < 150 && off_distance < 0.1; ++k) {
-    z = integrate(off, modes, z, s->period, steps);
+    z = continuation::testing::rk4SlowFlow(off, modes, z, s->period, steps);
     off_distance = std::max(off_distance, distance(z, s->z));
   }
   EXPECT_GT(off_distance, 0.1);

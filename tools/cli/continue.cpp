@@ -195,8 +195,13 @@ ContinuationSettings settingsFor(const ContinueOptions& opt, double from) {
   // or the state by up to h, whatever the size of the key (a physical mu of 1e-3 or a scaled 0.4)
   s.p_scale = s.p_max - s.p_min;
   constexpr double kFirstStep = 0.01, kMaxStep = 0.05;
+  // kMaxStep is the cap for a pair; when every metronome moves alike, the state's arclength grows
+  // as the square root of their number, so the cap does too: each amplitude moves as far per
+  // step as in a pair (32 metronomes: 4 times the pair's cap, not 500 points along a range)
+  const double metronomes = static_cast<double>(loadWith(opt, {}).metronomes.size());
+  const double cap = kMaxStep * std::sqrt(std::max(1.0, metronomes / 2));
   s.step = opt.step > 0 ? opt.step / s.p_scale : kFirstStep;
-  s.step_max = std::max(s.step, kMaxStep);
+  s.step_max = std::max(s.step, cap);
   s.max_points = opt.max_points;
   return s;
 }

@@ -228,9 +228,11 @@ std::string continuationDiagramScript(const ContinuationResult& r, const std::st
     << "set output '" << png << "'\n"
     << "data = '" << data << "'\n"
     << "set key outside right top\nset grid\n"
+    // the same margins on both panels, so that their parameter axes line up whatever the keys
+    << "set lmargin at screen 0.08\nset rmargin at screen 0.78\n"
     << "set multiplot layout " << (n > 1 ? 2 : 1) << ",1 title 'locked states of the slow flow "
     << "against " << r.param
-    << ": stable solid, unstable dashed; LP fold, H_sub/H_sup Hopf, BP branch point, B border' "
+    << ": stable solid, unstable dashed; LP fold, H(sub)/H(sup) Hopf, BP branch point, B border' "
        "noenhanced\n"
     << "set xlabel '" << r.param << "' noenhanced\n"
     << amplitudePanel(r);

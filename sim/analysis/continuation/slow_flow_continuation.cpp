@@ -108,6 +108,12 @@ int nearestHopf(const std::vector<Seed>& seeds, double p) {
   return best;
 }
 
+// Cycles are followed for at most this many metronomes: the shooting integrates the reduced
+// flow's 2N - 1 states with their (2N - 1)^2 sensitivities, so a step's cost grows as N^3 to N^4
+// (a pair: ~0.6 s of CPU per cycle branch; 32 metronomes: over a minute before the first cycle,
+// docs/bench/slow-continuation.md).
+constexpr int kMaxCycleMetronomes = 4;
+
 // The cycle of each Hopf seed, but for one a cycle already followed ends on (the same cycles).
 void cycles(const SlowFlowContinuationSpec& spec, const std::vector<Seed>& seeds,
             ContinuationResult& r) {
@@ -116,6 +122,16 @@ void cycles(const SlowFlowContinuationSpec& spec, const std::vector<Seed>& seeds
   r.cycle_budget = s.max_points;
   for (size_t k = 0; k < seeds.size(); ++k) {
     if (seeds[k].kind != CurveKind::Hopf) continue;
+    if (r.metronomes > kMaxCycleMetronomes) {
+      ResultCycle skipped;
+      skipped.hopf_value = seeds[k].at.p();
+      skipped.end = "not followed: " + std::to_string(r.metronomes) + " metronomes (cycles for " +
+                    "at most " + std::to_string(kMaxCycleMetronomes) +
+                    ": the shooting's cost grows as N^3 or faster)";
+      r.cycles.push_back(skipped);
+      r.cycles.back().id = static_cast<int>(r.cycles.size()) - 1;
+      continue;
+    }
     const auto joined = std::find_if(r.cycles.begin(), r.cycles.end(), [&](const ResultCycle& c) {
       return c.into_hopf && !c.points.empty() &&
              nearestHopf(seeds, c.points.back().value) == static_cast<int>(k);
