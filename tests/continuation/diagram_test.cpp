@@ -55,6 +55,26 @@ TEST(Diagram, AColourPerBranchAMarkerPerMetronomeLabelledPoints) {
     EXPECT_NE(data.find(label), std::string::npos) << label;
 }
 
+// A branch that loses stability at a Hopf point between two of its points: the solid and the
+// dashed line meet at the Hopf point (its row once stable, once unstable), not at the next point.
+TEST(Diagram, StabilityChangesAtTheLocatedPoint) {
+  ContinuationResult r;
+  r.param = "platform.friction.mu";
+  r.metronomes = 2;
+  r.branches.push_back({0, 3, "", ""});
+  r.points = {point(0, 0.1, 1.0, 1.0, true), point(0, 0.2, 2.0, 2.0, false),
+              point(0, 0.3, 3.0, 3.0, false)};
+  ResultSpecial h;
+  h.at = point(0, 0.15, 1.5, 1.5, false);
+  h.type = "hopf";
+  h.lyapunov = 0.5;
+  r.special.push_back(h);
+  const std::string data = continuationDiagramData(r);
+  EXPECT_NE(data.find("0.15 1.5 1.5 0.1 1\n"), std::string::npos) << data;
+  EXPECT_NE(data.find("0.15 1.5 1.5 0.1 0\n"), std::string::npos) << data;
+  EXPECT_EQ(data.find("0.2 2 2 0.1 1\n"), std::string::npos) << data;  // no solid line to 0.2
+}
+
 TEST(Diagram, BoundaryCurvesInColoursNoRegimeUses) {
   const std::vector<std::string> regimes = regimeColours();
   ASSERT_GT(regimes.size(), 10u);

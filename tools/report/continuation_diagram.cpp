@@ -50,13 +50,37 @@ std::string row(const ResultPoint& q, bool stable) {
   return d.str();
 }
 
-// A branch's rows; where stability changes, the new point is written once more with the old
-// stability first, so that the solid and the dashed line meet.
+// Whether x lies between a and b (either order), within a hair for rounding.
+bool between(double x, double a, double b) {
+  const double hair = 1e-12 * std::max({1.0, std::abs(a), std::abs(b)});
+  return x >= std::min(a, b) - hair && x <= std::max(a, b) + hair;
+}
+
+// The special point of branch b located on the step from a to q (its parameter and amplitudes
+// between theirs), nullptr when there is none.
+const ResultPoint* specialOnStep(const ContinuationResult& r, int b, const ResultPoint& a,
+                                 const ResultPoint& q) {
+  for (const ResultSpecial& s : r.special) {
+    if (s.at.branch != b || !between(s.at.value, a.value, q.value)) continue;
+    bool inside = true;
+    for (size_t i = 0; i < q.A.size() && inside; ++i) inside = between(s.at.A[i], a.A[i], q.A[i]);
+    if (inside) return &s.at;
+  }
+  return nullptr;
+}
+
+// A branch's rows; where stability changes, the solid and the dashed line meet at the special
+// point located on that step (a Hopf point, a fold...), else at the new point: it is written
+// once with the old stability, then with the new.
 void branchBlock(const ContinuationResult& r, int b, std::ostringstream& d) {
   const ResultPoint* prev = nullptr;
   for (const ResultPoint& q : r.points) {
     if (q.branch != b) continue;
-    if (prev && prev->stable != q.stable) d << row(q, prev->stable);
+    if (prev && prev->stable != q.stable) {
+      const ResultPoint* at = specialOnStep(r, b, *prev, q);
+      d << row(at ? *at : q, prev->stable);
+      if (at) d << row(*at, q.stable);
+    }
     d << row(q, q.stable);
     prev = &q;
   }
