@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "models/scaling.h"
+#include "models/slow_flow.h"
 #include "sim/analysis/continuation/merge.h"
 #include "sim/analysis/continuation/slow_flow_continuation.h"
 #include "sim/analysis/continuation/start_states.h"
@@ -118,6 +119,23 @@ ScaledParams finiteScaledAt(const ContinueOptions& opt, double value, const std:
   return p;
 }
 
+// The slow flow at values inside the range, sampled: a range beyond the numbers (--to 1e308)
+// makes its parameters infinite on the way although both ends are finite. Such a range is bad
+// input (exit 2), not a branch whose corrector fails at the first step.
+void checkRangeInside(const ContinueOptions& opt, double from, const std::string& option) {
+  constexpr int kRangeSamples = 8;  // the continuation's steps are ~1/100 of the range
+  for (int k = 1; k < kRangeSamples; ++k) {
+    const double v = from + (opt.to - from) * k / kRangeSamples;
+    try {
+      SlowFlow flow(scaledAt(opt, {opt.param}, {v}));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(option + " " + opt.param + " from " + fmt(from) + " to " + fmt(opt.to) +
+                       ": " + e.what() + " on the way (the range leaves the range of the " +
+                       "numbers); choose a --to nearer the start");
+    }
+  }
+}
+
 // The start value of opt.param, typed after `option` (--param, or --fold for KEY2).
 double startValue(const ContinueOptions& opt, const std::string& option = "--param") {
   const Rig rig = loadWith(opt, {});  // the rig itself must load
@@ -142,6 +160,7 @@ double startValue(const ContinueOptions& opt, const std::string& option = "--par
   if (sameSlowFlow(a, b))
     throw UsageError(option + " " + opt.param + ": has no effect on the slow flow (its scaled " +
                      "parameters are the same at " + fmt(from) + " and " + fmt(opt.to) + ")");
+  checkRangeInside(opt, from, option);
   return from;
 }
 
