@@ -114,4 +114,24 @@ double closedFormFoldMu(double nu, double s_lo, double s_hi) {
   return smallestMu(0.5 * (lo + hi), nu);
 }
 
+std::vector<std::complex<double>> rk4SlowFlow(const ScaledParams& p, const SlowFlowModes& modes,
+                                              std::vector<std::complex<double>> z, double T,
+                                              int n) {
+  using Z = std::vector<std::complex<double>>;
+  const double h = T / n;
+  auto f = [&](const Z& w) { return slowFlowRhs(p, modes, w); };
+  auto axpy = [](const Z& a, double s, const Z& b) {
+    Z r(a.size());
+    for (size_t i = 0; i < a.size(); ++i) r[i] = a[i] + s * b[i];
+    return r;
+  };
+  for (int k = 0; k < n; ++k) {
+    const Z k1 = f(z), k2 = f(axpy(z, h / 2, k1)), k3 = f(axpy(z, h / 2, k2)),
+            k4 = f(axpy(z, h, k3));
+    for (size_t i = 0; i < z.size(); ++i)
+      z[i] += h / 6 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+  }
+  return z;
+}
+
 }  // namespace metrosync::continuation::testing

@@ -27,25 +27,6 @@ ScaledParams f43(double mu) {
   return computeScaled(loadRigFile(path, {a}));
 }
 
-// RK4 on dz/dtau = f(z) (modes held) over [0, T] with n steps.
-std::vector<Cd> integrate(const ScaledParams& p, const SlowFlowModes& modes, std::vector<Cd> z,
-                          double T, int n) {
-  const double h = T / n;
-  auto f = [&](const std::vector<Cd>& w) { return slowFlowRhs(p, modes, w); };
-  auto axpy = [](const std::vector<Cd>& a, double s, const std::vector<Cd>& b) {
-    std::vector<Cd> r(a.size());
-    for (size_t i = 0; i < a.size(); ++i) r[i] = a[i] + s * b[i];
-    return r;
-  };
-  for (int k = 0; k < n; ++k) {
-    const auto k1 = f(z), k2 = f(axpy(z, h / 2, k1)), k3 = f(axpy(z, h / 2, k2)),
-               k4 = f(axpy(z, h, k3));
-    for (size_t i = 0; i < z.size(); ++i)
-      z[i] += h / 6 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-  }
-  return z;
-}
-
 TEST(SlowFlowCycle, InPhaseSubcriticalHopfCycleClosesUnderIndependentIntegration) {
   const SlowFlowProblem prob(f43, 0.28, 0);
   const auto z0 = stateFrom({1.6, 1.6}, {0.0});
@@ -78,8 +59,8 @@ TEST(SlowFlowCycle, InPhaseSubcriticalHopfCycleClosesUnderIndependentIntegration
     const Cd turn = std::polar(1.0, std::arg(start[0]) - std::arg(z[0]));
     return std::max(std::abs(z[0] * turn - start[0]), std::abs(z[1] * turn - start[1]));
   };
-  EXPECT_LT(distance(integrate(p, modes, start, q.period, 20000)), 1e-6);
-  EXPECT_GT(distance(integrate(p, modes, start, q.period / 2, 10000)), 1e-2);
+  EXPECT_LT(distance(testing::rk4SlowFlow(p, modes, start, q.period, 20000)), 1e-6);
+  EXPECT_GT(distance(testing::rk4SlowFlow(p, modes, start, q.period / 2, 10000)), 1e-2);
 }
 
 }  // namespace

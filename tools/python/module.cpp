@@ -107,7 +107,8 @@ int sweepCommand(const std::string& rig_path, const std::vector<std::string>& se
 int continueCommand(const std::string& rig_path, const std::vector<std::string>& sets,
                     const std::string& param, double to, const std::string& out,
                     std::optional<double> from, const std::string& start, double step,
-                    int max_points, bool all, const std::string& fold, double to2) {
+                    int max_points, bool all, const std::string& fold, double to2,
+                    bool no_cycles) {
   cli::ContinueOptions o;
   o.rig_path = rig_path;
   o.sets = sets;
@@ -120,6 +121,7 @@ int continueCommand(const std::string& rig_path, const std::vector<std::string>&
   o.all = all;
   o.fold_key = fold;
   o.to2 = to2;
+  o.no_cycles = no_cycles;
   o.out = out;
   o.quiet = true;
   return released([&] { return cli::continueCommand(o); });
@@ -176,7 +178,8 @@ PYBIND11_MODULE(_metrosync, m) {
   m.def("continue_command", &continueCommand, py::arg("rig_path"), py::arg("sets"),
         py::arg("param"), py::arg("to"), py::arg("out"), py::arg("from_") = std::nullopt,
         py::arg("start") = "", py::arg("step") = 0.0, py::arg("max_points") = 500,
-        py::arg("all") = false, py::arg("fold") = "", py::arg("to2") = 0.0);
+        py::arg("all") = false, py::arg("fold") = "", py::arg("to2") = 0.0,
+        py::arg("no_cycles") = false);
   m.def("fit_json", &fitJsonText, py::arg("rig_path"), py::arg("data_path"), py::arg("free"),
         py::arg("sets"), py::arg("model") = "", py::arg("noise") = std::nullopt,
         py::arg("starts") = 6, py::arg("local") = false, py::arg("profile") = false);

@@ -93,7 +93,8 @@ void smoothEvents(const ContinuationSystem& sys, const BranchPoint& a, const Bra
     if (bif) found.push_back({hf, *bif});
   };
   look(foldTest, BifurcationType::Fold);
-  look([&sys](const BranchPoint& q) { return branchTest(sys, q); }, BifurcationType::Branch);
+  if (sys.branch_points)
+    look([&sys](const BranchPoint& q) { return branchTest(sys, q); }, BifurcationType::Branch);
   look([](const BranchPoint& q) { return hopfTest(q.eigenvalues); }, BifurcationType::Hopf);
   std::sort(found.begin(), found.end(),
             [](const Located& l, const Located& r) { return l.h < r.h; });
