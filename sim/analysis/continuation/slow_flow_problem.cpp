@@ -27,7 +27,8 @@ SlowFlowProblem::SlowFlowProblem(ParamsAt params_at, double p0, int reference)
     if (!sp.locked[i]) unlocked_.push_back(i);
   if (reference < 0 || reference >= n_ || sp.locked[reference])
     throw std::invalid_argument("the reference metronome must be an unlocked one");
-  coulomb_ = sp.law == FrictionLaw::Coulomb && sp.mu > 0;
+  const SlowResponse response = sp.friction.slowResponse();
+  coulomb_ = response.kind == SlowResponse::Kind::Coulomb && response.mu > 0;
   const int m = static_cast<int>(unlocked_.size());
   sys_.n = 2 * m;
   sys_.residual = [this](const Vec& x, double p, const Region& r) { return residual(x, p, r); };
@@ -109,7 +110,8 @@ double SlowFlowProblem::s(const Vec& x, double p) const {
   const ScaledParams& sp = params(p);
   Cd Z = 0;
   for (const Cd& zi : unpack(x)) Z += zi;
-  return sp.mu > 0 ? std::abs(Z) / sp.mu : std::numeric_limits<double>::infinity();
+  const double mu = sp.friction.slowResponse().mu;  // 0 for a law without s
+  return mu > 0 ? std::abs(Z) / mu : std::numeric_limits<double>::infinity();
 }
 
 Vec SlowFlowProblem::borders(const Vec& x, double p) const {
