@@ -5,8 +5,9 @@
 // Every limit on the way is in docs/rig-limits.md.
 //
 // Which keys are required (everything else is optional, with the default given):
-//   both units:  units; platform.friction.law, with mu (coulomb) or c (viscous), nothing for
-//                none/fixed; metronomes (a list of >= 1); simulation with duration (physical,
+//   both units:  units; platform.friction.law with its law's keys (contact/law_registry.h:
+//                mu, or mu and mu_static, for coulomb; c for viscous; nothing for none/fixed,
+//                yaml/rig_friction.cpp); metronomes (a list of >= 1); simulation with duration (physical,
 //                seconds) or tau (scaled, slow time). Optional: name (the file's stem),
 //                start {x, v} (0, 0), simulation.{accuracy (1e-8), integrator (the engine's
 //                default), sample (the engine's default)}.
@@ -21,8 +22,9 @@
 // A metronome's name defaults to its 1-based number.
 //
 // The passes live in their own files: yaml/rig_tree (text -> tree), yaml/rig_overrides (--set),
-// yaml/rig_schema (shape), yaml/rig_values (build), yaml/rig_plan (plan), yaml/rig_json
-// (resolved_rig), yaml/default_rig (the built-in rig); this file joins them.
+// yaml/rig_schema (shape), yaml/rig_reader, yaml/rig_values and yaml/rig_friction (build),
+// yaml/rig_plan (plan), with yaml/rig_source (where messages point) and yaml/spelling (did you
+// mean); yaml/rig_json (resolved_rig), yaml/default_rig (the built-in rig). This file joins them.
 #include "yaml/rig_loader.h"
 
 #include <optional>

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "contact/law_registry.h"
 #include "models/scaling.h"
 #include "yaml/rig_loader.h"
