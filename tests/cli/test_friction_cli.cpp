@@ -41,11 +41,11 @@ TEST(FrictionCli, BadStaticCoefficientIsRefusedWithFileLineAndKey) {
   };
   for (const Case& c :
        {Case{"{law: coulomb, mu: 6.5e-4, mu_static: 1e-4}",
-             "rig.yaml:9:46: platform.friction.mu_static = 1e-4: must be >= mu"},
+             "rig.yaml:9:51: platform.friction.mu_static = 1e-4: must be >= mu"},
         Case{"{law: coulomb, mu: 6.5e-4, mu_static: -1}",
-             "rig.yaml:9:46: platform.friction.mu_static = -1: must be >= 0"},
+             "rig.yaml:9:51: platform.friction.mu_static = -1: must be >= 0"},
         Case{"{law: viscous, c: 0.1, mu_static: 0.2}",
-             "rig.yaml:9:41: platform.friction.mu_static = 0.2: only with law: coulomb"}}) {
+             "rig.yaml:9:47: platform.friction.mu_static = 0.2: only with law: coulomb"}}) {
     SCOPED_TRACE(c.friction);
     const std::string rig = rigWithFriction("bad", c.friction);
     const std::string out = fs::path(rig).parent_path().string() + "/out";

@@ -209,7 +209,7 @@ TEST(EventResolver, StaticFrictionHoldsBetweenTheKineticAndTheStaticBound) {
   out = r.resolve(s, true);
   EXPECT_EQ(s.m, PlatformMode::SlipNegative);
   EXPECT_EQ(out.stick_slip, 1);
-  s.v = -1e-13;  // the slip has just stopped; the push is back between the bounds, reversed
+  s.v = 1e-13;  // the slip has just passed zero (window end); the push is between the bounds
   s.holding = -0.25;
   out = r.resolve(s, true);
   EXPECT_EQ(s.m, PlatformMode::Stuck) << "static friction holds it";
@@ -217,7 +217,7 @@ TEST(EventResolver, StaticFrictionHoldsBetweenTheKineticAndTheStaticBound) {
   // the same with Coulomb's law at the kinetic bound: the stop turns into a slip the other way
   FakeSystem c;
   c.m = PlatformMode::SlipNegative;
-  c.v = -1e-13;
+  c.v = 1e-13;
   c.holding = -0.25;
   EventResolver coulomb({{kThetaC, 0.1}, {kThetaC, 0.1}}, kLaw, kPeriod, {0.0, 0.0});
   coulomb.resolve(c, true);

@@ -28,13 +28,13 @@ Rig springRig(const std::string& friction, double x0_over_static_x) {
   return rig;
 }
 
-struct Run {
+struct Trial {
   RunReport report;
   MemorySink sink;
 };
 
-Run runOn(const std::string& engine, const Rig& rig) {
-  Run r;
+Trial runOn(const std::string& engine, const Rig& rig) {
+  Trial r;
   r.report = engine == "direct" ? runDirectModel(rig, r.sink) : runFullModel(rig, r.sink);
   return r;
 }
@@ -47,14 +47,14 @@ TEST(StaticFriction, HoldsEveryPushBelowTheStaticBound) {
   for (const std::string engine : {"direct", "simbody"}) {
     SCOPED_TRACE(engine);
     const Rig rig = springRig(kStiction, 0.99);  // k x0 = 1.98 mu-bar M g
-    const Run held = runOn(engine, rig);
+    const Trial held = runOn(engine, rig);
     ASSERT_TRUE(held.report.complete) << held.report.failure;
     EXPECT_EQ(held.report.counts.stick_slip, 0);
     EXPECT_EQ(held.report.final_trajectory_row.back(), 0.0) << "stuck";
     EXPECT_NEAR(held.report.final_trajectory_row[1], rig.platform.start_x_m, 1e-15);
     Rig kinetic = rig;
     kinetic.platform.friction = FrictionLaw::coulomb(kMu);
-    const Run slips = runOn(engine, kinetic);
+    const Trial slips = runOn(engine, kinetic);
     ASSERT_TRUE(slips.report.complete) << slips.report.failure;
     EXPECT_GE(slips.report.counts.stick_slip, 1) << "the kinetic bound alone cannot hold it";
   }
@@ -68,7 +68,7 @@ TEST(StaticFriction, SlipsAtTheStaticBoundUnderTheKineticForce) {
     const Rig rig = springRig(kStiction, 1.01);
     const double M = rig.totalMass(), k = rig.platform.spring_N_m, g = rig.gravity_m_s2;
     const double x0 = rig.platform.start_x_m, x_k = kMu * M * g / k;
-    const Run r = runOn(engine, rig);
+    const Trial r = runOn(engine, rig);
     ASSERT_TRUE(r.report.complete) << r.report.failure;
     EXPECT_EQ(r.report.counts.stick_slip, 1) << "one stop (the start's break-free is no switch)";
     int stops = 0;
