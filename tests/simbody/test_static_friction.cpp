@@ -75,7 +75,10 @@ TEST(StaticFriction, SlipsAtTheStaticBoundUnderTheKineticForce) {
     for (const auto& [kind, row] : r.sink.events) {
       if (kind != "stick") continue;
       ++stops;
-      EXPECT_NEAR(row[0], kPi * std::sqrt(M / k), 1e-6) << "half a spring period";
+      // the direct engine locates the stop to its accuracy (1e-8 of ~0.05 s) on its dense output;
+      // Simbody's event localization is looser (measured 2.4e-6 s late): 1e-5 of T/2
+      const double t_tol = engine == "direct" ? 1e-6 : 1e-5 * kPi * std::sqrt(M / k);
+      EXPECT_NEAR(row[0], kPi * std::sqrt(M / k), t_tol) << "half a spring period";
     }
     EXPECT_EQ(stops, 1);
     // the slip covers 2 (x0 - x_k) ~ 1e-3 m; its end to 1e-6 of that (the engines' accuracy)
