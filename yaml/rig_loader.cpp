@@ -7,8 +7,8 @@
 // Which keys are required (everything else is optional, with the default given):
 //   both units:  units; platform.friction.law with its law's keys (contact/law_registry.h:
 //                mu, or mu and mu_static, for coulomb; c for viscous; nothing for none/fixed,
-//                yaml/rig_friction.cpp); metronomes (a list of >= 1); simulation with duration (physical,
-//                seconds) or tau (scaled, slow time). Optional: name (the file's stem),
+//                yaml/rig_friction.cpp); metronomes (a list of >= 1); simulation with duration
+//                (physical, seconds) or tau (scaled, slow time). Optional: name (the file's stem),
 //                start {x, v} (0, 0), simulation.{accuracy (1e-8), integrator (the engine's
 //                default), sample (the engine's default)}.
 //   physical:    gravity (9.81); platform.mass; platform.spring.k (no spring); per metronome:
