@@ -205,21 +205,6 @@ AveragedResponse viscousResponse(double c) {
   return {1.0 / d, c / d};
 }
 
-AveragedResponse averagedResponse(FrictionLaw law, double mu, double c, double A) {
-  switch (law) {
-    case FrictionLaw::Coulomb:
-      if (mu < 0.0) throw std::invalid_argument("averagedResponse: mu < 0");
-      return mu == 0.0 ? AveragedResponse{0.5, 0.0} : coulombResponse(std::fabs(A) / mu);
-    case FrictionLaw::Viscous:
-      return viscousResponse(c);
-    case FrictionLaw::None:
-      return {0.5, 0.0};
-    case FrictionLaw::Fixed:
-      return {0.0, 0.0};
-  }
-  return {kNaN, kNaN};
-}
-
 // ---- the periodic solution y_p ----------------------------------------------------------------
 
 CoulombPeriodicResponse::CoulombPeriodicResponse(double B) : B_(B) {

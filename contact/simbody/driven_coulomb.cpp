@@ -59,7 +59,7 @@ class DrivenCoulombHarness::Switch : public TriggeredEventHandler {
 DrivenCoulombHarness::DrivenCoulombHarness(double B) {
   Body::Rigid unit(MassProperties(1.0, Vec3(0), UnitInertia(1)));
   slider = MobilizedBody::Slider(matter.Ground(), Transform(), unit, Transform());
-  element = new CoulombElement(forces, slider, CoulombLaw{1.0});
+  element = new CoulombElement(forces, slider, SetValuedLaw::coulomb(1.0));
   Force::Custom(forces, element);
   Force::Custom(forces, new Drive(slider, B));
   switch_ = new Switch(system, *element);

@@ -108,10 +108,11 @@ class RegimeWindow {
   // (0 stuck, +-1 sliding) and the position x in scaled units of every trajectory row and every
   // event; a row counts as slipping when the platform slid at any such call since the previous
   // row (or was sliding at it). Slow flow (no trajectory rows): with the rig's friction law set
-  // by setEnvelopePlatform, a row slips when the averaged drive s = |sum_j A_j e^{i phi_j}| / mu
-  // > 1 (Coulomb), always (viscous, none), never (fixed). Without either: never `uncoupled`.
+  // by setEnvelopePlatform, a row slips when the law cannot hold the averaged drive
+  // |sum_j A_j e^{i phi_j}| (FrictionLaw::holdsDrive: Coulomb holds while it is <= mu; viscous and
+  // none never hold, fixed always). Without either: never `uncoupled`.
   void platformMode(int mode, double x_scaled);
-  void setEnvelopePlatform(FrictionLaw law, double mu);
+  void setEnvelopePlatform(const FrictionLaw& law);
   long platformRows() const { return platform_rows_; }  // window rows with the platform known
   long slipRows() const { return slip_rows_; }          // ... and the platform slipping
   // full model: max - min of the platform's scaled x over the window (-1: no trajectory row)
@@ -153,8 +154,7 @@ class RegimeWindow {
   bool platform_seen_ = false, pending_slip_ = false;
   int mode_now_ = 0;
   bool envelope_platform_ = false;
-  FrictionLaw law_ = FrictionLaw::Coulomb;
-  double mu_ = 0.0;
+  FrictionLaw law_;  // scaled
   long platform_rows_ = 0, slip_rows_ = 0;
   bool in_window_ = false;  // a row of the window has come
   double x_min_ = HUGE_VAL, x_max_ = -HUGE_VAL;

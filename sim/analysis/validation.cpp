@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "contact/averaged_response.h"
+#include "contact/law_registry.h"
 #include "sim/analysis/compare.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 #include "sim/parallel/worker_pool.h"
@@ -119,9 +120,7 @@ Rig rigAtEpsilon(const ScaledParams& p, const std::string& name, double epsilon,
   ScaledRigInput in;
   in.name = name;
   in.epsilon = epsilon;
-  in.law = p.law;
-  in.mu = p.mu;
-  in.c = p.c;
+  in.friction = p.friction;
   for (size_t i = 0; i < p.nu.size(); ++i) {
     if (i < p.locked.size() && p.locked[i])
       throw std::invalid_argument("rigAtEpsilon: locked metronomes are not supported");
@@ -149,7 +148,7 @@ ModelRun runSlowModel(const ScaledParams& p, double epsilon, double tau_end) {
   run.model = "slow";
   run.epsilon = epsilon;
   run.tau_end = tau_end;
-  run.mu = p.mu;
+  run.mu = p.friction.valueOr("mu", 0.0);
   run.theta_c = p.theta_c;
   ScaledParams q = p;
   q.epsilon = epsilon;
@@ -163,10 +162,11 @@ ModelRun runSlowModel(const ScaledParams& p, double epsilon, double tau_end) {
     run.verdict = classifyRegime(run.envelope, tau_end, epsilon, q.theta_c, q.locked);
   // the platform at the end: the Coulomb regime of the final drive s = |Z| / mu
   const EnvelopeRow& f = run.report.final_row;
-  if (p.law == FrictionLaw::Coulomb && !f.A.empty()) {
+  if (p.friction.is(coulombLaw()) && !f.A.empty()) {
     std::complex<double> Z = f.A[0];
     for (size_t j = 1; j < f.A.size(); ++j) Z += std::polar(f.A[j], -f.psi[j - 1]);
-    const double s = p.mu > 0 ? std::abs(Z) / p.mu : std::numeric_limits<double>::infinity();
+    const double mu = run.mu;
+    const double s = mu > 0 ? std::abs(Z) / mu : std::numeric_limits<double>::infinity();
     run.platform = toString(coulombRegime(s));
   }
   return run;
@@ -178,7 +178,7 @@ ModelRun runFullModelAt(const ValidationEngines& engines, const ScaledParams& p,
   run.model = "full";
   run.epsilon = epsilon;
   run.tau_end = tau_end;
-  run.mu = p.mu;
+  run.mu = p.friction.valueOr("mu", 0.0);
   run.theta_c = p.theta_c;
   const Rig rig = rigAtEpsilon(p, name, epsilon, tau_end);
   KeepingSink sink(epsilon, windowStart(tau_end, epsilon));
@@ -198,7 +198,7 @@ ModelRun runFullModelAt(const ValidationEngines& engines, const ScaledParams& p,
     run.report.final_row = run.envelope.back();
   if (run.report.complete)
     run.verdict = classifyRegime(run.envelope, tau_end, epsilon, p.theta_c, p.locked);
-  if (p.law == FrictionLaw::Coulomb && sink.window_rows > 0) {
+  if (p.friction.is(coulombLaw()) && sink.window_rows > 0) {
     run.platform_stuck_fraction =
         static_cast<double>(sink.stuck_rows) / static_cast<double>(sink.window_rows);
     // the share of the window the platform spends at rest: "stuck" and "slipping" allow 1% for
@@ -618,15 +618,15 @@ void queueMuSweep(const ValidationPlan& plan, const std::vector<Scenario>& scena
     tasks.push_back({b.tau_end / b.epsilon, [&res, &plan, &engines, &log, scp = &sc, k] {
                        FrictionSweepPoint& pt = res.sweep[k];
                        ScaledParams q = scp->scaled;
-                       q.mu = plan.sweep_mu[k];
-                       pt.mu = q.mu;
-                       pt.mu_bar = q.mu * std::pow(q.epsilon, 1.5);
+                       q.friction = FrictionLaw::coulomb(plan.sweep_mu[k]);
+                       pt.mu = plan.sweep_mu[k];
+                       pt.mu_bar = pt.mu * std::pow(q.epsilon, 1.5);
                        pt.slow = runSlowModel(q, q.epsilon, q.tau_end);
                        pt.full =
-                           runFullModelAt(engines, q, scp->spec.name + "-mu" + fmt("%g", q.mu),
+                           runFullModelAt(engines, q, scp->spec.name + "-mu" + fmt("%g", pt.mu),
                                           q.epsilon, q.tau_end);
-                       log.run("sweep mu = " + fmt("%g", q.mu) + " slow", pt.slow);
-                       log.run("sweep mu = " + fmt("%g", q.mu) + " full", pt.full);
+                       log.run("sweep mu = " + fmt("%g", pt.mu) + " slow", pt.slow);
+                       log.run("sweep mu = " + fmt("%g", pt.mu) + " full", pt.full);
                      }});
   }
 }

@@ -18,8 +18,7 @@ double smallestMu(double s, double nu);
 ScaledParams singleMetronome(double mu) {
   ScaledParams p;
   p.epsilon = 0.073;
-  p.law = FrictionLaw::Coulomb;
-  p.mu = mu;
+  p.friction = FrictionLaw::coulomb(mu);
   p.nu = {0.7};
   p.J = {2.8};
   p.theta_c = {0.9};
@@ -45,7 +44,7 @@ Vec singleTicking(const SlowFlowProblem& prob, double mu) {
   // dA/dtau = -beta2(A/mu) A - nu A / 2 + (J/pi) sqrt(1 - theta_c^2/A^2) (e3.1a, N = 1): it is
   // < 0 for large A, > 0 just above the upper root; bisect from A = 10 down to A_star
   auto rate = [&](double A) {
-    return -coulombBeta2(A / p.mu) * A - p.nu[0] * A / 2 +
+    return -coulombBeta2(A / *p.friction.value("mu")) * A - p.nu[0] * A / 2 +
            p.J[0] / M_PI * std::sqrt(1 - p.theta_c[0] * p.theta_c[0] / (A * A));
   };
   double lo = *p.A_star[0] * 0.999, hi = 10;

@@ -331,7 +331,7 @@ TEST(Fit, RigWriterRoundTrips) {
   const Rig a = loadRigText(text, "experiment.yaml", sets),
             b = loadRigText(written, "experiment.yaml");
   EXPECT_EQ(b.name, a.name);
-  EXPECT_EQ(b.platform.mu_bar, 0.00123);
+  EXPECT_EQ(b.platform.friction.valueOr("mu", 0.0), 0.00123);
   EXPECT_EQ(b.metronomes.size(), a.metronomes.size());
   for (std::size_t i = 0; i < a.metronomes.size(); ++i) {
     EXPECT_EQ(b.metronomes[i].impulse_Nms, a.metronomes[i].impulse_Nms);

@@ -14,6 +14,7 @@
 #include "sim/analysis/continuation/start_states.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/continue_full.h"
+#include "tools/cli/engines.h"
 #include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
 #include "tools/report/continuation_report.h"
@@ -73,10 +74,11 @@ std::string rigText(const ContinueOptions& opt) {
   return text.str();
 }
 
-// The slow flow's inputs: equal when KEY has no effect on it.
+// The slow flow's inputs: equal when KEY has no effect on it (the law compared as a value: every
+// parameter of it counts).
 bool sameSlowFlow(const ScaledParams& a, const ScaledParams& b) {
-  return a.law == b.law && a.mu == b.mu && a.c == b.c && a.nu == b.nu && a.J == b.J &&
-         a.theta_c == b.theta_c && a.alpha == b.alpha && a.locked == b.locked;
+  return a.friction == b.friction && a.nu == b.nu && a.J == b.J && a.theta_c == b.theta_c &&
+         a.alpha == b.alpha && a.locked == b.locked;
 }
 
 // The rig with KEY_k = p_k, scaled; values the rig refuses give NaN parameters, so the corrector
@@ -108,8 +110,10 @@ ScaledParams finiteScaledAt(const ContinueOptions& opt, double value, const std:
   const ScaledParams p = scaledAt(opt, {opt.param}, {value});
   const std::pair<const char*, const std::vector<double>*> lists[] = {
       {"nu", &p.nu}, {"J", &p.J}, {"theta_c", &p.theta_c}, {"alpha", &p.alpha}, {"zeta", &p.zeta}};
-  std::string bad = std::isfinite(p.mu) ? "" : "mu";
-  if (!std::isfinite(p.c)) bad = "c";
+  std::string bad;
+  const std::vector<LawParameter>& law_keys = p.friction.kind().parameters();
+  for (std::size_t k = 0; k < law_keys.size(); ++k)
+    if (!std::isfinite(p.friction.values()[k])) bad = law_keys[k].key;
   for (const auto& [name, v] : lists)
     for (double x : *v)
       if (!std::isfinite(x)) bad = name;
@@ -415,6 +419,7 @@ int continueCommand() {
 }
 
 ContinuationResult slowFlowContinuation(const ContinueOptions& opt) {
+  requireSlowFlow(loadWith(opt, {}), rigDisplay(opt));
   const double from = startValue(opt);
   std::string how;
   const SlowFlowContinuationSpec spec = slowFlowSpec(opt, from, how);

@@ -52,7 +52,8 @@ void boundsOf(FreeParameter& p, const KeyPath& key) {
                         "box_mass", "steady_amplitude", "length"})
     if (last == k) p.lower = 0.0;
   if (last == "angle" && parent == "escapement") p.lower = 0.0;
-  double typical = 1.0;  // rad/s, and anything else
+  if (parent == "friction") p.lower = 0.0;  // every law parameter is >= 0 (contact/law_kind.h)
+  double typical = 1.0;                     // rad/s, and anything else
   if (parent == "start")
     typical = (last == "angle") ? 0.1 : (last == "x" || last == "v") ? 0.01 : 1.0;
   p.scale = p.start != 0.0 ? std::abs(p.start) : typical;

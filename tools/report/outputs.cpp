@@ -170,7 +170,7 @@ void appendNumbers(const double* v, size_t n, std::string& line) {
 FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt)
     : opt_(opt), window_(opt.tau_end, opt.epsilon), plot_(opt.max_plot_rows) {
   if (opt_.n_metronomes < 1) throw std::invalid_argument("FileSink: no metronome");
-  if (opt_.envelope_platform) window_.setEnvelopePlatform(opt_.law, opt_.mu);
+  if (opt_.envelope_platform) window_.setEnvelopePlatform(opt_.law);
   const size_t n = static_cast<size_t>(opt_.n_metronomes);
   if (opt_.trajectory) {
     trajectory_ = std::make_unique<AtomicFile>(dir.file(opt_.trajectory_name));

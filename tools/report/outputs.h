@@ -89,8 +89,7 @@ struct RunFilesOptions {
   // RegimeWindow::setEnvelopePlatform; unset: only the full model's rows tell
   bool envelope_platform = false;
   double x_unit = 1.0;  // trajectory x per unit of scaled x (physical rigs: x_scale_m)
-  FrictionLaw law = FrictionLaw::Coulomb;
-  double mu = 0.0;
+  FrictionLaw law;      // scaled
 };
 
 // events.csv's header: t,tau,kind,who, then x,xdot,theta_i,thetadot_i,platform with _before

@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "contact/law_registry.h"
 #include "sim/analysis/continuation/border_stability.h"
 #include "sim/analysis/continuation/branch.h"
 #include "sim/analysis/continuation/derivatives.h"
@@ -31,9 +32,10 @@ SlowFlowProblem::SlowFlowProblem(ParamsAt params_at, double p0, int reference)
   if (reference < 0 || reference >= n_ || sp.locked[reference])
     throw std::invalid_argument("the reference metronome must be an unlocked one");
   // the s borders exist for every Coulomb platform, also at mu = 0 (there the platform slips:
-  // |Z| > mu), so that a continuation in mu starts from 0 or reaches it
-  coulomb_ = sp.law == FrictionLaw::Coulomb;
-  fixed_ = sp.law == FrictionLaw::Fixed;
+  // |Z| > mu), so that a continuation in mu starts from 0 or reaches it; the slow flow refuses
+  // a static coefficient above the kinetic one before this (requireSlowFlow)
+  coulomb_ = sp.friction.is(coulombLaw()) || sp.friction.is(staticCoulombLaw());
+  fixed_ = sp.friction.is(fixedPlatformLaw());
   const int m = static_cast<int>(unlocked_.size());
   sys_.n = 2 * m;
   sys_.residual = [this](const Vec& x, double p, const Region& r) { return residual(x, p, r); };
@@ -135,7 +137,8 @@ double SlowFlowProblem::s(const Vec& x, double p) const {
   const ScaledParams& sp = params(p);
   Cd Z = 0;
   for (const Cd& zi : unpack(x)) Z += zi;
-  return sp.mu > 0 ? std::abs(Z) / sp.mu : std::numeric_limits<double>::infinity();
+  const double mu = sp.friction.slowResponse().mu;  // 0 for a law without s
+  return mu > 0 ? std::abs(Z) / mu : std::numeric_limits<double>::infinity();
 }
 
 Vec SlowFlowProblem::borders(const Vec& x, double p) const {
@@ -148,8 +151,9 @@ Vec SlowFlowProblem::borders(const Vec& x, double p) const {
     // |Z| - mu and |Z| - s_b mu: the signs of s - 1 and s - s_b, smooth through mu = 0
     Cd Z = 0;
     for (const Cd& zi : z) Z += zi;
-    b(m) = std::abs(Z) - sp.mu;
-    b(m + 1) = std::abs(Z) - kCoulombSlipThreshold * sp.mu;
+    const double mu = sp.friction.valueOr("mu", 0.0);  // at this parameter value
+    b(m) = std::abs(Z) - mu;
+    b(m + 1) = std::abs(Z) - kCoulombSlipThreshold * mu;
   }
   return b;
 }

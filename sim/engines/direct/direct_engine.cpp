@@ -133,10 +133,10 @@ class DirectRun : public EventSystem {
                                           bool allow_forced);
   std::optional<Crossing> detectMargin(int index);
   std::optional<Crossing> detectSlipFromRest(int index, int k, double sign, double g1);
-  // the stuck platform's witness made rising: -stickMargin = |H| - bound, and its rate
+  // the stuck platform's witness made rising: -stickMargin = |H| - static bound, and its rate
   double excessPush(const double* y) const {
     return risingSign(PlatformWitness::kDirection) *
-           PlatformWitness::value(eq_.coulomb(), PlatformMode::Stuck, 0.0, eq_.holdingForce(y));
+           PlatformWitness::value(eq_.dryFriction(), PlatformMode::Stuck, 0.0, eq_.holdingForce(y));
   }
   double excessPushRate(const double* y) const {
     const double h = eq_.holdingForce(y);
@@ -242,7 +242,7 @@ DirectRun<N>::DirectRun(const Rig& rig, RunSink& sink, const DirectOptions& opt)
     witnesses_.push_back({WitnessKind::Tick, j, +1});
     witnesses_.push_back({WitnessKind::Tick, j, -1});
   }
-  if (eq_.law() == FrictionLaw::Coulomb) witnesses_.push_back({WitnessKind::Platform, -1, 0});
+  if (eq_.friction().setValued()) witnesses_.push_back({WitnessKind::Platform, -1, 0});
   ya_.resize(lay_.dim());
   yb_.resize(lay_.dim());
   env_th_.resize(n_rig_, 0.0);
@@ -408,7 +408,7 @@ const std::vector<double>& DirectRun<N>::makeRow(const double* y, double t) {
     row.push_back(y[lay_.omega(j)] * as / ts);
     ++j;
   }
-  if (eq_.law() == FrictionLaw::Coulomb) {
+  if (eq_.friction().setValued()) {
     row.push_back(static_cast<int>(mode()));
   } else {
     const double v = y[StateLayout::kV];
@@ -482,10 +482,8 @@ std::vector<double> DirectRun<N>::startState() {
     esc.push_back(eq_.escapement(j));
     theta0.push_back(m.start_angle_rad);
   }
-  std::optional<CoulombLaw> coulomb;
-  if (eq_.friction().setValued()) coulomb = eq_.coulomb();
-  resolver_.emplace(esc, coulomb, period_, theta0);
-  if (coulomb) {
+  resolver_.emplace(esc, eq_.friction(), period_, theta0);
+  if (eq_.friction().setValued()) {
     ev_y_ = y.data();
     mobility_ = 0.0;
     ev_t_ = 0.0;

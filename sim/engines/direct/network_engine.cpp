@@ -164,12 +164,9 @@ NetworkRun::NetworkRun(const Network& net, NetworkSink& sink)
       if (eq_.escapement(k).active())
         for (int side : {-1, 1}) witnesses_.push_back({true, k, side});
     }
-    std::optional<CoulombLaw> law;
-    if (b.moves && b.friction.setValued()) {
-      law = b.friction.coulomb;
-      witnesses_.push_back({false, p, 0});
-    }
-    resolvers_.emplace_back(esc, law, period_, th0);
+    const bool set_valued = b.moves && b.friction.setValued();
+    if (set_valued) witnesses_.push_back({false, p, 0});
+    resolvers_.emplace_back(esc, set_valued ? b.friction : PlatformFriction{}, period_, th0);
     views_.push_back(std::make_unique<ContactView>(eq_, y_, modes_, p, report_.events));
   }
   setTolerances(scales);
@@ -197,7 +194,7 @@ double NetworkRun::witnessValue(const Witness& w, const double* y,
     return TickWitness{w.index, w.side}.value(eq_.escapement(w.index), y[lay_.theta(w.index)]);
   }
   const network::Block& b = eq_.block(w.index);
-  const double g = PlatformWitness::value(b.friction.coulomb, modes_[w.index],
+  const double g = PlatformWitness::value(b.friction.dry, modes_[w.index],
                                           eq_.slipVelocity(y, w.index), lambda[w.index]);
   return risingSign(PlatformWitness::kDirection) * g;
 }
@@ -276,7 +273,7 @@ void NetworkRun::settleSupports() {
       const double u = eq_.slipVelocity(y_.data(), p);
       const bool off =
           modes_[p] == PlatformMode::Stuck
-              ? u != 0 || b.friction.coulomb.breaksFree(eq_.holdingForces(y_.data(), modes_)[p])
+              ? u != 0 || b.friction.dry.breaksFree(eq_.holdingForces(y_.data(), modes_)[p])
               : static_cast<int>(modes_[p]) * u <= 0;
       if (!off) continue;
       const WindowOutcome out = resolvers_[p].settleAfterSupportImpulse(*views_[p]);

@@ -257,9 +257,7 @@ State NetworkSimbodyRun::startState() {
       esc.push_back(eq_.escapement(j));
       th0.push_back(ns_.theta(s0, j));
     }
-    std::optional<CoulombLaw> law;
-    if (ns_.contact(p)) law = ns_.contact(p)->law();
-    resolvers_.emplace_back(esc, law, period_, th0);
+    resolvers_.emplace_back(esc, ns_.contact(p) ? b.friction : PlatformFriction{}, period_, th0);
   }
   for (int p = 0; p < lay_.platforms; ++p)
     if (ns_.contact(p)) ns_.contact(p)->setMode(s0, PlatformMode::Stuck);
