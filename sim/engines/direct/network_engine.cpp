@@ -14,6 +14,7 @@
 #include "sim/ode/rk_stepper.h"
 #include "sim/ode/rk_tableau.h"
 #include "sim/ode/root_find.h"
+#include "sim/record/split_timer.h"
 
 namespace metrosync {
 
@@ -97,6 +98,9 @@ class NetworkRun {
   void settleSupports();
   void absorb(const WindowOutcome& out, int p);
   void emitSamples(double t_limit, bool inclusive);
+  void sample(double t, const std::vector<double>& y);
+  bool integrate();
+  void finish();
   void setTolerances(const Rig& rig);
   void fail(double t, const std::string& why);
 
@@ -113,6 +117,7 @@ class NetworkRun {
   std::vector<EventResolver> resolvers_;
   std::vector<Witness> witnesses_;
   NetworkRunReport report_;
+  SplitTimer timer_;  // the engine's time against the recording's
   double period_ = 1.0, sample_dt_ = 1.0, t_end_ = 0.0;
   double last_window_t_ = -1.0;  // time of the last resolved window
   // two windows this close (in ulps of t) are one instant: the localization resolves no finer
@@ -305,15 +310,22 @@ void NetworkRun::resolveWindow(double t_e) {
   last_window_t_ = t_e;
 }
 
+// The samples on the grid (simulation.sample) in the current step before t_limit (or at it, if
+// inclusive), strictly before t_end: the run's last sample is its final state, at t_end exactly.
 void NetworkRun::emitSamples(double t_limit, bool inclusive) {
   const double t0 = stepper_.t(), h = stepper_.h();
   for (;;) {
     const double ts = next_sample_ * sample_dt_;
-    if (ts > t_end_ || ts > t_limit || (!inclusive && ts == t_limit)) return;
+    if (ts >= t_end_ || ts > t_limit || (!inclusive && ts == t_limit)) return;
     stepper_.interpolate(h > 0 ? (ts - t0) / h : 0.0, scratch_.data());
-    sink_.sample(ts, scratch_, modes_);
+    sample(ts, scratch_);
     ++next_sample_;
   }
+}
+
+void NetworkRun::sample(double t, const std::vector<double>& y) {
+  RecordingScope rec(timer_);
+  sink_.sample(t, y, modes_);
 }
 
 void NetworkRun::fail(double t, const std::string& why) {
@@ -322,14 +334,22 @@ void NetworkRun::fail(double t, const std::string& why) {
 }
 
 NetworkRunReport NetworkRun::run() {
+  timer_ = SplitTimer();
   scratch_.resize(lay_.dim());
   for (int p = 0; p < lay_.platforms; ++p)
     if (eq_.block(p).moves && eq_.block(p).friction.setValued())
       resolvers_[p].settleAtStart(*views_[p]);
   report_.ledger.initial_J = eq_.energy(y_.data());
-  sink_.sample(0.0, y_, modes_);
+  sample(0.0, y_);
   next_sample_ = 1;
   stepper_.restart(0.0, y_.data());
+  integrate();
+  finish();
+  return report_;
+}
+
+// Steps to t_end (y_ is the state at stepper_.t() throughout); false when the run failed.
+bool NetworkRun::integrate() {
   const double h_max = kMaxStepPeriods * period_;
   double h = stepper_.initialStepSize(h_max);
   std::vector<double> g0 = witnessValues(y_.data());
@@ -338,13 +358,13 @@ NetworkRunReport NetworkRun::run() {
     const double step = std::min({h, h_max, t_end_ - t});
     if (!(step > kMinStepRelative * std::max(1.0, t_end_))) {
       fail(t, "step size underflow");
-      return report_;
+      return false;
     }
     const double err = stepper_.attempt(step);
     if (!(err <= 1.0)) {
       if (!std::isfinite(err)) {
         fail(t, "the state is not finite");
-        return report_;
+        return false;
       }
       h = stepper_.nextStepSize(step, err, false);
       continue;
@@ -369,14 +389,21 @@ NetworkRunReport NetworkRun::run() {
     stepper_.restart(t_e, y_.data());
     g0 = witnessValues(y_.data());
   }
-  emitSamples(t_end_, true);
+  return true;
+}
+
+// The run's last sample: its final state, at t_end exactly when complete (the last step ends
+// there: t_end - t is exact for t >= t_end / 2), else where it stopped; the report's totals.
+void NetworkRun::finish() {
+  report_.t_end = report_.complete ? t_end_ : stepper_.t();
+  sample(report_.t_end, y_);
   report_.rhs_evals = stepper_.evaluations();
-  report_.t_end = stepper_.t();
   report_.final_state = y_;
   report_.ledger.final_J = eq_.energy(y_.data());
   report_.ledger.damping_out_J = y_[lay_.dampingWork()] + y_[lay_.damperWork()];
   report_.ledger.friction_out_J += y_[lay_.frictionWork()];
-  return report_;
+  report_.wall_seconds = timer_.wallSeconds();
+  report_.engine_seconds = report_.wall_seconds - timer_.recordingSeconds(report_.wall_seconds);
 }
 
 }  // namespace
