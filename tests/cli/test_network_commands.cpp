@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -16,26 +15,13 @@
 namespace metrosync {
 namespace {
 
+using testing_support::csvRows;
 using testing_support::runMetrosync;
 using testing_support::scratchDir;
 using testing_support::shellQuote;
 using testing_support::slurp;
 
 const std::string kRig = std::string(METROSYNC_SOURCE_DIR) + "/yaml/rigs/two-boards-rollers.yaml";
-
-std::vector<std::vector<std::string>> csv(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> row;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) row.push_back(cell);
-    rows.push_back(row);
-  }
-  return rows;
-}
 
 // basin --random couplings.0.k: each sample's row is the final state `run` reports for its k
 TEST(NetworkCommands, BasinOverACouplingIsWhatRunSaysOfEachSample) {
@@ -45,7 +31,7 @@ TEST(NetworkCommands, BasinOverACouplingIsWhatRunSaysOfEachSample) {
                               "--set simulation.duration=2 --out " +
                               shellQuote(d + "/basin"));
   ASSERT_EQ(b.code, 0) << b.err;
-  const auto t = csv(d + "/basin/basin.csv");
+  const auto t = csvRows(d + "/basin/basin.csv");
   ASSERT_EQ(t.size(), 3u);
   ASSERT_EQ(t[0][1], "couplings.0.k");
   for (std::size_t row = 1; row < t.size(); ++row) {
@@ -75,7 +61,7 @@ TEST(NetworkCommands, SweepOverEveryCouplingIsTheSweepOverTheOne) {
         runMetrosync("sweep " + shellQuote(kRig) + " --vary '" + key +
                      "=1,50' --set simulation.duration=2 --jobs 1 -q --out " + shellQuote(out));
     ASSERT_EQ(r.code, 0) << r.err;
-    tables.push_back(csv(out + "/regimes.csv"));
+    tables.push_back(csvRows(out + "/regimes.csv"));
     EXPECT_EQ(tables.back()[0][0], key);
   }
   ASSERT_EQ(tables[0].size(), 3u);

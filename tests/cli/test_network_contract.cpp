@@ -5,9 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -23,16 +21,13 @@ using testing_support::slurp;
 
 const std::string kRig = std::string(METROSYNC_SOURCE_DIR) + "/yaml/rigs/two-boards-rollers.yaml";
 
-std::vector<std::vector<double>> csvRows(const std::string& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);  // header
+// The numbers of a CSV file's rows, its header left out.
+std::vector<std::vector<double>> numbers(const std::string& path) {
+  const auto cells = testing_support::csvRows(path);
   std::vector<std::vector<double>> rows;
-  while (std::getline(in, line)) {
+  for (std::size_t r = 1; r < cells.size(); ++r) {
     std::vector<double> row;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) row.push_back(std::stod(cell));
+    for (const std::string& c : cells[r]) row.push_back(std::stod(c));
     rows.push_back(row);
   }
   return rows;
@@ -54,9 +49,9 @@ TEST(NetworkContract, RunEndsAtExactlyTheRequestedEnd) {
     const std::string out =
         runNetwork(engine, "--engine " + engine + " --set simulation.duration=" + duration);
     const double t_end = std::stod(duration);
-    EXPECT_EQ(csvRows(out + "/trajectory.csv").back().front(), t_end) << engine;
-    EXPECT_EQ(csvRows(out + "/envelope.csv").back().back(), t_end) << engine;  // t_s last
-    EXPECT_EQ(csvRows(out + "/order.csv").back().back(), t_end) << engine;
+    EXPECT_EQ(numbers(out + "/trajectory.csv").back().front(), t_end) << engine;
+    EXPECT_EQ(numbers(out + "/envelope.csv").back().back(), t_end) << engine;  // t_s last
+    EXPECT_EQ(numbers(out + "/order.csv").back().back(), t_end) << engine;
   }
 }
 
@@ -66,9 +61,9 @@ TEST(NetworkContract, LastRowIsTheStateAtTheEnd) {
   const std::string a = runNetwork("short", "--set simulation.duration=3.625");
   const std::string b =
       runNetwork("long", "--set simulation.duration=4 --set simulation.sample=0.125");
-  const std::vector<double> last = csvRows(a + "/trajectory.csv").back();
+  const std::vector<double> last = numbers(a + "/trajectory.csv").back();
   std::vector<double> there;
-  for (const auto& row : csvRows(b + "/trajectory.csv"))
+  for (const auto& row : numbers(b + "/trajectory.csv"))
     if (row.front() == 3.625) there = row;
   ASSERT_EQ(there.size(), last.size());
   // a row is not compared with its mode columns' neighbours: angles (rad) and rates (rad/s) are
@@ -76,14 +71,14 @@ TEST(NetworkContract, LastRowIsTheStateAtTheEnd) {
   for (std::size_t k = 1; k < last.size(); ++k)
     EXPECT_NEAR(last[k], there[k], 1e-5 * (1 + std::abs(there[k]))) << "column " << k;
   // and it is not the row before: the state moved over the last sample interval
-  const auto rows = csvRows(a + "/trajectory.csv");
+  const auto rows = numbers(a + "/trajectory.csv");
   EXPECT_GT(std::abs(rows[rows.size() - 2][7] - last[7]), 1e-4);
 }
 
 TEST(NetworkContract, SummaryHasASingleRunsKeys) {
   const std::string out = runNetwork("keys", "--set simulation.duration=3.625");
   const nlohmann::json s = nlohmann::json::parse(slurp(out + "/summary.json"));
-  const std::vector<double> env = csvRows(out + "/envelope.csv").back();  // tau,A1..4,psi2..4,r,t_s
+  const std::vector<double> env = numbers(out + "/envelope.csv").back();  // tau,A1..4,psi2..4,r,t_s
   // final: the last envelope row, in the network's numbering (the CSV holds 12 digits)
   auto near = [](double a, double b) { return std::abs(a - b) <= 1e-10 * (1 + std::abs(b)); };
   ASSERT_TRUE(s.contains("final")) << s.dump();
