@@ -72,6 +72,7 @@ class NetworkWindow {
   void add(double t, const std::vector<Order>& groups);
 
   int groups() const { return static_cast<int>(r_sum_.size()); }
+  double tStart() const { return t_start_; }  // the window's start (the time unit of t_end)
   long rows() const { return rows_; }
   double meanR(int g) const { return rows_ ? r_sum_[g] / rows_ : 0.0; }
   double dPhiRange(int g) const { return dphi_max_[g] - dphi_min_[g]; }

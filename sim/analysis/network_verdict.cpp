@@ -146,4 +146,8 @@ const Order& NetworkVerdict::overall() const {
   return impl_->all;
 }
 
+const NetworkWindow& NetworkVerdict::window() const {
+  return impl_->window;
+}
+
 }  // namespace metrosync

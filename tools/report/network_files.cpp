@@ -11,6 +11,7 @@
 #include "sim/analysis/order_parameter.h"
 #include "sim/analysis/regime.h"
 #include "sim/record/atomic_file.h"
+#include "sim/record/envelope.h"
 #include "tools/report/plot.h"
 
 namespace metrosync {
@@ -140,7 +141,27 @@ std::vector<std::string> NetworkFiles::fileNames() const {
   return {"trajectory.csv", "envelope.csv", "order.csv"};
 }
 
-nlohmann::json NetworkFiles::summary(const NetworkRunReport& report) const {
+namespace {
+
+// A platform's final envelope: its metronomes' amplitudes (global numbers in its `metronomes`),
+// their phases relative to its first, psi_k - psi_first of the network's (0 beside a locked one).
+nlohmann::json platformFinal(const Network& net, int p, const EnvelopeRow& last) {
+  const int first = net.firstMetronome(p);
+  const std::vector<MetronomeSpec>& ms = net.platforms[p].rig.metronomes;
+  auto psi = [&](int i) { return i == 0 ? 0.0 : last.psi[i - 1]; };  // psi_1 = 0
+  std::vector<double> a, d;
+  for (std::size_t k = 0; k < ms.size(); ++k) {
+    const int i = first + static_cast<int>(k);
+    a.push_back(last.A[i]);
+    if (k == 0) continue;
+    d.push_back(ms[k].locked || ms[0].locked ? 0.0 : psi(i) - psi(first));
+  }
+  return {{"tau", last.tau}, {"A", a}, {"psi", d}};
+}
+
+}  // namespace
+
+nlohmann::json NetworkFiles::platformsJson(bool complete) const {
   const Impl& m = *impl_;
   const std::vector<std::string> regimes = m.verdict.platformRegimes();
   const std::vector<Order>& groups = m.verdict.groups();
@@ -150,14 +171,43 @@ nlohmann::json NetworkFiles::summary(const NetworkRunReport& report) const {
     std::vector<int> numbers;
     for (std::size_t i = 0; i < np.rig.metronomes.size(); ++i)
       numbers.push_back(m.net.firstMetronome(p) + static_cast<int>(i) + 1);
-    platforms[np.name] = {{"regime", report.complete ? regimes[p] : "unknown"},
+    platforms[np.name] = {{"regime", complete ? regimes[p] : "unknown"},
                           {"metronomes", numbers},
                           {"r", groups.empty() ? 0.0 : groups[p].r}};
+    if (!m.verdict.empty()) platforms[np.name]["final"] = platformFinal(m.net, p, m.verdict.last());
   }
+  return platforms;
+}
+
+// The label's window as a single run's `regime_window` (its start in tau, its rows), with each
+// platform's mean r and the drift of its mean phase against the first platform's.
+nlohmann::json NetworkFiles::regimeWindowJson() const {
+  const Impl& m = *impl_;
+  const NetworkWindow& w = m.verdict.window();
+  const ScaledParams sp = computeScaled(m.net.scalesRig());
+  nlohmann::json platforms = nlohmann::json::object();
+  for (int p = 0; p < w.groups(); ++p)
+    platforms[m.net.platforms[p].name] = {
+        {"r_mean", w.meanR(p)}, {"dphi_range", w.dPhiRange(p)}, {"dphi_final", w.dPhiFinal(p)}};
+  return {{"tau_start", w.tStart() / sp.time_scale_s * sp.epsilon},
+          {"rows", w.rows()},
+          {"platforms", platforms}};
+}
+
+nlohmann::json NetworkFiles::summary(const NetworkRunReport& report) const {
+  const Impl& m = *impl_;
   nlohmann::json j;
-  j["platforms"] = platforms;
-  j["network"] = {{"regime", report.complete ? m.verdict.label() : "unknown"},
-                  {"r", m.verdict.overall().r}};
+  j["command"] = "run";
+  j["version"] = metrosyncVersion();
+  j["platforms"] = platformsJson(report.complete);
+  const std::string label = report.complete ? m.verdict.label() : "unknown";
+  j["network"] = {{"regime", label}, {"r", m.verdict.overall().r}};
+  j["regime"] = label;  // as a single run's: the network's label
+  j["regime_window"] = regimeWindowJson();
+  if (!m.verdict.empty()) {
+    const EnvelopeRow& last = m.verdict.last();
+    j["final"] = {{"tau", last.tau}, {"A", last.A}, {"psi", last.psi}};
+  }
   j["complete"] = report.complete;
   if (!report.complete) j["failure"] = report.failure;
   j["engine"] = report.engine;
@@ -165,14 +215,8 @@ nlohmann::json NetworkFiles::summary(const NetworkRunReport& report) const {
   j["counts"] = {{"steps", report.steps},           {"rhs_evals", report.rhs_evals},
                  {"events", report.events},         {"escapements", report.ticks},
                  {"stick_slip", report.stick_slip}, {"slip_reversals", report.slip_reversals}};
-  const EnergyLedger& e = report.ledger;
-  j["energy"] = {{"initial_J", e.initial_J},
-                 {"final_J", e.final_J},
-                 {"escapement_in_J", e.escapement_in_J},
-                 {"damping_out_J", e.damping_out_J},
-                 {"friction_out_J", e.friction_out_J},
-                 {"residual_J", e.residual_J()},
-                 {"relative_residual", e.relativeResidual()}};
+  j["energy"] = energyJson(report.ledger);
+  addTimings(j, report.wall_seconds, report.engine_seconds);
   return j;
 }
 

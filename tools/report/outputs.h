@@ -170,6 +170,11 @@ class FileSink : public RunSink {
 // complete, failure (when incomplete), energy {...} (when the report has a ledger).
 nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict);
 
+// summary.json's `energy` (the ledger, in J) and the timings `wall_seconds`, `engine_seconds`:
+// the same keys for a single run and a network's (tools/report/network_files.h).
+nlohmann::json energyJson(const EnergyLedger& ledger);
+void addTimings(nlohmann::json& summary, double wall_seconds, double engine_seconds);
+
 // summary.json of `run`: reportJson plus units, rig, version, command and `scaled` (the object
 // `scale --json` prints).
 nlohmann::json runSummaryJson(const Rig& rig, const nlohmann::json& scaled, const RunReport& report,
