@@ -13,9 +13,9 @@
 #include "sim/analysis/continuation/result.h"
 #include "sim/analysis/continuation/start_states.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/continue_full.h"
 #include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
-#include "tools/cli/continue_full.h"
 #include "tools/report/continuation_report.h"
 #include "yaml/rig_loader.h"
 
