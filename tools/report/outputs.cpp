@@ -147,17 +147,17 @@ void FileSink::clearStopRequest() {
   g_stop_requested = 0;
 }
 
-FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt)
+FileSink::FileSink(const RunFilesOptions& opt)
     : opt_(opt), window_(opt.tau_end, opt.epsilon), plot_(opt.max_plot_rows) {
   if (opt_.n_metronomes < 1) throw std::invalid_argument("FileSink: no metronome");
   if (opt_.envelope_platform) window_.setEnvelopePlatform(opt_.law, opt_.mu);
+}
+
+FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt) : FileSink(opt) {
   if (opt_.trajectory) {
     trajectory_ = std::make_unique<AtomicFile>(dir.file(opt_.trajectory_name));
-    std::string h = "t,x,xdot";
-    for (int i = 1; i <= opt_.n_metronomes; ++i)
-      h += ",theta_" + std::to_string(i) + ",thetadot_" + std::to_string(i);
-    h += ",platform";
-    trajectory_->writeLine(h);  // t is in seconds already for a physical rig (SPEC 3)
+    // t is in seconds already for a physical rig (SPEC 3)
+    trajectory_->writeLine(trajectoryHeader(opt_.n_metronomes));
     if (opt_.events) {
       events_ = std::make_unique<AtomicFile>(dir.file(opt_.events_name));
       events_->writeLine(eventsHeader(opt_.n_metronomes, opt_.seconds));
@@ -165,6 +165,13 @@ FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt)
   }
   envelope_ = std::make_unique<AtomicFile>(dir.file(opt_.envelope_name));
   envelope_->writeLine(envelopeHeader(opt_.n_metronomes) + (opt_.seconds ? ",t_s" : ""));
+}
+
+std::string trajectoryHeader(int n) {
+  std::string h = "t,x,xdot";
+  for (int i = 1; i <= n; ++i)
+    h += ",theta_" + std::to_string(i) + ",thetadot_" + std::to_string(i);
+  return h + ",platform";
 }
 
 std::string eventsHeader(int n, bool seconds) {
@@ -180,18 +187,22 @@ std::string eventsHeader(int n, bool seconds) {
 
 void FileSink::eventRecord(const char* kind, int metronome, const std::vector<double>& before,
                            const std::vector<double>& after) {
-  if (!events_) return;
+  if (!wantsEventRecords()) return;
   const size_t want = 2 * static_cast<size_t>(opt_.n_metronomes) + 4;
   if (before.size() != want || after.size() != want)
     throw std::logic_error("event record of the wrong width");
-  const double t = after[0];
-  std::string line = formatNumber(t) + "," + formatNumber(opt_.epsilon * t / opt_.time_unit) + "," +
-                     kind + "," + (metronome < 0 ? "platform" : std::to_string(metronome + 1));
-  for (const auto* row : {&before, &after})
-    for (size_t k = 1; k < row->size(); ++k) line += "," + formatNumber((*row)[k]);
-  if (opt_.seconds) line += "," + formatNumber(t);
-  events_->writeLine(line);
+  if (events_) {
+    const double t = after[0];
+    std::string line = formatNumber(t) + "," + formatNumber(opt_.epsilon * t / opt_.time_unit) +
+                       "," + kind + "," +
+                       (metronome < 0 ? "platform" : std::to_string(metronome + 1));
+    for (const auto* row : {&before, &after})
+      for (size_t k = 1; k < row->size(); ++k) line += "," + formatNumber((*row)[k]);
+    if (opt_.seconds) line += "," + formatNumber(t);
+    events_->writeLine(line);
+  }
   ++event_rows_;
+  if (tap_) tap_->eventRecord(kind, metronome, before, after);
   if (observer_) observer_(kind, metronome, before, after);
 }
 
@@ -207,19 +218,22 @@ void FileSink::eventRow(const char*, const std::vector<double>& row) {
 
 void FileSink::trajectoryRow(const std::vector<double>& row) {
   if (row.size() > 2) window_.platformMode(static_cast<int>(row.back()), row[1] / opt_.x_unit);
-  if (!trajectory_) return;
+  if (!opt_.trajectory) return;
   const size_t want = 2 * static_cast<size_t>(opt_.n_metronomes) + 4;
   if (row.size() != want)
     throw std::logic_error("trajectory row with " + std::to_string(row.size()) +
                            " values, expected " + std::to_string(want));
-  std::string line;
-  line.reserve(want * 20);
-  for (size_t k = 0; k < row.size(); ++k) {
-    if (k) line += ',';
-    line += formatNumber(row[k]);
+  if (trajectory_) {
+    std::string line;
+    line.reserve(want * 20);
+    for (size_t k = 0; k < row.size(); ++k) {
+      if (k) line += ',';
+      line += formatNumber(row[k]);
+    }
+    trajectory_->writeLine(line);
   }
-  trajectory_->writeLine(line);
   ++trajectory_rows_;
+  if (tap_) tap_->trajectoryRow(row);
   checkStop(row[0]);
 }
 
@@ -227,26 +241,28 @@ void FileSink::envelopeRow(const EnvelopeRow& row) {
   if (static_cast<int>(row.A.size()) != opt_.n_metronomes ||
       static_cast<int>(row.psi.size()) != opt_.n_metronomes - 1)
     throw std::logic_error("envelope row of the wrong width");
-  if (opt_.seconds)
+  if (envelope_ && opt_.seconds)
     envelope_->writeLine(formatEnvelopeRow(row) + "," +
                          formatNumber(row.tau / opt_.epsilon * opt_.time_unit));
-  else
+  else if (envelope_)
     envelope_->writeLine(formatEnvelopeRow(row));
   ++envelope_rows_;
   window_.add(row);
   plot_.add(row);
+  if (tap_) tap_->envelopeRow(row);
   if (progress_) progress_(row.tau);
   checkStop(row.tau / opt_.epsilon * opt_.time_unit);
 }
 
 void FileSink::commit() {
   if (trajectory_ && trajectory_->open()) trajectory_->commit();
-  if (envelope_->open()) envelope_->commit();
+  if (envelope_ && envelope_->open()) envelope_->commit();
   if (events_ && events_->open()) events_->commit();
 }
 
 std::vector<std::string> FileSink::fileNames() const {
   std::vector<std::string> names;
+  if (!envelope_) return names;  // no folder
   if (opt_.trajectory) names.push_back(opt_.trajectory_name);
   names.push_back(opt_.envelope_name);
   if (events_) names.push_back(opt_.events_name);
