@@ -106,7 +106,7 @@ BasinPlan planBasin(const BasinOptions& opt) {
     if (!seen.insert(plan.keys.back().key).second)
       throw UsageError("--random " + plan.keys.back().key + " given twice");
   }
-  plan.text = opt.run.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.run.rig_path);
+  plan.text = sweepRigText(opt.run);
   const std::optional<Network> net =
       loadSweepNetwork(plan.text, displayName(opt.run), opt.run.sets);
   const Rig base =

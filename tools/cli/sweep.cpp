@@ -119,11 +119,6 @@ void removeStaleSweepOutputs(const OutputDir& dir) {
 // Up to this many axes every corner of the grid is loaded before the sweep (2^axes rigs).
 constexpr size_t kMaxCornerAxes = 8;
 
-std::string readRigText(const SweepOptions& opt) {
-  // the same checks as every command: a regular file of bounded size (yaml/rig_loader.h)
-  return opt.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.rig_path);
-}
-
 std::string displayName(const SweepOptions& opt) {
   return opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
 }
@@ -370,12 +365,6 @@ class Progress {
 // ---- summary
 // -------------------------------------------------------------------------------------
 
-std::map<std::string, long> regimeCounts(const std::map<long, SweepPoint>& points) {
-  std::map<std::string, long> c;
-  for (const auto& [g, p] : points) ++c[p.regime];
-  return c;
-}
-
 std::string countsText(const std::map<long, SweepPoint>& points) {
   const auto counts = regimeCounts(points);
   std::string s;
@@ -410,23 +399,6 @@ std::string timingsPath(const OutputDir& dir) {
 long stopAfterHook() {
   const char* v = std::getenv("METROSYNC_SWEEP_STOP_AFTER");
   return v && *v ? std::atol(v) : -1;
-}
-
-nlohmann::json statusJson(const SweepManifest& m, long shard_points,
-                          const std::map<long, SweepPoint>& points, bool complete) {
-  nlohmann::json j = m.toJson();
-  long failed = 0;
-  for (const auto& [g, p] : points) failed += !p.complete;
-  j["complete"] = complete;
-  j["points"] = {{"grid", m.grid.size()},
-                 {"this_run", shard_points},
-                 {"done", static_cast<long>(points.size())},
-                 {"failed", failed},
-                 {"missing", shard_points - static_cast<long>(points.size())}};
-  nlohmann::json counts = nlohmann::json::object();
-  for (const auto& [name, k] : regimeCounts(points)) counts[name] = k;
-  j["regimes"] = counts;
-  return j;
 }
 
 }  // namespace
@@ -558,7 +530,7 @@ SweepPlan planSweep(const SweepOptions& opt) {
   plan.map_axes = mapAxes(plan.grid, opt.map);
   plan.shard = opt.shard.empty() ? SweepShard{} : parseShard(opt.shard);
   // the rig, and every grid point's rig: a bad key or value stops here, before any file
-  plan.text = readRigText(opt);
+  plan.text = sweepRigText(opt);
   const std::optional<Network> net = loadSweepNetwork(plan.text, displayName(opt), opt.sets);
   plan.base = net ? networkSweepRig(*net) : loadRigText(plan.text, displayName(opt), opt.sets);
   plan.n = static_cast<int>(plan.base.metronomes.size());
@@ -687,7 +659,7 @@ std::optional<SweepPoint> runGridPoint(const SweepPlan& plan, const SweepOptions
 SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir,
                   const RegimesTable& table, bool resuming, const SweepScheduler& schedule) {
   SweepRun run{table.lines, table.points};
-  writeSweepJson(dir, statusJson(plan.manifest, plan.mine, run.points, false));
+  writeSweepJson(dir, sweepStatusJson(plan.manifest, plan.mine, run.points, false));
   const bool fresh = table.complete_bytes == 0;
   RegimesAppender regimes(plan.regimes_path, regimesHeader(plan.grid, plan.n), fresh,
                           table.complete_bytes);
@@ -780,7 +752,7 @@ int sweepImpl(const SweepOptions& opt, const SweepScheduler& schedule, int ranks
                                        opt.plot_format, curves, plan.map_axes))
       files.push_back(f);
   files.push_back("sweep.json");
-  nlohmann::json status = statusJson(plan.manifest, plan.mine, run.points, complete);
+  nlohmann::json status = sweepStatusJson(plan.manifest, plan.mine, run.points, complete);
   status["jobs"] = run.jobs;
   if (ranks > 1) status["mpi_ranks"] = ranks;  // tools/cli/sweep_mpi.h
   status["wall_seconds"] = secondsSince(t_start);
@@ -886,7 +858,7 @@ int mergeImpl(const SweepOptions& opt) {
     files.push_back(f);
   files.push_back("sweep.json");
   const bool complete = static_cast<long>(points.size()) == grid.size();
-  nlohmann::json status = statusJson(merged, grid.size(), points, complete);
+  nlohmann::json status = sweepStatusJson(merged, grid.size(), points, complete);
   status["sources"] = opt.dirs;
   status["files"] = files;
   writeSweepJson(dir, status);
@@ -905,6 +877,12 @@ int mergeImpl(const SweepOptions& opt) {
 }
 
 }  // namespace
+
+std::string sweepRigText(const SweepOptions& opt) {
+  // the same checks as every command: a regular file of bounded size (yaml/rig_loader.h)
+  if (opt.rig_text) return *opt.rig_text;
+  return opt.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.rig_path);
+}
 
 std::pair<std::string, std::string> checkSweepPoint(const std::string& rig_text,
                                                     const SweepOptions& opt,

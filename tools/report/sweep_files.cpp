@@ -313,6 +313,29 @@ nlohmann::json SweepManifest::toJson() const {
           {"shard", {{"k", shard.k}, {"n", shard.n}}}};
 }
 
+std::map<std::string, long> regimeCounts(const std::map<long, SweepPoint>& points) {
+  std::map<std::string, long> c;
+  for (const auto& [g, p] : points) ++c[p.regime];
+  return c;
+}
+
+nlohmann::json sweepStatusJson(const SweepManifest& m, long shard_points,
+                               const std::map<long, SweepPoint>& points, bool complete) {
+  nlohmann::json j = m.toJson();
+  long failed = 0;
+  for (const auto& [g, p] : points) failed += !p.complete;
+  j["complete"] = complete;
+  j["points"] = {{"grid", m.grid.size()},
+                 {"this_run", shard_points},
+                 {"done", static_cast<long>(points.size())},
+                 {"failed", failed},
+                 {"missing", shard_points - static_cast<long>(points.size())}};
+  nlohmann::json counts = nlohmann::json::object();
+  for (const auto& [name, k] : regimeCounts(points)) counts[name] = k;
+  j["regimes"] = counts;
+  return j;
+}
+
 SweepManifest SweepManifest::fromJson(const nlohmann::json& j) {
   try {
     SweepManifest m;

@@ -101,6 +101,14 @@ std::string sweepDifference(const SweepManifest& a, const SweepManifest& b);
 // DIR/sweep.json as a manifest; every error names the file.
 SweepManifest readSweepManifest(const std::string& dir);
 
+// How many points ended in each regime.
+std::map<std::string, long> regimeCounts(const std::map<long, SweepPoint>& points);
+
+// sweep.json's status (without the run's timings and files): the manifest, `complete`,
+// `points` {grid, this_run (shard_points), done, failed, missing} and `regimes` {name: count}.
+nlohmann::json sweepStatusJson(const SweepManifest& m, long shard_points,
+                               const std::map<long, SweepPoint>& points, bool complete);
+
 // Reads DIR/sweep.json; throws SweepInputError when it is missing or is not a sweep manifest.
 nlohmann::json readSweepJson(const std::string& path);
 
