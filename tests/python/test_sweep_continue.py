@@ -1,12 +1,9 @@
-"""sweep, continue_, Ctrl-C and to_pandas against the command-line program: a sweep's arrays
-are regimes.csv's rows placed on the grid, continue_'s bifurcations are bifurcations.json, a
-SIGINT sent while a long run is in progress ends it within a couple of seconds as
-KeyboardInterrupt, and to_pandas() equals the CSV files read by pandas."""
-import csv
+"""continue_ and Ctrl-C against the command-line program: continue_'s bifurcations are
+bifurcations.json, and a SIGINT sent while a long run or sweep is in progress ends it within a
+couple of seconds as KeyboardInterrupt, with Python's own handler back afterwards."""
 import json
 import os
 import signal
-import subprocess
 import threading
 import time
 
@@ -14,59 +11,18 @@ import numpy as np
 import pytest
 
 import metrosync
-
-SRC = os.environ["METROSYNC_SOURCE_DIR"]
-BIN = os.environ["METROSYNC_BINARY"]
-MAP_RIG = os.path.join(SRC, "yaml/rigs/experiment-map.yaml")
-F44 = os.path.join(SRC, "yaml/rigs/paper/f4.4-alpha4.yaml")
-EXPERIMENT = os.path.join(SRC, "yaml/rigs/experiment.yaml")
-
-
-def read_rows(path):
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    return rows[0], rows[1:]
-
-
-@pytest.mark.parametrize("model", ["slow", "full"])
-def test_sweep_shape_and_labels_equal_regimes_csv(tmp_path, model):
-    # a range across and a list up, as the CLI takes them
-    vary = {"platform.friction.mu": (0.0, 1.5, 4), "metronomes.0.start.phi": [0.0, 1.5, 3.0]}
-    cli = tmp_path / "cli"
-    subprocess.run([BIN, "sweep", MAP_RIG, "--quiet", "--model", model, "--jobs", "2",
-                    "--set", "simulation.tau=60",
-                    "--vary", "platform.friction.mu=0:1.5:4",
-                    "--vary", "metronomes.0.start.phi=0,1.5,3", "--out", str(cli)], check=True)
-    res = metrosync.sweep(metrosync.load_rig(MAP_RIG), vary=vary, model=model, jobs=2, tau=60)
-    assert res.shape == (4, 3)
-    assert res.regime.shape == (4, 3)
-    assert res.keys == list(vary)
-    np.testing.assert_array_equal(res.values[0], [0.0, 0.5, 1.0, 1.5])
-    np.testing.assert_array_equal(res.values[1], [0.0, 1.5, 3.0])
-    header, rows = read_rows(cli / "regimes.csv")
-    assert len(rows) == 12
-    at = header.index("index")
-    for r in rows:
-        i, j = divmod(int(r[at]), 3)
-        assert res.regime[i, j] == r[header.index("regime")]
-        assert res["platform.friction.mu"][i, j] == res.values[0][i]
-        for name in ("A_1", "A_2", "psi_2", "r", "tau"):
-            assert res[name][i, j] == float(r[header.index(name)]), name
-    # more than one regime on this grid: the labels are not all one value by accident
-    assert len(set(res.regime.ravel())) > 1
-    values = lambda grid: [a["values"] for a in grid["axes"]]  # the spec's text may differ
-    assert values(json.load(open(cli / "sweep.json"))["grid"]) == values(res.summary["grid"])
+from conftest import EXPERIMENT, F44, MAP_RIG, cli, read_rows
 
 
 def test_continue_equals_bifurcations_json(tmp_path):
-    cli = tmp_path / "cli"
+    cli_out = tmp_path / "cli"
     args = ["--param", "metronomes.1.alpha", "--from", "3.0", "--to", "4.0"]
-    subprocess.run([BIN, "continue", F44, "--quiet", *args, "--out", str(cli)], check=True)
+    cli("continue", F44, "--quiet", *args, "--out", str(cli_out))
     res = metrosync.continue_(metrosync.load_rig(F44), param="metronomes.1.alpha", to=4.0,
                               from_=3.0)
-    assert res.bifurcations == json.load(open(cli / "bifurcations.json"))
+    assert res.bifurcations == json.load(open(cli_out / "bifurcations.json"))
     assert [b["type"] for b in res.bifurcations] == ["fold"]  # docs/continuation.md
-    header, rows = read_rows(cli / "branches.csv")
+    header, rows = read_rows(cli_out / "branches.csv")
     assert len(res.branches["A_1"]) == len(rows)
     np.testing.assert_array_equal(res.branches["A_2"],
                                   [float(r[header.index("A_2")]) for r in rows])
@@ -110,15 +66,3 @@ def test_ctrl_c_stops_a_long_sweep():
     vary = {"platform.friction.mu": (0.0, 3.0, 20), "metronomes.0.start.phi": (0.0, 6.0, 20)}
     late = interrupted_within(lambda: metrosync.sweep(rig, vary=vary, model="full", jobs=1))
     assert late < 2.0
-
-
-def test_to_pandas_equals_the_csv(tmp_path):
-    import pandas as pd  # tools/setup.sh installs python3-pandas
-    out = tmp_path / "o"
-    res = metrosync.run(metrosync.load_rig(EXPERIMENT, {"simulation.duration": 8}), model="full",
-                        out=str(out))
-    trajectory, envelope = res.to_pandas()
-    for frame, name in ((trajectory, "trajectory.csv"), (envelope, "envelope.csv")):
-        cli = pd.read_csv(out / name, float_precision="round_trip")
-        assert len(cli) > 10
-        pd.testing.assert_frame_equal(frame, cli.astype(float), check_exact=True)

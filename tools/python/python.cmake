@@ -14,13 +14,15 @@ if(NOT (Python_FOUND AND pybind11_FOUND))
 endif()
 set(METROSYNC_PYTHON_DIR ${CMAKE_BINARY_DIR}/python)
 # NO_EXTRAS: no link-time optimization of the whole of metrosync into the module (minutes)
-pybind11_add_module(_metrosync NO_EXTRAS ${CMAKE_SOURCE_DIR}/tools/python/module.cpp)
+file(GLOB metrosync_python_cpp CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tools/python/*.cpp)
+pybind11_add_module(_metrosync NO_EXTRAS ${metrosync_python_cpp})
 target_include_directories(_metrosync PRIVATE ${CMAKE_SOURCE_DIR})
 target_link_libraries(_metrosync PRIVATE metrosync_tools_cli)
 metrosync_link_heavy(_metrosync)
 set_target_properties(_metrosync PROPERTIES LIBRARY_OUTPUT_DIRECTORY
                                             ${METROSYNC_PYTHON_DIR}/metrosync)
-file(GLOB metrosync_py CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tools/python/metrosync/*.py)
+file(GLOB metrosync_py CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tools/python/metrosync/*.py
+     ${CMAKE_SOURCE_DIR}/tools/python/metrosync/*.pyi ${CMAKE_SOURCE_DIR}/tools/python/metrosync/py.typed)
 foreach(f ${metrosync_py})
   get_filename_component(name ${f} NAME)
   configure_file(${f} ${METROSYNC_PYTHON_DIR}/metrosync/${name} COPYONLY)
@@ -57,3 +59,11 @@ endif()
 string(REGEX REPLACE "^/usr/(local/)?" "" metrosync_site "${metrosync_site}")
 install(TARGETS _metrosync LIBRARY DESTINATION ${metrosync_site}/metrosync)
 install(FILES ${metrosync_py} DESTINATION ${metrosync_site}/metrosync)
+
+# `pip install .` and `pip wheel .` (setup.py, docs/python.md) into a fresh virtual environment,
+# offline, the C++ core taken from this build tree: tests/pip.
+add_test(NAME python_pip
+         COMMAND ${Python_EXECUTABLE} -m pytest -q -p no:cacheprovider ${CMAKE_SOURCE_DIR}/tests/pip)
+set_tests_properties(python_pip PROPERTIES
+  ENVIRONMENT "METROSYNC_CMAKE_BUILD_DIR=${CMAKE_BINARY_DIR};METROSYNC_SOURCE_DIR=${CMAKE_SOURCE_DIR}"
+  LABELS slow TIMEOUT 600)
