@@ -79,6 +79,46 @@ void expectPluginsWork(const fs::path& prefix, const std::string& bin, const std
   EXPECT_EQ(traced.out.find(kBuild.string() + "/metrosync-simbody.so"), std::string::npos);
 }
 
+// The man page, the bash completion and metrosync-mpi where the system finds them: `man` with the
+// prefix's bin on PATH (man-db maps it to PREFIX/share/man) and with -M; bash-completion's own
+// loader with the prefix's share in XDG_DATA_DIRS (its default holds /usr/local/share and
+// /usr/share); metrosync-mpi beside metrosync when the build has it.
+void expectFoundWhereTheSystemLooks(const fs::path& p, const std::set<std::string>& commands) {
+  const std::string bin = shellQuote((p / "bin").string()), share = (p / "share").string();
+  const CommandResult where = sh("env -u MANPATH PATH=" + bin + ":$PATH man -w metrosync");
+  EXPECT_EQ(where.out, (p / "share/man/man1/metrosync.1.gz").string() + "\n");
+  const CommandResult page =
+      sh("MANWIDTH=100 man -M " + shellQuote(share + "/man") + " metrosync | col -b");
+  ASSERT_EQ(page.code, 0) << page.out;
+  for (const std::string& c : commands)
+    EXPECT_NE(page.out.find("metrosync " + c), std::string::npos) << c;
+  // what the program is today: the description names the full model's engines, the default
+  // first (sim/engines/engine.h), not Simbody alone
+  const size_t description = page.out.find("DESCRIPTION");
+  const std::string intro = page.out.substr(description, page.out.find("OPTIONS") - description);
+  EXPECT_NE(intro.find("direct (the default)"), std::string::npos) << intro;
+  EXPECT_NE(intro.find("simbody"), std::string::npos) << intro;
+  EXPECT_EQ(intro.find("Simbody multibody system"), std::string::npos) << intro;
+
+  const std::string loader = "/usr/share/bash-completion/bash_completion";
+  if (!fs::exists(loader)) {
+    ADD_FAILURE() << "bash-completion is not installed (tools/setup.sh installs it)";
+  } else {
+    const CommandResult complete =
+        sh("XDG_DATA_DIRS=" + shellQuote(share) + " bash -c 'source " + loader +
+           " && __load_completion metrosync && complete -p metrosync'");
+    EXPECT_EQ(complete.code, 0) << complete.out;
+    EXPECT_NE(complete.out.find("-F _metrosync metrosync"), std::string::npos) << complete.out;
+  }
+  if (fs::exists(kBuild / "metrosync-mpi")) {  // built when MPI is found (tools/cli/mpi.cmake)
+    const fs::path mpi = p / "bin/metrosync-mpi";
+    ASSERT_TRUE(fs::is_regular_file(mpi));
+    const CommandResult help = sh(shellQuote(mpi.string()) + " --help");
+    EXPECT_EQ(help.code, 0) << help.out;
+    EXPECT_NE(help.out.find("sweep"), std::string::npos) << help.out;
+  }
+}
+
 TEST(Install, PutsTheBinaryManPageCompletionsRigsAndDocsInPlace) {
   const std::string prefix = scratchDir("install", "prefix");
   const CommandResult inst =
@@ -112,6 +152,8 @@ TEST(Install, PutsTheBinaryManPageCompletionsRigsAndDocsInPlace) {
   ASSERT_EQ(page.code, 0) << page.out;
   for (const std::string& c : commands)
     EXPECT_NE(page.out.find("metrosync " + c), std::string::npos) << c;
+
+  expectFoundWhereTheSystemLooks(p, commands);
 
   // the installed binary on an installed rig equals the build tree's
   const std::string rig = (p / "share/metrosync/rigs/experiment.yaml").string();
