@@ -58,8 +58,9 @@ void MetronomeEquations::angleTrig(const double* y) const {
   sinCos(y + 2, sin_.data(), cos_.data(), layout_.n);
 }
 
-void MetronomeEquations::rhs(const double* y, PlatformMode mode, double* dy) const {
-  const int n = layout_.n;
+template <int N>
+void MetronomeEquations::rhsN(const double* y, PlatformMode mode, double* dy) const {
+  const int n = N > 0 ? N : layout_.n;
   const double* __restrict w = y + 2 + n;
   double* __restrict dth = dy + 2;
   double* __restrict dw = dy + 2 + n;
@@ -68,7 +69,7 @@ void MetronomeEquations::rhs(const double* y, PlatformMode mode, double* dy) con
   const double* __restrict inv_I = inv_inertia_.data();
   const double* __restrict damp = damping_.data();
   const double v = y[StateLayout::kV];
-  angleTrig(y);
+  sinCos(y + 2, sin_.data(), cos_.data(), n);  // angleTrig(y), n known
   const double* __restrict sn = sin_.data();
   const double* __restrict cs = cos_.data();
   double* __restrict c = c_.data();
@@ -109,9 +110,20 @@ void MetronomeEquations::rhs(const double* y, PlatformMode mode, double* dy) con
   for (int j = 0; j < n; ++j) dth[j] = w[j];
   dy[StateLayout::kX] = platform_moves ? v : 0.0;
   dy[StateLayout::kV] = a;
-  dy[layout_.dampingWork()] = damping_power;
-  dy[layout_.frictionWork()] = friction_power;
+  dy[2 + 2 * n] = damping_power;   // layout_.dampingWork()
+  dy[3 + 2 * n] = friction_power;  // layout_.frictionWork()
 }
+
+template void MetronomeEquations::rhsN<MetronomeEquations::kAnyN>(const double*, PlatformMode,
+                                                                  double*) const;
+template void MetronomeEquations::rhsN<1>(const double*, PlatformMode, double*) const;
+template void MetronomeEquations::rhsN<2>(const double*, PlatformMode, double*) const;
+template void MetronomeEquations::rhsN<3>(const double*, PlatformMode, double*) const;
+template void MetronomeEquations::rhsN<4>(const double*, PlatformMode, double*) const;
+template void MetronomeEquations::rhsN<5>(const double*, PlatformMode, double*) const;
+template void MetronomeEquations::rhsN<6>(const double*, PlatformMode, double*) const;
+template void MetronomeEquations::rhsN<7>(const double*, PlatformMode, double*) const;
+template void MetronomeEquations::rhsN<8>(const double*, PlatformMode, double*) const;
 
 double MetronomeEquations::holdingForce(const double* y) const {
   const int n = layout_.n;

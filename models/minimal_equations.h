@@ -74,7 +74,12 @@ class MetronomeEquations {
 
   // dy/dt in the given platform mode (only Coulomb uses it: Stuck holds xdot = 0, a slip feels
   // the kinetic force -bound * mode). dy also gets the damping and friction power.
-  void rhs(const double* y, PlatformMode mode, double* dy) const;
+  void rhs(const double* y, PlatformMode mode, double* dy) const { rhsN<kAnyN>(y, mode, dy); }
+  // The same with the number of swinging pendulums known to the compiler (N == numSwinging(),
+  // 1 .. kMaxFixedN), or kAnyN: the same operations in the same order, so the same bits.
+  static constexpr int kAnyN = -1, kMaxFixedN = 8;
+  template <int N>
+  void rhsN(const double* y, PlatformMode mode, double* dy) const;
 
   // H = -G: the force friction must supply to keep the platform still (with xdot = 0 in y).
   double holdingForce(const double* y) const;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <limits>
 
 namespace metrosync {
 
@@ -16,11 +17,14 @@ class SampleSchedule {
   static constexpr int kRowsPerPeriodByDefault = 20;
 
   // sample: the rig's row interval (<= 0: the default); period: the fast period; both in the
-  // engine's time unit.
-  SampleSchedule(double sample, double period, double t_end)
+  // engine's time unit. rows / envelope: false when the sink takes none of that kind
+  // (RunSink::wantsTrajectory, wantsEnvelope): none are scheduled.
+  SampleSchedule(double sample, double period, double t_end, bool rows = true, bool envelope = true)
       : row_dt_(sample > 0 ? sample : period / kRowsPerPeriodByDefault),
         env_dt_(period / kEnvelopeSamplesPerPeriod),
-        t_end_(t_end) {}
+        t_end_(t_end),
+        rows_(rows),
+        envelope_(envelope) {}
 
   // The next sample time, or t_end when none is left before it.
   double next() const { return std::min({nextRow(), nextEnvelope(), t_end_}); }
@@ -40,10 +44,12 @@ class SampleSchedule {
   }
 
  private:
-  double nextRow() const { return static_cast<double>(k_row_) * row_dt_; }
-  double nextEnvelope() const { return static_cast<double>(k_env_) * env_dt_; }
+  double nextRow() const { return rows_ ? static_cast<double>(k_row_) * row_dt_ : kNever; }
+  double nextEnvelope() const { return envelope_ ? static_cast<double>(k_env_) * env_dt_ : kNever; }
+  static constexpr double kNever = std::numeric_limits<double>::infinity();
 
   double row_dt_, env_dt_, t_end_;
+  bool rows_, envelope_;
   long k_row_ = 1, k_env_ = 1;  // the samples at t = 0 are the run's first state
 };
 

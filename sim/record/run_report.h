@@ -43,9 +43,12 @@ struct RunReport {
   std::string engine;      // "simbody", "direct", "slowflow"
   std::string integrator;  // the integrator used
   double accuracy = 0.0;
-  bool complete = true;  // false when the run stopped early
-  std::string failure;   // why it stopped, with the time (empty when complete)
-  double wall_seconds = 0.0;
+  bool complete = true;       // false when the run stopped early
+  std::string failure;        // why it stopped, with the time (empty when complete)
+  double wall_seconds = 0.0;  // the run: integration, events and recording (sample capture)
+  // the integrator and its events alone: wall_seconds less the time spent taking samples and
+  // handing rows to the sink (docs/outputs.md)
+  double engine_seconds = 0.0;
   RunCounts counts;
   bool has_ledger = false;
   EnergyLedger ledger;
@@ -67,6 +70,12 @@ struct RunSink {
   // false: eventRow() ignores its rows, and an engine need not build them (asked once, at the
   // start of a run)
   virtual bool wantsEventRows() const { return true; }
+  // false: trajectoryRow() / envelopeRow() ignore their rows, and an engine need not take the
+  // samples they come from (asked once, at the start of a run). The run's last state is reported
+  // in RunReport::final_trajectory_row either way; without the envelope, RunReport::final_row
+  // is empty. A benchmark that measures the integrator alone says false to both.
+  virtual bool wantsTrajectory() const { return true; }
+  virtual bool wantsEnvelope() const { return true; }
   // Full model: the event record (events.csv), when wantsEventRecords(): one call per tick of
   // each metronome and per platform switch, with the states just before and just after it in
   // the trajectory format. metronome: 0-based rig index; -1 for the platform ("stick", "slip").

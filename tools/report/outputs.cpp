@@ -303,6 +303,7 @@ nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict)
       {"stick_slip", report.counts.stick_slip}, {"slip_reversals", report.counts.slip_reversals},
       {"rhs_evals", report.counts.rhs_evals},   {"events", report.counts.events}};
   j["wall_seconds"] = report.wall_seconds;
+  j["engine_seconds"] = report.engine_seconds;
   j["complete"] = report.complete;
   if (!report.complete) j["failure"] = report.failure;
   if (report.has_ledger) {

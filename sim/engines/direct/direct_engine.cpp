@@ -35,6 +35,7 @@
 #include "sim/ode/rk_stepper.h"
 #include "sim/ode/root_find.h"
 #include "sim/record/envelope_recorder.h"
+#include "sim/record/split_timer.h"
 
 namespace metrosync {
 
@@ -52,15 +53,23 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 
-class Dynamics : public OdeRhs {
+// The right-hand side in the platform's current mode, with N swinging pendulums known to the
+// compiler (or kAnyN): the stepper inlines it into every stage.
+template <int N>
+class Dynamics final {
  public:
   explicit Dynamics(const MetronomeEquations& eq) : eq_(eq) {}
-  void eval(const double* y, double* dy) override { eq_.rhs(y, mode, dy); }
+  void eval(const double* y, double* dy) { eq_.rhsN<N>(y, mode, dy); }
   PlatformMode mode = PlatformMode::Stuck;
 
  private:
   const MetronomeEquations& eq_;
 };
+
+// The state's size for N swinging pendulums: x, xdot, N angles and rates, two ledger quadratures.
+constexpr int stateDim(int n) {
+  return n > 0 ? 4 + 2 * n : ode::kDynamic;
+}
 
 enum class WitnessKind { Tick, Platform };
 
@@ -76,6 +85,7 @@ using Crossing = WindowCrossing;
 
 // The run: a stepper, the witnesses, and the shared resolver acting on the event state through
 // this class's EventSystem side (the state vector ev_y_ and the platform mode).
+template <int N>
 class DirectRun : public EventSystem {
  public:
   DirectRun(const Rig& rig, RunSink& sink, const DirectOptions& opt);
@@ -100,15 +110,19 @@ class DirectRun : public EventSystem {
     return mobility_;
   }
   void eventRow(const char* kind) override {
-    if (event_rows_) sink_.eventRow(kind, makeRow(ev_y_, ev_t_));
+    if (!event_rows_) return;
+    RecordingScope rec(timer_);
+    sink_.eventRow(kind, makeRow(ev_y_, ev_t_));
   }
   void snapshotBefore() override {
-    if (sink_.wantsEventRecords()) before_ = makeRow(ev_y_, ev_t_);
+    if (!event_records_) return;
+    RecordingScope rec(timer_);
+    before_ = makeRow(ev_y_, ev_t_);
   }
   void recordEvent(const char* kind, int j) override {
-    if (sink_.wantsEventRecords())
-      sink_.eventRecord(kind, j < 0 ? -1 : eq_.pendulum(j).rig_index, before_,
-                        makeRow(ev_y_, ev_t_));
+    if (!event_records_) return;
+    RecordingScope rec(timer_);
+    sink_.eventRecord(kind, j < 0 ? -1 : eq_.pendulum(j).rig_index, before_, makeRow(ev_y_, ev_t_));
   }
 
  private:
@@ -162,12 +176,14 @@ class DirectRun : public EventSystem {
   MetronomeEquations eq_;
   StateLayout lay_;
   RunSink& sink_;
-  bool event_rows_;  // sink_.wantsEventRows()
+  // what the sink takes (asked once): event rows, event records, trajectory rows, envelope rows
+  bool event_rows_, event_records_, want_rows_, want_envelope_;
+  SplitTimer timer_;  // the engine's time against the recording's
   int n_rig_;
   EnvelopeRecorder env_;
-  Dynamics dyn_;
+  Dynamics<N> dyn_;
   const RkTableau& tab_;
-  RkStepper stepper_;
+  ode::RkStepperT<Dynamics<N>, stateDim(N)> stepper_;
   RunReport report_;
   double omega0_ = 1.0, period_ = 1.0;
   std::vector<Witness> witnesses_;
@@ -188,7 +204,8 @@ class DirectRun : public EventSystem {
   int nonfinite_ = 0;  // consecutive attempts that produced a NaN or an infinity
 };
 
-DirectRun::DirectRun(const Rig& rig, RunSink& sink, const DirectOptions& opt)
+template <int N>
+DirectRun<N>::DirectRun(const Rig& rig, RunSink& sink, const DirectOptions& opt)
     : rig_(rig),
       opt_(opt),
       sp_(computeScaled(rig)),
@@ -196,6 +213,9 @@ DirectRun::DirectRun(const Rig& rig, RunSink& sink, const DirectOptions& opt)
       lay_(eq_.layout()),
       sink_(sink),
       event_rows_(sink.wantsEventRows()),
+      event_records_(sink.wantsEventRecords()),
+      want_rows_(sink.wantsTrajectory()),
+      want_envelope_(sink.wantsEnvelope()),
       n_rig_(static_cast<int>(rig.metronomes.size())),
       env_(
           sp_.epsilon,
@@ -243,7 +263,8 @@ DirectRun::DirectRun(const Rig& rig, RunSink& sink, const DirectOptions& opt)
 
 // --- witnesses ------------------------------------------------------------------------------
 
-double DirectRun::witnessAt(const Witness& w, double th) {
+template <int N>
+double DirectRun<N>::witnessAt(const Witness& w, double th) {
   if (w.kind == WitnessKind::Tick)
     return w.side * stepper_.component(lay_.theta(w.pendulum), th) -
            eq_.pendulum(w.pendulum).theta_c;
@@ -254,7 +275,8 @@ double DirectRun::witnessAt(const Witness& w, double th) {
   return -static_cast<int>(mode()) * stepper_.component(StateLayout::kV, th);
 }
 
-std::optional<Crossing> DirectRun::detect(int index) {
+template <int N>
+std::optional<Crossing> DirectRun<N>::detect(int index) {
   const Witness& w = witnesses_[index];
   if (w.kind == WitnessKind::Tick && !resolver_->armed(w.pendulum, w.side)) return std::nullopt;
   if (w.kind == WitnessKind::Tick)
@@ -265,8 +287,9 @@ std::optional<Crossing> DirectRun::detect(int index) {
 }
 
 // g(th) = sign * y_k(th) - offset on the dense output, rising through zero.
-std::optional<Crossing> DirectRun::detectComponent(int index, int k, double sign, double offset,
-                                                   bool allow_forced) {
+template <int N>
+std::optional<Crossing> DirectRun<N>::detectComponent(int index, int k, double sign, double offset,
+                                                      bool allow_forced) {
   const double g0 = sign * stepper_.y()[k] - offset;
   const double g1 = sign * stepper_.y1()[k] - offset;
   auto g = [&](double th) { return sign * stepper_.component(k, th) - offset; };
@@ -304,7 +327,8 @@ std::optional<Crossing> DirectRun::detectComponent(int index, int k, double sign
 // at a tangency of the stick margin, with an acceleration of rounding size at t0: the sign of the
 // rate there says nothing, so the dip of g below zero (the slip under way) is looked for on the
 // interpolant itself, and its end is the stop.
-std::optional<Crossing> DirectRun::detectSlipFromRest(int index, int k, double sign, double g1) {
+template <int N>
+std::optional<Crossing> DirectRun<N>::detectSlipFromRest(int index, int k, double sign, double g1) {
   if (g1 <= 0) return std::nullopt;  // still slipping the right way (or not at all) at the end
   auto g = [&](double th) { return sign * stepper_.component(k, th); };
   constexpr int kSamples = 16;
@@ -340,7 +364,8 @@ std::optional<Crossing> DirectRun::detectSlipFromRest(int index, int k, double s
 }
 
 // |H| - bound while stuck: H is a function of the whole state, its rate known in closed form.
-std::optional<Crossing> DirectRun::detectMargin(int index) {
+template <int N>
+std::optional<Crossing> DirectRun<N>::detectMargin(int index) {
   const double g0 = excessPush(stepper_.y()), g1 = excessPush(stepper_.y1());
   if (g0 >= 0) return std::nullopt;  // cannot happen: a platform stays stuck only below the bound
   if (g1 >= 0) return Crossing{index, {0.0, 1.0}};
@@ -360,7 +385,8 @@ std::optional<Crossing> DirectRun::detectMargin(int index) {
 
 // --- recording ------------------------------------------------------------------------------
 
-const std::vector<double>& DirectRun::makeRow(const double* y, double t) {
+template <int N>
+const std::vector<double>& DirectRun<N>::makeRow(const double* y, double t) {
   std::vector<double>& row = row_;
   row.clear();
   const bool scaled = rig_.units == Units::Scaled;
@@ -390,11 +416,17 @@ const std::vector<double>& DirectRun::makeRow(const double* y, double t) {
   return row;
 }
 
-void DirectRun::recordTrajectory(const double* y, double t) {
+template <int N>
+void DirectRun<N>::recordTrajectory(const double* y, double t) {
+  if (!want_rows_) return;
+  RecordingScope rec(timer_);
   sink_.trajectoryRow(makeRow(y, t));
 }
 
-void DirectRun::recordEnvelope(const double* y, double t) {
+template <int N>
+void DirectRun<N>::recordEnvelope(const double* y, double t) {
+  if (!want_envelope_) return;
+  RecordingScope rec(timer_);
   const double* th = y + lay_.theta(0);
   const double* w = y + lay_.omega(0);
   const double w_scale = sp_.angle_scale * omega0_;
@@ -412,7 +444,11 @@ void DirectRun::recordEnvelope(const double* y, double t) {
 }
 
 // Samples due in the current step before t_limit (or at it, if inclusive), from the dense output.
-void DirectRun::emitSamplesBefore(double t_limit, bool inclusive) {
+template <int N>
+void DirectRun<N>::emitSamplesBefore(double t_limit, bool inclusive) {
+  const double t_next = schedule_->next();
+  if (!(t_next < t_limit || (inclusive && t_next == t_limit))) return;
+  RecordingScope rec(timer_);
   const double t0 = stepper_.t(), h = stepper_.h();
   schedule_->takeDue(t_limit, inclusive, [&](double ts, bool row, bool env) {
     const double th = std::clamp((ts - t0) / h, 0.0, 1.0);
@@ -429,7 +465,8 @@ void DirectRun::emitSamplesBefore(double t_limit, bool inclusive) {
 // --- the run's stages -----------------------------------------------------------------------
 
 // The rig's start state; the resolver, armed by it; the platform's mode decided at rest.
-std::vector<double> DirectRun::startState() {
+template <int N>
+std::vector<double> DirectRun<N>::startState() {
   std::vector<double> y(lay_.dim(), 0.0);
   if (eq_.hasPlatform()) {
     y[StateLayout::kX] = rig_.platform.start_x_m;
@@ -458,7 +495,8 @@ std::vector<double> DirectRun::startState() {
 
 // The largest step: a fraction of the fastest oscillation (pendulums, platform spring), so that a
 // step holds at most one extreme of any witness.
-double DirectRun::maxStepSize() const {
+template <int N>
+double DirectRun<N>::maxStepSize() const {
   double fastest = period_;
   for (int j = 0; j < lay_.n; ++j) {
     const PendulumConstants& p = eq_.pendulum(j);
@@ -475,7 +513,8 @@ double DirectRun::maxStepSize() const {
 
 // One attempt; false when rejected, with h set to the retry's size. A step that produced a NaN
 // or an infinity is redone 4 times smaller, a few times; a state that is not finite itself fails.
-bool DirectRun::attemptStep(double step, double& h, double& err) {
+template <int N>
+bool DirectRun<N>::attemptStep(double step, double& h, double& err) {
   err = stepper_.attempt(step);
   if (err <= 1.0) {
     nonfinite_ = 0;
@@ -496,7 +535,8 @@ bool DirectRun::attemptStep(double step, double& h, double& err) {
 // dip before a crossing): detectComponent() reports nothing else (its rates at the step's ends are
 // f(y0) and f(y1), whose angle rows are the rates). One pass over the pendulums finds those; with
 // N pendulums most steps have none, and the 2N witnesses are not looked at one by one.
-void DirectRun::findCrossings() {
+template <int N>
+void DirectRun<N>::findCrossings() {
   found_.clear();
   const double* y0 = stepper_.y();
   const double* y1 = stepper_.y1();
@@ -516,7 +556,8 @@ void DirectRun::findCrossings() {
 }
 
 // The window (sim/events/window.h): every crossing bracketed, the end at the earliest.
-double DirectRun::locateWindow() {
+template <int N>
+double DirectRun<N>::locateWindow() {
   return metrosync::locateWindow(found_,
                                  [&](int w, double th) { return witnessAt(witnesses_[w], th); });
 }
@@ -524,7 +565,8 @@ double DirectRun::locateWindow() {
 // The window's end state in ya_: the platform's witness decides whether it switches (a tick
 // witness needs no report: the resolver takes every due tick from the state), the resolver acts,
 // the stepper restarts from the result.
-void DirectRun::resolveWindow(double t_e, double th_e) {
+template <int N>
+void DirectRun<N>::resolveWindow(double t_e, double th_e) {
   stepper_.interpolate(th_e, ya_.data());
   bool platform = false;
   for (const Crossing& c : found_) {
@@ -549,13 +591,15 @@ void DirectRun::resolveWindow(double t_e, double th_e) {
   recordEnvelope(ya_.data(), t_e);  // and the first after it
 }
 
-void DirectRun::rearm(const double* y) {
+template <int N>
+void DirectRun<N>::rearm(const double* y) {
   for (int j = 0; j < lay_.n; ++j) resolver_->rearm(j, y[lay_.theta(j)]);
 }
 
 // Steps to t_end: each kept step either has no crossing (samples, re-arming, advance) or ends
 // at its earliest event window, resolved before the next step.
-void DirectRun::integrate(double h_max, StormGuard& storm) {
+template <int N>
+void DirectRun<N>::integrate(double h_max, StormGuard& storm) {
   double h = std::min(h_max, 0.5 * period_ * std::pow(rig_.sim.accuracy, 1.0 / (tab_.order + 1)));
   while (stepper_.t() < t_end_) {
     const double t0 = stepper_.t();
@@ -597,10 +641,11 @@ void DirectRun::integrate(double h_max, StormGuard& storm) {
 
 // --- the run --------------------------------------------------------------------------------
 
-RunReport DirectRun::run() {
-  const auto wall0 = std::chrono::steady_clock::now();
+template <int N>
+RunReport DirectRun<N>::run() {
+  timer_ = SplitTimer();
   t_end_ = rig_.sim.t_end_s;
-  schedule_.emplace(rig_.sim.sample_s, period_, t_end_);
+  schedule_.emplace(rig_.sim.sample_s, period_, t_end_, want_rows_, want_envelope_);
   std::vector<double> y = startState();
   report_.ledger.initial_J = eq_.energy(y.data());
   const double h_max = maxStepSize();
@@ -636,8 +681,8 @@ RunReport DirectRun::run() {
   report_.ledger.damping_out_J = y_fin[lay_.dampingWork()];
   report_.ledger.friction_out_J = y_fin[lay_.frictionWork()] + friction_settle_J_;
   report_.has_ledger = true;
-  report_.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  report_.wall_seconds = timer_.wallSeconds();
+  report_.engine_seconds = report_.wall_seconds - timer_.recordingSeconds(report_.wall_seconds);
   return report_;
 }
 
@@ -653,8 +698,29 @@ RunReport runDirectModel(const Rig& rig, RunSink& sink, const DirectOptions& opt
     throw std::invalid_argument("simulation.integrator = " + rig.sim.integrator +
                                 ": not an integrator of the direct engine (one of: " + list + ")");
   }
-  direct::DirectRun run(rig, sink, options);
-  return run.run();
+  // the state's size known to the compiler for up to kMaxFixedN swinging pendulums (every loop
+  // over the state unrolled, every buffer in the run object), dynamic above: the same bits
+  const int n = direct::MetronomeEquations(rig).numSwinging();
+  switch (n) {
+    case 1:
+      return direct::DirectRun<1>(rig, sink, options).run();
+    case 2:
+      return direct::DirectRun<2>(rig, sink, options).run();
+    case 3:
+      return direct::DirectRun<3>(rig, sink, options).run();
+    case 4:
+      return direct::DirectRun<4>(rig, sink, options).run();
+    case 5:
+      return direct::DirectRun<5>(rig, sink, options).run();
+    case 6:
+      return direct::DirectRun<6>(rig, sink, options).run();
+    case 7:
+      return direct::DirectRun<7>(rig, sink, options).run();
+    case 8:
+      return direct::DirectRun<8>(rig, sink, options).run();
+    default:
+      return direct::DirectRun<direct::MetronomeEquations::kAnyN>(rig, sink, options).run();
+  }
 }
 
 }  // namespace metrosync

@@ -34,6 +34,7 @@
 #include "sim/events/storm_guard.h"
 #include "sim/events/witness.h"
 #include "sim/record/envelope_recorder.h"
+#include "sim/record/split_timer.h"
 
 namespace metrosync {
 
@@ -179,11 +180,14 @@ class FullModelRun : public EventSystem {
   double platformMobility() override;
   void eventRow(const char* kind) override { eventRow(kind, *ev_s_); }
   void snapshotBefore() override {
-    if (sink_.wantsEventRecords()) before_ = makeRow(*ev_s_, ev_s_->getTime());
+    if (!sink_.wantsEventRecords()) return;
+    RecordingScope rec(timer_);
+    before_ = makeRow(*ev_s_, ev_s_->getTime());
   }
   void recordEvent(const char* kind, int i) override {
-    if (sink_.wantsEventRecords())
-      sink_.eventRecord(kind, i, before_, makeRow(*ev_s_, ev_s_->getTime()));
+    if (!sink_.wantsEventRecords()) return;
+    RecordingScope rec(timer_);
+    sink_.eventRecord(kind, i, before_, makeRow(*ev_s_, ev_s_->getTime()));
   }
 
  private:
@@ -249,6 +253,7 @@ class FullModelRun : public EventSystem {
   ScaledParams sp_;
   MetronomeSystem ms_;
   RunSink& sink_;
+  SplitTimer timer_;  // the engine's time against the recording's
   int n_;
   EnvelopeRecorder env_;
   Pending pending_;
@@ -456,12 +461,14 @@ void FullModelRun::takeSamples(const Integrator& integ, double t_limit) {
 }
 
 void FullModelRun::recordTrajectory(const State& s, double t) {
+  RecordingScope rec(timer_);
   std::vector<double> row = makeRow(s, t);
   sink_.trajectoryRow(row);
   report_.final_trajectory_row = std::move(row);
 }
 
 void FullModelRun::eventRow(const char* kind, const State& s) {
+  RecordingScope rec(timer_);
   sink_.eventRow(kind, makeRow(s, s.getTime()));
 }
 
@@ -484,6 +491,7 @@ std::vector<double> FullModelRun::makeRow(const State& s, double t) const {
 }
 
 void FullModelRun::recordEnvelope(const State& s, double t) {
+  RecordingScope rec(timer_);
   scratch_th_.resize(n_);
   scratch_w_.resize(n_);
   for (int i = 0; i < n_; ++i) {
@@ -544,7 +552,7 @@ bool FullModelRun::grazingMissed(const StepEnd& a, const StepEnd& b, PlatformMod
 }
 
 RunReport FullModelRun::run() {
-  const auto wall0 = std::chrono::steady_clock::now();
+  timer_ = SplitTimer();
   const double t_end = rig_.sim.t_end_s;
   schedule_.emplace(rig_.sim.sample_s, period_, t_end);
   storm_.emplace(period_);
@@ -604,8 +612,8 @@ RunReport FullModelRun::run() {
     std::fprintf(stderr, "debug: rewinds %ld steps %d attempts %d realizations %d\n", rewinds_,
                  integ->getNumStepsTaken(), integ->getNumStepsAttempted(),
                  integ->getNumRealizations());
-  report_.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  report_.wall_seconds = timer_.wallSeconds();
+  report_.engine_seconds = report_.wall_seconds - timer_.recordingSeconds(report_.wall_seconds);
   return report_;
 }
 

@@ -15,6 +15,7 @@
 #include "sim/events/storm_guard.h"
 #include "sim/events/window.h"
 #include "sim/ode/rk_stepper.h"
+#include "sim/record/split_timer.h"
 
 namespace metrosync {
 namespace {
@@ -151,7 +152,7 @@ class SlowFlowRun {
 
   const ScaledParams& p_;
   const SlowFlowOptions& opt_;
-  std::chrono::steady_clock::time_point wall0_ = std::chrono::steady_clock::now();
+  SplitTimer timer_;  // the engine's time against the recording's
   SlowFlow flow_;
   FlowRhs rhs_;
   ode::RkStepper stepper_;
@@ -205,6 +206,7 @@ void SlowFlowRun::emitRowsUpTo(double tau_hi, double h) {
   for (;;) {
     const double tk = envelopeTau(p_.epsilon, next_row_);
     if (tk > tau_hi || tk > opt_.tau_end) break;
+    RecordingScope rec(timer_);
     if (h > 0.0)
       stepper_.interpolate(std::clamp((tk - tau_) / h, 0.0, 1.0), yr.data());
     else
@@ -336,8 +338,8 @@ RunReport SlowFlowRun::finish(const std::string& failure) {
   rep_.counts.rhs_evals = rhs_.evaluations;
   rhs_.unpackFixed(y_.data(), z_);
   rep_.final_row = rows_.emit(tau_, z_);
-  rep_.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();
+  rep_.wall_seconds = timer_.wallSeconds();
+  rep_.engine_seconds = rep_.wall_seconds - timer_.recordingSeconds(rep_.wall_seconds);
   return rep_;
 }
 
