@@ -151,6 +151,21 @@ def test_wildcard_overrides_set_every_metronome():
                               res.envelope["A_1"])
 
 
+def test_a_network_rig_runs_from_a_path_and_a_dict():
+    # two boards joined by a spring (docs/networks.md): the network's own columns
+    path = EXPERIMENT.replace("experiment.yaml", "two-boards-rollers.yaml")
+    a = metrosync.run(path, duration=4)
+    b = metrosync.run(rig_dict(path), duration=4)
+    assert "x_left" in a.trajectory and "x_right" in a.trajectory
+    np.testing.assert_array_equal(a.envelope["A_3"], b.envelope["A_3"])
+    assert a.summary["network"]["regime"] == b.summary["network"]["regime"]
+    bad = rig_dict(path)
+    bad["platforms"][1]["mass"] = -1
+    with pytest.raises(metrosync.RigError) as e:
+        metrosync.load_rig(bad)
+    assert str(e.value) == "rig['platforms'][1]['mass'] = -1: must be > 0"
+
+
 def test_a_rig_round_trips_through_to_dict():
     rig = metrosync.load_rig(EXPERIMENT, {"platform.friction.mu": 0.002})
     again = metrosync.load_rig(rig.to_dict())

@@ -29,6 +29,24 @@ def test_continue_equals_bifurcations_json(tmp_path):
     assert list(res.branches["platform"]) == [r[header.index("platform")] for r in rows]
 
 
+def test_continue_passes_no_cycles_and_the_second_key(tmp_path):
+    # f4.3's in-phase state and its Hopf point at mu = 0.28909 (docs/continuation.md), cycles
+    # left out; fold= follows the Hopf point in a second key as the CLI's --fold
+    args = ["--param", "platform.friction.mu", "--from", "0.28", "--to", "0.3", "--all",
+            "--no-cycles", "--fold", "metronomes.1.alpha", "--to2", "0.05"]
+    f43 = F44.replace("f4.4-alpha4", "f4.3-mu0.2")
+    cli("continue", f43, "--quiet", *args, "--out", str(tmp_path / "cli"))
+    res = metrosync.continue_(f43, param="platform.friction.mu", from_=0.28, to=0.3, all=True,
+                              no_cycles=True, fold="metronomes.1.alpha", to2=0.05)
+    assert res.bifurcations == json.load(open(tmp_path / "cli" / "bifurcations.json"))
+    assert [b["type"] for b in res.bifurcations] == ["hopf"]
+    assert res.cycles is None or len(res.cycles.get("cycle", [])) == 0
+    header, rows = read_rows(tmp_path / "cli" / "hopf_curve.csv")
+    assert len(rows) > 2 and len(res.hopf_curve["metronomes.1.alpha"]) == len(rows)
+    np.testing.assert_array_equal(res.hopf_curve["platform.friction.mu"],
+                                  [float(r[header.index("platform.friction.mu")]) for r in rows])
+
+
 def interrupted_within(call, delay=0.5):
     """Sends SIGINT from another thread `delay` s into call(); returns the seconds from the
     signal to KeyboardInterrupt."""

@@ -305,8 +305,9 @@ void addSection3A(nlohmann::json& summary, const LinearDecay& decay, const Rig& 
                             {"extremes", s3a->extremes}};
 }
 
-// `run` (rows also kept in `out` when keep); out.code its exit code.
-void runImpl(const Options& opt, RunOutcome& out, bool keep) {
+// `run`, its rows also kept when `keep`.
+RunOutcome runImpl(const Options& opt, bool keep) {
+  RunOutcome out;
   LoadedRig r = loadAndCheck(opt, opt.model);
   const std::string model = r.engine->model();
   installStopHandlers();  // before any file exists, so that no signal can leave a bare .part
@@ -347,21 +348,18 @@ void runImpl(const Options& opt, RunOutcome& out, bool keep) {
   }
   out.code = report.complete ? kSuccess : kSimulationFailed;
   if (!report.complete) reportFailure(model, report, dir);
+  return out;
 }
 
 }  // namespace
 
 int runCommand(const Options& opt) {
   if (!opt.rig_text && isNetworkRun(opt)) return runNetworkCommand(opt);  // docs/networks.md
-  RunOutcome out;
-  runImpl(opt, out, false);
-  return out.code;
+  return runImpl(opt, false).code;
 }
 
 RunOutcome runKeepingRows(const Options& opt) {
-  RunOutcome out;
-  runImpl(opt, out, true);
-  return out;
+  return runImpl(opt, true);
 }
 
 namespace {
@@ -425,7 +423,9 @@ void printCompare(const LoadedRig& r, const RunReport& full, const RunReport& sl
   std::cout << "\n";
 }
 
-void compareImpl(const Options& opt, RunOutcome& out, bool keep) {
+// `compare`, each model's rows also kept when `keep`.
+RunOutcome compareImpl(const Options& opt, bool keep) {
+  RunOutcome out;
   const Engine* requested = findEngine(opt.engine);
   if (requested && requested->model() != "full")
     throw UsageError("--engine " + opt.engine + ": compare runs the full model (--engine " +
@@ -474,20 +474,17 @@ void compareImpl(const Options& opt, RunOutcome& out, bool keep) {
   out.code = kSuccess;
   if (!full.complete) reportFailure("full", full, dir), out.code = kSimulationFailed;
   if (!slow.complete) reportFailure("slow", slow, dir), out.code = kSimulationFailed;
+  return out;
 }
 
 }  // namespace
 
 int compareCommand(const Options& opt) {
-  RunOutcome out;
-  compareImpl(opt, out, false);
-  return out.code;
+  return compareImpl(opt, false).code;
 }
 
 RunOutcome compareKeepingRows(const Options& opt) {
-  RunOutcome out;
-  compareImpl(opt, out, true);
-  return out;
+  return compareImpl(opt, true);
 }
 
 namespace {

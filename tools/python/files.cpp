@@ -33,7 +33,7 @@ int networkRun(const std::string& rig_path, const std::vector<std::string>& sets
 int continueCommand(const std::string& rig_path, const std::vector<std::string>& sets,
                     const std::string& param, double to, const std::string& out,
                     std::optional<double> from, const std::string& start, double step,
-                    int max_points, bool all, const std::string& fold, double to2) {
+                    int max_points, bool all, bool no_cycles, const std::string& fold, double to2) {
   cli::ContinueOptions o;
   o.rig_path = rig_path;
   o.sets = sets;
@@ -44,6 +44,7 @@ int continueCommand(const std::string& rig_path, const std::vector<std::string>&
   o.step = step;
   o.max_points = max_points;
   o.all = all;
+  o.no_cycles = no_cycles;
   o.fold_key = fold;
   o.to2 = to2;
   o.out = out;
@@ -79,7 +80,8 @@ void bindFiles(py::module_& m) {
   m.def("continue_command", &continueCommand, py::arg("rig_path"), py::arg("sets"),
         py::arg("param"), py::arg("to"), py::arg("out"), py::arg("from_") = std::nullopt,
         py::arg("start") = "", py::arg("step") = 0.0, py::arg("max_points") = 500,
-        py::arg("all") = false, py::arg("fold") = "", py::arg("to2") = 0.0);
+        py::arg("all") = false, py::arg("no_cycles") = false, py::arg("fold") = "",
+        py::arg("to2") = 0.0);
   m.def("fit_command", &fitCommand, py::arg("rig_path"), py::arg("data_path"), py::arg("free"),
         py::arg("sets"), py::arg("model"), py::arg("out"), py::arg("plot"));
 }

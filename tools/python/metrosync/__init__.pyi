@@ -141,6 +141,7 @@ def continue_(
     step: Optional[float] = None,
     max_points: int = 500,
     all: bool = False,
+    no_cycles: bool = False,
     fold: Optional[str] = None,
     to2: Optional[float] = None,
     out: Optional[Union[str, os.PathLike]] = None,

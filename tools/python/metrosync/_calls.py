@@ -189,11 +189,13 @@ def basin(rig, random, samples, seed=1, model=None, engine=None, jobs=None, out=
 
 
 def continue_(rig, param, to, from_=None, start=None, step=None, max_points=500, all=False,
-              fold=None, to2=None, out=None):
+              no_cycles=False, fold=None, to2=None, out=None):
     """The slow flow's locked states followed in one rig key (``metrosync continue``): `param`
     from the rig's value (or `from_`) to `to`, with their stability and bifurcations. start:
-    (A_1..A_N, psi_2..psi_N) to start from; all: every locked state at the start; fold=KEY2 with
-    to2: each fold and Hopf point followed in two keys. Returns a :class:`ContinuationResult`.
+    (A_1..A_N, psi_2..psi_N) to start from; all: every locked state at the start; no_cycles: do
+    not follow the limit cycle born at each Hopf point; fold=KEY2 with to2: each fold and Hopf
+    point followed in two keys (``.fold_curve``, ``.hopf_curve``). Returns a
+    :class:`ContinuationResult`.
 
     >>> c = metrosync.continue_("yaml/rigs/paper/f4.4-alpha4.yaml", param="metronomes.1.alpha",
     ...                         from_=3.0, to=4.0)
@@ -207,8 +209,8 @@ def continue_(rig, param, to, from_=None, start=None, step=None, max_points=500,
         target = _folder(out) or os.path.join(folder, "out")
         _core.continue_command(path, [o.text for o in rig._origins()], param, float(to), target,
                                None if from_ is None else float(from_), start_text,
-                               float(step or 0.0), int(max_points), bool(all), fold or "",
-                               float(to2 or 0.0))
+                               float(step or 0.0), int(max_points), bool(all), bool(no_cycles),
+                               fold or "", float(to2 or 0.0))
         return ContinuationResult(target, _folder(out))
 
 

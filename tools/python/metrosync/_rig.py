@@ -71,14 +71,13 @@ class _Origin:
 def _override_message(message, origins):
     """The loader's `--set KEY=VALUE: KEY = VALUE: what` as `overrides['KEY'] = VALUE: what`."""
     for o in origins:
-        for word in ("--set ", "--vary point ", "the drawn "):
-            at = message.find(word + o.text)
-            if at < 0:
-                continue
-            tail = message[at + len(word) + len(o.text):]
-            # the loader repeats the key and value after the override: said once is enough
-            tail = re.sub(r"^: %s(?: = [^:]*)?: " % re.escape(o.key), ": ", tail, count=1)
-            return message[:at] + o.label + tail
+        at = message.find("--set " + o.text)
+        if at < 0:
+            continue
+        tail = message[at + len("--set ") + len(o.text):]
+        # the loader repeats the key and value after the override: said once is enough
+        tail = re.sub(r"^: %s(?: = [^:]*)?: " % re.escape(o.key), ": ", tail, count=1)
+        return message[:at] + o.label + tail
     return message
 
 
@@ -103,17 +102,14 @@ _KEY_WORDS = [(r"--vary point ([^=\s]+)=([^:\s]+)", "vary[%r] at %s"),
 
 def _key_words(message):
     for pattern, form in _KEY_WORDS:
-        def said(m):
-            key, value = m.group(1), m.group(2)
-            shown = value if form.endswith("%r") else ", ".join(
-                _number(v) for v in value.split(":"))
-            repeat = r"(?:: %s(?: = [^:\n]*)?(?=: ))?" % re.escape(key)
-            return form % (key, shown), repeat
         m = re.search(pattern, message)
-        if m:
-            text, repeat = said(m)
-            rest = re.sub("^" + repeat, "", message[m.end():], count=1)
-            message = message[:m.start()] + text + rest
+        if not m:
+            continue
+        key, value = m.group(1), m.group(2)
+        shown = value if form.endswith("%r") else ", ".join(_number(v) for v in value.split(":"))
+        repeat = r"^: %s(?: = [^:\n]*)?(?=: )" % re.escape(key)
+        rest = re.sub(repeat, "", message[m.end():], count=1)
+        message = message[:m.start()] + form % (key, shown) + rest
     return message
 
 
@@ -131,7 +127,7 @@ def _python_words(message):
         placeholder = value.isupper()  # the usage's own words: --from VALUE
         shown = _number(value) if number else value if placeholder else repr(value)
         return "%s=%s" % (name.replace("-", "_"), shown)
-    return re.sub(r"--([a-z][a-z0-9-]*)[ =]([^\s:,()]+)", option, message)
+    return re.sub(r"--([a-z][a-z0-9-]*)[ =]([^\s:,()`']+)", option, message)
 
 
 class Rig:
@@ -151,6 +147,7 @@ class Rig:
         self._text = None if data is None else json.dumps(data, default=_json_default)
         self.overrides = dict(overrides or {})
         self._scaled = None
+        self._network = None
 
     @property
     def name(self):
@@ -208,14 +205,24 @@ class Rig:
         return json.loads(self._call(_core.resolved_json))
 
     def _is_network(self):
-        return self._call(_core.is_network)
+        """A network of several platforms (docs/networks.md)? Loads it: a bad one raises."""
+        if self._network is None:
+            self._network = self._call(_core.is_network)
+        return self._network
+
+    def _check(self):
+        """Loads the rig as the commands will: a bad rig raises RigError here."""
+        if not self._is_network():
+            self.scaled()
 
     def __repr__(self):
+        source = self.path if self.path is not None else "<dict>"
+        more = " + %d overrides" % len(self.overrides) if self.overrides else ""
+        if self._is_network():
+            return "Rig(%s%s: a network of platforms)" % (source, more)
         s = self.scaled()
         keys = [k for k in ("epsilon", "mu", "c", "nu", "J", "theta_c", "alpha") if k in s]
         body = ", ".join("%s=%s" % (k, s[k]) for k in keys)
-        source = self.path if self.path is not None else "<dict>"
-        more = " + %d overrides" % len(self.overrides) if self.overrides else ""
         return "Rig(%s%s: %s)" % (source, more, body)
 
 
@@ -236,7 +243,7 @@ def load_rig(rig, overrides=None):
         made = Rig(path=os.fsdecode(rig), overrides=overrides)
     else:
         raise TypeError("a rig is a Rig, a dict or a YAML file's path, not %s" % type(rig).__name__)
-    made.scaled()  # loads and checks it: a bad rig raises RigError here
+    made._check()
     return made
 
 
