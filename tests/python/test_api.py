@@ -158,7 +158,7 @@ def test_a_network_rig_runs_from_a_path_and_a_dict():
     b = metrosync.run(rig_dict(path), duration=4)
     assert "x_left" in a.trajectory and "x_right" in a.trajectory
     np.testing.assert_array_equal(a.envelope["A_3"], b.envelope["A_3"])
-    assert a.summary["network"]["regime"] == b.summary["network"]["regime"]
+    assert a.regime == b.regime == a.summary["network"]["regime"]
     bad = rig_dict(path)
     bad["platforms"][1]["mass"] = -1
     with pytest.raises(metrosync.RigError) as e:

@@ -63,7 +63,9 @@ class Result:
         self.events = _events(rows["events"])
         self.out = out  # the folder of the CLI's files, when asked for one
 
-    regime = property(lambda self: self.summary.get("regime"), doc="the regime (docs/regimes.md)")
+    regime = property(lambda self: self.summary.get("regime") or
+                      self.summary.get("network", {}).get("regime"),
+                      doc="the regime (docs/regimes.md); a network's label for a network")
     complete = property(lambda self: bool(self.summary.get("complete", False)),
                         doc="False when the run stopped early")
     model = property(lambda self: self.summary.get("model"), doc="'full' or 'slow'")
