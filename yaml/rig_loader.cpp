@@ -36,6 +36,7 @@
 #include <utility>
 
 #include "models/scaling.h"
+#include "yaml/key_path.h"
 #include "yaml/rig_build.h"
 #include "yaml/rig_tree.h"
 #include "yaml/utf8.h"
@@ -129,6 +130,7 @@ struct Schema {
   Kind kind = Kind::Number;
   std::vector<std::pair<std::string, SchemaPtr>> keys;  // Map
   SchemaPtr item;                                       // List
+  bool named = false;  // List: a key may name an element by its `name` (docs/keys.md)
 
   const Schema* key(const std::string& k) const {
     for (const auto& kv : keys)
@@ -157,10 +159,11 @@ SchemaPtr mapOf(std::initializer_list<std::pair<std::string, SchemaPtr>> keys) {
   s->keys = keys;
   return s;
 }
-SchemaPtr listOf(SchemaPtr item) {
+SchemaPtr listOf(SchemaPtr item, bool named = false) {
   auto s = std::make_shared<Schema>();
   s->kind = Schema::Kind::List;
   s->item = std::move(item);
+  s->named = named;
   return s;
 }
 
@@ -216,7 +219,7 @@ const Schema& physicalSchema() {
                                                         {"spring", mapOf({{"k", number()}})}})},
                                     {"metronomes", listOf(physicalMetronomeSchema())},
                                     {"start", platformStartSchema()},
-                                    {"platforms", listOf(networkPlatformSchema())},
+                                    {"platforms", listOf(networkPlatformSchema(), true)},
                                     {"couplings", listOf(couplingSchema())},
                                     {"simulation", simulationSchema("duration")}});
   return *s;
@@ -355,47 +358,31 @@ void checkShape(const Node& n, const Schema& s, const Schema* other, Units units
 // ---------------------------------------------------------------------------------------------
 // --set overrides
 
-std::vector<std::string> splitPath(const std::string& path) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (char ch : path) {
-    if (ch == '.') {
-      out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += ch;
-    }
-  }
-  out.push_back(cur);
-  return out;
-}
-
-bool isIndex(const std::string& s) {
-  return !s.empty() && s.size() < 9 &&
-         std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
-}
-
-// Empty if `segs` names a place in `s`, else what is wrong.
+// Empty if `key` names a place in `s`, else what is wrong. A list takes an index, '*' (every
+// element) or, in a named list, an element's name; indices and names are checked against the
+// rig's tree afterwards (expandKey, yaml/key_path.h).
 std::string schemaPathError(const Schema& s0, const Schema* other, Units units,
-                            const std::vector<std::string>& segs) {
+                            const KeyPath& key) {
   const Schema* s = &s0;
-  std::string done;
-  for (const std::string& seg : segs) {
-    const std::string here = joinPath(done, seg);
-    if (seg.empty()) return "'" + here + "': empty key";
+  for (std::size_t i = 0; i < key.size(); ++i) {
+    const KeyPath::Segment& seg = key[i];
+    const std::string here = printable(key.prefix(i + 1)), done = printable(key.prefix(i));
     if (s->kind == Schema::Kind::Map) {
-      const Schema* child = s->key(seg);
-      if (!child) return here + ": " + unknownKeyMessage(seg, *s, other, otherUnits(units));
+      if (seg.kind == KeyPath::Segment::Kind::Every)
+        return here + ": '*' stands for every element of a list, and " +
+               (done.empty() ? std::string("the rig") : done) + " is a map of keys";
+      const Schema* child = s->key(seg.text);
+      if (!child) return here + ": " + unknownKeyMessage(seg.text, *s, other, otherUnits(units));
       s = child;
-      other = other ? other->key(seg) : nullptr;
+      other = other ? other->key(seg.text) : nullptr;
     } else if (s->kind == Schema::Kind::List) {
-      if (!isIndex(seg)) return here + ": " + done + " is a list: expected an index from 0";
+      if (seg.kind == KeyPath::Segment::Kind::Name && !s->named)
+        return here + ": " + done + " is a list: expected an index from 0, or * for every element";
       s = s->item.get();
       other = other ? other->item.get() : nullptr;
     } else {
-      return here + ": " + done + " is a single value, it has no key '" + seg + "'";
+      return here + ": " + done + " is a single value, it has no key '" + printable(seg.text) + "'";
     }
-    done = here;
   }
   return {};
 }
@@ -405,6 +392,23 @@ std::optional<Units> unitsOf(const Node& root) {
   if (u && u->kind == Node::Kind::Scalar && u->scalar == "physical") return Units::Physical;
   if (u && u->kind == Node::Kind::Scalar && u->scalar == "scaled") return Units::Scaled;
   return std::nullopt;
+}
+
+// The one resolver of keys (docs/keys.md): the concrete paths `key` stands for in the tree
+// `root`, checked against the schema of its units (either units' schema while they are unknown:
+// `units` says which one fits). Throws KeyError.
+std::vector<KeyPath> resolveIn(const Node& root, const KeyPath& key, Units& units) {
+  if (auto u = unitsOf(root)) {
+    units = *u;
+    const std::string err = schemaPathError(schemaOf(units), &otherSchemaOf(units), units, key);
+    if (!err.empty()) throw KeyError(err);
+  } else {
+    const std::string err_p = schemaPathError(physicalSchema(), nullptr, Units::Physical, key);
+    const std::string err_s = schemaPathError(scaledSchema(), nullptr, Units::Scaled, key);
+    if (!err_p.empty() && !err_s.empty()) throw KeyError(err_p);
+    units = err_p.empty() ? Units::Physical : Units::Scaled;
+  }
+  return expandKey(key, root);
 }
 
 // The rig's other keys are written in its units: a --set cannot reinterpret them, and the errors
@@ -419,50 +423,15 @@ void refuseUnitsSwitch(const Node& old_units, const Node& value, const Where& he
                      "'metrosync scale' prints its scaled parameters)");
 }
 
-void applyOverride(Node& root, int origin, const Source& src) {
-  const std::string& text = src.overrides()[origin - 1];
-  const Where here{0, 0, origin};
-  const std::size_t eq = text.find('=');
-  if (eq == std::string::npos || eq == 0)
-    src.fail(here, "expected KEY=VALUE (e.g. --set platform.friction.mu=0.3)");
-  const std::string path = text.substr(0, eq), value_text = text.substr(eq + 1);
-  const std::vector<std::string> segs = splitPath(path);
-
-  if (auto bad = firstBadUtf8(text))
-    src.fail(here, "not UTF-8 text (byte " + std::to_string(*bad + 1) + " of the --set)");
-  // the value, parsed as YAML so that numbers, names, maps and lists all work
-  Node value;
-  try {
-    value = parseTree(value_text, origin);
-  } catch (const TreeError& e) {
-    src.fail(here, path + (e.syntax ? ": the value is not valid YAML (" + e.what + ")"
-                                    : ": the value: " + e.what));
-  }
-
-  if (root.kind != Node::Kind::Map)
-    src.fail(here, "the rig is " + std::string(kindName(root)) + ", not a map of keys");
-
-  // the path must exist in the schema of the rig's units (either, while they are unknown)
-  Units units = Units::Physical;
-  if (auto u = unitsOf(root)) {
-    units = *u;
-    const std::string err = schemaPathError(schemaOf(units), &otherSchemaOf(units), units, segs);
-    if (!err.empty()) src.fail(here, err);
-  } else {
-    const std::string err_p = schemaPathError(physicalSchema(), nullptr, Units::Physical, segs);
-    const std::string err_s = schemaPathError(scaledSchema(), nullptr, Units::Scaled, segs);
-    if (!err_p.empty() && !err_s.empty()) src.fail(here, err_p);
-    units = err_p.empty() ? Units::Physical : Units::Scaled;
-  }
-
-  // walk the tree, creating absent maps on the way (a valid key may be absent from the file)
+// `value` at the concrete `path` (names and indices, from resolveIn), creating absent maps on
+// the way (a valid key may be absent from the file).
+void setAt(Node& root, const KeyPath& path, const Node& value, Units units, const Where& here,
+           const Source& src) {
   const Schema* s = &schemaOf(units);
   Node* cur = &root;
-  std::string done;
-  for (std::size_t i = 0; i < segs.size(); ++i) {
-    const std::string& seg = segs[i];
-    const bool last = i + 1 == segs.size();
-    const std::string at = joinPath(done, seg);
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const std::string& seg = path[i].text;
+    const std::string at = path.prefix(i + 1), done = path.prefix(i);
     Node* next = nullptr;
     if (s->kind == Schema::Kind::Map) {
       if (cur->kind != Node::Kind::Map)
@@ -476,24 +445,47 @@ void applyOverride(Node& root, int origin, const Source& src) {
         cur->map.push_back(Entry{seg, here, fresh});
         next = &cur->map.back().value;
       }
-    } else {  // a list: the index must exist
-      if (cur->kind != Node::Kind::Seq)
-        src.fail(here, at + ": " + done + " is " + kindName(*cur) + " in the rig, not a list");
-      const std::size_t idx = std::stoul(seg);
-      if (idx >= cur->seq.size())
-        src.fail(here, at + ": index " + seg + " is out of range (" + done + " has " +
-                           std::to_string(cur->seq.size()) + " entries, indices from 0)");
+    } else {  // a list: resolveIn checked the index against this very tree
       s = s->item.get();
-      next = &cur->seq[idx];
-    }
-    if (last) {
-      if (at == "units") refuseUnitsSwitch(*next, value, here, src);
-      *next = value;
-      return;
+      next = &cur->seq.at(path[i].index);
     }
     cur = next;
-    done = at;
   }
+  if (path.text() == "units") refuseUnitsSwitch(*cur, value, here, src);
+  *cur = value;
+}
+
+void applyOverride(Node& root, int origin, const Source& src) {
+  const std::string& text = src.overrides()[origin - 1];
+  const Where here{0, 0, origin};
+  KeyAssignment set;
+  try {
+    set = parseAssignment(text);
+  } catch (const KeyError& e) {
+    src.fail(here, e.what());
+  }
+  const std::string& path = set.key.text();
+  if (auto bad = firstBadUtf8(text))
+    src.fail(here, "not UTF-8 text (byte " + std::to_string(*bad + 1) + " of the --set)");
+  // the value, parsed as YAML so that numbers, names, maps and lists all work
+  Node value;
+  try {
+    value = parseTree(set.value, origin);
+  } catch (const TreeError& e) {
+    src.fail(here, path + (e.syntax ? ": the value is not valid YAML (" + e.what + ")"
+                                    : ": the value: " + e.what));
+  }
+  if (root.kind != Node::Kind::Map)
+    src.fail(here, "the rig is " + std::string(kindName(root)) + ", not a map of keys");
+  Units units = Units::Physical;
+  std::vector<KeyPath> paths;
+  try {
+    paths = resolveIn(root, set.key, units);
+  } catch (const KeyError& e) {
+    src.fail(here, e.what());
+  }
+  // `*` sets every element, exactly as one --set per index would
+  for (const KeyPath& p : paths) setAt(root, p, value, units, here, src);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -998,20 +990,40 @@ std::optional<double> rigNumber(const std::string& yaml_text, const std::string&
   loadRigText(yaml_text, display_name, overrides);  // the rig must be valid
   const Source src(display_name, overrides);
   const Node root = rootWithOverrides(yaml_text, src);
-  const Node* n = &root;
-  for (const std::string& seg : splitPath(key)) {
-    if (n->kind == Node::Kind::Map) {
-      n = n->find(seg);
-    } else if (n->kind == Node::Kind::Seq && isIndex(seg) && std::stoul(seg) < n->seq.size()) {
-      n = &n->seq[std::stoul(seg)];
-    } else {
-      n = nullptr;
-    }
+  std::vector<KeyPath> paths;
+  try {
+    Units units = Units::Physical;
+    paths = resolveIn(root, KeyPath::parse(key), units);
+  } catch (const KeyError& e) {
+    throw RigError(printable(display_name) + ": " + printable(key) + ": " + e.what());
+  }
+  const Node* n = &root;  // the first path: every segment a name or an index
+  for (const KeyPath::Segment& seg : paths.front().segments()) {
+    if (seg.kind == KeyPath::Segment::Kind::Index)
+      n = n->kind == Node::Kind::Seq ? &n->seq.at(seg.index) : nullptr;
+    else
+      n = n->kind == Node::Kind::Map ? n->find(seg.text) : nullptr;
     if (!n) return std::nullopt;
   }
   if (n->kind != Node::Kind::Scalar || !parseNumber(n->scalar))
-    throw RigError(display_name + ": " + key + " is not a number");
+    throw RigError(display_name + ": " + paths.front().text() + " is not a number");
   return parseNumber(n->scalar);
+}
+
+RigKey resolveRigKey(const std::string& yaml_text, const std::string& display_name,
+                     const std::vector<std::string>& sets, const std::string& key,
+                     const std::string& typed) {
+  const Source src(display_name, sets);
+  const Node root = rootWithOverrides(yaml_text, src);
+  RigKey k;
+  try {
+    k.key = KeyPath::parse(key);
+    Units units = Units::Physical;
+    k.paths = resolveIn(root, k.key, units);
+  } catch (const KeyError& e) {
+    throw RigError(printable(display_name) + ": " + printable(typed) + ": " + e.what());
+  }
+  return k;
 }
 
 namespace {

@@ -1,6 +1,6 @@
-// Rig files (SPEC section 1): YAML in either units, `--set key.path=value` overrides, validation
-// with file:line:col messages, and the built-in default rig. The only public face of yaml/; no
-// yaml-cpp type crosses it.
+// Rig files (SPEC section 1): YAML in either units, `--set key.path=value` overrides (the keys of
+// yaml/key_path.h), validation with file:line:col messages, and the built-in default rig. The only
+// public face of yaml/; no yaml-cpp type crosses it.
 #pragma once
 
 #include <cmath>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "models/rig.h"
+#include "yaml/key_path.h"
 #include "yaml/rig_limits.h"
 
 namespace metrosync {
@@ -50,11 +51,28 @@ std::string readRigFile(const std::string& path);
 Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
                 const std::vector<std::string>& overrides = {}, const LoadOptions& options = {});
 
-// The number at `key` (a --set path) in the rig after the overrides, e.g. for the value a
-// continuation starts from; nullopt when the key is absent (its default applies). Throws RigError
-// for an invalid rig or a value there that is not a number.
+// The number at `key` (docs/keys.md; a key with '*': its first element) in the rig after the
+// overrides, e.g. for the value a continuation starts from; nullopt when the key is absent (its
+// default applies). Throws RigError for an invalid rig or key, or a value that is not a number.
 std::optional<double> rigNumber(const std::string& yaml_text, const std::string& display_name,
                                 const std::vector<std::string>& overrides, const std::string& key);
+
+// A key of a command-line option (--vary, --random, --param, --fold, --free) resolved against a
+// rig (docs/keys.md): the key as parsed and the concrete paths it stands for, in document order
+// (one for a plain key; one per element for each '*', which the options treat as a group).
+struct RigKey {
+  KeyPath key;
+  std::vector<KeyPath> paths;
+  bool group() const { return key.hasWildcard(); }
+};
+
+// Resolves `key` against the rig text after the overrides `sets` (a valid rig) by the rules a
+// --set of it follows. A key that is not valid there throws RigError with the words a --set of
+// it would get, after `typed`, what the user typed (the option and its value), e.g.
+//   rig.yaml: --vary metronomes.*.nuu=0:1:3: metronomes.*.nuu: unknown key (did you mean 'nu'?)
+RigKey resolveRigKey(const std::string& yaml_text, const std::string& display_name,
+                     const std::vector<std::string>& sets, const std::string& key,
+                     const std::string& typed);
 
 // The rig's tree after the overrides, as JSON text (summary.json's `resolved_rig`): maps become
 // objects (keys in document order), lists arrays, numbers JSON numbers that read back as the same

@@ -30,13 +30,11 @@ std::string trimmed(const std::string& s) {
 
 }  // namespace
 
-bool isAngleKeyName(const std::string& key) {
-  const size_t dot = key.rfind('.');
-  const std::string last = dot == std::string::npos ? key : key.substr(dot + 1);
-  return last == "phi" || last == "psi";
+bool isPhaseName(const std::string& last_segment) {
+  return last_segment == "phi" || last_segment == "psi";
 }
 
-RandomKey parseRandom(const std::string& text) {
+RandomKey parseRandom(const std::string& text, bool phase) {
   const std::string usage =
       "--random " + text + ": expected KEY=FROM:TO (e.g. metronomes.0.start.phi=0:2pi)";
   const size_t eq = text.find('=');
@@ -55,7 +53,7 @@ RandomKey parseRandom(const std::string& text) {
   } catch (const SweepInputError& e) {
     throw SweepInputError("--random " + text + ": " + e.what());
   }
-  r.angle = isAngleKeyName(r.key);
+  r.angle = phase;
   if (!r.angle && !(r.from < r.to))
     throw SweepInputError("--random " + text + ": FROM must be below TO (got " +
                           sweepValueText(r.from) + " and " + sweepValueText(r.to) + ")");

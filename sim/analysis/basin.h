@@ -31,11 +31,13 @@ struct RandomKey {
 };
 
 // "KEY=FROM:TO" (numbers or multiples of pi, as --vary); throws SweepInputError (sweep.h) saying
-// what is wrong: no '=', not two numbers, FROM >= TO for a key that is not an angle.
-RandomKey parseRandom(const std::string& text);
+// what is wrong: no '=', not two numbers, FROM >= TO for a key that is not an angle. KEY is kept
+// as written (the command resolves it, yaml/rig_loader.h); `phase`: it is drawn on the circle
+// (isPhaseName of its last segment).
+RandomKey parseRandom(const std::string& text, bool phase);
 
-// Is the key a phase, drawn on the circle (last segment phi or psi)?
-bool isAngleKeyName(const std::string& key);
+// Is a key's last segment a phase, drawn on the circle (phi or psi)?
+bool isPhaseName(const std::string& last_segment);
 
 // The value of `key` in sample `sample` for `seed`, key number `which` of the draw.
 double drawValue(const RandomKey& key, std::uint64_t seed, long sample, size_t which);

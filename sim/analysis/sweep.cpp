@@ -166,38 +166,7 @@ void rangeFlags(SweepAxis& a, const std::vector<std::string>& f, const std::stri
                           sweepValueText(a.from) + " > TO = " + sweepValueText(a.to) + ")");
 }
 
-// A "*" only as "metronomes.*.REST" (REST not empty, no second "*").
-void checkWildcard(const std::string& key, const std::string& text) {
-  if (!isWildcardKey(key)) return;
-  const std::string prefix = "metronomes.*.";
-  if (key.compare(0, prefix.size(), prefix) != 0 || key.size() == prefix.size() ||
-      key.find('*', prefix.size()) != std::string::npos)
-    throw SweepInputError("--vary " + text + ": unknown wildcard key '" + key +
-                          "': '*' stands only for the metronome index, as in metronomes.*.nu");
-}
-
 }  // namespace
-
-bool isWildcardKey(const std::string& key) {
-  return key.find('*') != std::string::npos;
-}
-
-std::vector<std::string> expandSweepOverride(const std::string& key_value, int n) {
-  const size_t eq = key_value.find('=');
-  const size_t star = key_value.find('*');
-  if (star == std::string::npos || (eq != std::string::npos && star > eq)) return {key_value};
-  std::vector<std::string> out;
-  for (int i = 0; i < n; ++i)
-    out.push_back(key_value.substr(0, star) + std::to_string(i) + key_value.substr(star + 1));
-  return out;
-}
-
-std::vector<std::string> expandSweepOverrides(const std::vector<std::string>& overrides, int n) {
-  std::vector<std::string> out;
-  for (const auto& o : overrides)
-    for (auto& e : expandSweepOverride(o, n)) out.push_back(std::move(e));
-  return out;
-}
 
 SweepAxis parseVary(const std::string& text) {
   const std::string usage = "--vary " + text +
@@ -210,7 +179,6 @@ SweepAxis parseVary(const std::string& text) {
   a.spec = text.substr(eq + 1);
   if (a.key.empty() || a.key.find_first_of(" \t:=") != std::string::npos)
     throw SweepInputError(usage + ": no key before '='");
-  checkWildcard(a.key, text);
   if (trim(a.spec).empty()) throw SweepInputError("--vary " + text + ": no values after '='");
   if (a.spec.find(',') != std::string::npos) return listAxis(a, text);
   const std::vector<std::string> f = split(a.spec, ':');
@@ -231,33 +199,12 @@ SweepAxis parseVary(const std::string& text) {
   return a;
 }
 
-namespace {
-
-// Do two keys name one rig key at some metronome ("metronomes.*.nu" and "metronomes.1.nu")?
-bool keysOverlap(const std::string& a, const std::string& b) {
-  if (a == b) return true;
-  const std::string& w = isWildcardKey(a) ? a : b;
-  const std::string& o = isWildcardKey(a) ? b : a;
-  if (!isWildcardKey(w) || isWildcardKey(o)) return false;
-  const size_t star = w.find('*');
-  const std::string head = w.substr(0, star), tail = w.substr(star + 1);
-  if (o.size() <= head.size() + tail.size() || o.compare(0, head.size(), head) != 0 ||
-      o.compare(o.size() - tail.size(), tail.size(), tail) != 0)
-    return false;
-  const std::string index = o.substr(head.size(), o.size() - head.size() - tail.size());
-  return index.find_first_not_of("0123456789") == std::string::npos;
-}
-
-}  // namespace
-
 SweepGrid::SweepGrid(std::vector<SweepAxis> axes, long max_points) : axes_(std::move(axes)) {
   if (axes_.empty()) throw SweepInputError("sweep: at least one --vary KEY=FROM:TO:COUNT");
   for (size_t a = 0; a < axes_.size(); ++a)
     for (size_t b = a + 1; b < axes_.size(); ++b)
-      if (keysOverlap(axes_[a].key, axes_[b].key))
-        throw SweepInputError("sweep: --vary " + axes_[a].key + " and --vary " + axes_[b].key +
-                              (axes_[a].key == axes_[b].key ? ": the key is given twice"
-                                                            : ": both set the same key"));
+      if (axes_[a].key == axes_[b].key)
+        throw SweepInputError("sweep: --vary " + axes_[a].key + " given twice");
   const long cap = std::min(max_points, kMaxForcedGridPoints);
   size_ = 1;
   for (const auto& a : axes_) {

@@ -59,16 +59,9 @@ struct SweepAxis {
 };
 
 // "KEY=FROM:TO:COUNT[:open][:log]" or "KEY=V1,V2,..."; throws SweepInputError saying what is
-// wrong. A "*" segment is allowed only as "metronomes.*.REST" (expandSweepOverride).
+// wrong with the values. KEY is kept as written: the command resolves it against the rig
+// (resolveRigKey, yaml/rig_loader.h; docs/keys.md), and the rig loader sets it at each point.
 SweepAxis parseVary(const std::string& text);
-
-// The wildcard of "metronomes.*.REST": "KEY=VALUE" as the n overrides metronomes.i.REST=VALUE
-// (i = 0..n-1); any other override as it is.
-std::vector<std::string> expandSweepOverride(const std::string& key_value, int n);
-// ... for a list of overrides, in order.
-std::vector<std::string> expandSweepOverrides(const std::vector<std::string>& overrides, int n);
-// Does `key` hold the wildcard "*"?
-bool isWildcardKey(const std::string& key);
 
 // More grid points than this need --force (the default cap; a sweep keeps a line per point).
 constexpr long kMaxGridPoints = 10000000;
@@ -85,8 +78,9 @@ std::string sweepValueText(double v);
 class SweepGrid {
  public:
   SweepGrid() = default;
-  // One or more axes with distinct keys (a wildcard key and a key it covers are not distinct), at
-  // most max_points points; throws SweepInputError (saying --force lifts the default cap).
+  // One or more axes with distinct keys (as written: keys that differ in writing but set the same
+  // rig key, metronomes.*.nu and metronomes.1.nu, are refused by the command, which knows the
+  // rig), at most max_points points; throws SweepInputError (saying --force lifts the default cap).
   explicit SweepGrid(std::vector<SweepAxis> axes, long max_points = kMaxGridPoints);
 
   const std::vector<SweepAxis>& axes() const { return axes_; }

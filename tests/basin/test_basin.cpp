@@ -53,7 +53,7 @@ std::string rig(const std::string& dir, int n) {
 // ---- the draws and the interval -----------------------------------------------------------------
 
 TEST(BasinDraw, UniformInRangeAndAFunctionOfSeedAndSampleOnly) {
-  const RandomKey a = parseRandom("metronomes.1.start.A=1:4");
+  const RandomKey a = parseRandom("metronomes.1.start.A=1:4", false);
   EXPECT_FALSE(a.angle);
   const long n = 20000;
   double sum = 0.0;
@@ -79,12 +79,14 @@ TEST(BasinDraw, UniformInRangeAndAFunctionOfSeedAndSampleOnly) {
 }
 
 TEST(BasinDraw, AnglesAreDrawnOnTheCircleAndWrapped) {
-  const RandomKey whole = parseRandom("metronomes.0.start.phi=-pi:pi");
+  const RandomKey whole = parseRandom("metronomes.0.start.phi=-pi:pi", true);
   EXPECT_TRUE(whole.angle);
   // a pendulum's start angle is not a phase: drawn as given, never wrapped
-  EXPECT_FALSE(parseRandom("metronomes.0.start.angle=-0.8:0.8").angle);
-  EXPECT_LT(drawValue(parseRandom("metronomes.0.start.angle=-0.8:-0.7"), 1, 0, 0), 0.0);
-  const RandomKey arc = parseRandom("metronomes.0.start.phi=5.5:0.5");  // through 2 pi
+  EXPECT_TRUE(isPhaseName("phi") && isPhaseName("psi"));
+  EXPECT_FALSE(isPhaseName("angle"));
+  EXPECT_FALSE(parseRandom("metronomes.0.start.angle=-0.8:0.8", false).angle);
+  EXPECT_LT(drawValue(parseRandom("metronomes.0.start.angle=-0.8:-0.7", false), 1, 0, 0), 0.0);
+  const RandomKey arc = parseRandom("metronomes.0.start.phi=5.5:0.5", true);  // through 2 pi
   long near_zero = 0;
   for (long k = 0; k < 5000; ++k) {
     const double w = drawValue(whole, 3, k, 0);
@@ -96,9 +98,9 @@ TEST(BasinDraw, AnglesAreDrawnOnTheCircleAndWrapped) {
   }
   // the arc is 2 pi - 5.5 + 0.5 = 1.2832 long; 0.5 of it past zero
   EXPECT_NEAR(near_zero / 5000.0, 0.5 / (2 * kPi - 5.0), 0.03);
-  for (const char* bad :
-       {"x", "x=1", "x=1:2:3", "x=2:1", "x=1:1", "x=a:2", "=0:1", "metronomes.0.start.phi=1:1"})
-    EXPECT_THROW(parseRandom(bad), SweepInputError) << bad;
+  for (const char* bad : {"x", "x=1", "x=1:2:3", "x=2:1", "x=1:1", "x=a:2", "=0:1"})
+    EXPECT_THROW(parseRandom(bad, false), SweepInputError) << bad;
+  EXPECT_THROW(parseRandom("metronomes.0.start.phi=1:1", true), SweepInputError);
 }
 
 TEST(BasinWilson, MatchesTheClosedForm) {
@@ -142,8 +144,8 @@ TEST(BasinCli, SameBasinCsvForOneAndTwoJobs) {
   EXPECT_EQ(rows[0][1], "metronomes.0.start.phi");
   EXPECT_EQ(rows[0][3], "regime");
   // row k holds sample k's draws for seed 9
-  const std::vector<RandomKey> keys = {parseRandom("metronomes.0.start.phi=0:2pi"),
-                                       parseRandom("metronomes.1.start.A=1:4")};
+  const std::vector<RandomKey> keys = {parseRandom("metronomes.0.start.phi=0:2pi", true),
+                                       parseRandom("metronomes.1.start.A=1:4", false)};
   for (long k = 0; k < 40; ++k) {
     const std::vector<double> v = drawSample(keys, 9, k);
     EXPECT_EQ(rows[k + 1][0], std::to_string(k));

@@ -16,6 +16,7 @@
 #include "sim/record/atomic_file.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/network_sweep.h"
+#include "tools/cli/option_keys.h"
 #include "tools/report/basin_files.h"
 #include "tools/report/folder_lock.h"
 #include "tools/report/outputs.h"
@@ -100,17 +101,17 @@ BasinPlan planBasin(const BasinOptions& opt) {
     throw UsageError("--samples " + std::to_string(opt.samples) + ": must be from 1 to " +
                      std::to_string(kMaxSamples));
   BasinPlan plan;
-  std::set<std::string> seen;
-  for (const auto& r : opt.random) {
-    plan.keys.push_back(parseRandom(r));
-    if (!seen.insert(plan.keys.back().key).second)
-      throw UsageError("--random " + plan.keys.back().key + " given twice");
-  }
   plan.text = sweepRigText(opt.run);
-  const std::optional<Network> net =
-      loadSweepNetwork(plan.text, displayName(opt.run), opt.run.sets);
-  const Rig base =
-      net ? networkSweepRig(*net) : loadRigText(plan.text, displayName(opt.run), opt.run.sets);
+  const std::string name = displayName(opt.run);
+  const std::optional<Network> net = loadSweepNetwork(plan.text, name, opt.run.sets);
+  const Rig base = net ? networkSweepRig(*net) : loadRigText(plan.text, name, opt.run.sets);
+  // the keys resolved against the rig (docs/keys.md), no two setting one rig key
+  std::vector<OptionKey> keys;
+  for (const auto& r : opt.random)
+    keys.push_back(resolveOptionKey({plan.text, name, opt.run.sets}, "--random", r, true));
+  refuseSharedKeys(keys);
+  for (size_t i = 0; i < keys.size(); ++i)
+    plan.keys.push_back(parseRandom(opt.random[i], isPhaseName(keys[i].key.key.leaf())));
   plan.n = static_cast<int>(base.metronomes.size());
   plan.rig_name = base.name;
   checkCorners(opt, plan);

@@ -13,6 +13,7 @@
 #include "sim/analysis/continuation/result.h"
 #include "sim/analysis/continuation/start_states.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/option_keys.h"
 #include "tools/report/continuation_report.h"
 #include "yaml/rig_loader.h"
 
@@ -41,31 +42,10 @@ std::string fmt(double v) {
   return buf;
 }
 
-constexpr const char* kEveryMetronome = "metronomes.*.";
-
-// "metronomes.*.X=V" as one override per metronome (n of them); any other override as it is.
-std::vector<std::string> expandWildcards(const std::vector<std::string>& overrides, size_t n) {
-  std::vector<std::string> out;
-  const std::string every = kEveryMetronome;
-  for (const std::string& kv : overrides) {
-    if (kv.compare(0, every.size(), every) != 0) {
-      out.push_back(kv);
-      continue;
-    }
-    for (size_t i = 0; i < n; ++i)
-      out.push_back("metronomes." + std::to_string(i) + "." + kv.substr(every.size()));
-  }
-  return out;
-}
-
-// The rig with --set, then `extra` (the parameter's KEY=VALUE, named --param in messages; a key
-// metronomes.*.X sets X of every metronome).
+// The rig with --set, then `extra` (the parameter's KEY=VALUE, named --param in messages; keys
+// as in docs/keys.md: metronomes.*.X sets X of every metronome).
 Rig loadWith(const ContinueOptions& opt, std::vector<std::string> extra) {
   std::vector<std::string> o = opt.sets;
-  const bool wildcard = std::any_of(extra.begin(), extra.end(), [](const std::string& kv) {
-    return kv.rfind(kEveryMetronome, 0) == 0;
-  });
-  if (wildcard) extra = expandWildcards(extra, loadWith(opt, {}).metronomes.size());
   o.insert(o.end(), extra.begin(), extra.end());
   try {
     return opt.rig_path.empty() ? defaultRig(o) : loadRigFile(opt.rig_path, o);
@@ -77,6 +57,10 @@ Rig loadWith(const ContinueOptions& opt, std::vector<std::string> extra) {
         what.replace(at, 5, "--param");
     throw RigError(what);
   }
+}
+
+std::string rigDisplay(const ContinueOptions& opt) {
+  return opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
 }
 
 std::string rigText(const ContinueOptions& opt) {
@@ -117,21 +101,20 @@ ParamsAt2 paramsAt2(const ContinueOptions& opt) {
   return [opt](double p1, double p2) { return scaledAt(opt, {opt.param, opt.fold_key}, {p1, p2}); };
 }
 
-double startValue(const ContinueOptions& opt) {
-  if (opt.param == "epsilon")
-    throw UsageError(
-        "--param epsilon: epsilon has no effect on the slow flow (it only sets the "
-        "time scale of the full model); choose a key the slow flow depends on");
+// The start value of opt.param, typed after `option` (--param, or --fold for KEY2).
+double startValue(const ContinueOptions& opt, const std::string& option = "--param") {
   const Rig rig = loadWith(opt, {});  // the rig itself must load
-  const std::string display = opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
-  // metronomes.*.X: the rig's value of metronome 1 (0-based 0)
-  const std::string key =
-      opt.param.rfind(kEveryMetronome, 0) == 0
-          ? "metronomes.0." + opt.param.substr(std::string(kEveryMetronome).size())
-          : opt.param;
-  const std::optional<double> in_rig = rigNumber(rigText(opt), display, opt.sets, key);
+  const std::string display = rigDisplay(opt);
+  const std::string text = rigText(opt);
+  const RigKey key = resolveOptionKey({text, display, opt.sets}, option, opt.param, false).key;
+  if (key.key.text() == "epsilon")
+    throw UsageError(option +
+                     " epsilon: epsilon has no effect on the slow flow (it only sets the "
+                     "time scale of the full model); choose a key the slow flow depends on");
+  // a key with '*': the rig's value at its first element (metronome 1 for metronomes.*.X)
+  const std::optional<double> in_rig = rigNumber(text, display, opt.sets, key.paths[0].text());
   if (!opt.from && !in_rig)
-    throw UsageError("--param " + opt.param +
+    throw UsageError(option + " " + opt.param +
                      ": the key is not set in the rig (its default applies); give --from VALUE");
   const double from = opt.from ? *opt.from : *in_rig;
   if (!std::isfinite(opt.to) || !std::isfinite(from) || opt.to == from)
@@ -140,7 +123,7 @@ double startValue(const ContinueOptions& opt) {
   const ScaledParams a = computeScaled(loadWith(opt, {opt.param + "=" + fmt(from)}));
   const ScaledParams b = computeScaled(loadWith(opt, {opt.param + "=" + fmt(opt.to)}));
   if (sameSlowFlow(a, b))
-    throw UsageError("--param " + opt.param + ": has no effect on the slow flow (its scaled " +
+    throw UsageError(option + " " + opt.param + ": has no effect on the slow flow (its scaled " +
                      "parameters are the same at " + fmt(from) + " and " + fmt(opt.to) + ")");
   return from;
 }
@@ -207,11 +190,14 @@ ContinuationSettings settingsFor(const ContinueOptions& opt, double from) {
 
 // KEY2's start (the rig's value), checked like KEY's.
 double secondStart(const ContinueOptions& opt) {
-  if (opt.fold_key == opt.param)
-    throw UsageError("--fold " + opt.fold_key + ": the same as --param");
+  const std::string display = rigDisplay(opt);
+  const std::string text = rigText(opt);
+  const KeyedRig rig{text, display, opt.sets};
+  refuseSharedKeys({resolveOptionKey(rig, "--param", opt.param, false),
+                    resolveOptionKey(rig, "--fold", opt.fold_key, false)});
   ContinueOptions second = opt;
   second.param = opt.fold_key, second.to = opt.to2, second.from.reset();
-  return startValue(second);
+  return startValue(second, "--fold");
 }
 
 void foldCurves(const ContinueOptions& opt, double from2, const std::vector<FoldSeed>& folds,

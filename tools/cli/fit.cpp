@@ -15,6 +15,7 @@
 #include "sim/analysis/fit/swings.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/engines.h"
+#include "tools/cli/option_keys.h"
 #include "tools/report/fit_files.h"
 #include "yaml/rig_loader.h"
 #include "yaml/rig_writer.h"
@@ -57,21 +58,13 @@ MeasuredData loadData(const std::string& path, const Rig& rig) {
   }
 }
 
-std::string lastSegment(const std::string& key, int from_end) {
-  std::vector<std::string> segs;
-  std::size_t b = 0;
-  for (std::size_t e; (e = key.find('.', b)) != std::string::npos; b = e + 1)
-    segs.push_back(key.substr(b, e - b));
-  segs.push_back(key.substr(b));
-  return from_end < static_cast<int>(segs.size()) ? segs[segs.size() - 1 - from_end] : "";
-}
-
 // Keys that cannot be negative are bounded at 0; a start value of 0 gets a typical scale.
-FreeParameter freeParameter(const std::string& key, double start) {
+FreeParameter freeParameter(const RigKey& key, double start) {
   FreeParameter p;
-  p.key = key;
+  p.key = key.key.text();
   p.start = start;
-  const std::string last = lastSegment(key, 0), parent = lastSegment(key, 1);
+  const std::string& last = key.key.leaf();
+  const std::string parent = key.key.parent();
   for (const char* k : {"damping", "decay_rate", "mu", "c", "impulse", "k", "inertia", "mass",
                         "box_mass", "steady_amplitude"})
     if (last == k) p.lower = 0.0;
@@ -83,31 +76,50 @@ FreeParameter freeParameter(const std::string& key, double start) {
   return p;
 }
 
-// The starting value of `key`: a section-3 shortcut where one applies, else the rig's value
-// (0 for an absent start key). Checks that the key can be set to a number in this rig.
-FreeParameter startOf(const std::string& key, const std::string& text, const FitOptions& opt,
+// The --free keys resolved against the rig (docs/keys.md): a bad key is refused as any option's
+// is, two keys setting one rig key too. A key with '*' reaches fit as a group of paths (its
+// `paths`) that would move as one shared value; fit does not fit shared values yet.
+std::vector<RigKey> freeKeys(const std::string& text, const FitOptions& opt) {
+  std::vector<OptionKey> keys;
+  for (const std::string& k : opt.free)
+    keys.push_back(resolveOptionKey({text, opt.rig_path, opt.sets}, "--free", k, false));
+  refuseSharedKeys(keys);
+  std::vector<RigKey> out;
+  for (const OptionKey& k : keys) {
+    if (k.key.group() && k.key.paths.size() > 1)
+      throw UsageError(k.typed + ": the key stands for " + std::to_string(k.key.paths.size()) +
+                       " rig keys (" + k.key.paths.front().text() + " ... " +
+                       k.key.paths.back().text() +
+                       "), to be fitted as one shared value, which fit cannot do yet: free "
+                       "each of them, e.g. --free " +
+                       k.key.paths.front().text());
+    out.push_back(k.key);
+  }
+  return out;
+}
+
+// The starting value of `key` (one path): a section-3 shortcut where one applies, else the rig's
+// value (0 for an absent start key). Checks that the key can be set to a number in this rig.
+FreeParameter startOf(const RigKey& key, const std::string& text, const FitOptions& opt,
                       const Rig& rig, const MeasuredData& data, std::string& from) {
-  std::optional<double> v = rigNumber(text, opt.rig_path, opt.sets, key);
+  const std::string& path = key.paths.front().text();  // names and indices only
+  std::optional<double> v = rigNumber(text, opt.rig_path, opt.sets, path);
   from = "rig";
   if (!v) {
-    std::vector<std::string> probe = opt.sets;
-    probe.push_back(key + "=1");
-    if (lastSegment(key, 1) != "start")
-      loadRigText(text, opt.rig_path, probe);  // a typo gets the loader's "did you mean"
-    if (lastSegment(key, 1) != "start")
-      throw UsageError("--free " + key + ": the rig gives no value for it (free the key the rig " +
-                       "gives: damping or decay_rate, impulse or steady_amplitude, as written " +
-                       "in " + opt.rig_path + ")");
+    if (key.key.parent() != "start")
+      throw UsageError("--free " + key.key.text() + ": the rig gives no value for it (free the " +
+                       "key the rig gives: damping or decay_rate, impulse or steady_amplitude, " +
+                       "as written in " + opt.rig_path + ")");
     v = 0.0;
     from = "default";
   }
-  if (const std::optional<StartGuess> g = section3Guess(key, rig, data)) {
+  if (const std::optional<StartGuess> g = section3Guess(path, rig, data)) {
     v = g->value;
     from = g->from;
   }
   std::vector<std::string> sets = opt.sets;
-  sets.push_back(key + "=" + exactNumberText(*v));
-  loadRigText(text, opt.rig_path, sets);  // the key exists and takes this value
+  sets.push_back(path + "=" + exactNumberText(*v));
+  loadRigText(text, opt.rig_path, sets);  // the key takes this value
   return freeParameter(key, *v);
 }
 
@@ -256,16 +268,15 @@ CLI::App* addFitCommand(CLI::App& app, FitOptions& opt) {
 int fitCommand(const FitOptions& opt) {
   const std::string text = readRigFile(opt.rig_path);
   const Rig rig = loadPhysicalRig(text, opt.rig_path, opt.sets);
+  const std::vector<RigKey> keys = freeKeys(text, opt);
   const MeasuredData data = loadData(opt.data_path, rig);
   const Engine& engine = chooseEngine("", opt.model, rig, opt.rig_path);
   ceresPlugin();  // Ceres loaded now: a missing plugin is said before anything is written
   FitSetup setup;
   FitContext ctx{opt.rig_path, opt.data_path, opt.model, {}, {}};
-  for (std::size_t j = 0; j < opt.free.size(); ++j) {
-    for (std::size_t i = 0; i < j; ++i)
-      if (opt.free[i] == opt.free[j]) throw UsageError("--free " + opt.free[j] + " given twice");
+  for (const RigKey& key : keys) {
     std::string from;
-    setup.free.push_back(startOf(opt.free[j], text, opt, rig, data, from));
+    setup.free.push_back(startOf(key, text, opt, rig, data, from));
     ctx.starts.push_back(setup.free.back().start);
     ctx.start_from.push_back(from);
   }

@@ -30,6 +30,7 @@
 #include "tools/cli/continue.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/network_sweep.h"
+#include "tools/cli/option_keys.h"
 #include "tools/report/envelope_store.h"
 #include "tools/report/folder_lock.h"
 #include "tools/report/outputs.h"
@@ -152,15 +153,14 @@ bool isNetworkRig(const std::string& text) {
   return last;
 }
 
-// The rig of one point: the base rig, --set, then the point's KEY=VALUE (a wildcard key
-// "metronomes.*.REST" set at each of the n metronomes); checked like `run` checks its rig.
-// `where` names the point ("grid point 12 (...)"); throws RigError naming it.
+// The rig of one point: the base rig, --set, then the point's KEY=VALUE (keys as the user typed
+// them: the loader resolves them, docs/keys.md); checked like `run` checks its rig. `where` names
+// the point ("grid point 12 (...)"); throws RigError naming it.
 PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
-                        const std::vector<std::string>& point, int n, const std::string& where,
+                        const std::vector<std::string>& point, const std::string& where,
                         const std::string& source = "--vary point") {
   std::vector<std::string> overrides = opt.sets;
-  const std::vector<std::string> expanded = expandSweepOverrides(point, n);
-  overrides.insert(overrides.end(), expanded.begin(), expanded.end());
+  overrides.insert(overrides.end(), point.begin(), point.end());
   PointInput in;
   try {
     if (isNetworkRig(text)) in.net = loadSweepNetwork(text, displayName(opt), overrides);
@@ -168,13 +168,10 @@ PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
   } catch (const RigError& e) {
     // the loader calls every override --set; the point's own ones come from --vary
     std::string what = e.what();
-    for (const auto& o : expanded)
+    for (const auto& o : point)
       for (size_t at = what.find("--set " + o); at != std::string::npos;
            at = what.find("--set " + o, at))
         what.replace(at, 6 + o.size(), source + " " + o);
-    for (const auto& o : point)
-      if (isWildcardKey(o.substr(0, o.find('='))))
-        what += "\n  (from the wildcard --vary " + o.substr(0, o.find('=')) + ")";
     throw RigError(what + "\n  at " + where);
   }
   if (in.net) {  // docs/networks.md
@@ -192,9 +189,9 @@ PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
 }
 
 PointInput loadPoint(const std::string& text, const SweepOptions& opt, const SweepGrid& grid,
-                     long g, int n) {
+                     long g) {
   const std::vector<std::string> point = grid.overrides(g);
-  return loadPointRig(text, opt, point, n,
+  return loadPointRig(text, opt, point,
                       "grid point " + std::to_string(g) + " (" + joined(point) + ") of the sweep");
 }
 
@@ -456,7 +453,7 @@ const Engine* checkGrid(const SweepPlan& plan, const SweepOptions& opt) {
   }
   const Engine* engine = nullptr;
   for (long g : probes) {
-    const PointInput in = loadPoint(plan.text, opt, plan.grid, g, plan.n);
+    const PointInput in = loadPoint(plan.text, opt, plan.grid, g);
     if (static_cast<int>(in.rig.metronomes.size()) != plan.n)
       throw UsageError("--vary changes the number of metronomes at grid point " +
                        std::to_string(g));
@@ -493,18 +490,30 @@ std::vector<continuation::FoldCurve> mapBoundaries(const SweepOptions& opt, cons
                         y.values.front(), y.values.back());
 }
 
-// --basin-samples S --random ... [--seed N]: the keys drawn at every point, kept in the grid (the
-// manifest) so that --resume and merge check them. Throws UsageError.
-std::vector<RandomKey> planPointBasin(const SweepOptions& opt, SweepGrid& grid) {
+// The --vary and --random keys resolved against the rig (docs/keys.md), in that order: a bad key
+// stops here with the same words as a --set of it, and so do two options that set one rig key.
+std::vector<OptionKey> sweepKeys(const SweepOptions& opt, const std::string& text) {
+  const std::string name = displayName(opt);
+  const KeyedRig rig{text, name, opt.sets};
+  std::vector<OptionKey> keys;
+  for (const auto& v : opt.vary) keys.push_back(resolveOptionKey(rig, "--vary", v, true));
+  for (const auto& r : opt.random) keys.push_back(resolveOptionKey(rig, "--random", r, true));
+  refuseSharedKeys(keys);
+  return keys;
+}
+
+// --basin-samples S --random ... [--seed N]: the keys drawn at every point (`resolved`: those of
+// sweepKeys), kept in the grid (the manifest) so that --resume and merge check them. Throws
+// UsageError.
+std::vector<RandomKey> planPointBasin(const SweepOptions& opt, SweepGrid& grid,
+                                      const std::vector<OptionKey>& resolved) {
   if (opt.basin_samples == 0 && opt.random.empty()) return {};
   if (opt.basin_samples < 1 || opt.random.empty())
     throw UsageError("--basin-samples S (S >= 1) and --random KEY=FROM:TO go together");
   std::vector<RandomKey> keys;
-  for (const auto& r : opt.random) {
-    keys.push_back(parseRandom(r));
-    for (const auto& a : grid.axes())
-      if (a.key == keys.back().key)
-        throw UsageError("--random " + r + ": " + a.key + " is also a --vary key");
+  for (size_t i = 0; i < opt.random.size(); ++i) {
+    const RigKey& k = resolved[opt.vary.size() + i].key;
+    keys.push_back(parseRandom(opt.random[i], isPhaseName(k.key.leaf())));
   }
   grid.setBasin({opt.basin_samples, opt.seed, opt.random});
   return keys;
@@ -526,13 +535,13 @@ SweepPlan planSweep(const SweepOptions& opt) {
   for (const auto& v : opt.vary) axes.push_back(parseVary(v));
   SweepPlan plan;
   plan.grid = SweepGrid(std::move(axes), opt.force ? kMaxForcedGridPoints : kMaxGridPoints);
-  plan.random = planPointBasin(opt, plan.grid);
   plan.map_axes = mapAxes(plan.grid, opt.map);
   plan.shard = opt.shard.empty() ? SweepShard{} : parseShard(opt.shard);
-  // the rig, and every grid point's rig: a bad key or value stops here, before any file
+  // the rig, its keys, and every grid point's rig: a bad key or value stops here, before any file
   plan.text = sweepRigText(opt);
   const std::optional<Network> net = loadSweepNetwork(plan.text, displayName(opt), opt.sets);
   plan.base = net ? networkSweepRig(*net) : loadRigText(plan.text, displayName(opt), opt.sets);
+  plan.random = planPointBasin(opt, plan.grid, sweepKeys(opt, plan.text));
   plan.n = static_cast<int>(plan.base.metronomes.size());
   if (net && !opt.keep.empty())
     throw UsageError("--keep envelope: not for a network of platforms (docs/sweep-points.md)");
@@ -545,7 +554,7 @@ SweepPlan planSweep(const SweepOptions& opt) {
       const double v = high ? r.to : r.from;
       point.push_back(r.key + "=" + sweepValueText(r.angle ? wrapToTwoPi(v) : v));
     }
-    loadPointRig(plan.text, opt, point, plan.n,
+    loadPointRig(plan.text, opt, point,
                  "grid point 0 with --random at " + std::string(high ? "TO" : "FROM"), "--random");
   }
   SweepManifest& m = plan.manifest;
@@ -623,7 +632,7 @@ std::optional<SweepPoint> runGridPointUntimed(const SweepPlan& plan, const Sweep
                                               long g) {
   std::optional<PointInput> in;
   try {
-    in = loadPoint(plan.text, opt, plan.grid, g, plan.n);
+    in = loadPoint(plan.text, opt, plan.grid, g);
   } catch (const std::exception& e) {
     return unloadablePoint(g, plan.n, e.what());
   }
@@ -888,7 +897,7 @@ std::pair<std::string, std::string> checkSweepPoint(const std::string& rig_text,
                                                     const SweepOptions& opt,
                                                     const std::vector<std::string>& point, int n,
                                                     const std::string& where) {
-  const PointInput in = loadPointRig(rig_text, opt, point, n, where, "the drawn");
+  const PointInput in = loadPointRig(rig_text, opt, point, where, "the drawn");
   if (static_cast<int>(in.rig.metronomes.size()) != n)
     throw UsageError(joined(point) + " changes the number of metronomes (at " + where + ")");
   return {in.engine->model(), in.engine->name()};
@@ -899,7 +908,7 @@ std::optional<SweepPoint> runSweepPointAt(const std::string& rig_text, const Swe
                                           long index) {
   std::optional<PointInput> in;
   try {
-    in = loadPointRig(rig_text, opt, point, n, "point " + std::to_string(index));
+    in = loadPointRig(rig_text, opt, point, "point " + std::to_string(index));
   } catch (const std::exception& e) {
     return unloadablePoint(index, n, e.what());
   }

@@ -1,0 +1,58 @@
+"""Overrides speak the key language of the command line (docs/keys.md): a wildcard sets every
+element as one override per index would, a dict rig takes them too, a bad key raises RigError with
+the words `--set` gets."""
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import metrosync
+
+SRC = os.environ["METROSYNC_SOURCE_DIR"]
+BIN = os.environ["METROSYNC_BINARY"]
+SCALED = os.path.join(SRC, "yaml/rigs/experiment-scaled.yaml")
+
+
+def test_a_wildcard_override_sets_every_metronome():
+    every = metrosync.load_rig(SCALED, {"metronomes.*.nu": 0.55}).scaled()
+    each = metrosync.load_rig(SCALED, {"metronomes.0.nu": 0.55, "metronomes.1.nu": 0.55}).scaled()
+    assert every == each
+    assert every["nu"] == [0.55, 0.55]
+    assert metrosync.load_rig(SCALED).scaled()["nu"] != every["nu"]
+
+
+def test_a_dict_rig_takes_wildcards_and_names():
+    rig = {"units": "physical", "name": "net",
+           "platforms": [{"name": name, "mass": 0.15, "friction": {"law": "coulomb", "mu": 0.01},
+                          "metronomes": [{"box_mass": 0.06,
+                                          "pendulum": {"mass": 0.0226, "length": 0.0225,
+                                                       "decay_rate": 0.5},
+                                          "escapement": {"angle": 0.244,
+                                                         "steady_amplitude": 0.785},
+                                          "start": {"angle": 0.5}}]}
+                         for name in ("left", "right")],
+           "couplings": [{"between": ["left", "right"], "k": 2.0}],
+           "simulation": {"duration": 2}}
+    named = metrosync.run(metrosync.Rig(text=json.dumps(rig), name="net",
+                                        overrides={"platforms.right.friction.mu": 0.02,
+                                                   "metronomes.*.start.rate": 0.1}))
+    indexed = metrosync.run(metrosync.Rig(text=json.dumps(rig), name="net",
+                                          overrides={"platforms.1.friction.mu": 0.02,
+                                                     "platforms.0.metronomes.0.start.rate": 0.1,
+                                                     "platforms.1.metronomes.0.start.rate": 0.1}))
+    assert named.summary["resolved_rig"] == indexed.summary["resolved_rig"]
+    assert set(named.envelope) == set(indexed.envelope)
+    for k in named.envelope:
+        np.testing.assert_array_equal(named.envelope[k], indexed.envelope[k])
+
+
+def test_a_bad_key_raises_the_words_of_set():
+    cli = subprocess.run([BIN, "scale", SCALED, "--set", "metronomes.*.nuu=1"],
+                         capture_output=True, text=True)
+    assert cli.returncode == 2
+    with pytest.raises(metrosync.RigError) as e:
+        metrosync.load_rig(SCALED, {"metronomes.*.nuu": 1})
+    assert str(e.value) in cli.stderr
+    assert "metronomes.*.nuu: unknown key (did you mean 'nu'?)" in str(e.value)
