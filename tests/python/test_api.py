@@ -140,15 +140,23 @@ def test_overrides_act_like_set():
     assert a["mu"] != metrosync.load_rig(EXPERIMENT).scaled()["mu"]
 
 
-@pytest.mark.xfail(strict=True, reason="waits for issue 24's key resolver (wildcards in --set)")
 def test_wildcard_overrides_set_every_metronome():
+    # on a dict rig, through every call that takes overrides: the same as one key per index
     each = {"metronomes.0.start.rate": 0.1, "metronomes.1.start.rate": 0.1}
-    wild = metrosync.load_rig(EXPERIMENT, {"metronomes.*.start.rate": 0.1})
-    assert wild.to_dict() == metrosync.load_rig(EXPERIMENT, each).to_dict()
-    assert wild.to_dict() != metrosync.load_rig(EXPERIMENT).to_dict()
-    res = metrosync.run(EXPERIMENT, duration=3, **{})
-    assert not np.array_equal(metrosync.run(wild, duration=3).envelope["A_1"],
-                              res.envelope["A_1"])
+    rig = rig_dict(EXPERIMENT)
+    wild = metrosync.load_rig(rig, {"metronomes.*.start.rate": 0.1})
+    assert wild.to_dict() == metrosync.load_rig(rig, each).to_dict()
+    assert wild.to_dict() != metrosync.load_rig(rig).to_dict()
+    a = metrosync.run(wild, duration=3)
+    b = metrosync.run(metrosync.load_rig(rig, each), duration=3)
+    np.testing.assert_array_equal(a.trajectory["theta_2"], b.trajectory["theta_2"])
+    assert not np.array_equal(a.envelope["A_1"], metrosync.run(rig, duration=3).envelope["A_1"])
+    # a wildcard axis of a sweep varies every metronome at once
+    grid = metrosync.sweep(MAP_RIG, vary={"metronomes.*.nu": [0.5, 0.8]}, tau=30)
+    one = metrosync.sweep(MAP_RIG, vary={"metronomes.0.nu": [0.5, 0.8]},
+                          **{"tau": 30})
+    assert grid["metronomes.*.nu"].tolist() == [0.5, 0.8]
+    assert grid["A_2"].tolist() != one["A_2"].tolist()
 
 
 def test_a_network_rig_runs_from_a_path_and_a_dict():

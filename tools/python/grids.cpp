@@ -11,6 +11,7 @@
 #include "tools/cli/basin.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/network_sweep.h"
+#include "tools/cli/option_keys.h"
 #include "tools/cli/sweep.h"
 #include "tools/python/bindings.h"
 #include "tools/report/basin_files.h"
@@ -195,7 +196,12 @@ py::dict basin(const RigSource& rig, const std::vector<std::string>& random, lon
   nlohmann::json summary;
   runReleased([&] {
     const cli::SweepPointRunner run = cli::basinSampleRunner(b);  // the CLI's checks, or throws
-    for (const std::string& r : random) keys.push_back(parseRandom(r));
+    const std::string text = cli::sweepRigText(b.run);            // the keys as basin resolves them
+    for (const std::string& r : random) {
+      const cli::OptionKey k =
+          cli::resolveOptionKey({text, b.run.rig_path, b.run.sets}, "--random", r, true);
+      keys.push_back(parseRandom(r, isPhaseName(k.key.key.leaf())));
+    }
     if (out)
       cli::basinCommand(b, collecting(points), 1);
     else

@@ -97,7 +97,8 @@ _KEY_WORDS = [(r"--vary point ([^=\s]+)=([^:\s]+)", "vary[%r] at %s"),
               (r"the drawn ([^=\s]+)=([^:\s]+)", "random[%r] drew %s"),
               (r"--param ([^=\s]+)=([^:\s]+)", "param=%r at %s"),
               (r"--random ([^=\s]+)=(\S+?:\S+?)(?=: )", "random[%r] = (%s)"),
-              (r"--vary ([^=\s]+)=(\S+?)(?=: )", "vary[%r] = %r")]
+              (r"--vary ([^=\s]+)=(\S+?)(?=: )", "vary[%r] = %r"),
+              (r"--(param|fold|free) ([^=\s:]+)(?=: )", "%s=%r")]
 
 
 def _key_words(message):
@@ -105,11 +106,16 @@ def _key_words(message):
         m = re.search(pattern, message)
         if not m:
             continue
-        key, value = m.group(1), m.group(2)
-        shown = value if form.endswith("%r") else ", ".join(_number(v) for v in value.split(":"))
+        if form.startswith("%s="):  # --param KEY: the option's name, then the key
+            said, key = form % (m.group(1), m.group(2)), m.group(2)
+        else:
+            key, value = m.group(1), m.group(2)
+            shown = value if form.endswith("%r") else ", ".join(
+                _number(v) for v in value.split(":"))
+            said = form % (key, shown)
         repeat = r"^: %s(?: = [^:\n]*)?(?=: )" % re.escape(key)
         rest = re.sub(repeat, "", message[m.end():], count=1)
-        message = message[:m.start()] + form % (key, shown) + rest
+        message = message[:m.start()] + said + rest
     return message
 
 
