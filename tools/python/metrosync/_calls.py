@@ -12,7 +12,7 @@ import numpy as np
 from . import _metrosync as _core
 from ._results import (BasinResult, CompareResult, ContinuationResult, FitResult, Result,
                        SimulationError, SweepResult, _read_json)
-from ._rig import RigError, _Origin, _short_repr, _value_text, as_rig, load_rig
+from ._rig import RigError, _Origin, _short_repr, as_rig, load_rig
 
 
 def _simulation(simulation):
@@ -53,7 +53,9 @@ def _rig_file(rig):
         try:
             yield path, folder
         except RigError as e:  # the temporary files by what they stand for
-            message = str(e).replace(path, "rig").replace(os.path.join(folder, "data.csv"), "data")
+            message = str(e).replace(os.path.join(folder, "data.csv"), "data")
+            if rig.path is None:
+                message = message.replace(path, "rig")
             raise rig._explain(RigError(message)) from None
     finally:
         shutil.rmtree(folder, ignore_errors=True)
@@ -68,7 +70,8 @@ def _network_run(rig, engine, out, extra):
         read = lambda name: _read_csv_table(os.path.join(target, name))
         rows = {"trajectory": read("trajectory.csv"), "envelope": read("envelope.csv"),
                 "events": None}
-        return _checked(Result(_read_json(os.path.join(target, "summary.json")), rows, out), code)
+        summary = _read_json(os.path.join(target, "summary.json"))
+        return _checked(Result(summary, rows, _folder(out)), code)
 
 
 def _read_csv_table(path):
