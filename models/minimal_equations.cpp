@@ -58,8 +58,13 @@ void MetronomeEquations::angleTrig(const double* y) const {
   sinCos(y + 2, sin_.data(), cos_.data(), layout_.n);
 }
 
+// The right-hand side on scratch arrays of n values each (sn, cs: the angles' sin and cos; c, r,
+// g_term, s_term: see below): the stack's for a known N, the members' otherwise.
 template <int N>
-void MetronomeEquations::rhsN(const double* y, PlatformMode mode, double* dy) const {
+inline __attribute__((always_inline)) void MetronomeEquations::rhsBody(
+    const double* y, PlatformMode mode, double* dy, double* __restrict sn, double* __restrict cs,
+    double* __restrict c, double* __restrict r, double* __restrict g_term,
+    double* __restrict s_term) const {
   const int n = N > 0 ? N : layout_.n;
   const double* __restrict w = y + 2 + n;
   double* __restrict dth = dy + 2;
@@ -69,11 +74,7 @@ void MetronomeEquations::rhsN(const double* y, PlatformMode mode, double* dy) co
   const double* __restrict inv_I = inv_inertia_.data();
   const double* __restrict damp = damping_.data();
   const double v = y[StateLayout::kV];
-  sinCos(y + 2, sin_.data(), cos_.data(), n);  // angleTrig(y), n known
-  const double* __restrict sn = sin_.data();
-  const double* __restrict cs = cos_.data();
-  double* __restrict c = c_.data();
-  double* __restrict r = r_.data();
+  sinCos(y + 2, sn, cs, n);
   double damping_power = 0.0;
   for (int j = 0; j < n; ++j) damping_power += damp[j] * w[j] * w[j];
 
@@ -84,8 +85,6 @@ void MetronomeEquations::rhsN(const double* y, PlatformMode mode, double* dy) co
   if (platform_moves) {
     // pass 1: c_j, r_j and the platform's Schur-reduced equation Meff xddot = G + F
     // the terms in vectorizable loops, then the sums in order
-    double* __restrict g_term = g_term_.data();
-    double* __restrict s_term = s_term_.data();
     for (int j = 0; j < n; ++j) {
       c[j] = mL[j] * cs[j];
       r[j] = -mgL[j] * sn[j] - damp[j] * w[j];
@@ -112,6 +111,17 @@ void MetronomeEquations::rhsN(const double* y, PlatformMode mode, double* dy) co
   dy[StateLayout::kV] = a;
   dy[2 + 2 * n] = damping_power;   // layout_.dampingWork()
   dy[3 + 2 * n] = friction_power;  // layout_.frictionWork()
+}
+
+template <int N>
+void MetronomeEquations::rhsN(const double* y, PlatformMode mode, double* dy) const {
+  if constexpr (N > 0) {
+    double sn[N], cs[N], c[N], r[N], g_term[N], s_term[N];
+    rhsBody<N>(y, mode, dy, sn, cs, c, r, g_term, s_term);
+  } else {
+    rhsBody<N>(y, mode, dy, sin_.data(), cos_.data(), c_.data(), r_.data(), g_term_.data(),
+               s_term_.data());
+  }
 }
 
 template void MetronomeEquations::rhsN<MetronomeEquations::kAnyN>(const double*, PlatformMode,

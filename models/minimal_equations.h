@@ -112,6 +112,9 @@ class MetronomeEquations {
   mutable std::vector<double> sin_, cos_, c_, r_, g_term_, s_term_;
   // sin_ and cos_ of the angles in y (models/vector_trig.h)
   void angleTrig(const double* y) const;
+  template <int N>
+  void rhsBody(const double* y, PlatformMode mode, double* dy, double* sn, double* cs, double* c,
+               double* r, double* g_term, double* s_term) const;
 };
 
 }  // namespace metrosync::direct

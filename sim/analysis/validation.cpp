@@ -59,12 +59,6 @@ double windowStart(double tau_end, double epsilon) {
   return RegimeWindow(tau_end, epsilon).tauStart();  // the regime's window (sim/analysis/regime.h)
 }
 
-const Scenario& findScenario(const std::vector<Scenario>& all, const std::string& name) {
-  for (const auto& s : all)
-    if (s.spec.name == name) return s;
-  throw std::invalid_argument("validation: no scenario named '" + name + "'");
-}
-
 }  // namespace
 
 // ---- scenarios --------------------------------------------------------------------------------
@@ -112,6 +106,12 @@ const std::vector<ScenarioSpec>& shippedScenarios() {
        "experiment, mu-bar = 4.6e-3, antiphase start: stays in antiphase (fig. exp1)"},
   };
   return specs;
+}
+
+const Scenario& findScenario(const std::vector<Scenario>& all, const std::string& name) {
+  for (const Scenario& s : all)
+    if (s.spec.name == name) return s;
+  throw std::invalid_argument("validation: no scenario named '" + name + "'");
 }
 
 Rig rigAtEpsilon(const ScaledParams& p, const std::string& name, double epsilon, double tau_end) {
@@ -417,6 +417,7 @@ ValidationPlan defaultValidationPlan(bool quick) {
                         : std::vector<double>{0.02, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5,
                                               0.6,  0.7,  0.8, 1.0,  1.5, 2.0,  3.0, 6.0};
   plan.bifurcations = paperBifurcationFamilies(quick);
+  plan.full_orbits = true;
   return plan;
 }
 
@@ -430,6 +431,7 @@ int ValidationResults::failedChecks() const {
   for (const auto& c : convergence) n += !c.pass;
   for (const auto& f : bifurcations)
     for (const auto& p : f.points) n += !p.pass;
+  if (full_orbits) n += full_orbits->failed();
   return n;
 }
 
@@ -720,6 +722,10 @@ ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Sc
   if (!plan.bifurcations.empty()) {
     log.say("bifurcations of the slow flow (continuation, slow-flow checks, full-model brackets)");
     res.bifurcations = runBifurcationFamilies(plan.bifurcations, scenarios, engines, jobs);
+  }
+  if (plan.full_orbits) {
+    log.say("bifurcations of the full model (periodic orbits, continuation at several epsilon)");
+    res.full_orbits = runFullOrbitBifurcations(plan.quick, scenarios, engines, jobs);
   }
   res.wall_seconds = secondsSince(t0);
   return res;

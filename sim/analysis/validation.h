@@ -15,6 +15,7 @@
 
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@
 #include "models/scaling.h"
 #include "sim/analysis/regime.h"
 #include "sim/analysis/validation_bifurcations.h"
+#include "sim/analysis/validation_full_orbits.h"
 #include "sim/record/envelope.h"
 #include "sim/record/run_report.h"
 
@@ -59,6 +61,9 @@ struct Scenario {
   ScenarioSpec spec;
   ScaledParams scaled;  // computeScaled of the shipped rig (epsilon, tau_end as shipped)
 };
+
+// The scenario of that name in `all`; throws std::invalid_argument when there is none.
+const Scenario& findScenario(const std::vector<Scenario>& all, const std::string& name);
 
 // The rig with the scaled parameters p (friction, metronomes, start) at another epsilon, run to
 // tau_end: the equivalent physical system of rigFromScaled. Throws std::invalid_argument when no
@@ -149,6 +154,9 @@ struct ValidationPlan {
   std::vector<double> sweep_mu;
   // part 6: the slow flow's bifurcations (sim/analysis/validation_bifurcations.h)
   std::vector<BifurcationFamilySpec> bifurcations;
+  // part 7: the full model's bifurcations (sim/analysis/validation_full_orbits.h); on in both
+  // of defaultValidationPlan's plans
+  bool full_orbits = false;
 };
 
 // The full plan (`metrosync validate`) or the quick one (`--quick`).
@@ -209,6 +217,7 @@ struct ValidationResults {
   double sweep_epsilon = 0.0, sweep_tau = 0.0, sweep_psi0 = 0.0;  // of the sweep's base rig
   std::vector<FrictionSweepPoint> sweep;
   std::vector<BifurcationFamilyResult> bifurcations;  // part 6
+  std::optional<FullOrbitsResult> full_orbits;        // part 7
   double wall_seconds = 0.0;
 
   int failedChecks() const;    // betas, paper regimes, convergence orders

@@ -29,12 +29,6 @@ std::string number(double v) {
   return buf;
 }
 
-const Scenario& scenarioNamed(const std::vector<Scenario>& all, const std::string& name) {
-  for (const Scenario& s : all)
-    if (s.spec.name == name) return s;
-  throw std::invalid_argument("validation: no scenario named " + name);
-}
-
 EnvelopeRow rowOf(const SlowFlowProblem& prob, const Vec& x) {
   EnvelopeRow r;
   r.A = prob.amplitudes(x);
@@ -181,7 +175,7 @@ std::vector<BifurcationFamilyResult> runBifurcationFamilies(
   for (const BifurcationFamilySpec& spec : families) {
     BifurcationFamilyResult r;
     r.spec = spec;
-    const ScaledParams base = scenarioNamed(scenarios, spec.scenario).scaled;
+    const ScaledParams base = findScenario(scenarios, spec.scenario).scaled;
     const ParamsAt at = [base, set = spec.set](double v) {
       ScaledParams q = base;
       set(q, v);

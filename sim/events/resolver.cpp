@@ -15,7 +15,7 @@ EventResolver::EventResolver(std::vector<Escapement> escapements, std::optional<
 
 WindowOutcome EventResolver::resolve(EventSystem& sys, bool platform_reported) {
   WindowOutcome out;
-  const std::vector<int> due = dueTicks(sys);
+  const std::vector<int>& due = dueTicks(sys);
   if (!due.empty()) {
     const PlatformMode before = coulomb_ ? sys.mode() : PlatformMode::Stuck;
     applyTicks(sys, due, out);
@@ -64,24 +64,24 @@ PlatformMode EventResolver::settleAtStart(EventSystem& sys) const {
 
 // --- 1. ticks ---------------------------------------------------------------------------------
 
-std::vector<int> EventResolver::dueTicks(const EventSystem& sys) const {
-  std::vector<int> due;
+const std::vector<int>& EventResolver::dueTicks(const EventSystem& sys) {
+  due_.clear();
   for (int j = 0; j < static_cast<int>(esc_.size()); ++j) {
     const double th = sys.theta(j);
-    if (armed(j, Escapement::side(th)) && esc_[j].due(th, sys.thetadot(j))) due.push_back(j);
+    if (armed(j, Escapement::side(th)) && esc_[j].due(th, sys.thetadot(j))) due_.push_back(j);
   }
-  return due;
+  return due_;
 }
 
 void EventResolver::applyTicks(EventSystem& sys, const std::vector<int>& due, WindowOutcome& out) {
   sys.snapshotBefore();
-  std::vector<double> impulse(esc_.size(), 0.0);
+  impulse_.assign(esc_.size(), 0.0);
   for (int j : due) {
     const double th = sys.theta(j);
-    impulse[j] = esc_[j].tickImpulse(th);
+    impulse_[j] = esc_[j].tickImpulse(th);
     armed_[2 * j + (th > 0)] = 0;  // consumed until the pendulum is back inside
   }
-  out.escapement_in += sys.applyImpulse(impulse, 0.0);
+  out.escapement_in += sys.applyImpulse(impulse_, 0.0);
   out.ticked = due;
   // one record per pendulum: the combined impulse is each one's tick (the same states)
   for (int j : due) sys.recordEvent("tick", j);
@@ -138,8 +138,8 @@ void EventResolver::stopAndSettle(EventSystem& sys, PlatformMode before, WindowO
   if (v != 0) {
     // friction's impulse on x alone, -v / (M^-1)_xx: xdot becomes 0 (to rounding), the pendulums
     // take the reaction; the kinetic energy it removes is friction's
-    const std::vector<double> none(esc_.size(), 0.0);
-    out.friction_out -= sys.applyImpulse(none, -v / sys.platformMobility());
+    impulse_.assign(esc_.size(), 0.0);  // none on the pins
+    out.friction_out -= sys.applyImpulse(impulse_, -v / sys.platformMobility());
   }
   sys.setMode(PlatformMode::Stuck);
   const PlatformMode after = coulomb_->modeAtRest(sys.holdingForce());

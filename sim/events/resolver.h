@@ -69,7 +69,7 @@ class EventResolver {
   PlatformMode settleAtStart(EventSystem& sys) const;
 
  private:
-  std::vector<int> dueTicks(const EventSystem& sys) const;
+  const std::vector<int>& dueTicks(const EventSystem& sys);  // in due_
   void applyTicks(EventSystem& sys, const std::vector<int>& due, WindowOutcome& out);
   void modeAfterImpulse(EventSystem& sys, PlatformMode before, WindowOutcome& out);
   void coulombRule(EventSystem& sys, WindowOutcome& out);
@@ -83,6 +83,10 @@ class EventResolver {
   std::optional<CoulombLaw> coulomb_;
   double period_;
   std::vector<char> armed_;  // (2n x 1): [2j] side -1, [2j+1] side +1
+  // scratch of one window, kept so that a window allocates nothing: the due ticks, (n x 1)
+  // generalized impulses on the pins
+  std::vector<int> due_;
+  std::vector<double> impulse_;
 };
 
 }  // namespace metrosync

@@ -64,4 +64,36 @@ double locateWindow(std::vector<WindowCrossing>& found, Value&& value) {
   return th_e;
 }
 
+// The same, for witnesses that have a cheap approximation on the step (approx(witness) returns
+// an optional callable th -> value with valueRate(th) -> {value, rate}, e.g. one component's
+// interpolant as a polynomial in th, a few ulps from the exact value): the root is bracketed on the
+// approximation, and its upper end moved up by ulps until the exact witness is past zero there. The
+// window still ends where the exact witness has crossed -- all that the resolver needs -- for one
+// or two exact evaluations instead of dozens (the first of them is the window end's own
+// interpolation weights, reused).
+template <class Value, class Approx>
+double locateWindow(std::vector<WindowCrossing>& found, Value&& value, Approx&& approx) {
+  std::sort(found.begin(), found.end(),
+            [](const WindowCrossing& a, const WindowCrossing& b) { return a.th.lo < b.th.lo; });
+  double th_e = 2.0;
+  for (WindowCrossing& c : found) {
+    if (c.th.lo >= th_e) break;
+    if (!c.forced && c.th.hi > c.th.lo) {
+      auto g = [&](double th) { return value(c.witness, th); };
+      if (th_e < c.th.hi && g(th_e) < 0) continue;  // see locateWindow above
+      const auto a = approx(c.witness);
+      const double a_lo = a ? (*a)(c.th.lo) : 0.0, a_hi = a ? (*a)(c.th.hi) : 0.0;
+      if (a && a_lo < 0 && a_hi >= 0) {  // the approximation brackets the root too
+        auto value_rate = [&](double th) { return a->valueRate(th); };
+        const ode::Bracket coarse = ode::newtonBracket(value_rate, c.th.lo, a_lo, c.th.hi, a_hi);
+        c.th = {coarse.lo, ode::firstPastZero(g, coarse.hi, c.th.hi)};
+      } else {
+        c.th = ode::illinois(g, c.th.lo, g(c.th.lo), c.th.hi, g(c.th.hi));
+      }
+    }
+    th_e = std::min(th_e, c.th.hi);
+  }
+  return th_e;
+}
+
 }  // namespace metrosync

@@ -14,7 +14,10 @@
 //        for callers that choose it at run time, a final class for the engine's hot loop, so
 //        that every stage's evaluation is inlined;
 //   Dim  the state's size, or kDynamic: a fixed size makes every loop over the components one of
-//        known length (unrolled and vectorized) and every buffer part of the object.
+//        known length (unrolled and vectorized) and every buffer part of the object;
+//   Quad the number of trailing components that are pure quadratures (f never reads them: the
+//        direct engine's energy ledger): the intermediate stages' states leave them out, the
+//        step's end and the dense output include them.
 // The arithmetic is the same, operation for operation and in the same order, for every choice of
 // the two: a fixed-size stepper's steps and states equal the dynamic one's bit for bit.
 #pragma once
@@ -96,21 +99,25 @@ constexpr auto kCombine = combineTable<Dim>(std::make_integer_sequence<int, kMax
 // (q + 1) p_rq, so that a weight evaluation is one fixed-size vector loop per degree.
 struct DenseTable {
   static constexpr int kPadRowsSmall = 8, kPadRows = 16;  // dopri5: 7 stages; Verner's: 12, 16
+  static constexpr int kMaxDegree = 8;                    // dopri5: 4; verner65: 6; verner76: 7
   explicit DenseTable(const RkTableau& tab);
   std::vector<int> stage;  // stages with a nonzero row of p, (rows)
   int padded_rows = kPadRows;
   int degree = 0;
-  std::vector<double> pt, rate_pt;  // (degree x padded_rows)
+  std::vector<double> pt, rate_pt;  // (kMaxDegree x padded_rows), zero past the degree
   // w_r at th (value: h b_r(th); rate: b_r'(th)), into w (padded_rows)
   void weights(double th, double h, bool rate, double* w) const;
 };
 
-// Hairer's DOPRI5 controller: the next step after an attempt with error norm err.
-double nextStepSize(const RkTableau& tab, double& err_old, double h, double err, bool accepted);
+// Hairer's DOPRI5 controller: the next step after an attempt with error norm err; log2_err_old
+// holds log2 of the last accepted step's error (at least kLog2ErrFloor: 1e-4, Hairer's floor).
+constexpr double kLog2ErrFloor = -13.287712379549449;  // log2(1e-4)
+double nextStepSize(const RkTableau& tab, double& log2_err_old, double h, double err,
+                    bool accepted);
 
 }  // namespace detail
 
-template <class Rhs, int Dim = kDynamic>
+template <class Rhs, int Dim = kDynamic, int Quad = 0>
 class RkStepperT {
  public:
   RkStepperT(const RkTableau& tableau, int dim, Rhs& rhs);
@@ -132,7 +139,7 @@ class RkStepperT {
 
   // The step size to try next after an attempt with error norm `err` (Hairer's PI control).
   double nextStepSize(double h, double err, bool accepted) {
-    return detail::nextStepSize(tab_, err_old_, h, err, accepted);
+    return detail::nextStepSize(tab_, log2_err_old_, h, err, accepted);
   }
   // A first step size for the current point (Hairer's starting-step heuristic, "Solving ODEs I"
   // II.4; hinit in DOPRI5), at most h_max: costs one f evaluation.
@@ -155,6 +162,31 @@ class RkStepperT {
   double component(int k, double th);
   double componentRate(int k, double th);
 
+  // One component's interpolant over the attempted step as a polynomial in th,
+  //   y_k(th) = y0_k + th (a_0 + th (a_1 + ... + th a_{d-1})),
+  // for root finding at a fraction of the cost of component(): within a few ulps of it, not the
+  // same bits (confirm a root on component()). Fills a (dense degree d values), returns d.
+  struct Polynomial {
+    double y0 = 0.0;
+    int degree = 0;
+    std::array<double, detail::DenseTable::kMaxDegree> a{};
+    double operator()(double th) const {
+      double acc = a[degree - 1];
+      for (int q = degree - 2; q >= 0; --q) acc = acc * th + a[q];
+      return y0 + th * acc;
+    }
+    // the value and its derivative in th, by one Horner pass each
+    std::pair<double, double> valueRate(double th) const {
+      double acc = a[degree - 1], rate = degree * a[degree - 1];
+      for (int q = degree - 2; q >= 0; --q) {
+        acc = acc * th + a[q];
+        rate = rate * th + (q + 1) * a[q];
+      }
+      return {y0 + th * acc, rate};
+    }
+  };
+  Polynomial componentPolynomial(int k);
+
   int dim() const { return Dim > 0 ? Dim : dim_; }
   const RkTableau& tableau() const { return tab_; }
   long evaluations() const { return evals_; }
@@ -163,7 +195,10 @@ class RkStepperT {
   void ensureStages();                      // the interpolant's extra stages
   void stageWeights(double th, bool rate);  // w_ at th
 
-  // y0 + h sum_l w_l k_l over the row's nonzero weights
+  // y0 + h sum_l w_l k_l over the row's nonzero weights: the components that f reads (a stage's
+  // state), or every component (the step's end)
+  enum class Span { Stage, Whole };
+  template <Span S>
   void combine(const detail::Row& w, double h, double* __restrict out) const;
   double* stage(int j) { return k_.data() + static_cast<size_t>(j) * dim(); }
   const double* stage(int j) const { return k_.data() + static_cast<size_t>(j) * dim(); }
@@ -190,18 +225,18 @@ class RkStepperT {
   std::array<double, detail::DenseTable::kPadRows> w_{};  // the interpolant's stage weights
   double w_th_ = -1.0;                                    // the th and kind w_ holds (th < 0: none)
   bool w_rate_ = false;
-  double err_old_ = 1e-4;
+  double log2_err_old_ = detail::kLog2ErrFloor;
   long evals_ = 0;
 };
 
 // The stepper of callers that choose their right-hand side at run time (the slow flow, the
 // continuation's limit cycles, the tests).
-using RkStepper = RkStepperT<OdeRhs, kDynamic>;
+using RkStepper = RkStepperT<OdeRhs, kDynamic, 0>;
 
 // --- implementation ---------------------------------------------------------------------------
 
-template <class Rhs, int Dim>
-RkStepperT<Rhs, Dim>::RkStepperT(const RkTableau& tableau, int dim, Rhs& rhs)
+template <class Rhs, int Dim, int Quad>
+RkStepperT<Rhs, Dim, Quad>::RkStepperT(const RkTableau& tableau, int dim, Rhs& rhs)
     : tab_(tableau),
       dim_(dim),
       rhs_(rhs),
@@ -220,25 +255,42 @@ RkStepperT<Rhs, Dim>::RkStepperT(const RkTableau& tableau, int dim, Rhs& rhs)
   e_ = detail::nonzeroRow(tab_.e, tab_.stages);
 }
 
-template <class Rhs, int Dim>
-void RkStepperT<Rhs, Dim>::setTolerances(double rtol, std::vector<double> atol) {
+template <class Rhs, int Dim, int Quad>
+void RkStepperT<Rhs, Dim, Quad>::setTolerances(double rtol, std::vector<double> atol) {
   rtol_ = rtol;
   atol_ = std::move(atol);
 }
 
-template <class Rhs, int Dim>
-void RkStepperT<Rhs, Dim>::combine(const detail::Row& w, double h, double* __restrict out) const {
-  const double* ks[detail::kMaxTerms];
-  double hw[detail::kMaxTerms];
-  for (int t = 0; t < w.count; ++t) {
-    ks[t] = stage(w.stage[t]);
-    hw[t] = h * w.weight[t];
+template <class Rhs, int Dim, int Quad>
+template <typename RkStepperT<Rhs, Dim, Quad>::Span S>
+void RkStepperT<Rhs, Dim, Quad>::combine(const detail::Row& w, double h,
+                                         double* __restrict out) const {
+  if constexpr (Dim > 0) {
+    // the running sums in registers, terms added in stage order (the same bits as below)
+    constexpr int n = S == Span::Stage ? Dim - Quad : Dim;
+    double acc[n];
+    const double* __restrict y = y_.data();
+    for (int k = 0; k < n; ++k) acc[k] = y[k];
+    for (int t = 0; t < w.count; ++t) {
+      const double hw = h * w.weight[t];
+      const double* __restrict ks = stage(w.stage[t]);
+      for (int k = 0; k < n; ++k) acc[k] += hw * ks[k];
+    }
+    for (int k = 0; k < n; ++k) out[k] = acc[k];
+  } else {
+    const double* ks[detail::kMaxTerms];
+    double hw[detail::kMaxTerms];
+    for (int t = 0; t < w.count; ++t) {
+      ks[t] = stage(w.stage[t]);
+      hw[t] = h * w.weight[t];
+    }
+    const int n = S == Span::Stage ? dim_ - Quad : dim_;
+    detail::kCombine<Dim>[w.count](y_.data(), ks, hw, n, out);
   }
-  detail::kCombine<Dim>[w.count](y_.data(), ks, hw, dim(), out);
 }
 
-template <class Rhs, int Dim>
-void RkStepperT<Rhs, Dim>::restart(double t, const double* y) {
+template <class Rhs, int Dim, int Quad>
+void RkStepperT<Rhs, Dim, Quad>::restart(double t, const double* y) {
   w_th_ = -1.0;
   t_ = t;
   h_ = 0.0;
@@ -246,18 +298,18 @@ void RkStepperT<Rhs, Dim>::restart(double t, const double* y) {
   eval(y_.data(), stage(0));
 }
 
-template <class Rhs, int Dim>
-double RkStepperT<Rhs, Dim>::attempt(double h) {
+template <class Rhs, int Dim, int Quad>
+double RkStepperT<Rhs, Dim, Quad>::attempt(double h) {
   w_th_ = -1.0;
   h_ = h;
   extra_stages_ = false;
   const int s = tab_.stages, n = dim();
   // stages 1 .. s-2; s-1 is the FSAL stage, f(y1)
   for (int j = 1; j < s - 1; ++j) {
-    combine(a_rows_[j], h, tmp_.data());
+    combine<Span::Stage>(a_rows_[j], h, tmp_.data());
     eval(tmp_.data(), stage(j));
   }
-  combine(b_, h, y1_.data());
+  combine<Span::Whole>(b_, h, y1_.data());
   eval(y1_.data(), stage(s - 1));
   // the embedded difference sum_l e_l k_l, stage by stage (vectorized over the components; per
   // component the same sums in the same order as one component at a time)
@@ -286,8 +338,8 @@ double RkStepperT<Rhs, Dim>::attempt(double h) {
   return err;
 }
 
-template <class Rhs, int Dim>
-void RkStepperT<Rhs, Dim>::advance() {
+template <class Rhs, int Dim, int Quad>
+void RkStepperT<Rhs, Dim, Quad>::advance() {
   w_th_ = -1.0;
   t_ += h_;
   std::swap(y_, y1_);
@@ -296,8 +348,8 @@ void RkStepperT<Rhs, Dim>::advance() {
   h_ = 0.0;
 }
 
-template <class Rhs, int Dim>
-double RkStepperT<Rhs, Dim>::initialStepSize(double h_max) {
+template <class Rhs, int Dim, int Quad>
+double RkStepperT<Rhs, Dim, Quad>::initialStepSize(double h_max) {
   // d0 = ||y0||, d1 = ||f(y0)||, d2 = ||f'|| estimated by a trial Euler step; RMS norms in the
   // units of the error target
   const int n = dim();
@@ -329,11 +381,11 @@ double RkStepperT<Rhs, Dim>::initialStepSize(double h_max) {
   return std::min({100.0 * h0, h1, h_max});
 }
 
-template <class Rhs, int Dim>
-void RkStepperT<Rhs, Dim>::ensureStages() {
+template <class Rhs, int Dim, int Quad>
+void RkStepperT<Rhs, Dim, Quad>::ensureStages() {
   if (extra_stages_) return;
   for (int j = tab_.stages; j < tab_.dense_stages; ++j) {
-    combine(a_rows_[j], h_, tmp_.data());
+    combine<Span::Stage>(a_rows_[j], h_, tmp_.data());
     eval(tmp_.data(), stage(j));
   }
   extra_stages_ = true;
@@ -343,8 +395,8 @@ void RkStepperT<Rhs, Dim>::ensureStages() {
 // derivatives b_j'(th) = sum_q (q + 1) p_jq th^q. A value is then y0 + sum_j w_j k_j, computed in
 // the same order for one component as for the whole state, so that a witness evaluated on one
 // component agrees to the last bit with the state the event starts from.
-template <class Rhs, int Dim>
-void RkStepperT<Rhs, Dim>::stageWeights(double th, bool rate) {
+template <class Rhs, int Dim, int Quad>
+void RkStepperT<Rhs, Dim, Quad>::stageWeights(double th, bool rate) {
   ensureStages();
   // the same weights again (a witness and the state at one window end, several witnesses at
   // one th): the step's stages have not changed since (attempt() and restart() reset this)
@@ -354,8 +406,8 @@ void RkStepperT<Rhs, Dim>::stageWeights(double th, bool rate) {
   dense_.weights(th, h_, rate, w_.data());
 }
 
-template <class Rhs, int Dim>
-double RkStepperT<Rhs, Dim>::component(int k, double th) {
+template <class Rhs, int Dim, int Quad>
+double RkStepperT<Rhs, Dim, Quad>::component(int k, double th) {
   if (th == 0.0) return y_.data()[k];
   if (th == 1.0) return y1_.data()[k];
   stageWeights(th, false);
@@ -365,8 +417,28 @@ double RkStepperT<Rhs, Dim>::component(int k, double th) {
   return acc;
 }
 
-template <class Rhs, int Dim>
-double RkStepperT<Rhs, Dim>::componentRate(int k, double th) {
+template <class Rhs, int Dim, int Quad>
+typename RkStepperT<Rhs, Dim, Quad>::Polynomial RkStepperT<Rhs, Dim, Quad>::componentPolynomial(
+    int k) {
+  ensureStages();
+  Polynomial p;
+  p.y0 = y_.data()[k];
+  p.degree = dense_.degree;
+  const int rows = static_cast<int>(dense_.stage.size()), pad = dense_.padded_rows;
+  // row by row, each coefficient's sum in row order (the coefficients are independent: one vector
+  // loop over them per row)
+  constexpr int kDeg = detail::DenseTable::kMaxDegree;
+  std::array<double, kDeg> acc{};
+  for (int r = 0; r < rows; ++r) {
+    const double kr = stage(dense_.stage[r])[k];
+    for (int q = 0; q < kDeg; ++q) acc[q] += dense_.pt[q * pad + r] * kr;
+  }
+  for (int q = 0; q < p.degree; ++q) p.a[q] = h_ * acc[q];
+  return p;
+}
+
+template <class Rhs, int Dim, int Quad>
+double RkStepperT<Rhs, Dim, Quad>::componentRate(int k, double th) {
   stageWeights(th, true);
   double acc = 0.0;
   const int rows = static_cast<int>(dense_.stage.size());
@@ -374,9 +446,9 @@ double RkStepperT<Rhs, Dim>::componentRate(int k, double th) {
   return acc;
 }
 
-template <class Rhs, int Dim>
-void RkStepperT<Rhs, Dim>::interpolateRange(double th, int first, int count,
-                                            double* __restrict out) {
+template <class Rhs, int Dim, int Quad>
+void RkStepperT<Rhs, Dim, Quad>::interpolateRange(double th, int first, int count,
+                                                  double* __restrict out) {
   const double* __restrict y = y_.data() + first;
   double* __restrict o = out + first;
   if (th == 0.0) {
@@ -397,7 +469,7 @@ void RkStepperT<Rhs, Dim>::interpolateRange(double th, int first, int count,
   }
 }
 
-extern template class RkStepperT<OdeRhs, kDynamic>;
+extern template class RkStepperT<OdeRhs, kDynamic, 0>;
 
 }  // namespace metrosync::ode
 

@@ -79,8 +79,9 @@ TEST(VectorTrig, NonFiniteArgumentsGiveNaN) {
 }
 
 TEST(VectorTrig, BelowTheVectorWidthTheScalarBitsAreKept) {
-  // n < kVectorTrigMin goes through std::sin and std::cos themselves: the same bits
-  const double x[3] = {0.3, -2.1, 1e-3};
+  // outside the small-angle polynomials' domain, n < kVectorTrigMin goes through std::sin and
+  // std::cos themselves: the same bits
+  const double x[3] = {2.3, -2.1, 1e-3};
   double s[3], c[3];
   for (int n = 1; n < kVectorTrigMin && n <= 3; ++n) {
     sinCos(x, s, c, n);
@@ -88,6 +89,49 @@ TEST(VectorTrig, BelowTheVectorWidthTheScalarBitsAreKept) {
       EXPECT_EQ(s[i], std::sin(x[i]));
       EXPECT_EQ(c[i], std::cos(x[i]));
     }
+  }
+}
+
+// The small-angle polynomials (every |x| <= kSmallAngle): within the same 4 ulp of glibc at every
+// length, across the whole domain, at its ends and at the special small values; and the glibc
+// path takes over the moment one angle leaves the domain.
+TEST(VectorTrig, SmallAnglePolynomialsMatchTheScalarFunctions) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> angle(-kSmallAngle, kSmallAngle);
+  for (int n = 1; n <= 41; ++n)
+    for (int rep = 0; rep < 50; ++rep) {
+      std::vector<double> x(n);
+      for (double& v : x) v = angle(rng);
+      std::vector<double> s(n), c(n);
+      ASSERT_TRUE(smallAngleSinCos(x.data(), s.data(), c.data(), n));
+      expectMatchesScalar(x);
+    }
+  const double d = std::numeric_limits<double>::denorm_min();
+  expectMatchesScalar({0.0, -0.0, d, -d, 1e-300, 1e-8, -1e-8, kSmallAngle, -kSmallAngle,
+                       std::nextafter(kSmallAngle, 0.0), 0.785398163397448, 1.0, -1.2});
+  const double one_out[3] = {0.2, std::nextafter(kSmallAngle, 2.0), -0.4};
+  double s[3], c[3];
+  EXPECT_FALSE(smallAngleSinCos(one_out, s, c, 3));
+  const double nan_in[2] = {0.1, std::numeric_limits<double>::quiet_NaN()};
+  EXPECT_FALSE(smallAngleSinCos(nan_in, s, c, 2));
+}
+
+// Mirror-image pendulums (exact antiphase) must get mirror-image sines and equal cosines to the
+// last bit, whatever their partners in the same call (the resolver cancels their impulses on the
+// platform exactly).
+TEST(VectorTrig, SmallAnglesAreOddEvenAndIndependentOfTheirNeighbours) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> angle(-kSmallAngle, kSmallAngle);
+  for (int rep = 0; rep < 1000; ++rep) {
+    const double a = angle(rng), b = angle(rng), z = angle(rng);
+    const double x[3] = {a, -a, b}, y[2] = {z, a};
+    double s[3], c[3], s2[2], c2[2];
+    sinCos(x, s, c, 3);
+    sinCos(y, s2, c2, 2);
+    EXPECT_EQ(s[1], -s[0]);
+    EXPECT_EQ(c[1], c[0]);
+    EXPECT_EQ(s2[1], s[0]);  // lane 1 of another call, next to another angle
+    EXPECT_EQ(c2[1], c[0]);
   }
 }
 

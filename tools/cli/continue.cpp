@@ -14,6 +14,7 @@
 #include "sim/analysis/continuation/start_states.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/option_keys.h"
+#include "tools/cli/continue_full.h"
 #include "tools/report/continuation_report.h"
 #include "yaml/rig_loader.h"
 
@@ -382,6 +383,11 @@ CLI::App* addContinueCommand(CLI::App& app) {
       "follow the slow flow's locked states in one rig key: stability, folds, Hopf "
       "points, branch points, border crossings");
   c->add_option("RIG", opt.rig_path, "rig file (YAML); default: the built-in rig");
+  c->add_option("--model", opt.model,
+                "slow (the slow flow's locked states) or full (the full model's periodic orbits, "
+                "docs/continuation.md)")
+      ->check(CLI::IsMember({"slow", "full"}))
+      ->capture_default_str();
   c->add_option("--set", opt.sets, "override a rig key (as in run); repeatable")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
@@ -419,6 +425,7 @@ int continueCommand() {
 }
 
 int continueCommand(const ContinueOptions& opt) {
+  if (opt.model == "full") return continueFullCommand(opt);
   const double from = startValue(opt);
   const double from2 = opt.fold_key.empty() ? 0.0 : secondStart(opt);
   const Rig rig = loadWith(opt, {opt.param + "=" + fmt(from)});

@@ -14,6 +14,7 @@ namespace metrosync::cli {
 
 struct ContinueOptions {
   std::string rig_path;           // empty: the built-in default rig
+  std::string model = "slow";     // --model slow|full (full: tools/cli/continue_full.h)
   std::vector<std::string> sets;  // --set KEY=VALUE, in order
   std::string param;              // --param KEY
   double to = 0.0;                // --to VALUE

@@ -9,6 +9,7 @@
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 #include "tools/report/plot.h"
 #include "tools/report/validation_bifurcations_report.h"
+#include "tools/report/validation_full_orbits_report.h"
 
 namespace metrosync {
 
@@ -411,6 +412,7 @@ void mdSummary(std::ostream& md, const ValidationResults& r) {
        << " confirmed by slow-flow runs on both sides: " << passText(pass == checked && located > 0)
        << " |\n";
   }
+  if (r.full_orbits) mdFullOrbitsSummaryRow(md, *r.full_orbits);
   md << "\nChecks failed: " << r.failedChecks()
      << "; runs that stopped early: " << r.incompleteRuns() << ".\n\n";
 }
@@ -699,6 +701,7 @@ std::string validationReportMarkdown(const ValidationResults& r, const ReportCon
     mdSweepWords(md, r, plots);
   }
   mdBifurcations(md, r.bifurcations);
+  if (r.full_orbits) mdFullOrbits(md, *r.full_orbits);
   return md.str();
 }
 
@@ -780,6 +783,7 @@ nlohmann::json validationJson(const ValidationResults& r, const ReportContext& c
                           {"slow", modelRunJson(p.slow)},
                           {"full", modelRunJson(p.full)}});
   if (!r.bifurcations.empty()) j["bifurcations"] = validationBifurcationsJson(r.bifurcations);
+  if (r.full_orbits) j["full_orbits"] = validationFullOrbitsJson(*r.full_orbits);
   return j;
 }
 

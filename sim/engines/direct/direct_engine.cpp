@@ -183,7 +183,8 @@ class DirectRun : public EventSystem {
   EnvelopeRecorder env_;
   Dynamics<N> dyn_;
   const RkTableau& tab_;
-  ode::RkStepperT<Dynamics<N>, stateDim(N)> stepper_;
+  // the ledger's two quadratures (the damping's and friction's work) are not in the stages
+  ode::RkStepperT<Dynamics<N>, stateDim(N), 2> stepper_;
   RunReport report_;
   double omega0_ = 1.0, period_ = 1.0;
   std::vector<Witness> witnesses_;
@@ -558,8 +559,30 @@ void DirectRun<N>::findCrossings() {
 // The window (sim/events/window.h): every crossing bracketed, the end at the earliest.
 template <int N>
 double DirectRun<N>::locateWindow() {
-  return metrosync::locateWindow(found_,
-                                 [&](int w, double th) { return witnessAt(witnesses_[w], th); });
+  // a tick's witness and a slip's are one component of the state: bracketed on that component's
+  // interpolant as a polynomial, confirmed on the exact interpolant; a stuck platform's margin
+  // is a function of the whole state
+  using Poly = typename decltype(stepper_)::Polynomial;
+  struct PolyWitness {  // sign * y_k(th) - offset
+    Poly p;
+    double sign, offset;
+    double operator()(double th) const { return sign * p(th) - offset; }
+    std::pair<double, double> valueRate(double th) const {
+      const auto [v, r] = p.valueRate(th);
+      return {sign * v - offset, sign * r};
+    }
+  };
+  auto approx = [&](int w) -> std::optional<PolyWitness> {
+    const Witness& wi = witnesses_[w];
+    if (wi.kind == WitnessKind::Platform && mode() == PlatformMode::Stuck) return std::nullopt;
+    const bool tick = wi.kind == WitnessKind::Tick;
+    const int k = tick ? lay_.theta(wi.pendulum) : StateLayout::kV;
+    const double sign = tick ? wi.side : -static_cast<int>(mode());
+    const double offset = tick ? eq_.pendulum(wi.pendulum).theta_c : 0.0;
+    return PolyWitness{stepper_.componentPolynomial(k), sign, offset};
+  };
+  return metrosync::locateWindow(
+      found_, [&](int w, double th) { return witnessAt(witnesses_[w], th); }, approx);
 }
 
 // The window's end state in ya_: the platform's witness decides whether it switches (a tick
@@ -616,6 +639,7 @@ void DirectRun<N>::integrate(double h_max, StormGuard& storm) {
       if (!report_.complete) break;
       continue;
     }
+
     ++report_.counts.steps;
     const double t1 = last ? t_end_ : stepper_.t1();
     h = std::min(h_max, stepper_.nextStepSize(step, err, true));

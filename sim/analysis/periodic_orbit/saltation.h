@@ -1,0 +1,28 @@
+// The saltation matrix of an event window: how a perturbation of the state just before the window
+// maps to one just after it, the event's time moving with the perturbation (Aizerman and
+// Gantmacher 1958; Leine and Nijmeijer, "Dynamics and bifurcations of non-smooth mechanical
+// systems", 2004, ch. 3):
+//     S = Dg + (f+ - Dg f-) dh^T / (dh . f-)
+// g the jump map at the event, h the event function (rising through zero), f- and f+ the vector
+// fields before and after (in their platform modes). For this model:
+//   tick of pendulum j    h = side theta_j - theta_c, g the impulse through M(theta)^-1 (then a
+//                         plastic stop when the engine stopped a micro-slip at once)
+//   slip stops / reverses h = -mode xdot, g the identity (xdot is 0 there)
+//   stuck breaks free     h = |H| - bound, H the holding force; g the identity (f+ = f- there:
+//                         the slip starts with zero acceleration, so S = I to rounding)
+// Simultaneous ticks (identical metronomes in phase) are taken one after the other, in index
+// order, with no time in between: the product of their saltations.
+#pragma once
+
+#include "sim/analysis/periodic_orbit/engine_trace.h"
+#include "sim/analysis/periodic_orbit/scaled_model.h"
+
+namespace metrosync::orbit {
+
+Mat saltation(const ScaledModel& model, const EngineWindow& window);
+
+// The state after `window` as the jump maps above compute it from window.before (for the check
+// against the engine's own window.after).
+Vec jumpedState(const ScaledModel& model, const EngineWindow& window);
+
+}  // namespace metrosync::orbit
