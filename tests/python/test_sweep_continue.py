@@ -47,6 +47,19 @@ def test_continue_passes_no_cycles_and_the_second_key(tmp_path):
                                   [float(r[header.index("platform.friction.mu")]) for r in rows])
 
 
+def test_continue_follows_the_full_models_orbits(tmp_path):
+    # f4.3's in-phase orbit at epsilon = 0.073 loses stability at a torus point, then folds
+    # (docs/continuation.md); the same files as `continue --model full`
+    f43 = F44.replace("f4.4-alpha4", "f4.3-mu0.2")
+    args = ["--model", "full", "--param", "platform.friction.mu", "--to", "0.3"]
+    cli("continue", f43, "--quiet", *args, "--out", str(tmp_path / "cli"))
+    res = metrosync.continue_(f43, model="full", param="platform.friction.mu", to=0.3)
+    assert res.bifurcations == json.load(open(tmp_path / "cli" / "bifurcations.json"))
+    assert [b["type"] for b in res.bifurcations] == ["torus", "fold"]
+    header, rows = read_rows(tmp_path / "cli" / "branches.csv")
+    assert "period" in header and len(res.branches["period"]) == len(rows)
+
+
 def interrupted_within(call, delay=0.5):
     """Sends SIGINT from another thread `delay` s into call(); returns the seconds from the
     signal to KeyboardInterrupt."""

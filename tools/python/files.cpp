@@ -31,12 +31,14 @@ int networkRun(const std::string& rig_path, const std::vector<std::string>& sets
 
 // `metrosync continue` into `out`.
 int continueCommand(const std::string& rig_path, const std::vector<std::string>& sets,
-                    const std::string& param, double to, const std::string& out,
-                    std::optional<double> from, const std::string& start, double step,
-                    int max_points, bool all, bool no_cycles, const std::string& fold, double to2) {
+                    const std::string& model, const std::string& param, double to,
+                    const std::string& out, std::optional<double> from, const std::string& start,
+                    double step, int max_points, bool all, bool no_cycles, const std::string& fold,
+                    double to2) {
   cli::ContinueOptions o;
   o.rig_path = rig_path;
   o.sets = sets;
+  o.model = model;
   o.param = param;
   o.to = to;
   o.from = from;
@@ -78,10 +80,10 @@ void bindFiles(py::module_& m) {
   m.def("network_run", &networkRun, py::arg("rig_path"), py::arg("sets"), py::arg("engine"),
         py::arg("out"), py::arg("plot"));
   m.def("continue_command", &continueCommand, py::arg("rig_path"), py::arg("sets"),
-        py::arg("param"), py::arg("to"), py::arg("out"), py::arg("from_") = std::nullopt,
-        py::arg("start") = "", py::arg("step") = 0.0, py::arg("max_points") = 500,
-        py::arg("all") = false, py::arg("no_cycles") = false, py::arg("fold") = "",
-        py::arg("to2") = 0.0);
+        py::arg("model"), py::arg("param"), py::arg("to"), py::arg("out"),
+        py::arg("from_") = std::nullopt, py::arg("start") = "", py::arg("step") = 0.0,
+        py::arg("max_points") = 500, py::arg("all") = false, py::arg("no_cycles") = false,
+        py::arg("fold") = "", py::arg("to2") = 0.0);
   m.def("fit_command", &fitCommand, py::arg("rig_path"), py::arg("data_path"), py::arg("free"),
         py::arg("sets"), py::arg("model"), py::arg("out"), py::arg("plot"));
 }

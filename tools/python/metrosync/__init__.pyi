@@ -144,6 +144,7 @@ def continue_(
     no_cycles: bool = False,
     fold: Optional[str] = None,
     to2: Optional[float] = None,
+    model: str = "slow",
     out: Optional[Union[str, os.PathLike]] = None,
 ) -> ContinuationResult: ...
 def fit(

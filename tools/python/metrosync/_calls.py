@@ -192,9 +192,11 @@ def basin(rig, random, samples, seed=1, model=None, engine=None, jobs=None, out=
 
 
 def continue_(rig, param, to, from_=None, start=None, step=None, max_points=500, all=False,
-              no_cycles=False, fold=None, to2=None, out=None):
-    """The slow flow's locked states followed in one rig key (``metrosync continue``): `param`
-    from the rig's value (or `from_`) to `to`, with their stability and bifurcations. start:
+              no_cycles=False, fold=None, to2=None, model="slow", out=None):
+    """Locked states followed in one rig key (``metrosync continue``, docs/continuation.md):
+    `param` from the rig's value (or `from_`) to `to`, with their stability and bifurcations;
+    model "slow" (the slow flow's fixed points, default) or "full" (the full model's periodic
+    orbits, their Floquet multipliers; branches.csv has the full model's columns). start:
     (A_1..A_N, psi_2..psi_N) to start from; all: every locked state at the start; no_cycles: do
     not follow the limit cycle born at each Hopf point; fold=KEY2 with to2: each fold and Hopf
     point followed in two keys (``.fold_curve``, ``.hopf_curve``). Returns a
@@ -203,6 +205,8 @@ def continue_(rig, param, to, from_=None, start=None, step=None, max_points=500,
     >>> c = metrosync.continue_("yaml/rigs/paper/f4.4-alpha4.yaml", param="metronomes.1.alpha",
     ...                         from_=3.0, to=4.0)
     >>> c.bifurcations[0]["type"], c.to_pandas().head()
+    >>> full = metrosync.continue_("yaml/rigs/paper/f4.3-mu0.2.yaml", model="full",
+    ...                            param="platform.friction.mu", to=0.35)
     """
     rig = as_rig(rig)
     if (fold is None) != (to2 is None):
@@ -210,7 +214,8 @@ def continue_(rig, param, to, from_=None, start=None, step=None, max_points=500,
     start_text = "" if start is None else ",".join(repr(float(v)) for v in start)
     with _rig_file(rig) as (path, folder):
         target = _folder(out) or os.path.join(folder, "out")
-        _core.continue_command(path, [o.text for o in rig._origins()], param, float(to), target,
+        _core.continue_command(path, [o.text for o in rig._origins()], model, param, float(to),
+                               target,
                                None if from_ is None else float(from_), start_text,
                                float(step or 0.0), int(max_points), bool(all), bool(no_cycles),
                                fold or "", float(to2 or 0.0))
