@@ -5,6 +5,7 @@
 #include <map>
 
 #include "yaml/rig_build.h"
+#include "yaml/utf8.h"
 
 namespace metrosync {
 
@@ -50,12 +51,11 @@ std::string platformName(const Node& p, const std::string& path, const RigSource
   const std::string& name = n->scalar;
   if (name.empty() || name.size() > kMaxNameBytes)
     failAt(src, n->at, path + ".name: must be 1 to " + std::to_string(kMaxNameBytes) + " bytes");
-  for (unsigned char ch : name)
-    if (ch <= 0x20 || ch == 0x7F || ch == ',' || ch == '"')
-      failAt(src, n->at,
-             path + ".name = " + name +
-                 ": must not contain spaces, commas, quotes or control characters "
-                 "(it names CSV columns)");
+  if (firstControl(name) || name.find_first_of(" ,\"") != std::string::npos)
+    failAt(src, n->at,
+           path + ".name = " + printable(name) +
+               ": must not contain spaces, commas, quotes or control characters "
+               "(it names CSV columns)");
   if (auto it = seen.find(name); it != seen.end())
     failAt(src, n->at,
            path + ".name = " + name + ": duplicate: platforms." + std::to_string(it->second) +
@@ -98,13 +98,39 @@ void resolveOn(Network& net, const Node& list, const RigSource& src,
                  ": a platform resting on another has no spring to the ground");
   }
   for (int i = 0; i < n; ++i) {
-    int p = i;
-    for (int step = 0; step < n && p >= 0; ++step) p = net.platforms[p].on;
+    int p = i, depth = 0;
+    for (int step = 0; step < n && p >= 0; ++step, ++depth) p = net.platforms[p].on;
     if (p >= 0)
       failAt(src, list.seq[i].find("on")->at,
              "platforms." + std::to_string(i) +
                  ".on: a cycle of `on` (platforms rest on each other in a ring)");
+    if (depth > kMaxStackDepth)  // platform i and the `depth - 1` below it
+      failAt(src, list.seq[i].find("on")->at,
+             "platforms." + std::to_string(i) + ".on: a stack of " + std::to_string(depth) +
+                 " platforms, one on another (at most " + std::to_string(kMaxStackDepth) +
+                 ", see docs/rig-limits.md)");
   }
+}
+
+// Every platform's metronomes together within kMaxMetronomes (the engines couple them all), and
+// in a network of several platforms at least one of them swinging.
+void checkNetworkSize(const Network& net, const Node& list, const RigSource& src) {
+  std::size_t total = 0, swinging = 0;
+  for (std::size_t i = 0; i < net.platforms.size(); ++i) {
+    for (const MetronomeSpec& m : net.platforms[i].rig.metronomes) swinging += !m.locked;
+    total += net.platforms[i].rig.metronomes.size();
+    if (total > kMaxMetronomes)
+      failAt(src, list.seq[i].at,
+             "platforms." + std::to_string(i) + ": brings the network to " + std::to_string(total) +
+                 " metronomes (at most " + std::to_string(kMaxMetronomes) +
+                 " over all platforms, see docs/rig-limits.md)");
+  }
+  // one platform with its metronomes locked is today's rig, a board on its springs (section 3A);
+  // a network of several needs a swinging pendulum for its time scale
+  if (swinging == 0 && net.platforms.size() > 1)
+    failAt(src, list.at,
+           "platforms: every metronome of the network is locked: nothing swings to simulate "
+           "(unlock one: locked: false)");
 }
 
 void readCouplings(Network& net, const Node& root, const RigSource& src,
@@ -151,6 +177,10 @@ Network buildNetwork(const Node& root, const RigSource& src, const std::string& 
                  "both; a network's platforms hold their own metronomes and start");
   const Node& list = *root.find("platforms");
   if (list.seq.empty()) failAt(src, list.at, "platforms: must hold at least one platform");
+  if (list.seq.size() > kMaxPlatforms)
+    failAt(src, list.at,
+           "platforms: " + std::to_string(list.seq.size()) + " platforms (at most " +
+               std::to_string(kMaxPlatforms) + ", see docs/rig-limits.md)");
   Network net;
   std::map<std::string, int> names;
   for (std::size_t i = 0; i < list.seq.size(); ++i) {
@@ -167,6 +197,7 @@ Network buildNetwork(const Node& root, const RigSource& src, const std::string& 
   net.name = net.platforms[0].rig.name;
   net.gravity_m_s2 = net.platforms[0].rig.gravity_m_s2;
   net.sim = net.platforms[0].rig.sim;
+  checkNetworkSize(net, list, src);
   resolveOn(net, list, src, names);
   readCouplings(net, root, src, names);
   return net;

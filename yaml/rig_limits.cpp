@@ -31,7 +31,8 @@ OutputEstimate estimateOutput(const Rig& rig) {
   OutputEstimate e;
   e.sample_s = rig.sim.sample_s > 0 ? rig.sim.sample_s : period / kDefaultSamplesPerPeriod;
   e.trajectory_rows = std::floor(rig.sim.t_end_s / e.sample_s) + 1.0;
-  e.envelope_rows = std::floor(rig.sim.t_end_s / period * kEnvelopeRowsPerPeriod) + 1.0;
+  e.periods = rig.sim.t_end_s / period;
+  e.envelope_rows = std::floor(e.periods * kEnvelopeRowsPerPeriod) + 1.0;
   // trajectory: t, x, xdot, (theta_i, thetadot_i), platform; envelope: tau, A_i, psi_j, r
   e.bytes = e.trajectory_rows * (2.0 * n + 4.0) * kTrajectoryBytesPerNumber +
             kEnvelopeFiles * e.envelope_rows * (2.0 * n + 1.0) * kEnvelopeBytesPerNumber;

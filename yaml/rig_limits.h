@@ -37,10 +37,27 @@ constexpr double kSampleResolution = 1e-10;
 // Default output limit (bytes written by one run, all files): 2 GB; --max-output lifts it.
 constexpr double kDefaultMaxOutputBytes = 2e9;
 
+// The longest run any command integrates, in fast periods (2 pi time scales), whatever it writes:
+// sweep and basin points, continue's settling run, fit's model runs and animate included.
+// Measured (docs/rig-limits.md): the slow flow takes about 0.6 s per 10^6 periods, the full model
+// of two metronomes about 1.2 s per 10^4; the paper's and shipped runs span at most ~10^5. At
+// 10^8 a slow-flow run takes about a minute and the full model hours: still runnable, while
+// tau = 1e300 or epsilon = 1e-12 (10^13 periods and more) is refused at once.
+constexpr double kMaxRunPeriods = 1e8;
+
+// A network of platforms (yaml/network_loader.h): at most this many platforms, and a stack (a
+// platform `on` another, on another...) at most this deep. Each platform adds a coordinate and
+// its own stick-slip events to every step, each level of a stack a chain of nested contacts:
+// 1000 stacked platforms took 67 s for 0.01 s simulated (issue 29). The shipped networks have 2
+// platforms, the Martens et al. geometry 2, a stack 2 levels.
+constexpr std::size_t kMaxPlatforms = 64;
+constexpr int kMaxStackDepth = 8;
+
 // What a run of `rig` writes at most: the trajectory (every sample) and the envelope files (one
 // row a fast period; compare's two envelopes and comparison.csv counted as four).
 struct OutputEstimate {
   double sample_s = 0.0;  // the trajectory interval: simulation.sample or the engines' default
+  double periods = 0.0;   // fast periods the run spans (kMaxRunPeriods)
   double trajectory_rows = 0.0;
   double envelope_rows = 0.0;
   double bytes = 0.0;

@@ -594,8 +594,8 @@ std::optional<std::string> optName(const Reader& r) {
   if (name->size() > kMaxNameBytes)
     r.bad("name", "is " + std::to_string(name->size()) + " bytes long (at most " +
                       std::to_string(kMaxNameBytes) + ")");
-  for (unsigned char ch : *name)
-    if (ch < 0x20 || ch == 0x7F) r.bad("name", "must not contain control characters");
+  if (firstControl(*name))  // C0, DEL and C1 (yaml/utf8.h)
+    r.bad("name", "must not contain control characters");
   return name;
 }
 
@@ -794,8 +794,8 @@ Rig buildPhysical(const Node& root, const Source& src, const std::string& fallba
     const Reader m(list.seq[i], metronomes_path + "." + std::to_string(i), src);
     MetronomeSpec mt;
     mt.name = optName(m).value_or(std::to_string(i + 1));
-    mt.box_mass_kg =
-        nonNegative(m, "box_mass", m.number("box_mass", "kg, the metronome without its pendulum"));
+    // a mass, > 0 (SPEC 1c): a massless box would leave its pendulum's pivot without inertia
+    mt.box_mass_kg = positive(m, "box_mass", "kg, the metronome without its pendulum");
 
     readPhysicalPendulum(m, mt);
     readPhysicalEscapement(m, mt, amplitude_of[i]);
@@ -895,6 +895,12 @@ void checkOutput(const Reader& sim, const char* duration_key, const Rig& rig,
                           " * its length, " + fmt(rig.sim.t_end_s * kSampleResolution) +
                           " s here): consecutive rows would have the same time");
   const OutputEstimate e = estimateOutput(rig);
+  if (e.periods > kMaxRunPeriods)  // every command: the cost of the run itself (issue 29)
+    sim.bad(duration_key,
+            "the run would span " + fmt(e.periods) + " fast periods" +
+                (rig.units == Units::Scaled ? " (the fast time runs to tau / epsilon)" : "") +
+                ", above the limit of " + fmt(kMaxRunPeriods) +
+                " for any command (docs/rig-limits.md): shorten the run");
   if (!(e.bytes > opt.max_output_bytes)) return;
   sim.bad(culprit, "the run would write about " + fmt(e.trajectory_rows) +
                        " trajectory rows (every " + fmt(e.sample_s) + " s) and " +
@@ -966,6 +972,10 @@ Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
   const Node root = checkedRigTree(yaml_text, RigSource{display_name, overrides});
   const std::optional<Units> units = unitsOf(root);  // checked: units decide the schema
   const std::string stem = stemOf(display_name);
+  if (const Node* couplings = root.find("couplings"); couplings && !root.find("platforms"))
+    src.fail(couplings->at,
+             "couplings: join the platforms of a network (platforms: [...], docs/networks.md); "
+             "this rig has one platform, with nothing to couple it to");
   if (const Node* platforms = root.find("platforms")) {
     // a network (docs/networks.md): one platform on the table, uncoupled, is today's rig
     const Network net = buildNetwork(root, RigSource{display_name, overrides}, stem, options);

@@ -44,22 +44,51 @@ std::optional<std::size_t> firstBadUtf8(const std::string& s) {
   return std::nullopt;
 }
 
-std::string printable(const std::string& s) {
+bool isControlAt(const std::string& s, std::size_t i) {
+  const unsigned char b = static_cast<unsigned char>(s[i]);
+  if (b < 0x20 || b == 0x7F) return true;
+  const unsigned char next = i + 1 < s.size() ? static_cast<unsigned char>(s[i + 1]) : 0;
+  return b == 0xC2 && next >= 0x80 && next <= 0x9F;
+}
+
+std::optional<std::size_t> firstControl(const std::string& s) {
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (isControlAt(s, i)) return i;
+  return std::nullopt;
+}
+
+namespace {
+
+// `s` with ill-formed bytes and control characters as \xNN, but for those `keep` accepts.
+std::string escaped(const std::string& s, bool (*keep)(unsigned char)) {
   std::string out;
+  char buf[16];
   for (std::size_t i = 0; i < s.size();) {
     const std::size_t len = sequenceLength(s, i);
     const unsigned char b = static_cast<unsigned char>(s[i]);
-    if (len == 0 || b < 0x20 || b == 0x7F) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02X", b);
-      out += buf;
-      ++i;
+    if (len == 0 || (isControlAt(s, i) && !keep(b))) {
+      const std::size_t n = len == 2 ? 2 : 1;  // a C1 character: both its bytes
+      for (std::size_t k = 0; k < n; ++k) {
+        std::snprintf(buf, sizeof buf, "\\x%02X", static_cast<unsigned char>(s[i + k]));
+        out += buf;
+      }
+      i += n;
     } else {
       out.append(s, i, len);
       i += len;
     }
   }
   return out;
+}
+
+}  // namespace
+
+std::string printable(const std::string& s) {
+  return escaped(s, [](unsigned char) { return false; });
+}
+
+std::string terminalText(const std::string& s) {
+  return escaped(s, [](unsigned char b) { return b == '\n' || b == '\t'; });
 }
 
 }  // namespace metrosync

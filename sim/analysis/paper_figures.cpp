@@ -1,11 +1,11 @@
 #include "sim/analysis/paper_figures.h"
 
 #include <algorithm>
-#include <atomic>
 #include <exception>
 #include <mutex>
 #include <stdexcept>
-#include <thread>
+
+#include "sim/parallel/worker_pool.h"
 
 namespace metrosync {
 
@@ -144,30 +144,16 @@ std::vector<FigureResult> runPaperFigures(const std::vector<FigureSpec>& figures
     }
   std::stable_sort(tasks.begin(), tasks.end(),
                    [](const RunTask& a, const RunTask& b) { return a.cost > b.cost; });
-  std::atomic<size_t> next{0};
-  std::mutex lock;  // guards progress and the first error
-  std::exception_ptr error;
-  auto worker = [&] {
-    for (size_t k; (k = next++) < tasks.size();) {
-      try {
-        runTask(tasks[k], engines);
-        const ModelRun& m = tasks[k].full ? tasks[k].run->full : tasks[k].run->slow;
-        std::lock_guard<std::mutex> g(lock);
-        if (progress)
-          progress(tasks[k].scenario->spec.name + " " + (tasks[k].full ? "full" : "slow") + ": " +
-                   (m.report.complete ? toString(m.verdict.regime) : "FAILED"));
-      } catch (...) {
-        std::lock_guard<std::mutex> g(lock);
-        if (!error) error = std::current_exception();
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  const size_t threads = std::min<size_t>(std::max(jobs, 1), std::max<size_t>(tasks.size(), 1));
-  for (size_t t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  std::mutex lock;  // guards progress
+  // the pool (sim/parallel/worker_pool.h): the costliest first, each thread taking the next task
+  parallelFor(static_cast<long>(tasks.size()), jobs, [&](long k) {
+    runTask(tasks[k], engines);
+    const ModelRun& m = tasks[k].full ? tasks[k].run->full : tasks[k].run->slow;
+    std::lock_guard<std::mutex> g(lock);
+    if (progress)
+      progress(tasks[k].scenario->spec.name + " " + (tasks[k].full ? "full" : "slow") + ": " +
+               (m.report.complete ? toString(m.verdict.regime) : "FAILED"));
+  });
   return results;
 }
 

@@ -10,6 +10,8 @@
 #include <sstream>
 #include <thread>
 
+#include "sim/parallel/worker_pool.h"
+
 namespace metrosync {
 
 namespace {
@@ -335,14 +337,13 @@ double wrapToTwoPi(double angle_rad) {
 
 // ---- running ------------------------------------------------------------------------------------
 
-void runSweepPoints(long grid_size, const std::function<bool(long)>& wanted, int jobs,
-                    const std::function<std::optional<SweepPoint>(long)>& run_point,
-                    const std::function<void(const SweepPoint&)>& finished,
-                    const std::function<bool()>& stop) {
+int runSweepPoints(long grid_size, const std::function<bool(long)>& wanted, int jobs,
+                   const std::function<std::optional<SweepPoint>(long)>& run_point,
+                   const std::function<void(const SweepPoint&)>& finished,
+                   const std::function<bool()>& stop) {
   std::mutex lock;  // guards next, finished() and the first error
   long next = 0;
   bool failed = false;
-  std::exception_ptr first_error;
   auto take = [&]() -> long {  // the next wanted index, or -1; under the lock
     while (next < grid_size && !wanted(next)) ++next;
     return next < grid_size ? next++ : -1;
@@ -362,28 +363,23 @@ void runSweepPoints(long grid_size, const std::function<bool(long)>& wanted, int
       }
     } catch (...) {
       std::lock_guard<std::mutex> l(lock);
-      if (!first_error) first_error = std::current_exception();
       failed = true;
+      throw;  // the pool rethrows the first one
     }
   };
-  const int threads = std::max(1, jobs);
-  if (threads == 1) {
-    worker();
-  } else {
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
-    for (auto& t : pool) t.join();
-  }
-  if (first_error) std::rethrow_exception(first_error);
+  // never more threads than points to run: count the wanted ones up to `jobs`
+  long work = 0;
+  const long most = jobs > 0 ? jobs : workerCount(jobs, grid_size);
+  for (long g = 0; g < grid_size && work < most; ++g) work += wanted(g);
+  return runWorkers(workerCount(jobs, work), worker);
 }
 
-void runSweepPoints(const std::vector<long>& todo, int jobs,
-                    const std::function<std::optional<SweepPoint>(long)>& run_point,
-                    const std::function<void(const SweepPoint&)>& finished,
-                    const std::function<bool()>& stop) {
-  runSweepPoints(
-      static_cast<long>(todo.size()), [](long) { return true; },
-      std::min<long>(std::max(jobs, 1), std::max<long>(1, static_cast<long>(todo.size()))),
+int runSweepPoints(const std::vector<long>& todo, int jobs,
+                   const std::function<std::optional<SweepPoint>(long)>& run_point,
+                   const std::function<void(const SweepPoint&)>& finished,
+                   const std::function<bool()>& stop) {
+  return runSweepPoints(
+      static_cast<long>(todo.size()), [](long) { return true; }, jobs,
       [&](long k) { return run_point(todo[k]); }, finished, stop);
 }
 

@@ -173,14 +173,16 @@ double wrapToTwoPi(double angle_rad);
 // run_point returns nullopt for a point that was interrupted (not recorded). No new point starts
 // once stop() is true. Exceptions from run_point or finished stop the sweep and are rethrown (the
 // first one). The indices are handed out one at a time, so memory does not grow with the grid.
-void runSweepPoints(long grid_size, const std::function<bool(long)>& wanted, int jobs,
-                    const std::function<std::optional<SweepPoint>(long)>& run_point,
-                    const std::function<void(const SweepPoint&)>& finished,
-                    const std::function<bool()>& stop);
+// Runs on the pool of sim/parallel/worker_pool.h: never more threads than wanted points, fewer
+// when the system refuses more; returns how many ran.
+int runSweepPoints(long grid_size, const std::function<bool(long)>& wanted, int jobs,
+                   const std::function<std::optional<SweepPoint>(long)>& run_point,
+                   const std::function<void(const SweepPoint&)>& finished,
+                   const std::function<bool()>& stop);
 // ... for the indices of `todo`, in that order.
-void runSweepPoints(const std::vector<long>& todo, int jobs,
-                    const std::function<std::optional<SweepPoint>(long)>& run_point,
-                    const std::function<void(const SweepPoint&)>& finished,
-                    const std::function<bool()>& stop);
+int runSweepPoints(const std::vector<long>& todo, int jobs,
+                   const std::function<std::optional<SweepPoint>(long)>& run_point,
+                   const std::function<void(const SweepPoint&)>& finished,
+                   const std::function<bool()>& stop);
 
 }  // namespace metrosync

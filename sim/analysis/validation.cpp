@@ -15,6 +15,7 @@
 #include "contact/averaged_response.h"
 #include "sim/analysis/compare.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
+#include "sim/parallel/worker_pool.h"
 
 namespace metrosync {
 
@@ -461,36 +462,6 @@ bool finalStatesAgree(const ModelRun& full, const ModelRun& slow, double distanc
   }
 }
 
-// Runs task(k) for k in `order` on `jobs` threads (dynamic: each takes the next index when it
-// is free, so long tasks listed first balance best). The first exception is rethrown at the end.
-void parallelFor(int jobs, const std::vector<size_t>& order,
-                 const std::function<void(size_t)>& task) {
-  std::atomic<size_t> next{0};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  auto worker = [&] {
-    for (;;) {
-      const size_t k = next++;
-      if (k >= order.size()) return;
-      try {
-        task(order[k]);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
-      }
-    }
-  };
-  const size_t threads = std::min<size_t>(std::max(jobs, 1), order.size());
-  if (threads <= 1) {
-    worker();
-  } else {
-    std::vector<std::thread> pool;
-    for (size_t t = 0; t < threads; ++t) pool.emplace_back(worker);
-    for (auto& t : pool) t.join();
-  }
-  if (error) std::rethrow_exception(error);
-}
-
 std::vector<size_t> identity(size_t n) {
   std::vector<size_t> v(n);
   for (size_t k = 0; k < n; ++k) v[k] = k;
@@ -542,7 +513,7 @@ struct Task {
 void runBetas(const ValidationPlan& plan, const ValidationEngines& engines, ProgressLog& log,
               int jobs, ValidationResults& res) {
   res.betas.resize(plan.beta_s.size());
-  parallelFor(jobs, identity(plan.beta_s.size()), [&](size_t k) {
+  parallelFor(static_cast<long>(plan.beta_s.size()), jobs, [&](long k) {
     BetaRow& row = res.betas[k];
     const double s = plan.beta_s[k];
     row.s = s;
@@ -715,7 +686,9 @@ ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Sc
   std::vector<size_t> order = identity(tasks.size());
   std::stable_sort(order.begin(), order.end(),
                    [&](size_t a, size_t b) { return tasks[a].cost > tasks[b].cost; });
-  parallelFor(jobs, order, [&](size_t k) { tasks[k].run(); });
+  // the pool (sim/parallel/worker_pool.h): each thread takes the next task when free, so the
+  // longest, listed first, balance best
+  parallelFor(static_cast<long>(order.size()), jobs, [&](long k) { tasks[order[k]].run(); });
 
   finishConvergence(plan, log, res);
   finishRegimes(scenarios, res);

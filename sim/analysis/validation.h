@@ -236,10 +236,6 @@ EnvelopeRow exchangedPair(const EnvelopeRow& row);
 // Two metronomes that differ by nothing but their start (the exchange is a symmetry).
 bool identicalPair(const ScaledParams& p);
 
-// Runs task(k) for k in `order` on `jobs` threads (dynamic: each takes the next index when it is
-// free, so long tasks listed first balance best). The first exception is rethrown at the end.
-void parallelFor(int jobs, const std::vector<size_t>& order,
-                 const std::function<void(size_t)>& task);
 std::vector<size_t> identity(size_t n);  // 0, 1, .., n - 1
 
 // Runs the plan on the scenarios (which must include every one the plan names). `progress`

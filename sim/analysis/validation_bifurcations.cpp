@@ -9,6 +9,7 @@
 #include "sim/analysis/continuation/arclength.h"
 #include "sim/analysis/continuation/start_states.h"
 #include "sim/analysis/validation.h"
+#include "sim/parallel/worker_pool.h"
 
 namespace metrosync {
 
@@ -120,7 +121,7 @@ void bracket(const BifurcationFamilySpec& spec, const ParamsAt& at,
       b.regimes.assign(b.values.size(), "");
       out.full[i].push_back(b);
     }
-  parallelFor(jobs, identity(jobs_list.size()), [&](size_t j) {
+  parallelFor(static_cast<long>(jobs_list.size()), jobs, [&](long j) {
     const Job& job = jobs_list[j];
     FullBracket& b = out.full[job.point][job.eps];
     const ScaledParams q = at(b.values[job.k]);

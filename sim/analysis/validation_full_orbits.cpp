@@ -10,6 +10,7 @@
 #include "sim/analysis/periodic_orbit/orbit_continuation.h"
 #include "sim/analysis/validation.h"
 #include "sim/analysis/validation_bifurcations.h"
+#include "sim/parallel/worker_pool.h"
 
 namespace metrosync {
 
@@ -282,7 +283,8 @@ FullOrbitsResult runFullOrbitBifurcations(bool quick, const std::vector<Scenario
   // every (family, epsilon) and the default rig's state, on one pool
   const size_t ne = res.epsilons.size();
   std::vector<std::vector<FamilyRun>> runs(specs.size(), std::vector<FamilyRun>(ne));
-  parallelFor(jobs, identity(specs.size() * ne + 1), [&](size_t k) {
+  parallelFor(static_cast<long>(specs.size() * ne + 1), jobs, [&](long kl) {
+    const size_t k = static_cast<size_t>(kl);
     if (k == specs.size() * ne) return asymmetricState(scenarios, quick, res.asymmetric);
     const FullFamilySpec& f = specs[k / ne];
     runs[k / ne][k % ne] =

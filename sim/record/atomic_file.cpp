@@ -8,7 +8,9 @@
 #include <filesystem>
 #include <set>
 #include <stdexcept>
-#include <thread>
+
+#include "sim/parallel/worker_pool.h"
+#include "sim/record/safe_open.h"
 
 namespace metrosync {
 
@@ -48,13 +50,58 @@ std::string temporaryPathFor(const std::string& final_path) {
   return (p.parent_path() / name).string();
 }
 
+// A name already taken (a planted link, a file another process left) is never written through:
+// the next name ".NAME.<k>.<pid>.part" is tried instead, up to this many.
+constexpr int kTemporaryNameTries = 64;
+
+int createTemporaryFor(const std::string& final_path, std::string& temp_path) {
+  const std::string first = temporaryPathFor(final_path);
+  const std::string stem = first.substr(0, first.size() - 5);  // without ".part"
+  const std::string pid = std::to_string(::getpid());
+  for (int k = 0; k < kTemporaryNameTries; ++k) {
+    // ".NAME.<pid>.part", then ".NAME.<k>.<pid>.part": the pid stays the last number
+    temp_path =
+        k == 0 ? first
+               : stem.substr(0, stem.size() - pid.size()) + std::to_string(k) + "." + pid + ".part";
+    const int fd = createNewFile(temp_path);
+    if (fd >= 0) return fd;
+  }
+  throw UnsafeFileError("cannot write " + final_path + ": its temporary names (" + first + " and " +
+                        std::to_string(kTemporaryNameTries - 1) +
+                        " more) are all taken by other files; remove them");
+}
+
+std::string newTemporaryFile(const std::string& final_path, const std::string& contents) {
+  std::string temp_path;
+  const int fd = createTemporaryFor(final_path, temp_path);
+  size_t done = 0;
+  while (done < contents.size()) {
+    const ssize_t w = ::write(fd, contents.data() + done, contents.size() - done);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) {
+      const std::string why = errnoText();
+      ::close(fd);
+      std::remove(temp_path.c_str());
+      throw std::runtime_error("cannot write " + temp_path + ": " + why);
+    }
+    done += static_cast<size_t>(w);
+  }
+  ::close(fd);
+  return temp_path;
+}
+
 // ---------------------------------------------------------------------------------------------
 // AtomicFile
 
-AtomicFile::AtomicFile(std::string final_path)
-    : final_path_(std::move(final_path)), temp_path_(temporaryPathFor(final_path_)) {
-  file_ = std::fopen(temp_path_.c_str(), "w");
-  if (!file_) throw std::runtime_error("cannot write " + temp_path_ + ": " + errnoText());
+AtomicFile::AtomicFile(std::string final_path) : final_path_(std::move(final_path)) {
+  const int fd = createTemporaryFor(final_path_, temp_path_);
+  file_ = ::fdopen(fd, "w");
+  if (!file_) {
+    const std::string why = errnoText();
+    ::close(fd);
+    std::remove(temp_path_.c_str());
+    throw std::runtime_error("cannot write " + temp_path_ + ": " + why);
+  }
   // a large buffer: rows are small and many
   std::setvbuf(file_, nullptr, _IOFBF, 1 << 16);
   last_flush_ = std::chrono::steady_clock::now();
@@ -155,16 +202,10 @@ void CommitBatch::finish() {
   release();
   // the data first, every file at once: their write-back was started at commit, and concurrent
   // fsyncs share the device's cache flushes (one round trip instead of one per file, measured in
-  // docs/bench/process.md)
+  // docs/bench/process.md); through the pool, so a thread the system refuses is no abort
   std::vector<int> errors(pending_.size(), 0);
-  {
-    std::vector<std::thread> syncs;
-    for (std::size_t k = 1; k < pending_.size(); ++k)
-      syncs.emplace_back(
-          [this, &errors, k] { errors[k] = syncPath(pending_[k].temp, 0) ? 0 : errno; });
-    if (!pending_.empty()) errors[0] = syncPath(pending_[0].temp, 0) ? 0 : errno;
-    for (std::thread& t : syncs) t.join();
-  }
+  parallelFor(static_cast<long>(pending_.size()), static_cast<int>(pending_.size()),
+              [&](long k) { errors[k] = syncPath(pending_[k].temp, 0) ? 0 : errno; });
   for (std::size_t k = 0; k < pending_.size(); ++k)
     if (errors[k] != 0) {
       removeTemporaries(0);

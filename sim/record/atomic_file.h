@@ -83,6 +83,17 @@ class CommitBatch {
 // another program writes (plots).
 std::string temporaryPathFor(const std::string& final_path);
 
+// Creates a new temporary file for `final_path` (sim/record/safe_open.h: never through a link or
+// over an existing name): ".NAME.<pid>.part", or ".NAME.<k>.<pid>.part" when that name is
+// taken. Returns the open descriptor and sets `temp_path`; throws UnsafeFileError when every
+// name is taken.
+int createTemporaryFor(const std::string& final_path, std::string& temp_path);
+
+// A new temporary file for `final_path` holding `contents`, closed; returns its name. For files
+// another program writes or reads (a plot's data, script, log and image): the name is made
+// metrosync's own regular file before the program opens it. Throws std::runtime_error.
+std::string newTemporaryFile(const std::string& final_path, const std::string& contents = "");
+
 // Writes `contents` to `path` through an AtomicFile.
 void writeFileAtomically(const std::string& path, const std::string& contents);
 

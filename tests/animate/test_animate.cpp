@@ -111,9 +111,9 @@ TEST(Animate, BadInputExitsTwoWithNothingWritten) {
   const std::string empty_path = scratchDir("animate", "nopath", true);
   const std::map<std::string, std::string> cases = {
       {"--to 1 --out DIR/v.avi", "unknown extension"},
-      {"--to 1 --fps 0 --out DIR/v.mp4", "--fps 0: must be > 0"},
-      {"--to 1 --fps -5 --out DIR/v.mp4", "--fps -5: must be > 0"},
-      {"--to 1 --speed 0 --out DIR/v.mp4", "--speed 0: must be > 0"},
+      {"--to 1 --fps 0 --out DIR/v.mp4", "--fps 0: must be a number > 0"},
+      {"--to 1 --fps -5 --out DIR/v.mp4", "--fps -5: must be a number > 0"},
+      {"--to 1 --speed 0 --out DIR/v.mp4", "--speed 0: must be a number > 0"},
       {"--from 2 --to 1 --out DIR/v.mp4", "--from must be before --to"},
       {"--from 1 --to 1 --out DIR/v.mp4", "--from must be before --to"},
       {"--to 1 --size 321x180 --out DIR/v.mp4", "--size 321x180"},

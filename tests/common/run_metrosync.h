@@ -67,14 +67,25 @@ inline CommandResult runCommand(const std::string& cmd) {
   return r;
 }
 
-// Runs `[env] metrosync ARGS` with no standard input; captures stdout and stderr.
+// Does `env` set one of the fault variables of tools/cli/fault_hooks.h? Only the test-only
+// builds metrosync-faults and metrosync-mpi-faults read them.
+inline bool setsFaults(const std::string& env) {
+  for (const char* v :
+       {"METROSYNC_SWEEP_FAIL_AT=", "METROSYNC_SWEEP_STOP_AFTER=", "METROSYNC_MPI_KILL_AFTER="})
+    if (env.find(v) != std::string::npos) return true;
+  return false;
+}
+
+// Runs `[env] metrosync ARGS` with no standard input; captures stdout and stderr. With a fault
+// variable in `env`, the program is metrosync-faults (the same with the tests' fault hooks).
 inline CommandResult runMetrosync(const std::string& args, const RunIn& in = {}) {
   std::string cmd;
   if (!in.cwd.empty()) {
     std::filesystem::create_directories(in.cwd);
     cmd = "cd " + shellQuote(in.cwd) + " && ";
   }
-  return runCommand(cmd + in.env + " " + shellQuote(METROSYNC_BINARY) + " " + args);
+  const char* binary = setsFaults(in.env) ? METROSYNC_FAULTS_BINARY : METROSYNC_BINARY;
+  return runCommand(cmd + in.env + " " + shellQuote(binary) + " " + args);
 }
 
 // The cells of every line of a CSV file (no quoting: metrosync's own CSVs), the header included.

@@ -1,7 +1,7 @@
 // The layout's one rule (CMakeLists.txt, COMMON): every `#include "..."` of the libraries and
 // tools points downwards in
-//   contact < contact/simbody < models < models/simbody < sim/ode, sim/record < sim/events
-//     < sim/engines/{direct,simbody,slow_flow} < sim/engines < sim/analysis < yaml
+//   contact < contact/simbody < models < models/simbody, sim/parallel < sim/ode, sim/record
+//     < sim/events < sim/engines/{direct,simbody,slow_flow} < sim/engines < sim/analysis < yaml
 //     < tools/report < tools/cli < tools
 // or stays in its own folder. Folders of one level (sim/ode and sim/record, the three engines)
 // do not include each other; tools/bench (a benchmark nothing links) may include anything;
@@ -30,6 +30,7 @@ const std::map<std::string, int>& levels() {
       {"contact/simbody", 1},
       {"models", 2},
       {"models/simbody", 3},
+      {"sim/parallel", 3},
       {"sim/ode", 4},
       {"sim/record", 4},
       {"sim/events", 5},

@@ -29,7 +29,10 @@ std::string scratch(const std::string& name) {
 // `[ENV] mpirun -np RANKS metrosync-mpi ARGS` (oversubscribed: this machine may have fewer
 // cores than ranks); captures stdout and stderr.
 CommandResult mpiMetrosync(int ranks, const std::string& args, const std::string& env = "",
-                           const std::string& binary = METROSYNC_MPI_BINARY) {
+                           std::string binary = METROSYNC_MPI_BINARY) {
+  // a fault variable: the build with the tests' fault hooks (tools/cli/fault_hooks.h)
+  if (binary == METROSYNC_MPI_BINARY && metrosync::testing_support::setsFaults(env))
+    binary = METROSYNC_MPI_FAULTS_BINARY;
   return metrosync::testing_support::runCommand(
       env + " " + shellQuote(METROSYNC_MPIEXEC) + " -np " + std::to_string(ranks) +
       " --oversubscribe --allow-run-as-root " + shellQuote(binary) + " " + args);

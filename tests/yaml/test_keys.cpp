@@ -216,7 +216,7 @@ TEST(KeyResolver, BadKeysSayTheSameWhateverTheOption) {
     EXPECT_EQ(set.rfind("rig.yaml: --set " + key + "=1: ", 0), 0u) << set;
     EXPECT_NE(set.find(why), std::string::npos) << set;
     const std::string tail = set.substr(set.find("=1: ") + 4);
-    for (const std::string typed : {"--vary " + key + "=0:1:3", "--free " + key}) {
+    for (const std::string& typed : {"--vary " + key + "=0:1:3", "--free " + key}) {
       try {
         resolveRigKey(kScaled, "rig.yaml", {}, key, typed);
         ADD_FAILURE() << typed << " resolved";

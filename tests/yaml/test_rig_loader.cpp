@@ -572,7 +572,7 @@ TEST(RigValidation, PhysicalRanges) {
         "must be > 0"},
        {13, "      length: 0.0225\n      inertia: 1.1e-5", "1.1e-5",
         "metronomes.1.pendulum.inertia = 1.1e-5", "must be >= mass * length^2 = 1.14412e-05", 14},
-       {10, "  - box_mass: -0.06", "-0.06", "metronomes.1.box_mass = -0.06", "must be >= 0"},
+       {10, "  - box_mass: -0.06", "-0.06", "metronomes.1.box_mass = -0.06", "must be > 0"},
        {14, "      decay_rate: -0.5", "-0.5", "metronomes.1.pendulum.decay_rate = -0.5",
         "must be >= 0"},
        {7, "    pendulum: {mass: 0.0226, length: 0.0225, damping: -1}", "-1",

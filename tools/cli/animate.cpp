@@ -15,6 +15,7 @@
 #include "tools/cli/animation_track.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/network_run.h"
+#include "tools/cli/number_option.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
 #include "tools/report/video_pipe.h"
@@ -117,13 +118,14 @@ CLI::App* addAnimateCommand(CLI::App& app, AnimateOptions& opt) {
   cmd->add_option("--out", opt.out,
                   "the video: FILE.mp4 (H.264) or FILE.gif (default: runs/<rig name>-animate.mp4)")
       ->type_name("FILE");
-  cmd->add_option("--speed", opt.speed,
-                  "seconds of motion (a scaled rig: units of tau) per second of video")
-      ->capture_default_str();
-  cmd->add_option("--fps", opt.fps, "frames per second of video (default 30; GIF 20)");
-  cmd->add_option("--from", opt.from, "first instant drawn (s; a scaled rig: tau)")
-      ->capture_default_str();
-  cmd->add_option("--to", opt.to, "last instant (default: the rig's simulation.duration)");
+  addNumber(cmd, "--speed", opt.speed, kPositive,
+            "seconds of motion (a scaled rig: units of tau) per second of video")
+      ->default_str("1");
+  addNumber(cmd, "--fps", opt.fps, kPositive, "frames per second of video (default 30; GIF 20)");
+  addNumber(cmd, "--from", opt.from, kNonNegative, "first instant drawn (s; a scaled rig: tau)")
+      ->default_str("0");
+  addNumber(cmd, "--to", opt.to, kPositive,
+            "last instant (default: the rig's simulation.duration)");
   cmd->add_option("--size", opt.size, "frame size (default 1280x720; GIF 640x360)")
       ->type_name("WxH");
   cmd->add_option("--engine", opt.rig.engine, fullEngineHelp());

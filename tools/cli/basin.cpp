@@ -16,7 +16,10 @@
 #include "sim/record/atomic_file.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/network_sweep.h"
+#include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
+#include "tools/cli/sweep_point_run.h"
+#include "tools/cli/sweep_summary.h"
 #include "tools/report/basin_files.h"
 #include "tools/report/folder_lock.h"
 #include "tools/report/outputs.h"
@@ -35,10 +38,6 @@ constexpr size_t kMaxCornerKeys = 8;
 const std::vector<std::string>& basinFileNames() {
   static const std::vector<std::string> names = {"basin.csv", "basin.json", "basin.png"};
   return names;
-}
-
-std::string displayName(const SweepOptions& opt) {
-  return opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
 }
 
 // What is drawn and run, checked before any file is written.
@@ -97,9 +96,7 @@ void checkCorners(const BasinOptions& opt, BasinPlan& plan) {
 
 BasinPlan planBasin(const BasinOptions& opt) {
   if (opt.random.empty()) throw UsageError("basin: give at least one --random KEY=FROM:TO");
-  if (opt.samples < 1 || opt.samples > kMaxSamples)
-    throw UsageError("--samples " + std::to_string(opt.samples) + ": must be from 1 to " +
-                     std::to_string(kMaxSamples));
+  if (opt.samples < 1) throw UsageError("basin: give --samples S");  // parsed by its rule
   BasinPlan plan;
   plan.text = sweepRigText(opt.run);
   const std::string name = displayName(opt.run);
@@ -116,9 +113,6 @@ BasinPlan planBasin(const BasinOptions& opt) {
   plan.rig_name = base.name;
   checkCorners(opt, plan);
   plan.path = opt.run.out.empty() ? defaultOutputDir(base.name, "basin") : opt.run.out;
-  plan.jobs =
-      opt.run.jobs > 0 ? opt.run.jobs : static_cast<int>(std::thread::hardware_concurrency());
-  plan.jobs = std::max(1, plan.jobs);
   return plan;
 }
 
@@ -128,12 +122,13 @@ std::vector<std::string> sampleAt(const BasinOptions& opt, const BasinPlan& plan
   return sampleOverrides(plan, drawSample(plan.keys, opt.seed, k), texts);
 }
 
-// Every sample, run by `schedule` (threads, or MPI ranks) on plan.jobs threads.
-std::map<long, BasinSample> runSamples(const BasinOptions& opt, const BasinPlan& plan,
+// Every sample, run by `schedule` (threads, or MPI ranks) on up to --jobs threads; plan.jobs
+// becomes the number that ran.
+std::map<long, BasinSample> runSamples(const BasinOptions& opt, BasinPlan& plan,
                                        const SweepScheduler& schedule) {
   std::map<long, BasinSample> samples;
-  schedule(
-      opt.samples, [](long) { return true; }, plan.jobs,
+  plan.jobs = schedule(
+      opt.samples, [](long) { return true; }, opt.run.jobs,
       [&](long k) -> std::optional<SweepPoint> {
         return runSweepPointAt(plan.text, opt.run, sampleAt(opt, plan, k, nullptr), plan.n, k);
       },
@@ -144,10 +139,6 @@ std::map<long, BasinSample> runSamples(const BasinOptions& opt, const BasinPlan&
       },
       [] { return FileSink::stopRequested(); });
   return samples;
-}
-
-std::string modelTitle(const std::string& model) {
-  return model == "full" ? "full model" : "slow flow";
 }
 
 nlohmann::json basinJson(const BasinOptions& opt, const BasinPlan& plan,
@@ -186,7 +177,7 @@ OutputDir openBasinDir(const std::string& path) {
 
 int basinImpl(const BasinOptions& opt, const SweepScheduler& schedule, int ranks) {
   const auto t0 = std::chrono::steady_clock::now();
-  const BasinPlan plan = planBasin(opt);
+  BasinPlan plan = planBasin(opt);
   std::optional<FolderLock> lock;
   if (fs::is_directory(plan.path)) lock.emplace(plan.path, "metrosync basin");
   installStopHandlers();
@@ -249,20 +240,20 @@ CLI::App* addBasinCommand(CLI::App& app, BasinOptions& opt) {
       ->type_name("KEY=FROM:TO")
       ->required()
       ->allow_extra_args(false);
-  c->add_option("--samples", opt.samples, "how many random starts")->type_name("S")->required();
-  c->add_option("--seed", opt.seed,
-                "the seed of the draws (default 1): sample k's values depend only on the seed "
-                "and k, not on --jobs")
-      ->type_name("N");
+  addInteger(c, "--samples", opt.samples, 1, kMaxSamples, "how many random starts")
+      ->type_name("S")
+      ->required();
+  addSeed(c, "--seed", opt.seed,
+          "the seed of the draws (default 1): sample k's values depend only on the seed "
+          "and k, not on --jobs");
   c->add_option("--set", opt.run.sets, "override a rig key for every sample; repeatable")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
   c->add_option("--model", opt.run.model, "slow: the slow flow (default); full: the full model")
       ->check(CLI::IsMember({"slow", "full"}));
   c->add_option("--engine", opt.run.engine, "the engine of the full model (as for sweep)");
-  c->add_option("--jobs", opt.run.jobs, "worker threads (default: the number of cores)")
-      ->type_name("N")
-      ->check(CLI::Range(1, 4096));
+  addInteger(c, "--jobs", opt.run.jobs, 1, kMaxJobs,
+             "worker threads (default: the number of cores; never more than the samples)");
   c->add_option("--out", opt.run.out, "output directory (default: runs/<rig name>-basin)")
       ->type_name("DIR");
   c->add_flag("--no-plot", opt.no_plot, "no basin.png");
@@ -280,7 +271,7 @@ int basinCommand(const BasinOptions& opt) {
   const SweepScheduler threads = [](long size, const std::function<bool(long)>& wanted, int jobs,
                                     const SweepPointRunner& run, const SweepPointSink& finished,
                                     const std::function<bool()>& stop) {
-    runSweepPoints(size, wanted, jobs, run, finished, stop);
+    return runSweepPoints(size, wanted, jobs, run, finished, stop);
   };
   return basinCommand(opt, threads, 1);
 }

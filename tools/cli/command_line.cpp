@@ -6,10 +6,13 @@
 
 #include "sim/engines/plugin_loader.h"
 #include "sim/record/atomic_file.h"
+#include "sim/record/safe_open.h"
 #include "tools/cli/engines.h"
+#include "tools/cli/number_option.h"
 #include "tools/report/build_info.h"
 #include "tools/report/plot.h"
 #include "yaml/rig_loader.h"
+#include "yaml/utf8.h"
 
 namespace metrosync::cli {
 
@@ -32,12 +35,11 @@ void addRigOptions(CLI::App* cmd, Options& opt, bool with_out) {
                     "--set overrides> appended when there are any); metrosync's own output "
                     "files already there are replaced")
         ->type_name("DIR");
-    cmd->add_option("--max-output", opt.max_output,
-                    "refuse a run that would write more than BYTES (estimated from the run's "
-                    "length and simulation.sample; docs/rig-limits.md)")
+    addNumber(cmd, "--max-output", opt.max_output, kPositive,
+              "refuse a run that would write more than BYTES (estimated from the run's "
+              "length and simulation.sample; docs/rig-limits.md)")
         ->type_name("BYTES")
-        ->check(CLI::PositiveNumber)
-        ->capture_default_str();
+        ->default_str("2e9");
     cmd->add_flag("-q,--quiet", opt.quiet,
                   "no summary on stdout (errors and warnings still go "
                   "to stderr)");
@@ -132,16 +134,19 @@ int exitCodeOf(const std::function<int()>& handler) {
   try {
     return handler();
   } catch (const RigError& e) {
-    std::cerr << "metrosync: error: " << e.what() << "\n";
+    std::cerr << "metrosync: error: " << terminalText(e.what()) << "\n";
     return kBadInput;
   } catch (const UsageError& e) {
-    std::cerr << "metrosync: error: " << e.what() << "\n";
+    std::cerr << "metrosync: error: " << terminalText(e.what()) << "\n";
+    return kBadInput;
+  } catch (const UnsafeFileError& e) {  // a link or FIFO planted in the output folder
+    std::cerr << "metrosync: error: " << terminalText(e.what()) << "\n";
     return kBadInput;
   } catch (const PluginError& e) {  // a plugin missing from the installation
-    std::cerr << "metrosync: error: " << e.what() << "\n";
+    std::cerr << "metrosync: error: " << terminalText(e.what()) << "\n";
     return kBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "metrosync: error: " << e.what() << "\n";
+    std::cerr << "metrosync: error: " << terminalText(e.what()) << "\n";
     return kOtherError;
   } catch (...) {
     std::cerr << "metrosync: error: unexpected failure\n";
@@ -164,7 +169,7 @@ int runCommandLine(CLI::App& app, const std::vector<Command>& commands, int argc
   } catch (const CLI::ParseError& e) {
     // --help and --version exit 0 through here; every parse error is a bad command line
     if (e.get_exit_code() == 0) return app.exit(e);
-    std::cerr << "metrosync: error: " << e.what() << "\n"
+    std::cerr << "metrosync: error: " << terminalText(e.what()) << "\n"
               << "Run 'metrosync --help' (or 'metrosync COMMAND --help') for usage.\n";
     return kBadInput;
   }

@@ -13,12 +13,19 @@
 #include "sim/analysis/continuation/result.h"
 #include "sim/analysis/continuation/start_states.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
 #include "tools/cli/continue_full.h"
 #include "tools/report/continuation_report.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
+
+namespace {
+// --max-points: a branch point is a Newton solve of 2N - 1 unknowns and one CSV row; 10^6 points
+// per direction bound a continuation to minutes and its branches.csv to ~100 MB per branch.
+constexpr long long kMaxContinuationPoints = 1000000;
+}  // namespace
 
 namespace {
 
@@ -102,6 +109,23 @@ ParamsAt2 paramsAt2(const ContinueOptions& opt) {
   return [opt](double p1, double p2) { return scaledAt(opt, {opt.param, opt.fold_key}, {p1, p2}); };
 }
 
+// The scaled parameters with KEY = value; a value that makes one of them infinite or NaN (e.g.
+// --to 1e308) is refused naming `which` option gave it.
+ScaledParams finiteScaledAt(const ContinueOptions& opt, double value, const std::string& which) {
+  const ScaledParams p = scaledAt(opt, {opt.param}, {value});
+  const std::pair<const char*, const std::vector<double>*> lists[] = {
+      {"nu", &p.nu}, {"J", &p.J}, {"theta_c", &p.theta_c}, {"alpha", &p.alpha}, {"zeta", &p.zeta}};
+  std::string bad = std::isfinite(p.mu) ? "" : "mu";
+  if (!std::isfinite(p.c)) bad = "c";
+  for (const auto& [name, v] : lists)
+    for (double x : *v)
+      if (!std::isfinite(x)) bad = name;
+  if (!bad.empty())
+    throw UsageError(which + ": " + opt.param + " = " + fmt(value) + " makes the scaled " + bad +
+                     " infinite or undefined; choose a value nearer the rig's");
+  return p;
+}
+
 // The start value of opt.param, typed after `option` (--param, or --fold for KEY2).
 double startValue(const ContinueOptions& opt, const std::string& option = "--param") {
   const Rig rig = loadWith(opt, {});  // the rig itself must load
@@ -117,12 +141,12 @@ double startValue(const ContinueOptions& opt, const std::string& option = "--par
   if (!opt.from && !in_rig)
     throw UsageError(option + " " + opt.param +
                      ": the key is not set in the rig (its default applies); give --from VALUE");
-  const double from = opt.from ? *opt.from : *in_rig;
-  if (!std::isfinite(opt.to) || !std::isfinite(from) || opt.to == from)
+  const double from = opt.from ? *opt.from : *in_rig;  // both finite (tools/cli/number_option.h)
+  if (opt.to == from)
     throw UsageError("--to " + fmt(opt.to) + ": must differ from the start value " + opt.param +
                      " = " + fmt(from));
-  const ScaledParams a = computeScaled(loadWith(opt, {opt.param + "=" + fmt(from)}));
-  const ScaledParams b = computeScaled(loadWith(opt, {opt.param + "=" + fmt(opt.to)}));
+  const ScaledParams a = finiteScaledAt(opt, from, opt.from ? "--from" : "the rig's value");
+  const ScaledParams b = finiteScaledAt(opt, opt.to, "--to");
   if (sameSlowFlow(a, b))
     throw UsageError(option + " " + opt.param + ": has no effect on the slow flow (its scaled " +
                      "parameters are the same at " + fmt(from) + " and " + fmt(opt.to) + ")");
@@ -177,8 +201,8 @@ std::vector<Cd> startState(const ContinueOptions& opt, const ScaledParams& sp, s
 }
 
 ContinuationSettings settingsFor(const ContinueOptions& opt, double from) {
-  if (opt.step < 0) throw UsageError("--step " + fmt(opt.step) + ": must be > 0");
-  if (opt.max_points < 2) throw UsageError("--max-points: must be >= 2");
+  // --step and --max-points are checked when parsed (tools/cli/number_option.h); a step of 0 is
+  // the option left out
   ContinuationSettings s;
   s.p_min = std::min(from, opt.to);
   s.p_max = std::max(from, opt.to);
@@ -392,14 +416,15 @@ CLI::App* addContinueCommand(CLI::App& app) {
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
   c->add_option("--param", opt.param, "the rig key to vary, e.g. metronomes.1.alpha")->required();
-  c->add_option("--to", opt.to, "the other end of the parameter range")->required();
-  c->add_option("--from", opt.from, "the start value (default: the rig's value of KEY)");
+  addNumber(c, "--to", opt.to, kAnyFinite, "the other end of the parameter range")->required();
+  addNumber(c, "--from", opt.from, kAnyFinite, "the start value (default: the rig's value of KEY)");
   c->add_option("--start", opt.start,
                 "the start state A_1,..,A_N,psi_2,..,psi_N (default: the "
                 "rig's start, integrated until it settles)");
-  c->add_option("--step", opt.step, "first arclength step (default |to - from| / 100)");
-  c->add_option("--max-points", opt.max_points, "points per direction of each branch")
-      ->capture_default_str();
+  addNumber(c, "--step", opt.step, kPositive, "first arclength step (default |to - from| / 100)");
+  addInteger(c, "--max-points", opt.max_points, 2, kMaxContinuationPoints,
+             "points per direction of each branch")
+      ->default_str(std::to_string(opt.max_points));
   c->add_flag("--all", opt.all, "every locked state at the start value (Newton from a grid)");
   c->add_option("--out", opt.out, "output directory (default runs/<rig name>-continue)");
   c->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
@@ -409,7 +434,7 @@ CLI::App* addContinueCommand(CLI::App& app) {
                                     "a second rig key: continue every fold and Hopf point found in "
                                     "KEY in (KEY, KEY2), from KEY2's value in the rig -> "
                                     "fold_curve.csv, hopf_curve.csv, fold_curve.png");
-  c->add_option("--to2", opt.to2, "KEY2's other end (with --fold)")->needs(fold);
+  addNumber(c, "--to2", opt.to2, kAnyFinite, "KEY2's other end (with --fold)")->needs(fold);
   fold->needs("--to2");
   c->footer(
       "Files in --out DIR: branches.csv, bifurcations.json, branches.png, cycles.csv, "
@@ -436,16 +461,22 @@ int continueCommand(const ContinueOptions& opt) {
   result.metronomes = static_cast<int>(sp.nu.size());
   result.theta_c = sp.theta_c;
   std::vector<FoldSeed> folds;
-  if (opt.all) {
-    followAll(opt, sp, from, settings, result, folds);
-  } else {
-    const std::vector<Cd> z = startState(opt, sp, result.start);
-    const SlowFlowProblem prob(paramsAt(opt), from, largest(z));
-    const auto x = solveLocked(prob, prob.pack(z, prob.omegaGuess(from, z)), from);
-    if (!x) throw UsageError("Newton does not converge to a locked state from " + result.start);
-    record(opt, prob, continueFrom(prob.system(), *x, from, settings), settings, result, folds);
+  try {
+    if (opt.all) {
+      followAll(opt, sp, from, settings, result, folds);
+    } else {
+      const std::vector<Cd> z = startState(opt, sp, result.start);
+      const SlowFlowProblem prob(paramsAt(opt), from, largest(z));
+      const auto x = solveLocked(prob, prob.pack(z, prob.omegaGuess(from, z)), from);
+      if (!x) throw UsageError("Newton does not converge to a locked state from " + result.start);
+      record(opt, prob, continueFrom(prob.system(), *x, from, settings), settings, result, folds);
+    }
+    if (!opt.fold_key.empty()) foldCurves(opt, from2, folds, result);
+  } catch (const std::invalid_argument& e) {  // the slow flow at a value on the way: not finite
+    throw UsageError("--param " + opt.param + " from " + fmt(from) + " to " + fmt(opt.to) + ": " +
+                     e.what() + " on the way (the range leaves the range of the numbers); " +
+                     "choose a --to nearer the start");
   }
-  if (!opt.fold_key.empty()) foldCurves(opt, from2, folds, result);
   const OutputDir dir(outDir(opt, rig));
   writeContinuation(dir, result, rig.name);
   if (!opt.quiet) printSummary(result, dir.path());

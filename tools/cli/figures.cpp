@@ -7,6 +7,7 @@
 
 #include "tools/cli/commands.h"
 #include "tools/cli/engines.h"
+#include "tools/cli/number_option.h"
 #include "tools/cli/sweep.h"
 #include "tools/cli/validate.h"
 #include "tools/report/figures.h"
@@ -106,9 +107,8 @@ CLI::App* addFiguresCommand(CLI::App& app, FiguresOptions& opt) {
   cmd->add_option("--rigs", opt.rigs,
                   "the shipped rigs' directory (default: as `validate` finds it)")
       ->type_name("DIR");
-  cmd->add_option("--jobs", opt.jobs, "runs at once (default: one per hardware thread)")
-      ->type_name("N")
-      ->check(CLI::NonNegativeNumber);
+  addInteger(cmd, "--jobs", opt.jobs, 0, kMaxJobs,
+             "runs at once (default and 0: one per hardware thread)");
   cmd->add_option("--engine", opt.engine, "the full model's engine")->capture_default_str();
   cmd->add_flag("-q,--quiet", opt.quiet, "no progress on stdout");
   cmd->footer(

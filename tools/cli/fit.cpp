@@ -15,6 +15,7 @@
 #include "sim/analysis/fit/swings.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/engines.h"
+#include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
 #include "tools/report/fit_files.h"
 #include "yaml/rig_loader.h"
@@ -355,9 +356,9 @@ CLI::App* addMeasureCommand(CLI::App& app, MeasureOptions& opt) {
                   "CSV (t, theta_I): one metronome ticking at its steady amplitude on a still "
                   "table")
       ->type_name("FILE");
-  cmd->add_option("--metronome", opt.metronome,
-                  "which metronome's theta_I the --decay and --steady files hold (default 1)")
-      ->check(CLI::PositiveNumber);
+  addInteger(cmd, "--metronome", opt.metronome, 1, kMaxMetronomes,
+             "which metronome's theta_I the --decay and --steady files hold (default 1)")
+      ->type_name("I");
   cmd->add_option("--out", opt.out, "output directory (default: runs/<rig name>-measure)")
       ->type_name("DIR");
   cmd->add_flag("-q,--quiet", opt.quiet, "no JSON on stdout");

@@ -47,13 +47,11 @@ const Engine& networkSweepEngine(const std::string& requested, const std::string
 }
 
 SweepPoint runNetworkSweepPoint(const Network& net, const Engine& engine, long g,
-                                bool inject_failure) {
+                                const std::optional<std::string>& inject_failure) {
   NetworkVerdict verdict(net);
   NetworkRunReport rep;
   try {
-    if (inject_failure)
-      throw std::runtime_error(
-          "stopped at t = 0 s: failure injected by METROSYNC_SWEEP_FAIL_AT, a test hook");
+    if (inject_failure) throw std::runtime_error("stopped at t = 0 s: " + *inject_failure);
     rep = engine.runNetwork(net, verdict);
   } catch (const std::exception& e) {
     rep.complete = false;

@@ -33,9 +33,9 @@ const Engine& networkSweepEngine(const std::string& requested, const std::string
                                  const Network& net, const std::string& display_name);
 
 // Runs one grid point (never throws for a failed simulation: regime "failed" and the reason).
-// `inject_failure`: the point fails as a simulation failure would (the sweep's test hook
-// METROSYNC_SWEEP_FAIL_AT).
+// `inject_failure`: the point fails for this reason as a simulation failure would (a test's
+// fault hook, tools/cli/fault_hooks.h).
 SweepPoint runNetworkSweepPoint(const Network& net, const Engine& engine, long g,
-                                bool inject_failure = false);
+                                const std::optional<std::string>& inject_failure = std::nullopt);
 
 }  // namespace metrosync::cli

@@ -77,8 +77,9 @@ using SweepPointRunner = std::function<std::optional<SweepPoint>(long)>;
 using SweepPointSink = std::function<void(const SweepPoint&)>;
 // The run stage's scheduler, runSweepPoints's contract (sim/analysis/sweep.h): run every g <
 // size with wanted(g), hand each result to `finished` (never two at once), stop starting points
-// once stop() is true, rethrow the first exception.
-using SweepScheduler = std::function<void(
+// once stop() is true, rethrow the first exception; return how many threads of this process ran
+// points (fewer than `jobs` when there are fewer points, or the system refused more threads).
+using SweepScheduler = std::function<int(
     long size, const std::function<bool(long)>& wanted, int jobs, const SweepPointRunner& run,
     const SweepPointSink& finished, const std::function<bool()>& stop)>;
 

@@ -15,8 +15,10 @@
 #include <optional>
 #include <thread>
 
+#include "sim/parallel/worker_pool.h"
 #include "tools/cli/basin.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/fault_hooks.h"
 #include "tools/cli/sweep_messages.h"
 #include "tools/report/outputs.h"
 
@@ -165,24 +167,25 @@ class Coordinator {
   explicit Coordinator(int ranks) : workers_(ranks - 1) {}
 
   // The SweepScheduler: rank 0's threads and the workers take points from one dispenser.
-  void schedule(long size, const std::function<bool(long)>& wanted, int jobs,
-                const SweepPointRunner& run, const SweepPointSink& finished,
-                const std::function<bool()>& stop) {
+  // Returns how many local threads ran points (the pool of sim/parallel/worker_pool.h: those
+  // the system refused to start are left out; with none, the workers run every point).
+  int schedule(long size, const std::function<bool(long)>& wanted, int jobs,
+               const SweepPointRunner& run, const SweepPointSink& finished,
+               const std::function<bool()>& stop) {
     started_ = true;
     for (int w = 1; w <= workers_; ++w) sendBytes("start", w, kTagStart);
     Dispenser points(size, wanted);
     Delivery delivery(finished);
-    std::vector<std::thread> local;
-    for (int t = 0; t < std::max(1, jobs); ++t)
-      local.emplace_back([&] { runLocally(points, delivery, run, stop); });
+    WorkerThreads local(workerCount(jobs, size), [&] { runLocally(points, delivery, run, stop); });
     try {
       serveWorkers(points, delivery, stop);
       served_ = true;
     } catch (...) {  // the local threads stop too; the workers are left to MPI_Abort
       delivery.fail(std::current_exception());
     }
-    for (auto& t : local) t.join();
+    local.join();
     delivery.rethrow();
+    return local.started();
   }
 
   // Workers that were never started are told to quit.
@@ -264,18 +267,7 @@ struct WorkerQueue {
   bool last = false;
 };
 
-// The test hook METROSYNC_MPI_KILL_AFTER=R:K: rank R kills itself with SIGKILL (as kill -9 would)
-// once it has run K points, before reporting them.
-long killAfterHook(int rank) {
-  const char* v = std::getenv("METROSYNC_MPI_KILL_AFTER");
-  if (!v || !*v) return -1;
-  const std::string s = v;
-  const size_t colon = s.find(':');
-  if (colon == std::string::npos || std::atoi(s.substr(0, colon).c_str()) != rank) return -1;
-  return std::atol(s.substr(colon + 1).c_str());
-}
-
-void computeThread(WorkerQueue& q, const SweepPointRunner& run, long kill_after, long& ran) {
+void computeThread(WorkerQueue& q, const SweepPointRunner& run, long& ran) {
   for (;;) {
     long g = 0;
     {
@@ -294,7 +286,8 @@ void computeThread(WorkerQueue& q, const SweepPointRunner& run, long kill_after,
         q.finished.push_back(*p);
       else
         q.unrun.push_back(g);  // interrupted by a stop request
-      if (++ran == kill_after) ::raise(SIGKILL);
+      ++ran;  // a test's fault hook may end the rank here (tools/cli/fault_hooks.h)
+      if (faultHooks().after_worker_point) faultHooks().after_worker_point(worldRank(), ran);
     }
     q.cv.notify_all();
   }
@@ -327,10 +320,11 @@ SweepReport nextReport(WorkerQueue& q, long threads) {
 void workerLoop(const SweepPointRunner& run, int threads) {
   WorkerQueue q;
   long ran = 0;
-  const long kill_after = killAfterHook(worldRank());
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t)
-    pool.emplace_back([&] { computeThread(q, run, kill_after, ran); });
+  WorkerThreads pool(threads, [&] { computeThread(q, run, ran); });
+  if (pool.started() == 0)
+    throw std::runtime_error("rank " + std::to_string(worldRank()) +
+                             ": no worker thread could start (the process limit on threads)");
+  threads = pool.started();
   for (;;) {
     const SweepReport report = nextReport(q, threads);
     if (!report.done && report.points.empty() && report.unrun.empty() && report.want == 0) continue;
@@ -344,7 +338,7 @@ void workerLoop(const SweepPointRunner& run, int threads) {
     }
     q.cv.notify_all();
   }
-  for (auto& t : pool) t.join();
+  pool.join();
 }
 
 }  // namespace
@@ -358,7 +352,7 @@ int coordinate(int ranks, const std::function<int(const SweepScheduler&)>& comma
   const SweepScheduler schedule = [&c](long size, const std::function<bool(long)>& wanted, int jobs,
                                        const SweepPointRunner& run, const SweepPointSink& finished,
                                        const std::function<bool()>& stop) {
-    c.schedule(size, wanted, jobs, run, finished, stop);
+    return c.schedule(size, wanted, jobs, run, finished, stop);
   };
   int code = 0;
   try {

@@ -14,6 +14,7 @@
 #include "sim/engines/simbody_plugin.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/engines.h"
+#include "tools/cli/number_option.h"
 #include "tools/report/outputs.h"
 #include "tools/report/validation_report.h"
 #include "yaml/rig_loader.h"
@@ -61,11 +62,9 @@ CLI::App* addValidateCommand(CLI::App& app, ValidateOptions& opt) {
                   "the shipped rigs' directory (default: yaml/rigs under the working directory, "
                   "else above the executable)")
       ->type_name("DIR");
-  cmd->add_option("--jobs", opt.jobs,
-                  "simulations run at once (default: one per hardware thread); the results do not "
-                  "depend on it")
-      ->type_name("N")
-      ->check(CLI::NonNegativeNumber);
+  addInteger(cmd, "--jobs", opt.jobs, 0, kMaxJobs,
+             "simulations run at once (default and 0: one per hardware thread); the results do "
+             "not depend on it");
   cmd->add_option("--engine", opt.engine, fullEngineHelp() + "; validate's default: direct")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", opt.quiet, "no progress on stdout");

@@ -13,6 +13,7 @@
 #include "tools/cli/network_sweep.h"
 #include "tools/cli/option_keys.h"
 #include "tools/cli/sweep.h"
+#include "tools/cli/sweep_summary.h"
 #include "tools/python/bindings.h"
 #include "tools/report/basin_files.h"
 #include "tools/report/outputs.h"
@@ -63,7 +64,7 @@ cli::SweepScheduler collecting(Points& points) {
   return [&points](long size, const std::function<bool(long)>& wanted, int jobs,
                    const cli::SweepPointRunner& run, const cli::SweepPointSink& finished,
                    const std::function<bool()>& stop) {
-    runSweepPoints(
+    return runSweepPoints(
         size, wanted, jobs, run,
         [&](const SweepPoint& p) {
           finished(p);
@@ -140,8 +141,8 @@ py::dict sweep(const RigSource& rig, const std::vector<std::string>& vary, const
     else
       runInMemory(m.grid.size(), o.jobs, run, points);
   });
-  nlohmann::json status =
-      sweepStatusJson(m, m.grid.size(), points, static_cast<long>(points.size()) == m.grid.size());
+  nlohmann::json status = cli::statusJson(m, m.grid.size(), cli::tallyOf(points),
+                                          static_cast<long>(points.size()) == m.grid.size());
   status["jobs"] = o.jobs;
   py::dict d;
   d["points"] = pointsToPython(points, m.metronomes);

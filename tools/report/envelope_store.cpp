@@ -1,11 +1,13 @@
 #include "tools/report/envelope_store.h"
 
+#include <unistd.h>
 #include <zlib.h>
 
 #include <filesystem>
 #include <stdexcept>
 
 #include "sim/record/envelope.h"
+#include "sim/record/safe_open.h"
 
 namespace metrosync {
 
@@ -17,8 +19,13 @@ namespace {
 
 // The whole decompressed text up to the first damaged byte (a truncated member ends it).
 std::string readGzipText(const std::string& path) {
-  gzFile f = gzopen(path.c_str(), "rb");
-  if (!f) return "";
+  const int fd = openRegularForReading(path);  // never a link's target, never a FIFO
+  if (fd < 0) return "";
+  gzFile f = gzdopen(fd, "rb");
+  if (!f) {
+    ::close(fd);
+    return "";
+  }
   std::string text;
   char buf[1 << 16];
   for (;;) {
@@ -32,7 +39,9 @@ std::string readGzipText(const std::string& path) {
 
 // One gzip member holding `text`, appended to `path`.
 void appendGzipMember(const std::string& path, const std::string& text) {
-  gzFile f = gzopen(path.c_str(), "ab");
+  const int fd = openOutputFile(path, false, true);
+  gzFile f = gzdopen(fd, "ab");
+  if (!f) ::close(fd);
   if (!f) throw std::runtime_error(path + ": cannot open for appending");
   const bool ok = text.empty() || gzwrite(f, text.data(), static_cast<unsigned>(text.size())) ==
                                       static_cast<int>(text.size());

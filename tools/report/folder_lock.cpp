@@ -8,6 +8,8 @@
 #include <cstring>
 #include <string>
 
+#include "sim/record/safe_open.h"
+
 namespace metrosync {
 
 namespace {
@@ -26,8 +28,8 @@ std::string readAll(int fd) {
 
 FolderLock::FolderLock(const std::string& dir, const std::string& command)
     : path_(dir + "/" + kFileName) {
-  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw std::runtime_error("cannot make " + path_ + ": " + std::strerror(errno));
+  // never through a link or FIFO planted at the name (UnsafeFileError: exit 2)
+  fd_ = openOutputFile(path_, false, false, true);
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     const std::string holder = readAll(fd_);
     ::close(fd_);

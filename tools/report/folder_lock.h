@@ -19,7 +19,9 @@ class FolderLock {
   static constexpr const char* kFileName = ".metrosync.lock";
 
   // Locks `dir` (which must exist) for `command` (e.g. "metrosync sweep"); throws
-  // FolderLockedError naming the holder, std::runtime_error when the lock file cannot be made.
+  // FolderLockedError naming the holder, UnsafeFileError when a link, FIFO or hard-linked file
+  // sits at the lock's name (sim/record/safe_open.h), std::runtime_error when the lock file
+  // cannot be made.
   FolderLock(const std::string& dir, const std::string& command);
   FolderLock(const FolderLock&) = delete;
   FolderLock& operator=(const FolderLock&) = delete;

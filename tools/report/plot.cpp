@@ -163,18 +163,21 @@ bool drawPng(const OutputDir& dir, const std::string& png_name, const std::strin
     return false;
   }
   const std::string final_png = dir.file(png_name);
-  const std::string png = temporaryPathFor(final_png);
-  const std::string data_path = temporaryPathFor(final_png + ".dat");
-  const std::string script_path = temporaryPathFor(final_png + ".gp");
-  const std::string log = temporaryPathFor(final_png + ".log");
+  // every temporary made metrosync's own new file before gnuplot opens it (never a planted link)
+  std::string png, data_path, script_path, log;
   auto cleanup = [&] {
-    for (const auto* p : {&data_path, &script_path, &log}) std::remove(p->c_str());
+    for (const auto* p : {&data_path, &script_path, &log})
+      if (!p->empty()) std::remove(p->c_str());
   };
-  bool ok = static_cast<bool>(std::ofstream(data_path) << data);
-  ok = ok && static_cast<bool>(std::ofstream(script_path) << script(data_path, png));
-  if (!ok) {
+  try {
+    png = newTemporaryFile(final_png);
+    data_path = newTemporaryFile(final_png + ".dat", data);
+    log = newTemporaryFile(final_png + ".log");
+    script_path = newTemporaryFile(final_png + ".gp", script(data_path, png));
+  } catch (const std::runtime_error& e) {
+    if (!png.empty()) std::remove(png.c_str());
     cleanup();
-    warn(png_name + " not written: cannot write its data in " + dir.path());
+    warn(png_name + " not written: " + e.what());
     return false;
   }
   const int rc = runGnuplot(gnuplot, script_path, log);
@@ -200,7 +203,8 @@ int runGnuplot(const std::string& gnuplot, const std::string& script, const std:
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
   posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&fa, 2, log_path.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
   std::vector<char*> argv = {const_cast<char*>(gnuplot.c_str()), const_cast<char*>(script.c_str()),
                              nullptr};
   pid_t pid = 0;

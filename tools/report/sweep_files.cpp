@@ -11,12 +11,15 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 
 #include "sim/record/atomic_file.h"
+#include "sim/record/safe_open.h"
 
 namespace metrosync {
 
@@ -140,11 +143,8 @@ std::string formatTimingsRow(const SweepPoint& p) {
 }
 
 size_t resumableTimingsBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return 0;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string text = ss.str();
+  std::string text = readRegularFile(path);  // a link or FIFO at the name: refused
+  if (text.empty()) return 0;
   text.resize(text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1);  // whole lines
   const std::string header = timingsHeader() + "\n";
   if (text.empty() || text.compare(0, header.size(), header) == 0) return text.size();
@@ -209,11 +209,7 @@ SweepPoint parseRegimesRow(const SweepGrid& grid, int n, const std::string& line
 RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
                             const std::string& dropped) {
   RegimesTable t;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return t;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
+  const std::string text = readRegularFile(path);  // a link or FIFO at the name: refused
   const size_t last_newline = text.rfind('\n');
   if (last_newline == std::string::npos) {  // not even a whole header: start afresh
     if (!text.empty()) t.partial_lines = 1;
@@ -255,6 +251,65 @@ RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int 
   return t;
 }
 
+namespace {
+
+// One pass of sortRegimesCsv: the rows of the smallest indices >= `from` that fit in
+// `pass_bytes` (the last row of an index wins); `whole`: every such row fitted.
+std::map<long, std::string> sortPass(const std::string& path, const SweepGrid& grid, int n,
+                                     const std::function<bool(long)>& keep, long from,
+                                     std::size_t pass_bytes, bool& whole) {
+  std::map<long, std::string> rows;
+  std::size_t bytes = 0;
+  whole = true;
+  const int fd = openRegularForReading(path);
+  if (fd < 0) return rows;
+  std::FILE* f = ::fdopen(fd, "r");
+  char* buf = nullptr;
+  std::size_t cap = 0;
+  bool header = true;
+  for (ssize_t len; (len = ::getline(&buf, &cap, f)) > 0;) {
+    if (header || buf[len - 1] != '\n') {  // the header; a last line cut short
+      header = false;
+      continue;
+    }
+    const std::string line(buf, static_cast<std::size_t>(len - 1));
+    long g = -1;
+    try {
+      g = parseRegimesRow(grid, n, line).index;
+    } catch (const SweepInputError&) {
+      continue;  // malformed: dropped (--resume warned when it read the file)
+    }
+    if (g < from || !keep(g) || (!whole && g > rows.rbegin()->first)) continue;
+    std::string& slot = rows[g];
+    bytes += line.size() - slot.size();
+    slot = line;
+    while (bytes > pass_bytes && rows.size() > 1) {  // the largest indices wait for a later pass
+      bytes -= rows.rbegin()->second.size();
+      rows.erase(std::prev(rows.end()));
+      whole = false;
+    }
+  }
+  std::free(buf);
+  std::fclose(f);
+  return rows;
+}
+
+}  // namespace
+
+void sortRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
+                    const std::function<bool(long)>& keep, std::size_t pass_bytes) {
+  AtomicFile out(path);
+  out.writeLine(regimesHeader(grid, n));
+  for (long from = 0;;) {
+    bool whole = true;
+    const std::map<long, std::string> rows = sortPass(path, grid, n, keep, from, pass_bytes, whole);
+    for (const auto& [g, line] : rows) out.writeLine(line);
+    if (whole || rows.empty()) break;
+    from = rows.rbegin()->first + 1;
+  }
+  out.commit();
+}
+
 void writeSortedRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
                            const std::map<long, std::string>& lines) {
   AtomicFile f(path);
@@ -266,9 +321,7 @@ void writeSortedRegimesCsv(const std::string& path, const SweepGrid& grid, int n
 RegimesAppender::RegimesAppender(const std::string& path, const std::string& header, bool fresh,
                                  size_t keep_bytes)
     : path_(path) {
-  fd_ =
-      ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | (fresh ? O_TRUNC : 0), 0644);
-  if (fd_ < 0) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+  fd_ = openOutputFile(path, fresh, true);  // never through a planted link or FIFO
   if (fresh) {
     append(header);
   } else if (::ftruncate(fd_, static_cast<off_t>(keep_bytes)) != 0) {
@@ -313,29 +366,6 @@ nlohmann::json SweepManifest::toJson() const {
           {"shard", {{"k", shard.k}, {"n", shard.n}}}};
 }
 
-std::map<std::string, long> regimeCounts(const std::map<long, SweepPoint>& points) {
-  std::map<std::string, long> c;
-  for (const auto& [g, p] : points) ++c[p.regime];
-  return c;
-}
-
-nlohmann::json sweepStatusJson(const SweepManifest& m, long shard_points,
-                               const std::map<long, SweepPoint>& points, bool complete) {
-  nlohmann::json j = m.toJson();
-  long failed = 0;
-  for (const auto& [g, p] : points) failed += !p.complete;
-  j["complete"] = complete;
-  j["points"] = {{"grid", m.grid.size()},
-                 {"this_run", shard_points},
-                 {"done", static_cast<long>(points.size())},
-                 {"failed", failed},
-                 {"missing", shard_points - static_cast<long>(points.size())}};
-  nlohmann::json counts = nlohmann::json::object();
-  for (const auto& [name, k] : regimeCounts(points)) counts[name] = k;
-  j["regimes"] = counts;
-  return j;
-}
-
 SweepManifest SweepManifest::fromJson(const nlohmann::json& j) {
   try {
     SweepManifest m;
@@ -376,10 +406,15 @@ std::string sweepDifference(const SweepManifest& a, const SweepManifest& b) {
 }
 
 nlohmann::json readSweepJson(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw SweepInputError(path + ": cannot read (not a sweep output directory?)");
+  std::string text;
   try {
-    return nlohmann::json::parse(in);
+    text = readRegularFile(path);  // a link or FIFO at the name: refused
+  } catch (const std::runtime_error& e) {
+    throw SweepInputError(e.what());
+  }
+  if (text.empty()) throw SweepInputError(path + ": cannot read (not a sweep output directory?)");
+  try {
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw SweepInputError(path + ": not valid JSON: " + e.what());
   }

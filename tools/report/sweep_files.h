@@ -3,6 +3,7 @@
 // the sweep.json manifest, and the progress line.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -40,6 +41,18 @@ RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int 
                             const std::string& dropped = "the point runs again");
 
 // Writes header + lines (ascending index) to `path` atomically.
+// How many bytes of rows one pass of sortRegimesCsv holds: 64 MiB is ~300 000 rows of two
+// metronomes; a sweep of 10^7 points (~2 GB of rows) sorts in ~30 passes over its file.
+constexpr std::size_t kSortPassBytes = std::size_t(64) << 20;
+
+// Rewrites `path` (regimes.csv with its rows in the order they finished: perhaps an earlier run's
+// rows, a row given again by a re-run point, a malformed line) sorted by grid index, each index
+// once (its last row), for the indices `keep` accepts, malformed lines dropped. In passes over the
+// file that each hold at most `pass_bytes` of rows, so that memory does not grow with the sweep
+// (issue 29). Atomic (sim/record/atomic_file.h).
+void sortRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
+                    const std::function<bool(long)>& keep, std::size_t pass_bytes = kSortPassBytes);
+
 void writeSortedRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
                            const std::map<long, std::string>& lines);
 
@@ -100,14 +113,6 @@ std::string sweepDifference(const SweepManifest& a, const SweepManifest& b);
 
 // DIR/sweep.json as a manifest; every error names the file.
 SweepManifest readSweepManifest(const std::string& dir);
-
-// How many points ended in each regime.
-std::map<std::string, long> regimeCounts(const std::map<long, SweepPoint>& points);
-
-// sweep.json's status (without the run's timings and files): the manifest, `complete`,
-// `points` {grid, this_run (shard_points), done, failed, missing} and `regimes` {name: count}.
-nlohmann::json sweepStatusJson(const SweepManifest& m, long shard_points,
-                               const std::map<long, SweepPoint>& points, bool complete);
 
 // Reads DIR/sweep.json; throws SweepInputError when it is missing or is not a sweep manifest.
 nlohmann::json readSweepJson(const std::string& path);

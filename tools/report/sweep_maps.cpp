@@ -203,6 +203,10 @@ const std::vector<std::string>& sweepMapNames() {
 std::vector<std::string> regimeLegendOrder(const std::map<long, SweepPoint>& points) {
   std::map<std::string, long> count;
   for (const auto& [g, p] : points) ++count[p.regime];
+  return regimeLegendOrder(count);
+}
+
+std::vector<std::string> regimeLegendOrder(const std::map<std::string, long>& count) {
   std::vector<std::string> legend;
   for (const auto& [name, colour] : fixedColours())
     if (count.count(name)) legend.push_back(name);

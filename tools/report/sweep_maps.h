@@ -62,6 +62,8 @@ nlohmann::json boundariesJson(const std::vector<continuation::FoldCurve>& curves
 // The colour of a regime name (#rrggbb): fixed for the SPEC names and `failed`, from a palette in
 // the order given for the others. `names` are the regimes present, in legend order.
 std::vector<std::string> regimeLegendOrder(const std::map<long, SweepPoint>& points);
+// ... from each regime's count of points
+std::vector<std::string> regimeLegendOrder(const std::map<std::string, long>& count);
 std::string regimeColour(const std::string& name, const std::vector<std::string>& legend);
 
 // The gnuplot script of the regime map (exposed for tests).

@@ -46,26 +46,32 @@ std::vector<std::string> rawInput(const VideoSpec& s) {
 }  // namespace
 
 VideoPipe::VideoPipe(const VideoSpec& spec) : spec_(spec) {
-  temp_ = temporaryPathFor(spec.path);
-  log_ = temporaryPathFor(spec.path + ".log");
-  std::vector<std::string> args = rawInput(spec);
-  if (spec.gif) {
-    // pass 1: a lossless intermediate and the palette of all frames
-    intermediate_ = temporaryPathFor(spec.path + ".mkv");
-    palette_ = temporaryPathFor(spec.path + ".palette.png");
-    for (const char* a : {"-c:v", "ffv1", "-f", "matroska"}) args.push_back(a);
-    args.push_back(intermediate_);
-    for (const char* a :
-         {"-vf", "palettegen=stats_mode=full", "-frames:v", "1", "-update", "1", "-f", "image2"})
-      args.push_back(a);
-    args.push_back(palette_);
-  } else {
-    for (const char* a : {"-c:v", "libx264", "-preset", "ultrafast", "-crf", "23", "-pix_fmt",
-                          "yuv420p", "-movflags", "+faststart", "-f", "mp4"})
-      args.push_back(a);
-    args.push_back(temp_);
+  try {
+    // metrosync's own new files before ffmpeg opens them (never a planted link)
+    temp_ = newTemporaryFile(spec.path);
+    log_ = newTemporaryFile(spec.path + ".log");
+    std::vector<std::string> args = rawInput(spec);
+    if (spec.gif) {
+      // pass 1: a lossless intermediate and the palette of all frames
+      intermediate_ = newTemporaryFile(spec.path + ".mkv");
+      palette_ = newTemporaryFile(spec.path + ".palette.png");
+      for (const char* a : {"-c:v", "ffv1", "-f", "matroska"}) args.push_back(a);
+      args.push_back(intermediate_);
+      for (const char* a :
+           {"-vf", "palettegen=stats_mode=full", "-frames:v", "1", "-update", "1", "-f", "image2"})
+        args.push_back(a);
+      args.push_back(palette_);
+    } else {
+      for (const char* a : {"-c:v", "libx264", "-preset", "ultrafast", "-crf", "23", "-pix_fmt",
+                            "yuv420p", "-movflags", "+faststart", "-f", "mp4"})
+        args.push_back(a);
+      args.push_back(temp_);
+    }
+    start(args);
+  } catch (...) {
+    cleanup();  // the temporaries made above
+    throw;
   }
-  start(args);
 }
 
 VideoPipe::~VideoPipe() {
@@ -93,7 +99,8 @@ void VideoPipe::start(const std::vector<std::string>& args) {
     posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
   }
   posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, log_.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  posix_spawn_file_actions_addopen(&fa, 2, log_.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_NOFOLLOW,
+                                   0644);
   const int rc = posix_spawn(&child_, spec_.ffmpeg.c_str(), &fa, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&fa);
   if (piped) ::close(fds[0]);

@@ -1,6 +1,7 @@
 #include "sim/analysis/fit/data_file.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -12,9 +13,17 @@ namespace metrosync {
 
 namespace {
 
-// A data file is a few columns of samples: 1 GB would be ten million rows of a 240 fps camera, far
-// beyond any record (a typo'd path to a huge file must not fill the memory).
-constexpr std::uintmax_t kMaxDataFileBytes = std::uintmax_t(1) << 30;
+// A data file is a few columns of samples: 64 MiB is two million rows of a 240 fps camera (2.3 h)
+// with three columns, or a 200 s trajectory.csv of 32 metronomes three times over; the text and
+// its parsed columns then stay below ~200 MB (a typo'd path to a huge file must not fill the
+// memory).
+constexpr std::uintmax_t kMaxDataFileBytes = std::uintmax_t(64) << 20;
+// One line: a row of 1000 metronomes' theta and thetadot columns at 20 bytes a number is 40 kB.
+constexpr std::size_t kMaxDataLineBytes = std::size_t(64) << 10;
+// The record's length (last t - first t): every model run of a fit integrates over it. 10^5 s
+// (28 h) is far beyond a camera record; one stray row at t = 1e9 s would otherwise send every
+// model run of the fit to it (issue 29).
+constexpr double kMaxRecordSeconds = 1e5;
 // Fewer rows cannot determine anything.
 constexpr std::size_t kMinRows = 3;
 
@@ -22,6 +31,12 @@ constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
 
 [[noreturn]] void fail(const std::string& file, int line, const std::string& what) {
   throw DataError(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + what);
+}
+
+std::string shortNumber(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
 }
 
 std::string trimmed(const std::string& s) {
@@ -171,6 +186,10 @@ MeasuredData parseDataText(const std::string& text, const std::string& display_n
   bool have_header = false;
   while (std::getline(in, line)) {
     ++lineno;
+    if (line.size() > kMaxDataLineBytes)
+      fail(display_name, lineno,
+           "a line of " + std::to_string(line.size()) + " bytes (at most " +
+               std::to_string(kMaxDataLineBytes) + " in a data file, docs/rig-limits.md)");
     const std::string t = trimmed(line);
     if (t.empty() || t[0] == '#') continue;
     if (!have_header) {
@@ -189,6 +208,12 @@ MeasuredData parseDataText(const std::string& text, const std::string& display_n
   for (const DataColumn& c : data.columns)
     if (c.present() == 0)
       fail(display_name, 0, "column " + c.name + " has no values (every cell is empty)");
+  if (data.t_s.back() - data.t_s.front() > kMaxRecordSeconds)
+    fail(display_name, lineno,
+         "the record runs from t = " + shortNumber(data.t_s.front()) + " to " +
+             shortNumber(data.t_s.back()) + " s, longer than " +
+             std::to_string(static_cast<long>(kMaxRecordSeconds)) +
+             " s (docs/rig-limits.md): a stray time?");
   return data;
 }
 
@@ -198,7 +223,7 @@ MeasuredData readDataFile(const std::string& path, int n_metronomes) {
   if (ec || !std::filesystem::exists(status)) fail(path, 0, "no such file");
   if (!std::filesystem::is_regular_file(status)) fail(path, 0, "not a regular file");
   if (std::filesystem::file_size(path, ec) > kMaxDataFileBytes)
-    fail(path, 0, "larger than 1 GiB: not a data file of samples");
+    fail(path, 0, "larger than 64 MiB: not a data file of samples (docs/rig-limits.md)");
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, 0, "cannot be read");
   std::ostringstream text;

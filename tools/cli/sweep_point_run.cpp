@@ -1,0 +1,220 @@
+#include "tools/cli/sweep_point_run.h"
+
+#include <cmath>
+#include <limits>
+
+#include "sim/analysis/regime.h"
+#include "tools/cli/commands.h"
+#include "tools/cli/engines.h"
+#include "tools/cli/fault_hooks.h"
+#include "tools/cli/network_sweep.h"
+#include "tools/cli/sweep_summary.h"
+#include "tools/report/outputs.h"
+#include "yaml/network_loader.h"
+#include "yaml/rig_loader.h"
+
+namespace metrosync::cli {
+
+namespace {
+
+// The model --model asks for: as given, else the --engine's, else the slow flow.
+std::string requestedModel(const SweepOptions& opt) {
+  if (!opt.model.empty()) return opt.model;
+  return opt.engine.empty() ? "slow" : "";
+}
+
+// Is the rig text a network of platforms? Decided once per thread for the text it last saw: every
+// point of a sweep (and every basin sample) has the same text, and parsing it once more per point
+// cost 1.5% of a slow-flow point (docs/bench/sweep-throughput.md). --set and --vary cannot make a
+// text a network: only the text's own `platforms` key does (yaml/network_loader.h).
+bool isNetworkRig(const std::string& text) {
+  thread_local std::string last_text;
+  thread_local bool known = false, last = false;
+  if (!known || text != last_text) {
+    last = isNetworkText(text);
+    last_text = text;
+    known = true;
+  }
+  return last;
+}
+
+// ---- one point ---------------------------------------------------------------------------------
+
+// Keeps what the verdict needs; a stop request (SIGINT, SIGTERM) interrupts the run.
+struct PointSink : RunSink {
+  PointSink(double tau_end, double epsilon) : window(tau_end, epsilon) {}
+  void envelopeRow(const EnvelopeRow& row) override {
+    window.add(row);
+    if (keep) kept.push_back(formatEnvelopeRow(row));
+    if (FileSink::stopRequested()) throw RunInterrupted(row.tau, "interrupted by a signal");
+  }
+  // the platform column (0 stuck): the `uncoupled` rule (full model)
+  void trajectoryRow(const std::vector<double>& row) override {
+    if (row.size() > 2) window.platformMode(static_cast<int>(row.back()), row[1] / x_unit);
+  }
+  void eventRow(const char*, const std::vector<double>& row) override { trajectoryRow(row); }
+  RegimeWindow window;
+  double x_unit = 1.0;  // trajectory x per scaled x
+  bool keep = false;    // --keep envelope
+  std::vector<std::string> kept;
+};
+
+// A network's point (tools/cli/network_sweep.h), with the test hook and the stop request.
+std::optional<SweepPoint> runNetworkPoint(const PointInput& in, long g) {
+  SweepPoint p = runNetworkSweepPoint(*in.net, *in.engine, g, injectedFailure(g));
+  if (FileSink::stopRequested()) return std::nullopt;
+  return p;
+}
+
+}  // namespace
+
+std::string sweepRigText(const SweepOptions& opt) {
+  // the same checks as every command: a regular file of bounded size (yaml/rig_loader.h)
+  if (opt.rig_text) return *opt.rig_text;
+  return opt.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.rig_path);
+}
+
+std::string displayName(const SweepOptions& opt) {
+  return opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
+}
+
+// The rig of one point: the base rig, --set, then the point's KEY=VALUE (a wildcard key
+// "metronomes.*.REST" set at each of the n metronomes); checked like `run` checks its rig.
+// `where` names the point ("grid point 12 (...)"); throws RigError naming it.
+PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
+                        const std::vector<std::string>& point, const std::string& where,
+                        const std::string& source) {
+  std::vector<std::string> overrides = opt.sets;
+  overrides.insert(overrides.end(), point.begin(), point.end());
+  PointInput in;
+  try {
+    if (isNetworkRig(text)) in.net = loadSweepNetwork(text, displayName(opt), overrides);
+    in.rig = in.net ? networkSweepRig(*in.net) : loadRigText(text, displayName(opt), overrides);
+  } catch (const RigError& e) {
+    // the loader calls every override --set; the point's own ones come from --vary
+    std::string what = e.what();
+    for (const auto& o : point)
+      for (size_t at = what.find("--set " + o); at != std::string::npos;
+           at = what.find("--set " + o, at))
+        what.replace(at, 6 + o.size(), source + " " + o);
+    throw RigError(what + "\n  at " + where);
+  }
+  if (in.net) {  // docs/networks.md
+    in.engine = &networkSweepEngine(opt.engine, opt.model, *in.net, displayName(opt));
+    return in;
+  }
+  // checks --engine against --model and the point's integrator
+  in.engine = &chooseEngine(opt.engine, requestedModel(opt), in.rig, displayName(opt));
+  try {
+    in.scaled = computeScaled(in.rig);
+  } catch (const std::invalid_argument& e) {
+    throw RigError(displayName(opt) + ": " + e.what() + "\n  at " + where);
+  }
+  return in;
+}
+
+PointInput loadPoint(const std::string& text, const SweepOptions& opt, const SweepGrid& grid,
+                     long g) {
+  const std::vector<std::string> point = grid.overrides(g);
+  return loadPointRig(text, opt, point,
+                      "grid point " + std::to_string(g) + " (" + joined(point) + ") of the sweep");
+}
+
+std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
+  if (in.net) return runNetworkPoint(in, g);
+  const ScaledParams& sp = in.scaled;
+  PointSink sink(sp.tau_end, sp.epsilon);
+  // the `uncoupled` rule: the slow flow's averaged drive, the full model's own stick/slip
+  if (in.engine->model() != "full") sink.window.setEnvelopePlatform(sp.law, sp.mu);
+  sink.x_unit = in.rig.units == Units::Physical ? sp.x_scale_m : 1.0;
+  sink.keep = keep;
+  RunReport rep;
+  const double engine_cpu0 = threadCpuSeconds();
+  try {
+    if (const std::optional<std::string> why = injectedFailure(g))  // tools/cli/fault_hooks.h
+      throw SimulationFailure{0.0, *why};
+    rep = in.engine->run(in.rig, sink);
+  } catch (const RunInterrupted&) {
+    return std::nullopt;
+  } catch (const SimulationFailure& f) {
+    rep.complete = false;
+    rep.failure = "stopped at t = " + fmt(f.t, "%.6g") +
+                  (in.rig.units == Units::Physical ? " s" : "") + ": " + f.why;
+  } catch (const std::exception& e) {
+    rep.complete = false;
+    rep.failure = e.what();
+  }
+  // an engine that turned the interruption into a failed report
+  if (!rep.complete && FileSink::stopRequested()) return std::nullopt;
+
+  const int n = static_cast<int>(sp.nu.size());
+  SweepPoint p;
+  p.index = g;
+  p.complete = rep.complete;
+  p.engine_cpu_seconds = threadCpuSeconds() - engine_cpu0;
+  const EnvelopeRow last = sink.window.empty() ? rep.final_row : sink.window.last();
+  if (static_cast<int>(last.A.size()) == n && static_cast<int>(last.psi.size()) == n - 1) {
+    p.A = last.A;
+    for (double v : last.psi) p.psi.push_back(wrapToTwoPi(v));
+    p.r = std::isnan(last.r) ? orderParameter(last.A, last.psi) : last.r;
+    p.tau = last.tau;
+    if (sp.law == FrictionLaw::Coulomb) {  // |Z| = r sum_j A_j
+      double sum = 0.0;
+      for (double a : last.A) sum += a;
+      p.s = sp.mu > 0 ? p.r * sum / sp.mu : std::numeric_limits<double>::infinity();
+    }
+  } else {
+    p.A.assign(n, std::nan(""));
+    p.psi.assign(n - 1, std::nan(""));
+  }
+  if (rep.complete) {
+    const RegimeVerdict v = classifyRegime(sink.window, sp.theta_c, sp.locked);
+    p.regime = regimeName(v);
+    p.clusters = clusterText(v.cluster_sizes);
+  } else {
+    p.regime = "failed";
+    p.message = rep.failure.empty() ? "the run stopped early" : rep.failure;
+  }
+  p.kept_rows = std::move(sink.kept);
+  return p;
+}
+
+// A grid point that could not even be loaded (checkGrid loads only the grid's corners): failed,
+// with the loader's message, and the sweep goes on.
+SweepPoint unloadablePoint(long g, int n, const std::string& why) {
+  SweepPoint p;
+  p.index = g;
+  p.complete = false;
+  p.regime = "failed";
+  p.message = why;
+  p.engine_cpu_seconds = 0.0;  // no engine ran
+  p.A.assign(n, std::nan(""));
+  p.psi.assign(n > 0 ? n - 1 : 0, std::nan(""));
+  return p;
+}
+
+std::pair<std::string, std::string> checkSweepPoint(const std::string& rig_text,
+                                                    const SweepOptions& opt,
+                                                    const std::vector<std::string>& point, int n,
+                                                    const std::string& where) {
+  const PointInput in = loadPointRig(rig_text, opt, point, where, "the drawn");
+  if (static_cast<int>(in.rig.metronomes.size()) != n)
+    throw UsageError(joined(point) + " changes the number of metronomes (at " + where + ")");
+  return {in.engine->model(), in.engine->name()};
+}
+
+std::optional<SweepPoint> runSweepPointAt(const std::string& rig_text, const SweepOptions& opt,
+                                          const std::vector<std::string>& point, int n,
+                                          long index) {
+  std::optional<PointInput> in;
+  try {
+    in = loadPointRig(rig_text, opt, point, "point " + std::to_string(index));
+  } catch (const std::exception& e) {
+    return unloadablePoint(index, n, e.what());
+  }
+  if (static_cast<int>(in->rig.metronomes.size()) != n)
+    return unloadablePoint(index, n, "the point changes the number of metronomes");
+  return runPoint(*in, index, false);  // basin samples: no envelope kept
+}
+
+}  // namespace metrosync::cli
