@@ -13,9 +13,9 @@
 #include "sim/analysis/continuation/result.h"
 #include "sim/analysis/continuation/start_states.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/continue_full.h"
 #include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
-#include "tools/cli/continue_full.h"
 #include "tools/report/continuation_report.h"
 #include "yaml/rig_loader.h"
 
@@ -110,9 +110,10 @@ ParamsAt2 paramsAt2(const ContinueOptions& opt) {
 }
 
 // The scaled parameters with KEY = value; a value that makes one of them infinite or NaN (e.g.
-// --to 1e308) is refused naming `which` option gave it.
+// --to 1e308) is refused naming `which` option gave it. A value the loader refuses (mu < 0) is said
+// in the loader's words (--param KEY=VALUE: ...).
 ScaledParams finiteScaledAt(const ContinueOptions& opt, double value, const std::string& which) {
-  const ScaledParams p = scaledAt(opt, {opt.param}, {value});
+  const ScaledParams p = computeScaled(loadWith(opt, {opt.param + "=" + fmt(value)}));
   const std::pair<const char*, const std::vector<double>*> lists[] = {
       {"nu", &p.nu}, {"J", &p.J}, {"theta_c", &p.theta_c}, {"alpha", &p.alpha}, {"zeta", &p.zeta}};
   std::string bad = std::isfinite(p.mu) ? "" : "mu";
