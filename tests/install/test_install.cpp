@@ -79,6 +79,35 @@ void expectPluginsWork(const fs::path& prefix, const std::string& bin, const std
   EXPECT_EQ(traced.out.find(kBuild.string() + "/metrosync-simbody.so"), std::string::npos);
 }
 
+// The Python module under `prefix` (when the build made one, tools/python/python.cmake): Debian's
+// python3 imports it from there (not from the build tree) in another folder, and it runs a rig
+// given as a dict with a wildcard override.
+void expectPythonModuleWorks(const fs::path& prefix, const std::string& elsewhere) {
+  if (!fs::exists(kBuild / "python/metrosync/__init__.py")) return;
+  fs::path site;
+  for (const auto& e : fs::recursive_directory_iterator(prefix))
+    if (e.path().filename() == "__init__.py" && e.path().parent_path().filename() == "metrosync")
+      site = e.path().parent_path().parent_path();
+  ASSERT_FALSE(site.empty()) << "no metrosync/__init__.py under " << prefix;
+  bool so = false;
+  for (const auto& e : fs::directory_iterator(site / "metrosync"))
+    so = so || e.path().filename().string().rfind("_metrosync.cpython-", 0) == 0;
+  EXPECT_TRUE(so) << "no _metrosync module in " << site;
+  fs::create_directories(elsewhere);
+  const std::string code =
+      "import metrosync\n"
+      "rig = {'units': 'scaled', 'epsilon': 0.05, 'platform': {'friction': {'law': 'coulomb', "
+      "'mu': 0.3}}, 'metronomes': [{'nu': 0.5, 'J': 2.0, 'theta_c': 0.9, 'start': {'A': 2.0}}, "
+      "{'nu': 0.5, 'J': 2.0, 'theta_c': 0.9, 'start': {'A': 2.0, 'phi': 3.0}}]}\n"
+      "r = metrosync.run(metrosync.load_rig(rig, {'metronomes.*.nu': 0.6}), model='slow', tau=20)\n"
+      "print(metrosync.__file__, len(r.envelope['tau']))\n";
+  const CommandResult py = sh("cd " + shellQuote(elsewhere) +
+                              " && env -u PYTHONPATH PYTHONPATH=" + shellQuote(site.string()) +
+                              " /usr/bin/python3 -c " + shellQuote(code));
+  ASSERT_EQ(py.code, 0) << py.out;
+  EXPECT_EQ(py.out.rfind(site.string(), 0), 0u) << py.out;  // the installed module
+}
+
 // The man page, the bash completion and metrosync-mpi where the system finds them: `man` with the
 // prefix's bin on PATH (man-db maps it to PREFIX/share/man) and with -M; bash-completion's own
 // loader with the prefix's share in XDG_DATA_DIRS (its default holds /usr/local/share and
@@ -161,6 +190,7 @@ TEST(Install, PutsTheBinaryManPageCompletionsRigsAndDocsInPlace) {
   EXPECT_NE(installed.find("\"epsilon\""), std::string::npos) << installed;
   EXPECT_EQ(installed, scaleJson(METROSYNC_BINARY, rig));
   expectPluginsWork(p, bin, rig, scratchDir("install", "plugin_runs", true));
+  expectPythonModuleWorks(p, scratchDir("install", "python_elsewhere", true));
 }
 
 TEST(Install, DebianPackageDeclaresItsDependenciesAndRunsFromItsFiles) {
@@ -176,6 +206,10 @@ TEST(Install, DebianPackageDeclaresItsDependenciesAndRunsFromItsFiles) {
   const std::string depends = sh("dpkg-deb -f " + shellQuote(deb) + " Depends").out;
   for (const char* lib : {"libsimbody", "libyaml-cpp", "libstdc++6", "gnuplot"})
     EXPECT_NE(depends.find(lib), std::string::npos) << lib << " missing in: " << depends;
+  const bool python = fs::exists(kBuild / "python/metrosync/__init__.py");
+  if (python)  // the module imports numpy and is made for one Python version
+    for (const char* dep : {"python3-numpy", "python3 (>= 3.", "python3 (<< 3."})
+      EXPECT_NE(depends.find(dep), std::string::npos) << dep << " missing in: " << depends;
 
   const std::string files = sh("dpkg-deb -c " + shellQuote(deb)).out;
   for (const char* f : {"./usr/bin/metrosync", "./usr/share/man/man1/metrosync.1.gz",
@@ -201,6 +235,11 @@ TEST(Install, DebianPackageDeclaresItsDependenciesAndRunsFromItsFiles) {
   EXPECT_EQ(run.code, 0) << run.out;
   EXPECT_TRUE(fs::is_regular_file(out + "/run/summary.json"));
   expectPluginsWork(root + "/usr", bin, rig, out + "/plugin_runs");
+  if (fs::exists(kBuild / "metrosync-mpi")) {
+    const CommandResult mpi = sh(shellQuote(root + "/usr/bin/metrosync-mpi") + " --help");
+    EXPECT_EQ(mpi.code, 0) << mpi.out;
+  }
+  if (python) expectPythonModuleWorks(root + "/usr", out + "/python_elsewhere");
 }
 
 }  // namespace

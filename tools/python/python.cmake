@@ -58,6 +58,12 @@ if(NOT metrosync_site)
 endif()
 string(REGEX REPLACE "^/usr/(local/)?" "" metrosync_site "${metrosync_site}")
 install(TARGETS _metrosync LIBRARY DESTINATION ${metrosync_site}/metrosync)
+# the Debian package (tools/install/install.cmake): the module is made for this Python's minor
+# version and imports numpy; pandas only for to_pandas()
+math(EXPR metrosync_next_minor "${Python_VERSION_MINOR} + 1")
+set(METROSYNC_PYTHON_DEB_DEPENDS "python3 (>= ${Python_VERSION_MAJOR}.${Python_VERSION_MINOR}~), \
+python3 (<< ${Python_VERSION_MAJOR}.${metrosync_next_minor}), python3-numpy")
+set(METROSYNC_PYTHON_DEB_SUGGESTS "python3-pandas")
 install(FILES ${metrosync_py} DESTINATION ${metrosync_site}/metrosync)
 
 # `pip install .` and `pip wheel .` (setup.py, docs/python.md) into a fresh virtual environment,
