@@ -405,8 +405,9 @@ CLI::App* addContinueCommand(CLI::App& app) {
   ContinueOptions& opt = options();
   CLI::App* c = app.add_subcommand(
       "continue",
-      "follow the slow flow's locked states in one rig key: stability, folds, Hopf "
-      "points, branch points, border crossings");
+      "follow locked states in one rig key, the slow flow's fixed points or (--model full) the "
+      "full model's periodic orbits: stability, folds, Hopf and torus points, branch points, "
+      "border crossings");
   c->add_option("RIG", opt.rig_path, "rig file (YAML); default: the built-in rig");
   c->add_option("--model", opt.model,
                 "slow (the slow flow's locked states) or full (the full model's periodic orbits, "
