@@ -79,16 +79,24 @@ void expectPluginsWork(const fs::path& prefix, const std::string& bin, const std
   EXPECT_EQ(traced.out.find(kBuild.string() + "/metrosync-simbody.so"), std::string::npos);
 }
 
-// The Python module under `prefix` (when the build made one, tools/python/python.cmake): Debian's
-// python3 imports it from there (not from the build tree) in another folder, and it runs a rig
-// given as a dict with a wildcard override.
-void expectPythonModuleWorks(const fs::path& prefix, const std::string& elsewhere) {
+// The Python module under `prefix` (when the build made one, tools/python/python.cmake): in the
+// folder that Debian's python3 searches when the prefix is `system_prefix` (/usr/local for
+// `cmake --install`, /usr for the package); imported from there (not from the build tree) in
+// another folder, it runs a rig given as a dict with a wildcard override.
+void expectPythonModuleWorks(const fs::path& prefix, const std::string& system_prefix,
+                             const std::string& elsewhere) {
   if (!fs::exists(kBuild / "python/metrosync/__init__.py")) return;
   fs::path site;
   for (const auto& e : fs::recursive_directory_iterator(prefix))
     if (e.path().filename() == "__init__.py" && e.path().parent_path().filename() == "metrosync")
       site = e.path().parent_path().parent_path();
   ASSERT_FALSE(site.empty()) << "no metrosync/__init__.py under " << prefix;
+  site = fs::weakly_canonical(site);  // as Python names it (scratch paths may hold "//")
+  const std::string there =
+      (fs::path(system_prefix) / site.lexically_relative(fs::weakly_canonical(prefix))).string();
+  const std::string path =
+      sh("/usr/bin/python3 -c 'import sys; print(*sys.path, end=chr(32))'").out;
+  EXPECT_NE((" " + path).find(" " + there + " "), std::string::npos) << there << " not in " << path;
   bool so = false;
   for (const auto& e : fs::directory_iterator(site / "metrosync"))
     so = so || e.path().filename().string().rfind("_metrosync.cpython-", 0) == 0;
@@ -97,8 +105,10 @@ void expectPythonModuleWorks(const fs::path& prefix, const std::string& elsewher
   const std::string code =
       "import metrosync\n"
       "rig = {'units': 'scaled', 'epsilon': 0.05, 'platform': {'friction': {'law': 'coulomb', "
-      "'mu': 0.3}}, 'metronomes': [{'nu': 0.5, 'J': 2.0, 'theta_c': 0.9, 'start': {'A': 2.0}}, "
-      "{'nu': 0.5, 'J': 2.0, 'theta_c': 0.9, 'start': {'A': 2.0, 'phi': 3.0}}]}\n"
+      "'mu': 0.3}}, 'metronomes': [{'nu': 0.5, 'J': 2.0, 'theta_c': 0.9, 'start': {'A': 2.0, "
+      "'phi': 0.0}}, "
+      "{'nu': 0.5, 'J': 2.0, 'theta_c': 0.9, 'start': {'A': 2.0, 'phi': 3.0}}], 'simulation': "
+      "{'tau': 20}}\n"
       "r = metrosync.run(metrosync.load_rig(rig, {'metronomes.*.nu': 0.6}), model='slow', tau=20)\n"
       "print(metrosync.__file__, len(r.envelope['tau']))\n";
   const CommandResult py = sh("cd " + shellQuote(elsewhere) +
@@ -190,7 +200,7 @@ TEST(Install, PutsTheBinaryManPageCompletionsRigsAndDocsInPlace) {
   EXPECT_NE(installed.find("\"epsilon\""), std::string::npos) << installed;
   EXPECT_EQ(installed, scaleJson(METROSYNC_BINARY, rig));
   expectPluginsWork(p, bin, rig, scratchDir("install", "plugin_runs", true));
-  expectPythonModuleWorks(p, scratchDir("install", "python_elsewhere", true));
+  expectPythonModuleWorks(p, "/usr/local", scratchDir("install", "python_elsewhere", true));
 }
 
 TEST(Install, DebianPackageDeclaresItsDependenciesAndRunsFromItsFiles) {
@@ -239,7 +249,7 @@ TEST(Install, DebianPackageDeclaresItsDependenciesAndRunsFromItsFiles) {
     const CommandResult mpi = sh(shellQuote(root + "/usr/bin/metrosync-mpi") + " --help");
     EXPECT_EQ(mpi.code, 0) << mpi.out;
   }
-  if (python) expectPythonModuleWorks(root + "/usr", out + "/python_elsewhere");
+  if (python) expectPythonModuleWorks(root + "/usr", "/usr", out + "/python_elsewhere");
 }
 
 }  // namespace

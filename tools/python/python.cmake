@@ -1,6 +1,7 @@
 # The Python module `metrosync` (docs/python.md), built when pybind11 and Debian's Python 3 are
 # found: build/python/metrosync/ holds the package (its .py files copied, _metrosync compiled in),
-# importable with PYTHONPATH=build/python; `cmake --install` puts it in Debian's dist-packages.
+# importable with PYTHONPATH=build/python; `cmake --install` puts it where
+# Debian's python3 finds it (below).
 # Debian's /usr/bin/python3 is preferred: the python3 first on PATH may be another interpreter
 # without numpy (a pyenv one), and the module must match the interpreter that imports it.
 if(EXISTS /usr/bin/python3 AND NOT Python_EXECUTABLE)
@@ -50,13 +51,20 @@ foreach(nb paper-figures classroom)
     LABELS slow TIMEOUT 600)
 endforeach()
 
-execute_process(COMMAND ${Python_EXECUTABLE} -c
-                        "import sysconfig; print(sysconfig.get_path('platlib', 'deb_system'))"
+# Where the module goes under the prefix: Debian's python3 searches PREFIX/lib/python3.X/
+# dist-packages for both /usr/local (`cmake --install`) and /usr (the package), but
+# lib/python3/dist-packages only under /usr; elsewhere (no Debian scheme) site-packages.
+execute_process(COMMAND ${Python_EXECUTABLE} -c [=[
+import sys, sysconfig
+local = "posix_local" in sysconfig.get_scheme_names()
+scheme, base = ("posix_local", "/usr/local/") if local else ("posix_prefix", sys.prefix + "/")
+path = sysconfig.get_path("platlib", scheme)
+print(path[len(base):] if path.startswith(base) else "")
+]=]
                 OUTPUT_VARIABLE metrosync_site OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
 if(NOT metrosync_site)
-  set(metrosync_site lib/python3/dist-packages)
+  set(metrosync_site lib/python${Python_VERSION_MAJOR}.${Python_VERSION_MINOR}/site-packages)
 endif()
-string(REGEX REPLACE "^/usr/(local/)?" "" metrosync_site "${metrosync_site}")
 install(TARGETS _metrosync LIBRARY DESTINATION ${metrosync_site}/metrosync)
 # the Debian package (tools/install/install.cmake): the module is made for this Python's minor
 # version and imports numpy; pandas only for to_pandas()
