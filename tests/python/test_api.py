@@ -3,6 +3,7 @@ result; to_pandas() is a DataFrame; an error in a dict rig names the dict's key 
 wrong in Python terms; overrides act like the CLI's --set, wildcards included."""
 import json
 import os
+import traceback
 
 import numpy as np
 import pandas as pd
@@ -122,6 +123,14 @@ def test_an_error_in_an_override_or_option_is_said_in_python_terms():
         assert message.split("\n")[0] == said
         for word in ("--set", "--to", "--vary", "--param", "--engine", "/tmp", "metrosync-"):
             assert word not in message, message
+
+
+def test_an_error_is_a_value_error_named_as_the_package_names_it():
+    with pytest.raises(ValueError) as e:
+        metrosync.load_rig(EXPERIMENT, {"platform.friction.mu": -1})
+    assert isinstance(e.value, metrosync.RigError)
+    said = traceback.format_exception_only(type(e.value), e.value)[-1]
+    assert said.startswith("metrosync.RigError: " + EXPERIMENT + ": overrides["), said
 
 
 def test_a_bad_rig_file_is_named_with_its_line(tmp_path):

@@ -7,6 +7,7 @@ import re
 from . import _metrosync as _core
 
 RigError = _core.RigError  # a bad rig, override or option (a ValueError)
+RigError.__module__ = "metrosync"  # tracebacks say metrosync.RigError, not the C++ module's name
 
 # What stands for a dict rig in the loader's messages (and names it when it has no `name` key).
 _DICT_NAME = "rig"
