@@ -322,7 +322,7 @@ RunOutcome runImpl(const Options& opt, bool keep) {
   observeSection3A(r, full, *sink, decay);
   const auto progress = attachProgress(opt, r, *sink, "run");
   RunReport report = runModel(*r.engine, r, *sink);
-  sink->commit();
+  report.write_seconds = sink->commit();
   const RegimeVerdict verdict = judge(report, *sink, r);
 
   std::vector<std::string> files = sink->fileNames();
@@ -439,13 +439,13 @@ RunOutcome compareImpl(const Options& opt, bool keep) {
       makeSink(dir, sinkOptions(r, true, "envelope_full.csv"), keep ? &out.rows : nullptr);
   const auto full_progress = attachProgress(opt, r, *full_sink, "compare (full model)");
   RunReport full = runModel(*r.engine, r, *full_sink);
-  full_sink->commit();
+  full.write_seconds = full_sink->commit();
 
   const auto slow_sink =
       makeSink(dir, sinkOptions(r, false, "envelope_slow.csv"), keep ? &out.slow_rows : nullptr);
   const auto slow_progress = attachProgress(opt, r, *slow_sink, "compare (slow flow)");
   RunReport slow = runSlowOfCompare(r, *slow_sink);
-  slow_sink->commit();
+  slow.write_seconds = slow_sink->commit();
 
   const RegimeVerdict v_full = judge(full, *full_sink, r);
   const RegimeVerdict v_slow = judge(slow, *slow_sink, r);
