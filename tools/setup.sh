@@ -16,7 +16,10 @@ packages=(cmake g++ make libsimbody-dev libeigen3-dev libyaml-cpp-dev nlohmann-j
           libceres-dev  # metrosync fit (sim/analysis/fit)
           libboost-dev  # bench-only (tools/bench's Boost.Odeint peer, header-only)
           help2man dpkg-dev man-db  # the man page, the .deb's dependencies, and their tests
+          bash-completion  # tests/install: bash finds the installed completion
           pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module, its tests
+          python3-yaml  # tests/python: the shipped rigs as dicts
+          python3-setuptools python3-wheel python3-pip python3-venv  # pip install . (tests/pip)
           jupyter-nbconvert python3-ipykernel python3-matplotlib python3-pandas  # the notebooks
           libcairo2-dev pkg-config ffmpeg  # `metrosync animate`: Cairo draws, ffmpeg encodes
           libopenmpi-dev openmpi-bin  # metrosync-mpi: a sweep over MPI ranks (docs/cluster.md)

@@ -348,6 +348,26 @@ TEST(CliRun, NoPlotWritesNoPng) {
   }
 }
 
+// Every metronome locked (section 3A, yaml/rigs/board-on-springs.yaml): the summary on stdout
+// reports the board's linear decay that summary.json's section3a holds, not amplitudes and
+// thresholds that locked pendulums do not have ("A = 0 0 (theta_c = 0 0)").
+TEST(CliRun, LockedMetronomesSummarizeTheBoardsDecay) {
+  const std::string dir = scratch("locked");
+  const Result r = metrosync(
+      "run " + quoted(std::string(METROSYNC_SOURCE_DIR) + "/yaml/rigs/board-on-springs.yaml") +
+      " --no-plot --out " + quoted(dir));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.find("theta_c = 0"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("A = 0 0"), std::string::npos) << r.out;
+  const json s = readJson(dir + "/summary.json")["section3a"];
+  char mu_bar[32], slope[32];
+  std::snprintf(mu_bar, sizeof mu_bar, "mu-bar %.4g", s["mu_bar"].get<double>());
+  std::snprintf(slope, sizeof slope, "slope %.4g m/s", s["slope"].get<double>());
+  EXPECT_NE(r.out.find("every metronome locked"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(mu_bar), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(slope), std::string::npos) << r.out;
+}
+
 TEST(CliRun, ScaledRigThreeMetronomes) {
   const std::string dir = scratch("three");
   std::string text = scaledRig(8, 0.2);

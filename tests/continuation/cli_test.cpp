@@ -130,6 +130,10 @@ TEST(ContinueCli, BadInputExit2NothingWritten) {
       {"--param metronomes.1.alpha --from 3.9 --to 4 --start 1,2", "expected 3 numbers"},
       {"--param metronomes.1.alpha --from 3.9 --to 4 --start 1,x,3", "not a number"},
       {"--param metronomes.*.bogus --from 1 --to 2", "bogus"},
+      // the loader's own words for a value it refuses (not "makes the scaled nu infinite")
+      {"--param platform.friction.mu --to -0.3",
+       "--param platform.friction.mu=-0.29999999999999999: platform.friction.mu = "
+       "-0.29999999999999999: must be >= 0"},
   };
   for (const BadCase& c : cases) {
     const std::string out = scratchDir("continue", "bad");

@@ -115,6 +115,11 @@ TEST(Figures, OnlyMakesThatFigureAndABadIdWritesNothing) {
                 .code,
             0);
   EXPECT_TRUE(fs::exists(out + "/f4.2.svg"));
+  // the threshold's legend is θ with a subscript c, not the text "θ_c" (the key is noenhanced
+  // for the runs' own labels)
+  const std::string svg = ts::slurp(out + "/f4.2.svg");
+  EXPECT_EQ(svg.find("θ_c"), std::string::npos);
+  EXPECT_TRUE(std::regex_search(svg, std::regex("θ</tspan><tspan[^>]*>c</tspan>"))) << svg;
   EXPECT_FALSE(fs::exists(out + "/f4.3.png"));
   EXPECT_FALSE(fs::exists(out + "/exp1.png"));
   const std::string bad = ts::scratchDir("figures", "bad");

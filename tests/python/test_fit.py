@@ -39,7 +39,7 @@ def test_fit_equals_the_cli_and_finds_the_truth(tmp_path):
         args += ["--free", key, "--set", "%s=%r" % (key, start)]
     subprocess.run(args, check=True)
     cli = json.load(open(tmp_path / "cli" / "fit.json"))
-    py = metrosync.fit(metrosync.load_rig(RIG, STARTS), data, list(STARTS))
+    py = metrosync.fit(metrosync.load_rig(RIG, STARTS), data, list(STARTS)).summary
     for field in ("values", "std_errors", "identifiable", "rms", "noise", "converged", "note",
                   "optima", "start_from", "keys"):
         assert py[field] == cli[field], field

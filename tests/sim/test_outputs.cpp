@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "tools/report/outputs.h"
+#include "tools/report/run_columns.h"
 
 namespace metrosync {
 namespace {
@@ -311,6 +312,76 @@ TEST(Summary, WrittenAtomicallyAndParses) {
   const nlohmann::json j = nlohmann::json::parse(in);
   EXPECT_EQ(j["model"], "slow");
   EXPECT_TRUE(j["x"].is_null());  // a non-finite number is written as null, still valid JSON
+}
+
+// Without a folder (the Python module's run without out=): nothing is written, every row goes to
+// the tap, the regime window is kept, and a stop request interrupts as with files.
+TEST(FileSink, WithoutAFolderWritesNothingAndHandsEveryRowToTheTap) {
+  const std::string dir = freshDir("sink_nofolder");
+  fs::create_directories(dir);
+  const std::filesystem::path cwd = std::filesystem::current_path();
+  std::filesystem::current_path(dir);
+  RunFilesOptions o = twoMetronomes(1.0);
+  o.events = true;
+  FileSink sink(o);
+  RunColumns columns(o);
+  sink.setTap(&columns);
+  sink.trajectoryRow({0, 0, 0, 0.1, 0, 0.2, 0, 0});
+  sink.trajectoryRow({0.5, 1e-3, 0, 0.3, 0.1, 0.2, 0, 1});
+  sink.eventRecord("tick", 1, {0.5, 0, 0, 0, 0, 0, 0, 0}, {0.5, 1, 2, 3, 4, 5, 6, 1});
+  sink.envelopeRow(row2(0.95, 1.5, 1.4, 0.5));
+  FileSink::requestStop();
+  EXPECT_THROW(sink.envelopeRow(row2(0.97, 1.5, 1.4, 0.5)), RunInterrupted);
+  FileSink::clearStopRequest();
+  sink.commit();
+  std::filesystem::current_path(cwd);
+  EXPECT_TRUE(listDir(dir).empty());
+  EXPECT_TRUE(sink.fileNames().empty());
+  EXPECT_EQ(sink.regimeWindow().rowsInWindow(), 2);
+  EXPECT_EQ(columns.trajectory.rows(), 2u);
+  EXPECT_EQ(columns.trajectory.values[8 + 1], 1e-3);  // row 1, x
+  ASSERT_EQ(columns.envelope.rows(), 2u);  // the interrupting row too, as a file keeps it
+  EXPECT_EQ(columns.envelope.names, (std::vector<std::string>{"tau", "A_1", "A_2", "psi_2", "r"}));
+  EXPECT_EQ(columns.envelope.values[4], orderParameter({1.5, 1.4}, {0.5}));
+  ASSERT_EQ(columns.events.rows(), 1u);
+  EXPECT_EQ(columns.event_kinds, std::vector<std::string>{"tick"});
+  EXPECT_EQ(columns.event_who, std::vector<std::string>{"2"});
+  EXPECT_EQ(columns.events.values[1], 0.02 * 0.5);  // tau = epsilon t (scaled: time unit 1)
+}
+
+// With a folder and a tap: the files print the tap's numbers, to 12 digits (tau to 10).
+TEST(RunColumns, HoldTheNumbersTheFilesPrint) {
+  OutputDir dir(freshDir("sink_tap"));
+  RunFilesOptions o = twoMetronomes(10);
+  o.seconds = true;
+  o.time_unit = 0.047;
+  FileSink sink(dir, o);
+  RunColumns columns(o);
+  sink.setTap(&columns);
+  for (int k = 0; k < 50; ++k) {
+    sink.trajectoryRow({0.1 * k, 1e-4 * std::sin(k), 0, std::sin(0.3 * k) / 3, 0, 0.5, 0, 0});
+    sink.envelopeRow(row2(0.2 * k + 1.0 / 3, 1.5 + 1e-3 * k, 1.4, 0.01 * k + 1.0 / 7));
+  }
+  sink.commit();
+  auto printed = [](const ColumnTable& t, size_t row, bool tau10) {
+    std::string line;
+    for (size_t c = 0; c < t.names.size(); ++c) {
+      char buf[40];
+      std::snprintf(buf, sizeof buf, c == 0 && tau10 ? "%.10g" : "%.12g",
+                    t.values[row * t.names.size() + c]);
+      line += (c ? "," : "") + std::string(buf);
+    }
+    return line;
+  };
+  const auto env = readLines(dir.file("envelope.csv"));
+  const auto traj = readLines(dir.file("trajectory.csv"));
+  ASSERT_EQ(env.size(), 51u);
+  ASSERT_EQ(traj.size(), 51u);
+  EXPECT_EQ(env[0], "tau,A_1,A_2,psi_2,r,t_s");
+  for (size_t k = 0; k < 50; ++k) {
+    EXPECT_EQ(printed(columns.envelope, k, true), env[k + 1]);
+    EXPECT_EQ(printed(columns.trajectory, k, false), traj[k + 1]);
+  }
 }
 
 }  // namespace

@@ -98,7 +98,7 @@ BasinPlan planBasin(const BasinOptions& opt) {
   if (opt.random.empty()) throw UsageError("basin: give at least one --random KEY=FROM:TO");
   if (opt.samples < 1) throw UsageError("basin: give --samples S");  // parsed by its rule
   BasinPlan plan;
-  plan.text = opt.run.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.run.rig_path);
+  plan.text = sweepRigText(opt.run);
   const std::string name = displayName(opt.run);
   const std::optional<Network> net = loadSweepNetwork(plan.text, name, opt.run.sets);
   const Rig base = net ? networkSweepRig(*net) : loadRigText(plan.text, name, opt.run.sets);

@@ -61,10 +61,20 @@ const char* kExitCodes =
 }  // namespace
 
 void configureApp(CLI::App& app) {
+  // the full model's engines from the registry, the default first (sim/engines/engine.h)
+  std::string full;
+  for (const Engine* e : engines())
+    if (e->model() == "full")
+      full += (full.empty() ? e->name() + " (the default)" : ", " + e->name());
   app.description(
-      "metrosync: coupled metronomes on a platform with Coulomb (dry) friction - the full "
-      "model (a Simbody multibody system with stick-slip and escapement events) and the "
-      "slow flow of the two-timescale analysis.");
+      "metrosync: coupled metronomes on a platform with Coulomb (dry) friction. The full model: "
+      "the governing equations with true stick-slip of the platform and each escapement tick "
+      "an impulse, run by the engines " +
+      full +
+      " (choose with --engine); the slow flow: the "
+      "two-timescale analysis's averaged equations. Runs, comparisons, sweeps, basins, "
+      "continuation, fits, "
+      "the paper's figures and animations, one subcommand each.");
   app.name("metrosync");
   app.set_version_flag("--version", versionText());
   app.require_subcommand(1);

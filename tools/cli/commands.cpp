@@ -22,6 +22,7 @@
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
 #include "tools/report/progress_log.h"
+#include "tools/report/run_columns.h"
 #include "tools/report/scale_report.h"
 #include "yaml/rig_loader.h"
 
@@ -74,7 +75,9 @@ LoadedRig loadAndCheck(const Options& opt, const std::string& model) {
   for (const Engine* e : engines())
     for (const std::string& n : e->integrators()) lo.integrators.push_back(n);
   lo.integrator_help = "one of: " + integratorHelp();
-  r.text = opt.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.rig_path);
+  r.text = opt.rig_text           ? *opt.rig_text
+           : opt.rig_path.empty() ? defaultRigYaml()
+                                  : readRigFile(opt.rig_path);
   r.rig = loadRigText(r.text, opt.rig_path.empty() ? "<default rig>" : opt.rig_path, opt.sets, lo);
 
   // the integrator is the engine's business, so the loader leaves its name to us
@@ -90,8 +93,10 @@ LoadedRig loadAndCheck(const Options& opt, const std::string& model) {
 }
 
 // The output directory, created only now that the rig is valid; stale outputs of an earlier
-// command there are removed so that every file in it belongs to this run.
-OutputDir openOutputDir(const Options& opt, const Rig& rig, const std::string& command) {
+// command there are removed so that every file in it belongs to this run. None with no_files.
+std::optional<OutputDir> openOutputDir(const Options& opt, const Rig& rig,
+                                       const std::string& command) {
+  if (opt.no_files) return std::nullopt;
   const std::string path =
       opt.out.empty() ? defaultOutputDir(rig.name, command, opt.sets) : opt.out;
   try {
@@ -129,6 +134,15 @@ RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::stri
   o.x_unit = r.rig.units == Units::Physical ? r.scaled.x_scale_m : 1.0;
   o.law = r.scaled.friction;
   return o;
+}
+
+// A model's sink: writing into `dir`, or without one only judging the rows; every row also to
+// `keep` when given (the Python module's rows in memory).
+std::unique_ptr<FileSink> makeSink(const std::optional<OutputDir>& dir, const RunFilesOptions& o,
+                                   std::optional<RunColumns>* keep) {
+  auto sink = dir ? std::make_unique<FileSink>(*dir, o) : std::make_unique<FileSink>(o);
+  if (keep) sink->setTap(&keep->emplace(o));
+  return sink;
 }
 
 // summary.json's resolved_rig, command_line and build (docs/outputs.md)
@@ -191,14 +205,30 @@ std::string modelTitle(const std::string& model) {
   return model == "full" ? "full model" : "slow flow";
 }
 
+// The final state: each swinging metronome's amplitude against its threshold; a rig whose
+// metronomes are all locked (section 3A) has neither, and its board's linear decay is the result.
+void printFinalState(const LoadedRig& r, const RunReport& rep, const LinearDecay* decay) {
+  std::cout << "  final tau = " << fmt(rep.final_row.tau);
+  if (r.rig.numSwinging() == 0) {
+    std::cout << ": every metronome locked";
+    const auto s3a = decay ? decay->result(r.rig) : std::nullopt;
+    if (s3a)
+      std::cout << "; the board's extremes decay linearly (section 3A): slope "
+                << fmt(s3a->slope_m_s) << " m/s, mu-bar " << fmt(s3a->mu_bar) << ", period "
+                << fmt(s3a->period_s) << " s, " << s3a->extremes << " extremes";
+    return;
+  }
+  std::cout << ": A = " << fmtList(rep.final_row.A) << " (theta_c = " << fmtList(r.scaled.theta_c)
+            << ")";
+  if (!rep.final_row.psi.empty()) std::cout << ", psi = " << fmtList(rep.final_row.psi);
+}
+
 void printRunSummary(const std::string& model, const LoadedRig& r, const RunReport& rep,
-                     const RegimeVerdict& v) {
+                     const RegimeVerdict& v, const LinearDecay* decay = nullptr) {
   std::cout << modelTitle(model) << " (" << rep.engine
             << (rep.integrator.empty() ? "" : ", " + rep.integrator) << "): regime "
             << regimeName(v) << "\n";
-  std::cout << "  final tau = " << fmt(rep.final_row.tau) << ": A = " << fmtList(rep.final_row.A)
-            << " (theta_c = " << fmtList(r.scaled.theta_c) << ")";
-  if (!rep.final_row.psi.empty()) std::cout << ", psi = " << fmtList(rep.final_row.psi);
+  printFinalState(r, rep, decay);
   std::cout << "\n  " << rep.counts.steps << " steps";
   if (!rep.counts.escapements.empty()) {
     std::vector<double> e(rep.counts.escapements.begin(), rep.counts.escapements.end());
@@ -210,14 +240,30 @@ void printRunSummary(const std::string& model, const LoadedRig& r, const RunRepo
   std::cout << ", wall time " << fmt(rep.wall_seconds, "%.3g") << " s\n";
 }
 
-void printFiles(const OutputDir& dir, const std::vector<std::string>& files) {
-  std::cout << "files: " << dir.path() << "/ (" << joined(files) << ")\n";
+void printFiles(const std::optional<OutputDir>& dir, const std::vector<std::string>& files) {
+  if (dir) std::cout << "files: " << dir->path() << "/ (" << joined(files) << ")\n";
 }
 
-void reportFailure(const std::string& model, const RunReport& rep, const OutputDir& dir) {
+// Said on stderr with a folder (the CLI's); without one the caller raises it (Python).
+void reportFailure(const std::string& model, const RunReport& rep,
+                   const std::optional<OutputDir>& dir) {
+  if (!dir) return;
   std::cerr << "metrosync: error: " << modelTitle(model) << ": " << rep.failure
-            << "\nmetrosync: the files written so far are in " << dir.path()
+            << "\nmetrosync: the files written so far are in " << dir->path()
             << "/ (summary.json says complete: false)\n";
+}
+
+// summary.json's "files" (and the file itself, last: a summary.json means the run's files are
+// all there), with a folder; without one an empty list.
+void finishSummary(nlohmann::json& summary, const std::optional<OutputDir>& dir,
+                   std::vector<std::string> files) {
+  if (!dir) {
+    summary["files"] = nlohmann::json::array();
+    return;
+  }
+  files.push_back("summary.json");
+  summary["files"] = files;
+  writeSummary(*dir, summary);
 }
 
 extern "C" void onStopSignal(int) {
@@ -239,113 +285,115 @@ void installStopHandlers() {
   ::sigaction(SIGTERM, &sa, nullptr);
 }
 
-int runCommand(const Options& opt) {
-  if (isNetworkRun(opt)) return runNetworkCommand(opt);  // docs/networks.md
-  LoadedRig r = loadAndCheck(opt, opt.model);
-  const std::string model = r.engine->model();
-  installStopHandlers();  // before any file exists, so that no signal can leave a bare .part
-  const OutputDir dir = openOutputDir(opt, r.rig, "run");
-  const bool full = model == "full";
+namespace {
 
-  // the run's files made durable with one sync (sim/record/atomic_file.h): all of them and
-  // summary.json with --no-plot; else the result files, then the plot and summary.json
-  CommitBatch durable;
-  FileSink sink(dir, sinkOptions(r, full, "envelope.csv"));
-  // section 3A (locked metronomes, board on springs): the extremes are the platform's stops
-  LinearDecay decay;
+// section 3A (locked metronomes, board on springs): the extremes are the platform's stops
+void observeSection3A(const LoadedRig& r, bool full, FileSink& sink, LinearDecay& decay) {
   if (full && isSection3ARig(r.rig))
     sink.setEventObserver([&decay](const char*, int who, const std::vector<double>&,
                                    const std::vector<double>& after) {
       if (who < 0) decay.addExtreme(after[0], after[1]);
     });
-  const auto progress = attachProgress(opt, r, sink, "run");
-  RunReport report = runModel(*r.engine, r, sink);
-  report.write_seconds = sink.commit();
-  const RegimeVerdict verdict = judge(report, sink, r);
+}
 
-  std::vector<std::string> files = sink.fileNames();
-  const std::string plot = "envelope." + opt.plot_format;
-  // the result files on disk before the plot (a gnuplot child, ~0.1 s); summary.json then
-  // follows on its own
-  if (!opt.no_plot) durable.finish();
-  if (!opt.no_plot &&
-      plotEnvelope(dir, plot, sink.plotRows(), r.scaled.theta_c,
-                   r.rig.name + " - " + modelTitle(model) + " - " + regimeName(verdict),
-                   plotStyle(opt, r)))
-    files.push_back(plot);
-  files.push_back("summary.json");
-
-  nlohmann::json summary = runSummaryJson(r.rig, r.scaled_json, report, verdict);
-  summary["files"] = files;
-  addRunProvenance(summary, opt, r);
-  if (const auto s3a = decay.result(r.rig))
+void addSection3A(nlohmann::json& summary, const LinearDecay& decay, const Rig& rig) {
+  if (const auto s3a = decay.result(rig))
     summary["section3a"] = {{"slope", s3a->slope_m_s},
                             {"mu_bar", s3a->mu_bar},
                             {"period", s3a->period_s},
                             {"extremes", s3a->extremes}};
-  writeSummary(dir, summary);  // last: a summary.json means the run's files are all there
+}
+
+// `run`, its rows also kept when `keep`.
+RunOutcome runImpl(const Options& opt, bool keep) {
+  RunOutcome out;
+  LoadedRig r = loadAndCheck(opt, opt.model);
+  const std::string model = r.engine->model();
+  installStopHandlers();  // before any file exists, so that no signal can leave a bare .part
+  const std::optional<OutputDir> dir = openOutputDir(opt, r.rig, "run");
+  const bool full = model == "full";
+
+  // the run's files made durable with one sync (sim/record/atomic_file.h): all of them and
+  // summary.json with --no-plot; else the result files, then the plot and summary.json
+  CommitBatch durable;
+  const auto sink = makeSink(dir, sinkOptions(r, full, "envelope.csv"), keep ? &out.rows : nullptr);
+  LinearDecay decay;
+  observeSection3A(r, full, *sink, decay);
+  const auto progress = attachProgress(opt, r, *sink, "run");
+  RunReport report = runModel(*r.engine, r, *sink);
+  report.write_seconds = sink->commit();
+  const RegimeVerdict verdict = judge(report, *sink, r);
+
+  std::vector<std::string> files = sink->fileNames();
+  const std::string plot = "envelope." + opt.plot_format;
+  // the result files on disk before the plot (a gnuplot child, ~0.1 s); summary.json then
+  // follows on its own
+  if (dir && !opt.no_plot) durable.finish();
+  if (dir && !opt.no_plot &&
+      plotEnvelope(*dir, plot, sink->plotRows(), r.scaled.theta_c,
+                   r.rig.name + " - " + modelTitle(model) + " - " + regimeName(verdict),
+                   plotStyle(opt, r)))
+    files.push_back(plot);
+
+  out.summary = runSummaryJson(r.rig, r.scaled_json, report, verdict);
+  addRunProvenance(out.summary, opt, r);
+  addSection3A(out.summary, decay, r.rig);
+  finishSummary(out.summary, dir, files);
   if (durable.active()) durable.finish();  // --no-plot: renamed in order, summary.json last
 
   if (!opt.quiet) {
-    printRunSummary(model, r, report, verdict);
+    printRunSummary(model, r, report, verdict, &decay);
     printFiles(dir, files);
   }
-  if (!report.complete) {
-    reportFailure(model, report, dir);
-    return kSimulationFailed;
-  }
-  return kSuccess;
+  out.code = report.complete ? kSuccess : kSimulationFailed;
+  if (!report.complete) reportFailure(model, report, dir);
+  return out;
 }
 
-int compareCommand(const Options& opt) {
-  const Engine* requested = findEngine(opt.engine);
-  if (requested && requested->model() != "full")
-    throw UsageError("--engine " + opt.engine + ": compare runs the full model (--engine " +
-                     engineNames("full") + ") against the slow flow");
-  LoadedRig r = loadAndCheck(opt, "full");
-  requireSlowFlow(r.rig, rigDisplayName(opt));  // before anything is written
-  installStopHandlers();
-  const OutputDir dir = openOutputDir(opt, r.rig, "compare");
-  const Clock::time_point t0 = Clock::now();
+}  // namespace
 
-  FileSink full_sink(dir, sinkOptions(r, true, "envelope_full.csv"));
-  const auto full_progress = attachProgress(opt, r, full_sink, "compare (full model)");
-  RunReport full = runModel(*r.engine, r, full_sink);
-  full.write_seconds = full_sink.commit();
+int runCommand(const Options& opt) {
+  if (!opt.rig_text && isNetworkRun(opt)) return runNetworkCommand(opt);  // docs/networks.md
+  return runImpl(opt, false).code;
+}
 
-  FileSink slow_sink(dir, sinkOptions(r, false, "envelope_slow.csv"));
-  const auto slow_progress = attachProgress(opt, r, slow_sink, "compare (slow flow)");
+RunOutcome runKeepingRows(const Options& opt) {
+  return runImpl(opt, true);
+}
+
+namespace {
+
+// The slow flow of compare, unless a signal stopped the full model.
+RunReport runSlowOfCompare(const LoadedRig& r, FileSink& sink) {
+  if (!FileSink::stopRequested()) return runModel(*findEngine("slowflow"), r, sink);
   RunReport slow;
-  if (FileSink::stopRequested()) {
-    slow.model = "slow";
-    slow.engine = "slowflow";
-    slow.complete = false;
-    slow.failure = "not run: interrupted by a signal";
-  } else {
-    slow = runModel(*findEngine("slowflow"), r, slow_sink);
-  }
-  slow.write_seconds = slow_sink.commit();
+  slow.model = "slow";
+  slow.engine = "slowflow";
+  slow.complete = false;
+  slow.failure = "not run: interrupted by a signal";
+  return slow;
+}
 
-  const RegimeVerdict v_full = judge(full, full_sink, r);
-  const RegimeVerdict v_slow = judge(slow, slow_sink, r);
-  const ComparisonResult cmp =
-      compareEnvelopeFiles(dir.file("envelope_full.csv"), dir.file("envelope_slow.csv"),
-                           r.scaled.epsilon, dir.file("comparison.csv"), secondsPerTau(r));
+// The comparison of the two envelopes: from the files with a folder (streaming, as the CLI's),
+// and from the rows kept in memory (comparison.csv's columns; the summary's too without files).
+ComparisonResult compareModels(const LoadedRig& r, const std::optional<OutputDir>& dir,
+                               RunOutcome& out, bool keep) {
+  ComparisonResult cmp;
+  if (keep)
+    cmp = comparisonColumns(static_cast<int>(r.rig.metronomes.size()), out.rows->envelopeRows(),
+                            out.slow_rows->envelopeRows(), r.scaled.epsilon, secondsPerTau(r),
+                            out.comparison);
+  if (dir)
+    cmp = compareEnvelopeFiles(dir->file("envelope_full.csv"), dir->file("envelope_slow.csv"),
+                               r.scaled.epsilon, dir->file("comparison.csv"), secondsPerTau(r));
+  return cmp;
+}
 
-  std::vector<std::string> files = full_sink.fileNames();
-  for (const auto& f : slow_sink.fileNames()) files.push_back(f);
-  files.push_back("comparison.csv");
-  const std::string plot = "comparison." + opt.plot_format;
-  if (!opt.no_plot &&
-      plotComparison(dir, plot, full_sink.plotRows(), slow_sink.plotRows(), r.scaled.theta_c,
-                     r.rig.name + " - full model (solid) " + regimeName(v_full) +
-                         ", slow flow (dashed) " + regimeName(v_slow),
-                     plotStyle(opt, r)))
-    files.push_back(plot);
-  files.push_back("summary.json");
-
-  // SPEC keys at the top level are the full model's (the reference); each model's own report is
-  // under models.full / models.slow
+// compare's summary: SPEC keys at the top level are the full model's (the reference); each
+// model's own report is under models.full / models.slow
+nlohmann::json compareSummary(const LoadedRig& r, const RunReport& full, const RunReport& slow,
+                              const RegimeVerdict& v_full, const RegimeVerdict& v_slow,
+                              const ComparisonResult& cmp) {
   const nlohmann::json jf = reportJson(full, v_full), js = reportJson(slow, v_slow);
   nlohmann::json summary = runSummaryJson(r.rig, r.scaled_json, full, v_full);
   summary["command"] = "compare";
@@ -360,24 +408,83 @@ int compareCommand(const Options& opt) {
     if (!slow.complete) why += std::string(why.empty() ? "" : "; ") + "slow: " + slow.failure;
     summary["failure"] = why;
   }
-  summary["wall_seconds"] = secondsSince(t0);
-  summary["files"] = files;
-  addRunProvenance(summary, opt, r);
-  writeSummary(dir, summary);
+  return summary;
+}
+
+void printCompare(const LoadedRig& r, const RunReport& full, const RunReport& slow,
+                  const RegimeVerdict& v_full, const RegimeVerdict& v_slow,
+                  const ComparisonResult& cmp) {
+  printRunSummary("full", r, full, v_full);
+  printRunSummary("slow", r, slow, v_slow);
+  std::cout << "full - slow over " << cmp.rows << " rows: max |dA| = " << fmtList(cmp.max_abs_dA);
+  if (!cmp.max_abs_dpsi.empty())
+    std::cout << ", max |dpsi| (mod 2 pi) = " << fmtList(cmp.max_abs_dpsi);
+  std::cout << "\n";
+}
+
+// `compare`, each model's rows also kept when `keep`.
+RunOutcome compareImpl(const Options& opt, bool keep) {
+  RunOutcome out;
+  const Engine* requested = findEngine(opt.engine);
+  if (requested && requested->model() != "full")
+    throw UsageError("--engine " + opt.engine + ": compare runs the full model (--engine " +
+                     engineNames("full") + ") against the slow flow");
+  LoadedRig r = loadAndCheck(opt, "full");
+  requireSlowFlow(r.rig, rigDisplayName(opt));  // before anything is written
+  installStopHandlers();
+  const std::optional<OutputDir> dir = openOutputDir(opt, r.rig, "compare");
+  const Clock::time_point t0 = Clock::now();
+
+  const auto full_sink =
+      makeSink(dir, sinkOptions(r, true, "envelope_full.csv"), keep ? &out.rows : nullptr);
+  const auto full_progress = attachProgress(opt, r, *full_sink, "compare (full model)");
+  RunReport full = runModel(*r.engine, r, *full_sink);
+  full.write_seconds = full_sink->commit();
+
+  const auto slow_sink =
+      makeSink(dir, sinkOptions(r, false, "envelope_slow.csv"), keep ? &out.slow_rows : nullptr);
+  const auto slow_progress = attachProgress(opt, r, *slow_sink, "compare (slow flow)");
+  RunReport slow = runSlowOfCompare(r, *slow_sink);
+  slow.write_seconds = slow_sink->commit();
+
+  const RegimeVerdict v_full = judge(full, *full_sink, r);
+  const RegimeVerdict v_slow = judge(slow, *slow_sink, r);
+  const ComparisonResult cmp = compareModels(r, dir, out, keep);
+
+  std::vector<std::string> files = full_sink->fileNames();
+  for (const auto& f : slow_sink->fileNames()) files.push_back(f);
+  if (dir) files.push_back("comparison.csv");
+  const std::string plot = "comparison." + opt.plot_format;
+  if (dir && !opt.no_plot &&
+      plotComparison(*dir, plot, full_sink->plotRows(), slow_sink->plotRows(), r.scaled.theta_c,
+                     r.rig.name + " - full model (solid) " + regimeName(v_full) +
+                         ", slow flow (dashed) " + regimeName(v_slow),
+                     plotStyle(opt, r)))
+    files.push_back(plot);
+
+  out.summary = compareSummary(r, full, slow, v_full, v_slow, cmp);
+  out.summary["wall_seconds"] = secondsSince(t0);
+  addRunProvenance(out.summary, opt, r);
+  finishSummary(out.summary, dir, files);
 
   if (!opt.quiet) {
-    printRunSummary("full", r, full, v_full);
-    printRunSummary("slow", r, slow, v_slow);
-    std::cout << "full - slow over " << cmp.rows << " rows: max |dA| = " << fmtList(cmp.max_abs_dA);
-    if (!cmp.max_abs_dpsi.empty())
-      std::cout << ", max |dpsi| (mod 2 pi) = " << fmtList(cmp.max_abs_dpsi);
-    std::cout << "\n";
+    printCompare(r, full, slow, v_full, v_slow, cmp);
     printFiles(dir, files);
   }
-  int code = kSuccess;
-  if (!full.complete) reportFailure("full", full, dir), code = kSimulationFailed;
-  if (!slow.complete) reportFailure("slow", slow, dir), code = kSimulationFailed;
-  return code;
+  out.code = kSuccess;
+  if (!full.complete) reportFailure("full", full, dir), out.code = kSimulationFailed;
+  if (!slow.complete) reportFailure("slow", slow, dir), out.code = kSimulationFailed;
+  return out;
+}
+
+}  // namespace
+
+int compareCommand(const Options& opt) {
+  return compareImpl(opt, false).code;
+}
+
+RunOutcome compareKeepingRows(const Options& opt) {
+  return compareImpl(opt, true);
 }
 
 namespace {

@@ -105,9 +105,10 @@ ParamsAt2 paramsAt2(const ContinueOptions& opt) {
 }
 
 // The scaled parameters with KEY = value; a value that makes one of them infinite or NaN (e.g.
-// --to 1e308) is refused naming `which` option gave it.
+// --to 1e308) is refused naming `which` option gave it. A value the loader refuses (mu < 0) is said
+// in the loader's words (--param KEY=VALUE: ...).
 ScaledParams finiteScaledAt(const ContinueOptions& opt, double value, const std::string& which) {
-  const ScaledParams p = scaledAt(opt, {opt.param}, {value});
+  const ScaledParams p = computeScaled(loadWith(opt, {opt.param + "=" + fmt(value)}));
   const std::pair<const char*, const std::vector<double>*> lists[] = {
       {"nu", &p.nu}, {"J", &p.J}, {"theta_c", &p.theta_c}, {"alpha", &p.alpha}, {"zeta", &p.zeta}};
   std::string bad;
@@ -369,8 +370,9 @@ CLI::App* addContinueCommand(CLI::App& app) {
   ContinueOptions& opt = options();
   CLI::App* c = app.add_subcommand(
       "continue",
-      "follow the slow flow's locked states in one rig key: stability, folds, Hopf "
-      "points, branch points, border crossings");
+      "follow locked states in one rig key, the slow flow's fixed points or (--model full) the "
+      "full model's periodic orbits: stability, folds, Hopf and torus points, branch points, "
+      "border crossings");
   c->add_option("RIG", opt.rig_path, "rig file (YAML); default: the built-in rig");
   c->add_option("--model", opt.model,
                 "slow (the slow flow's locked states) or full (the full model's periodic orbits, "

@@ -36,7 +36,14 @@ struct SweepOptions {
   std::vector<std::string> dirs;    // merge: the sweep output directories to join
   std::string plot_format = "png";  // --plot-format png|svg|pdf (the maps)
   std::string keep;                 // --keep envelope: DIR/envelopes.csv.gz (docs/sweep-points.md)
+  // the Python module (tools/python): the rig's YAML itself (a dict's), rig_path then only
+  // naming it in messages
+  std::optional<std::string> rig_text;
 };
+
+// The rig text a sweep (or basin) runs: rig_text, else the file's (checked as every command
+// checks it, yaml/rig_loader.h), else the built-in rig's.
+std::string sweepRigText(const SweepOptions& opt);
 
 struct SweepCommands {
   CLI::App* sweep = nullptr;

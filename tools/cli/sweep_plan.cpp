@@ -135,7 +135,7 @@ SweepPlan planSweep(const SweepOptions& opt) {
   plan.map_axes = mapAxes(plan.grid, opt.map);
   plan.shard = opt.shard.empty() ? SweepShard{} : parseShard(opt.shard);
   // the rig, its keys, and every grid point's rig: a bad key or value stops here, before any file
-  plan.text = readRigText(opt);
+  plan.text = sweepRigText(opt);
   const std::optional<Network> net = loadSweepNetwork(plan.text, displayName(opt), opt.sets);
   plan.base = net ? networkSweepRig(*net) : loadRigText(plan.text, displayName(opt), opt.sets);
   plan.random = planPointBasin(opt, plan.grid, sweepKeys(opt, plan.text));

@@ -69,8 +69,9 @@ std::optional<SweepPoint> runNetworkPoint(const PointInput& in, long g) {
 
 }  // namespace
 
-std::string readRigText(const SweepOptions& opt) {
+std::string sweepRigText(const SweepOptions& opt) {
   // the same checks as every command: a regular file of bounded size (yaml/rig_loader.h)
+  if (opt.rig_text) return *opt.rig_text;
   return opt.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.rig_path);
 }
 

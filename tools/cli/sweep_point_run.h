@@ -15,8 +15,7 @@
 
 namespace metrosync::cli {
 
-// The rig's text (the built-in rig without RIG) and how messages name it.
-std::string readRigText(const SweepOptions& opt);
+// How messages name the rig (its text: sweepRigText, tools/cli/sweep.h).
 std::string displayName(const SweepOptions& opt);
 
 // One grid point, ready to run.

@@ -1,5 +1,5 @@
 # `cmake --install` and the Debian package (CPack), docs/install.md:
-#   bin/metrosync, lib/<arch>/metrosync/*.so (its plugins), share/man/man1/metrosync.1.gz (help2man, from the binary's --help texts),
+#   bin/metrosync (and bin/metrosync-mpi with MPI), lib/<arch>/metrosync/*.so (its plugins), share/man/man1/metrosync.1.gz (help2man, from the binary's --help texts),
 #   bash and zsh completion (from the same texts), share/metrosync/rigs (the example rigs),
 #   share/doc/metrosync (README, CHANGELOG, docs/).
 # The generated files are made after the binary is linked, so they never disagree with it.
@@ -32,6 +32,15 @@ endif()
 add_custom_target(metrosync_install_files ALL DEPENDS ${install_generated})
 
 install(TARGETS metrosync RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# metrosync-mpi beside it, when MPI was found (tools/cli/mpi.cmake): `metrosync sweep` started
+# by mpirun execs it from its own folder (tools/cli/mpi_forward.h)
+if(TARGET metrosync-mpi)
+  # MPI's libraries keep their folder on the installed binary's RUNPATH as on the build tree's
+  # (Debian's openmpi/lib; CMake cannot take that entry out of the binary, and other systems need
+  # it)
+  set_target_properties(metrosync-mpi PROPERTIES INSTALL_RPATH_USE_LINK_PATH ON)
+  install(TARGETS metrosync-mpi RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
 # the plugins metrosync loads on demand (sim/engines/plugin_loader.h): <libdir>/metrosync, which
 # the executable finds relative to itself (METROSYNC_PLUGIN_RELATIVE_DIR)
 install(TARGETS ${METROSYNC_PLUGINS} LIBRARY DESTINATION ${METROSYNC_PLUGIN_INSTALL_DIR})
@@ -58,6 +67,10 @@ set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "gnuplot-nox | gnuplot")
+if(METROSYNC_PYTHON_DEB_DEPENDS)  # the Python module is in the package (tools/python/python.cmake)
+  string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", ${METROSYNC_PYTHON_DEB_DEPENDS}")
+  set(CPACK_DEBIAN_PACKAGE_SUGGESTS ${METROSYNC_PYTHON_DEB_SUGGESTS})
+endif()
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_STRIP_FILES ON)
 include(CPack)

@@ -1,6 +1,7 @@
 # The Python module `metrosync` (docs/python.md), built when pybind11 and Debian's Python 3 are
 # found: build/python/metrosync/ holds the package (its .py files copied, _metrosync compiled in),
-# importable with PYTHONPATH=build/python; `cmake --install` puts it in Debian's dist-packages.
+# importable with PYTHONPATH=build/python; `cmake --install` puts it where
+# Debian's python3 finds it (below).
 # Debian's /usr/bin/python3 is preferred: the python3 first on PATH may be another interpreter
 # without numpy (a pyenv one), and the module must match the interpreter that imports it.
 if(EXISTS /usr/bin/python3 AND NOT Python_EXECUTABLE)
@@ -14,13 +15,15 @@ if(NOT (Python_FOUND AND pybind11_FOUND))
 endif()
 set(METROSYNC_PYTHON_DIR ${CMAKE_BINARY_DIR}/python)
 # NO_EXTRAS: no link-time optimization of the whole of metrosync into the module (minutes)
-pybind11_add_module(_metrosync NO_EXTRAS ${CMAKE_SOURCE_DIR}/tools/python/module.cpp)
+file(GLOB metrosync_python_cpp CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tools/python/*.cpp)
+pybind11_add_module(_metrosync NO_EXTRAS ${metrosync_python_cpp})
 target_include_directories(_metrosync PRIVATE ${CMAKE_SOURCE_DIR})
 target_link_libraries(_metrosync PRIVATE metrosync_tools_cli)
 metrosync_link_heavy(_metrosync)
 set_target_properties(_metrosync PROPERTIES LIBRARY_OUTPUT_DIRECTORY
                                             ${METROSYNC_PYTHON_DIR}/metrosync)
-file(GLOB metrosync_py CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tools/python/metrosync/*.py)
+file(GLOB metrosync_py CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tools/python/metrosync/*.py
+     ${CMAKE_SOURCE_DIR}/tools/python/metrosync/*.pyi ${CMAKE_SOURCE_DIR}/tools/python/metrosync/py.typed)
 foreach(f ${metrosync_py})
   get_filename_component(name ${f} NAME)
   configure_file(${f} ${METROSYNC_PYTHON_DIR}/metrosync/${name} COPYONLY)
@@ -48,12 +51,33 @@ foreach(nb paper-figures classroom)
     LABELS slow TIMEOUT 600)
 endforeach()
 
-execute_process(COMMAND ${Python_EXECUTABLE} -c
-                        "import sysconfig; print(sysconfig.get_path('platlib', 'deb_system'))"
+# Where the module goes under the prefix: Debian's python3 searches PREFIX/lib/python3.X/
+# dist-packages for both /usr/local (`cmake --install`) and /usr (the package), but
+# lib/python3/dist-packages only under /usr; elsewhere (no Debian scheme) site-packages.
+execute_process(COMMAND ${Python_EXECUTABLE} -c [=[
+import sys, sysconfig
+local = "posix_local" in sysconfig.get_scheme_names()
+scheme, base = ("posix_local", "/usr/local/") if local else ("posix_prefix", sys.prefix + "/")
+path = sysconfig.get_path("platlib", scheme)
+print(path[len(base):] if path.startswith(base) else "")
+]=]
                 OUTPUT_VARIABLE metrosync_site OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
 if(NOT metrosync_site)
-  set(metrosync_site lib/python3/dist-packages)
+  set(metrosync_site lib/python${Python_VERSION_MAJOR}.${Python_VERSION_MINOR}/site-packages)
 endif()
-string(REGEX REPLACE "^/usr/(local/)?" "" metrosync_site "${metrosync_site}")
 install(TARGETS _metrosync LIBRARY DESTINATION ${metrosync_site}/metrosync)
+# the Debian package (tools/install/install.cmake): the module is made for this Python's minor
+# version and imports numpy; pandas only for to_pandas()
+math(EXPR metrosync_next_minor "${Python_VERSION_MINOR} + 1")
+set(METROSYNC_PYTHON_DEB_DEPENDS "python3 (>= ${Python_VERSION_MAJOR}.${Python_VERSION_MINOR}~), \
+python3 (<< ${Python_VERSION_MAJOR}.${metrosync_next_minor}), python3-numpy")
+set(METROSYNC_PYTHON_DEB_SUGGESTS "python3-pandas")
 install(FILES ${metrosync_py} DESTINATION ${metrosync_site}/metrosync)
+
+# `pip install .` and `pip wheel .` (setup.py, docs/python.md) into a fresh virtual environment,
+# offline, the C++ core taken from this build tree: tests/pip.
+add_test(NAME python_pip
+         COMMAND ${Python_EXECUTABLE} -m pytest -q -p no:cacheprovider ${CMAKE_SOURCE_DIR}/tests/pip)
+set_tests_properties(python_pip PROPERTIES
+  ENVIRONMENT "METROSYNC_CMAKE_BUILD_DIR=${CMAKE_BINARY_DIR};METROSYNC_SOURCE_DIR=${CMAKE_SOURCE_DIR}"
+  LABELS slow TIMEOUT 600)

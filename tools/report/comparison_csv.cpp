@@ -1,6 +1,7 @@
 #include "tools/report/comparison_csv.h"
 
 #include <cstdio>
+#include <sstream>
 #include <stdexcept>
 
 #include "sim/record/atomic_file.h"
@@ -117,6 +118,26 @@ ComparisonResult compareEnvelopeFiles(const std::string& full_csv, const std::st
   return joinAndWrite(
       full.n(), [&](EnvelopeRow& r) { return full.next(r); },
       [&](EnvelopeRow& r) { return slow.next(r); }, epsilon, out_csv, seconds_per_tau);
+}
+
+ComparisonResult comparisonColumns(int n, const std::vector<EnvelopeRow>& full,
+                                   const std::vector<EnvelopeRow>& slow, double epsilon,
+                                   double seconds_per_tau, ColumnTable& table) {
+  const bool t_s = seconds_per_tau > 0;
+  table = ColumnTable{};
+  std::stringstream header(comparisonCsvHeader(n) + (t_s ? ",t_s" : ""));
+  for (std::string name; std::getline(header, name, ',');) table.names.push_back(name);
+  std::vector<double>& v = table.values;
+  // the numbers of comparisonCsvLine, in its order
+  return joinEnvelopes(n, rowSource(full), rowSource(slow), epsilon,
+                       [&](const EnvelopeRow& f, const EnvelopeRow& s) {
+                         v.push_back(f.tau);
+                         for (size_t i = 0; i < f.A.size(); ++i)
+                           v.insert(v.end(), {f.A[i], s.A[i]});
+                         for (size_t j = 0; j < f.psi.size(); ++j)
+                           v.insert(v.end(), {f.psi[j], s.psi[j]});
+                         if (t_s) v.push_back(f.tau * seconds_per_tau);
+                       });
 }
 
 nlohmann::json comparisonJson(const ComparisonResult& r) {

@@ -10,6 +10,7 @@
 
 #include "sim/analysis/compare.h"
 #include "sim/record/envelope.h"
+#include "tools/report/run_columns.h"
 
 namespace metrosync {
 
@@ -44,6 +45,13 @@ ComparisonResult writeComparisonCsv(const std::vector<EnvelopeRow>& full,
 ComparisonResult compareEnvelopeFiles(const std::string& full_csv, const std::string& slow_csv,
                                       double epsilon, const std::string& out_csv,
                                       double seconds_per_tau = 0.0);
+
+// comparison.csv's columns in memory (the Python module's compare): its header's names (t_s when
+// seconds_per_tau > 0) and the numbers its lines print, from two row vectors of n metronomes;
+// returns the comparison of those rows.
+ComparisonResult comparisonColumns(int n, const std::vector<EnvelopeRow>& full,
+                                   const std::vector<EnvelopeRow>& slow, double epsilon,
+                                   double seconds_per_tau, ColumnTable& table);
 
 // {max_abs_dA[], max_abs_dpsi[], tau_max_dA[], tau_max_dpsi[], rows, unmatched_full,
 // unmatched_slow}; a maximum over no row is null.

@@ -154,7 +154,7 @@ std::string paperFigureScript(const FigureResult& f, const std::string& data_pat
   for (int i = 1; i <= 2; ++i) {
     s << "unset xlabel\nset ylabel 'A_" << i << "'\nset yrange [0:*]\n"
       << curves(1 + i) << ", \\\n     " << num(theta_c)
-      << " with lines dt 2 lw 1.5 lc rgb '#555555' title 'θ_c'\n";
+      << " with lines dt 2 lw 1.5 lc rgb '#555555' title 'θ_c' enhanced\n";  // θ, subscript c
   }
   const double pad = 0.04 * (hi - lo);
   s << "set xlabel 'τ'\nset ylabel 'ψ'\nset yrange [" << num(lo - pad) << ":" << num(hi + pad)

@@ -167,18 +167,18 @@ void appendNumbers(const double* v, size_t n, std::string& line) {
 
 }  // namespace
 
-FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt)
+FileSink::FileSink(const RunFilesOptions& opt)
     : opt_(opt), window_(opt.tau_end, opt.epsilon), plot_(opt.max_plot_rows) {
   if (opt_.n_metronomes < 1) throw std::invalid_argument("FileSink: no metronome");
   if (opt_.envelope_platform) window_.setEnvelopePlatform(opt_.law);
+}
+
+FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt) : FileSink(opt) {
   const size_t n = static_cast<size_t>(opt_.n_metronomes);
   if (opt_.trajectory) {
     trajectory_ = std::make_unique<AtomicFile>(dir.file(opt_.trajectory_name));
-    std::string h = "t,x,xdot";
-    for (int i = 1; i <= opt_.n_metronomes; ++i)
-      h += ",theta_" + std::to_string(i) + ",thetadot_" + std::to_string(i);
-    h += ",platform";
-    trajectory_->writeLine(h);  // t is in seconds already for a physical rig (SPEC 3)
+    // t is in seconds already for a physical rig (SPEC 3)
+    trajectory_->writeLine(trajectoryHeader(opt_.n_metronomes));
     trajectory_text_ = std::make_unique<DeferredRows>(
         *trajectory_, 2 * n + 4,
         [w = 2 * n + 4](const double* row, std::string& line) { appendNumbers(row, w, line); });
@@ -224,6 +224,13 @@ DeferredRows::Format FileSink::envelopeFormat() const {
   };
 }
 
+std::string trajectoryHeader(int n) {
+  std::string h = "t,x,xdot";
+  for (int i = 1; i <= n; ++i)
+    h += ",theta_" + std::to_string(i) + ",thetadot_" + std::to_string(i);
+  return h + ",platform";
+}
+
 std::string eventsHeader(int n, bool seconds) {
   std::string h = "t,tau,kind,who";
   for (const char* when : {"_before", "_after"}) {
@@ -237,15 +244,18 @@ std::string eventsHeader(int n, bool seconds) {
 
 void FileSink::eventRecord(const char* kind, int metronome, const std::vector<double>& before,
                            const std::vector<double>& after) {
-  if (!events_) return;
+  if (!wantsEventRecords()) return;
   const size_t want = 2 * static_cast<size_t>(opt_.n_metronomes) + 4;
   if (before.size() != want || after.size() != want)
     throw std::logic_error("event record of the wrong width");
-  scratch_.assign({eventKindIndex(kind), static_cast<double>(metronome), after[0]});
-  scratch_.insert(scratch_.end(), before.begin() + 1, before.end());
-  scratch_.insert(scratch_.end(), after.begin() + 1, after.end());
-  events_text_->add(scratch_.data());
+  if (events_text_) {
+    scratch_.assign({eventKindIndex(kind), static_cast<double>(metronome), after[0]});
+    scratch_.insert(scratch_.end(), before.begin() + 1, before.end());
+    scratch_.insert(scratch_.end(), after.begin() + 1, after.end());
+    events_text_->add(scratch_.data());
+  }
   ++event_rows_;
+  if (tap_) tap_->eventRecord(kind, metronome, before, after);
   if (observer_) observer_(kind, metronome, before, after);
 }
 
@@ -261,13 +271,14 @@ void FileSink::eventRow(const char*, const std::vector<double>& row) {
 
 void FileSink::trajectoryRow(const std::vector<double>& row) {
   if (row.size() > 2) window_.platformMode(static_cast<int>(row.back()), row[1] / opt_.x_unit);
-  if (!trajectory_) return;
+  if (!opt_.trajectory) return;
   const size_t want = 2 * static_cast<size_t>(opt_.n_metronomes) + 4;
   if (row.size() != want)
     throw std::logic_error("trajectory row with " + std::to_string(row.size()) +
                            " values, expected " + std::to_string(want));
-  trajectory_text_->add(row.data());
+  if (trajectory_text_) trajectory_text_->add(row.data());
   ++trajectory_rows_;
+  if (tap_) tap_->trajectoryRow(row);
   checkStop(row[0]);
 }
 
@@ -275,14 +286,17 @@ void FileSink::envelopeRow(const EnvelopeRow& row) {
   if (static_cast<int>(row.A.size()) != opt_.n_metronomes ||
       static_cast<int>(row.psi.size()) != opt_.n_metronomes - 1)
     throw std::logic_error("envelope row of the wrong width");
-  scratch_.assign(1, row.tau);
-  scratch_.insert(scratch_.end(), row.A.begin(), row.A.end());
-  scratch_.insert(scratch_.end(), row.psi.begin(), row.psi.end());
-  scratch_.push_back(row.r);
-  envelope_text_->add(scratch_.data());
+  if (envelope_text_) {
+    scratch_.assign(1, row.tau);
+    scratch_.insert(scratch_.end(), row.A.begin(), row.A.end());
+    scratch_.insert(scratch_.end(), row.psi.begin(), row.psi.end());
+    scratch_.push_back(row.r);
+    envelope_text_->add(scratch_.data());
+  }
   ++envelope_rows_;
   window_.add(row);
   plot_.add(row);
+  if (tap_) tap_->envelopeRow(row);
   if (progress_) progress_(row.tau);
   checkStop(row.tau / opt_.epsilon * opt_.time_unit);
 }
@@ -294,13 +308,14 @@ double FileSink::commit() {
   const double waited =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (trajectory_ && trajectory_->open()) trajectory_->commit();
-  if (envelope_->open()) envelope_->commit();
+  if (envelope_ && envelope_->open()) envelope_->commit();
   if (events_ && events_->open()) events_->commit();
   return waited;
 }
 
 std::vector<std::string> FileSink::fileNames() const {
   std::vector<std::string> names;
+  if (!envelope_) return names;  // no folder
   if (opt_.trajectory) names.push_back(opt_.trajectory_name);
   names.push_back(opt_.envelope_name);
   if (events_) names.push_back(opt_.events_name);

@@ -92,6 +92,9 @@ struct RunFilesOptions {
   FrictionLaw law;      // scaled
 };
 
+// trajectory.csv's header: t,x,xdot,theta_1,thetadot_1,...,theta_N,thetadot_N,platform.
+std::string trajectoryHeader(int n);
+
 // events.csv's header: t,tau,kind,who, then x,xdot,theta_i,thetadot_i,platform with _before
 // and _after, then t_s when `seconds` (docs/outputs.md).
 std::string eventsHeader(int n, bool seconds);
@@ -111,10 +114,16 @@ struct RunInterrupted : std::runtime_error {
 class FileSink : public RunSink {
  public:
   FileSink(const OutputDir& dir, const RunFilesOptions& opt);
+  // No file: the same rows checked and judged, handed only to the tap (the Python module's
+  // results in memory without out=, tools/report/run_columns.h).
+  explicit FileSink(const RunFilesOptions& opt);
+  // Every trajectory row, envelope row and event record also goes to `tap` (not owned; nullptr:
+  // none) once this sink has taken it: the rows in memory beside the files.
+  void setTap(RunSink* tap) { tap_ = tap; }
 
   void trajectoryRow(const std::vector<double>& row) override;
   void envelopeRow(const EnvelopeRow& row) override;
-  bool wantsEventRecords() const override { return events_ != nullptr; }
+  bool wantsEventRecords() const override { return opt_.trajectory && opt_.events; }
   void eventRecord(const char* kind, int metronome, const std::vector<double>& before,
                    const std::vector<double>& after) override;
   // stick/slip events tell the regime window what the platform does between trajectory rows
@@ -139,7 +148,7 @@ class FileSink : public RunSink {
   void setProgress(std::function<void(double tau)> f) { progress_ = std::move(f); }
   const RegimeWindow& regimeWindow() const { return window_; }
   std::vector<EnvelopeRow> plotRows() const { return plot_.rows(); }
-  // final names of the files this sink writes
+  // final names of the files this sink writes (none without a folder)
   std::vector<std::string> fileNames() const;
 
   // async-signal-safe; process-wide
@@ -159,6 +168,7 @@ class FileSink : public RunSink {
   std::vector<double> scratch_;  // one row's numbers on their way to a writer
   long trajectory_rows_ = 0, envelope_rows_ = 0, event_rows_ = 0;
   EventObserver observer_;
+  RunSink* tap_ = nullptr;
   std::function<void(double)> progress_;
   bool stop_thrown_ = false;
   RegimeWindow window_;
