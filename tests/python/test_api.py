@@ -37,8 +37,9 @@ def essence(result):
         return result.bifurcations, essence(result.branches)
     if isinstance(result, (metrosync.SweepResult, metrosync.BasinResult)):
         return essence(result.to_pandas().to_dict("list"))
-    if isinstance(result, dict):
-        return {k: np.asarray(v).tolist() for k, v in result.items()}
+    if isinstance(result, dict):  # NaN (e.g. branches.csv's weight off a border) as None
+        return {k: [None if isinstance(x, float) and x != x else x
+                    for x in np.asarray(v).tolist()] for k, v in result.items()}
     return result
 
 
