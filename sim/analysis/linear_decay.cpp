@@ -2,11 +2,9 @@
 
 #include <cmath>
 
-namespace metrosync {
+#include "base/constants.h"
 
-namespace {
-constexpr double kPi = 3.141592653589793;
-}
+namespace metrosync {
 
 bool isSection3ARig(const Rig& rig) {
   if (rig.units != Units::Physical || rig.metronomes.empty()) return false;

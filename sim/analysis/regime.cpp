@@ -6,11 +6,11 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "base/constants.h"
+
 namespace metrosync {
 
 namespace {
-constexpr double kPi = 3.141592653589793;
-constexpr double kTwoPi = 6.283185307179586;
 
 std::string fmtNumber(double v) {
   char buf[32];

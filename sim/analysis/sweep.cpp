@@ -10,14 +10,13 @@
 #include <sstream>
 #include <thread>
 
+#include "base/constants.h"
 #include "sim/parallel/worker_pool.h"
 
 namespace metrosync {
 
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-constexpr double kTwoPi = 6.283185307179586;
 constexpr long kMaxAxisCount = 1000000;
 
 std::string trim(const std::string& s) {

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "base/constants.h"
 #include "contact/averaged_response.h"
 #include "sim/analysis/compare.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
@@ -20,8 +21,6 @@
 namespace metrosync {
 
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 using Clock = std::chrono::steady_clock;
 

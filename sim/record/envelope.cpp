@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/constants.h"
+
 namespace metrosync {
 
 double orderParameter(const std::vector<double>& A, const std::vector<double>& psi) {
@@ -101,7 +103,6 @@ std::vector<EnvelopeRow> readEnvelopeCsv(const std::string& path) {
 }
 
 double PhaseUnwrapper::operator()(double raw) {
-  constexpr double kTwoPi = 6.283185307179586;
   if (!started_) {
     started_ = true;
     last_ = raw - kTwoPi * std::floor(raw / kTwoPi);

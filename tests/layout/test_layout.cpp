@@ -1,6 +1,6 @@
 // The layout's one rule (CMakeLists.txt, COMMON): every `#include "..."` of the libraries and
 // tools points downwards in
-//   contact < contact/simbody < models < models/simbody, sim/parallel < sim/ode, sim/record
+//   base < contact < contact/simbody < models < models/simbody, sim/parallel < sim/ode, sim/record
 //     < sim/events < sim/engines/{direct,simbody,slow_flow} < sim/engines < sim/analysis < yaml
 //     < tools/report < tools/cli < tools
 // or stays in its own folder. Folders of one level (sim/ode and sim/record, the three engines)
@@ -26,6 +26,7 @@ namespace fs = std::filesystem;
 constexpr int kAnything = 1000;
 const std::map<std::string, int>& levels() {
   static const std::map<std::string, int> m = {
+      {"base", -1},  // header-only: the constants and number text every library may use
       {"contact", 0},
       {"contact/simbody", 1},
       {"models", 2},
@@ -49,7 +50,7 @@ const std::map<std::string, int>& levels() {
 }
 
 // The scanned top-level folders (the libraries and tools; not tests/, not build/).
-const std::vector<std::string> kScanned = {"contact", "models", "sim", "yaml", "tools"};
+const std::vector<std::string> kScanned = {"base", "contact", "models", "sim", "yaml", "tools"};
 
 std::optional<int> levelOf(const std::string& folder) {
   // a folder below a library folder that the order does not name sits with it (e.g.

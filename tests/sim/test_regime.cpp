@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "base/constants.h"
 #include "sim/analysis/regime.h"
 
 namespace metrosync {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kEps = 0.073;
 constexpr double kTauEnd = 100.0;
 

@@ -19,6 +19,7 @@
 #include <sstream>
 #include <thread>
 
+#include "base/constants.h"
 #include "tools/bench/bench_report.h"
 #include "tools/bench/bench_run.h"
 #include "tools/bench/peer_verdict_report.h"
@@ -432,7 +433,7 @@ metrosync::Rig nRig(int n, const NScaleOptions& o) {
   rig.platform.law = metrosync::FrictionLaw::Coulomb;
   rig.platform.mu_bar = o.mu_bar;
   std::mt19937 gen(o.seed);
-  std::uniform_real_distribution<double> phase(0.0, 6.283185307179586);
+  std::uniform_real_distribution<double> phase(0.0, metrosync::kTwoPi);
   for (int i = 0; i < n; ++i) {
     metrosync::MetronomeSpec m;
     m.name = "M" + std::to_string(i + 1);
@@ -449,7 +450,7 @@ metrosync::Rig nRig(int n, const NScaleOptions& o) {
     rig.metronomes.push_back(m);
   }
   const double omega0 = std::sqrt(9.81 / 0.0225);
-  rig.sim.t_end_s = o.periods * 6.283185307179586 / omega0;
+  rig.sim.t_end_s = o.periods * metrosync::kTwoPi / omega0;
   return rig;
 }
 

@@ -7,15 +7,16 @@
 #include <iostream>
 #include <sstream>
 
+#include "base/constants.h"
 #include "models/scaling.h"
 #include "sim/analysis/continuation/arclength.h"
 #include "sim/analysis/continuation/fold_curve.h"
 #include "sim/analysis/continuation/result.h"
 #include "sim/analysis/continuation/start_states.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/continue_full.h"
 #include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
-#include "tools/cli/continue_full.h"
 #include "tools/report/continuation_report.h"
 #include "yaml/rig_loader.h"
 
@@ -261,7 +262,7 @@ bool alreadyFollowed(const ContinuationResult& r, const std::vector<double>& A,
       d = std::max(d, std::abs(A[i] - (a.A[i] + w * (b.A[i] - a.A[i]))));
     for (size_t j = 0; j < psi.size(); ++j)
       d = std::max(
-          d, std::abs(std::remainder(psi[j] - (a.psi[j] + w * (b.psi[j] - a.psi[j])), 2 * M_PI)));
+          d, std::abs(std::remainder(psi[j] - (a.psi[j] + w * (b.psi[j] - a.psi[j])), 2 * kPi)));
     if (d < kSame) return true;
   }
   return false;

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "base/constants.h"
 #include "models/scaling.h"
 #include "sim/analysis/fit/ceres_plugin.h"
 #include "sim/analysis/fit/data_file.h"
@@ -25,7 +26,6 @@ namespace metrosync::cli {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Model rows per small-angle period of metronome 1: the Hermite interpolant between rows is then
 // ~1e-7 rad off at 45 degrees, four orders below a camera's noise.
 constexpr double kRowsPerPeriod = 100.0;

@@ -5,11 +5,11 @@
 #include <cstdio>
 #include <string>
 
+#include "base/constants.h"
+
 namespace metrosync::animation {
 
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 struct Rgb {
   double r, g, b;

@@ -4,14 +4,13 @@
 #include <cstdio>
 #include <sstream>
 
+#include "base/constants.h"
 #include "tools/report/plot.h"
 #include "tools/report/sweep_maps.h"
 
 namespace metrosync {
 
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 std::string numberText(double v, const char* format = "%.12g") {
   if (std::isnan(v)) return "nan";

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "base/constants.h"
 #include "sim/record/atomic_file.h"
 #include "tools/report/plot.h"
 #include "tools/report/sweep_maps.h"
@@ -13,8 +14,6 @@
 namespace metrosync {
 
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 std::string num(double v) {
   char buf[32];

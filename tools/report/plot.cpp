@@ -15,13 +15,13 @@
 #include <iostream>
 #include <sstream>
 
+#include "base/constants.h"
+
 extern char** environ;
 
 namespace metrosync {
 
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 // one colour per metronome (colour-blind friendly order), cycled beyond eight
 const char* const kColours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7",

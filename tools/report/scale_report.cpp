@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <sstream>
 
+#include "base/constants.h"
+
 namespace metrosync {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::string num(double v, int digits = 4) {
   char buf[64];

@@ -6,13 +6,13 @@
 #include <iostream>
 #include <sstream>
 
+#include "base/constants.h"
 #include "tools/report/plot.h"
 
 namespace metrosync {
 
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr int kMaxPanels = 4;  // metronomes shown in amplitudes.png and phases.png
 
 // SPEC names first, in the order of SPEC 4, then the extensions; fixed colours (colour-blind

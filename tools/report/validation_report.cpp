@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "base/constants.h"
 #include "contact/averaged_response.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 #include "tools/report/plot.h"
@@ -14,8 +15,6 @@
 namespace metrosync {
 
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 std::string fmt(const char* f, double v) {
   char buf[64];

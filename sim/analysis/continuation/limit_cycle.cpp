@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "base/constants.h"
 #include "sim/analysis/continuation/arclength.h"
 #include "sim/analysis/continuation/derivatives.h"
 #include "sim/analysis/continuation/newton.h"
@@ -100,7 +101,7 @@ std::optional<Vec> firstCycle(const CycleField& f, const ContinuationSystem& sho
   };
   start.tolerance = kCycleTolerance;
   Vec v0(f.n + 2);
-  v0 << y_h + a * q.re, 2 * M_PI / q.omega, p_h;
+  v0 << y_h + a * q.re, 2 * kPi / q.omega, p_h;
   return solveAt(start, v0, a, Region{});
 }
 
@@ -192,7 +193,7 @@ CycleBranch continueCycleFromHopf(const CycleField& f, const Vec& y_h, double p_
   const double a_start = amp(b.points[start]);
   const bool outward_forward = start + 1 < b.points.size() && amp(b.points[start + 1]) > a_start;
   out.end = outward_forward ? b.end_forward : b.end_backward;
-  const double T_h = 2 * M_PI / q.omega;
+  const double T_h = 2 * kPi / q.omega;
   for (size_t k = start; k < b.points.size(); outward_forward ? ++k : --k) {
     const BranchPoint& bp = b.points[k];
     if (bp.y(f.n) > kMaxPeriodFactor * T_h) {

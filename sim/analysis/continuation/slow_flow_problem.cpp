@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "base/constants.h"
 #include "sim/analysis/continuation/derivatives.h"
 #include "sim/analysis/continuation/lyapunov.h"
 
@@ -13,7 +14,6 @@ namespace metrosync::continuation {
 namespace {
 
 using Cd = std::complex<double>;
-constexpr double kPi = 3.14159265358979323846;
 // The parameter cache holds a few hundred values: a Newton step and its differences use 3.
 constexpr size_t kCacheSize = 256;
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "base/constants.h"
 #include "sim/analysis/continuation/newton.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 
@@ -10,7 +11,6 @@ namespace metrosync::continuation {
 namespace {
 
 using Cd = std::complex<double>;
-constexpr double kPi = 3.14159265358979323846;
 // A run is settled when over its last fifth amplitudes and phase differences stay within this of
 // their final values: a locked state is constant, a slow drift or modulation is far larger.
 constexpr double kSettleTolerance = 1e-4;

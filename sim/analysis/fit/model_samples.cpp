@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "base/constants.h"
 #include "models/scaling.h"
 
 namespace metrosync {
@@ -75,7 +76,7 @@ std::vector<double> sampleSlow(const Engine& engine, Rig rig,
                                const std::vector<SampleRequest>& requests) {
   const ScaledParams sp0 = computeScaled(rig);
   // one fast period past the last request, so that the envelope grid covers it
-  rig.sim.t_end_s = lastTime(requests) + 2 * 3.14159265358979323846 * sp0.time_scale_s;
+  rig.sim.t_end_s = lastTime(requests) + 2 * kPi * sp0.time_scale_s;
   EnvelopeRecorder rec;
   const RunReport rep = engine.run(rig, rec);
   if (!rep.complete) throw ModelFailure(rep.failure);

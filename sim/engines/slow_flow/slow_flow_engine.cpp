@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/constants.h"
 #include "sim/events/storm_guard.h"
 #include "sim/events/window.h"
 #include "sim/ode/rk_stepper.h"
@@ -26,7 +27,6 @@ using cplx = std::complex<double>;
 // function that crosses 0 twice within 1/8 of a step is missed, which the step control makes
 // rare (the state moves by ~rtol^(1/5) of itself per step)
 constexpr int kSwitchSamples = 8;
-constexpr double kTwoPi = 6.283185307179586;
 // a step shorter than this (times max(1, tau)) cannot move tau in double precision any more
 constexpr double kMinStepRelative = 1e-14;
 // shrink factor after a step that produced a non-finite state (no error estimate to go by)
