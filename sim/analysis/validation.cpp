@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "base/constants.h"
+#include "base/number_text.h"
 #include "contact/averaged_response.h"
 #include "sim/analysis/compare.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
@@ -26,12 +27,6 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
 }
 
 // Keeps what validation needs from a run: every envelope row (one per fast period: O(tau/eps)
@@ -308,11 +303,12 @@ class PaperChecker {
         std::string("slow flow: ") + toString(v_.regime));
   }
   std::string psiLine() const {
-    return "psi = " + fmt("%.4f", f_.psi[0]) + ", |psi - pi| = " + fmt("%.4f", off_pi_);
+    return "psi = " + numberText(f_.psi[0], 4, Notation::Fixed) +
+           ", |psi - pi| = " + numberText(off_pi_, 4, Notation::Fixed);
   }
   std::string ampLine() const {
-    return "A = " + fmt("%.4f", f_.A[0]) + ", " + fmt("%.4f", f_.A[1]) +
-           " (theta_c = " + fmt("%.3g", tc1_) + ")";
+    return "A = " + numberText(f_.A[0], 4, Notation::Fixed) + ", " +
+           numberText(f_.A[1], 4, Notation::Fixed) + " (theta_c = " + numberText(tc1_, 3) + ")";
   }
   // "stationary": a locked psi of the slow flow still creeps where it settles onto the edge of the
   // stuck family (f4.2: |Z| -> mu+, beta ~ (s - 1)^2, ~1e-5 over the window at tau = 300); 1e-3
@@ -320,7 +316,7 @@ class PaperChecker {
   // rippling envelopes) would let through
   void stationary() {
     add("psi stationary: range over the last 10% < 1e-3 rad", range_ < 1e-3,
-        "range = " + fmt("%.2e", range_) + " rad");
+        "range = " + numberText(range_, 2, Notation::Scientific) + " rad");
   }
   // "near pi" is the SPEC's antiphase band (0.5 rad)
   void nearPi() { add("psi close to pi: |psi - pi| <= 0.5", off_pi_ <= 0.5, psiLine()); }
@@ -328,7 +324,7 @@ class PaperChecker {
     // "a long time" against the amplitudes' relaxation time 2 / nu (~3): at least 50
     const double longest = longestSuppression(slow_.envelope, tc1_, tc2_);
     add("metronome 1 suppresses 2 for a long time first: >= 50 in tau", longest >= 50.0,
-        "longest suppression of 2 by 1: " + fmt("%.1f", longest) + " in tau");
+        "longest suppression of 2 by 1: " + numberText(longest, 1, Notation::Fixed) + " in tau");
   }
 
   const ModelRun& slow_;
@@ -492,7 +488,7 @@ class ProgressLog {
   }
   void run(const std::string& what, const ModelRun& r) {
     std::string s = what + ": " + (r.report.complete ? toString(r.verdict.regime) : "FAILED");
-    s += " (" + fmt("%.1f", r.report.wall_seconds) + " s)";
+    s += " (" + numberText(r.report.wall_seconds, 1, Notation::Fixed) + " s)";
     if (!r.report.complete) s += " - " + r.report.failure;
     say(s);
   }
@@ -522,8 +518,9 @@ void runBetas(const ValidationPlan& plan, const ValidationEngines& engines, Prog
     row.err1 = std::abs(row.measured.beta1 - row.beta1_closed);
     row.err2 = std::abs(row.measured.beta2 - row.beta2_closed);
     row.pass = row.measured.periodic && row.err1 <= plan.beta_tol && row.err2 <= plan.beta_tol;
-    log.say("betas s = " + fmt("%.9g", s) + ": |d beta1| = " + fmt("%.1e", row.err1) +
-            ", |d beta2| = " + fmt("%.1e", row.err2) + (row.pass ? "" : "  FAIL"));
+    log.say("betas s = " + numberText(s, 9) +
+            ": |d beta1| = " + numberText(row.err1, 1, Notation::Scientific) + ", |d beta2| = " +
+            numberText(row.err2, 1, Notation::Scientific) + (row.pass ? "" : "  FAIL"));
   });
 }
 
@@ -565,9 +562,9 @@ void queueConvergence(const ValidationPlan& plan, const std::vector<Scenario>& s
              const ModelRun full = runFullModelAt(engines, scp->scaled, cv2.name, eps, tau);
              cv2.runs_complete[k] = slow.report.complete && full.report.complete;
              cv2.error[k] = envelopeError(full.envelope, slow.envelope, eps, tau);
-             log.say("convergence " + cv2.name + " eps = " + fmt("%g", eps) + ": error " +
-                     fmt("%.3e", cv2.error[k].max_distance) + " (" +
-                     fmt("%.1f", full.report.wall_seconds) + " s)");
+             log.say("convergence " + cv2.name + " eps = " + numberText(eps) + ": error " +
+                     numberText(cv2.error[k].max_distance, 3, Notation::Scientific) + " (" +
+                     numberText(full.report.wall_seconds, 1, Notation::Fixed) + " s)");
            }});
   }
 }
@@ -591,8 +588,8 @@ void queueRegimes(const ValidationPlan& plan, const std::vector<Scenario>& scena
                          RegimeComparison& rc2 = res.regimes[c];
                          rc2.full[k] =
                              runFullModelAt(engines, scp->scaled, rc2.name, eps, rc2.tau_end);
-                         log.run("regimes " + rc2.name + " full eps = " + fmt("%.4g", eps) +
-                                     " tau = " + fmt("%g", rc2.tau_end),
+                         log.run("regimes " + rc2.name + " full eps = " + numberText(eps, 4) +
+                                     " tau = " + numberText(rc2.tau_end),
                                  rc2.full[k]);
                        }});
     }
@@ -622,10 +619,10 @@ void queueMuSweep(const ValidationPlan& plan, const std::vector<Scenario>& scena
                        pt.mu_bar = q.mu * std::pow(q.epsilon, 1.5);
                        pt.slow = runSlowModel(q, q.epsilon, q.tau_end);
                        pt.full =
-                           runFullModelAt(engines, q, scp->spec.name + "-mu" + fmt("%g", q.mu),
+                           runFullModelAt(engines, q, scp->spec.name + "-mu" + numberText(q.mu),
                                           q.epsilon, q.tau_end);
-                       log.run("sweep mu = " + fmt("%g", q.mu) + " slow", pt.slow);
-                       log.run("sweep mu = " + fmt("%g", q.mu) + " full", pt.full);
+                       log.run("sweep mu = " + numberText(q.mu) + " slow", pt.slow);
+                       log.run("sweep mu = " + numberText(q.mu) + " full", pt.full);
                      }});
   }
 }
@@ -641,7 +638,7 @@ void finishConvergence(const ValidationPlan& plan, ProgressLog& log, ValidationR
     cv.order = positive && errs.size() >= 2 ? fitOrder(cv.eps, errs)
                                             : std::numeric_limits<double>::quiet_NaN();
     cv.pass = cv.complete && cv.order >= plan.order_lo && cv.order <= plan.order_hi;
-    log.say("convergence " + cv.name + ": order " + fmt("%.3f", cv.order) +
+    log.say("convergence " + cv.name + ": order " + numberText(cv.order, 3, Notation::Fixed) +
             (cv.pass ? "" : "  FAIL"));
   }
 }

@@ -7,11 +7,8 @@
 
 namespace metrosync::bench {
 
-std::string benchNumber(double v, const char* f) {
-  if (!std::isfinite(v)) return "";
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
+std::string benchNumber(double v, int precision, Notation notation) {
+  return std::isfinite(v) ? numberText(v, precision, notation) : std::string();
 }
 
 namespace {

@@ -13,16 +13,13 @@
 #include <set>
 #include <sstream>
 
+#include "base/number_text.h"
 #include "tools/bench/bench_metrics.h"
 #include "tools/report/plot.h"
 
 namespace metrosync::bench {
 
 namespace {
-
-std::string num(double v, const char* f = "%.3g") {
-  return benchNumber(v, f);
-}
 
 // CSV field: quoted when it holds a comma or a quote
 std::string field(const std::string& s) {
@@ -86,16 +83,17 @@ std::string csvHeader() {
 
 std::string csvRow(const Record& r) {
   std::ostringstream os;
-  const char* g = "%.6g";
-  os << field(r.scene) << ',' << r.n_metronomes << ',' << num(r.periods, g) << ','
+  os << field(r.scene) << ',' << r.n_metronomes << ',' << benchNumber(r.periods, 6) << ','
      << r.method.engine << ',' << r.method.integrator << ',' << r.method.setting() << ','
-     << num(r.method.accuracy > 0 ? r.method.accuracy : NAN, g) << ','
-     << num(r.method.steps_per_period > 0 ? r.method.steps_per_period : NAN, g) << ','
-     << field(r.status) << ',' << field(r.note) << ',' << r.runs << ',' << num(r.wall_median_s, g)
-     << ',' << num(r.wall_min_s, g) << ',' << num(r.wall_max_s, g) << ',' << num(r.cpu_median_s, g)
-     << ',' << num(r.load_min, "%.2f") << ',' << num(r.load_max, "%.2f") << ','
-     << num(r.error.envelope, g) << ',' << num(r.error.max_dA, g) << ',' << num(r.error.max_dpsi, g)
-     << ',' << num(r.error.final_state, g) << ',' << r.error.rows << ',' << r.steps << ','
+     << benchNumber(r.method.accuracy > 0 ? r.method.accuracy : NAN, 6) << ','
+     << benchNumber(r.method.steps_per_period > 0 ? r.method.steps_per_period : NAN, 6) << ','
+     << field(r.status) << ',' << field(r.note) << ',' << r.runs << ','
+     << benchNumber(r.wall_median_s, 6) << ',' << benchNumber(r.wall_min_s, 6) << ','
+     << benchNumber(r.wall_max_s, 6) << ',' << benchNumber(r.cpu_median_s, 6) << ','
+     << benchNumber(r.load_min, 2, Notation::Fixed) << ','
+     << benchNumber(r.load_max, 2, Notation::Fixed) << ',' << benchNumber(r.error.envelope, 6)
+     << ',' << benchNumber(r.error.max_dA, 6) << ',' << benchNumber(r.error.max_dpsi, 6) << ','
+     << benchNumber(r.error.final_state, 6) << ',' << r.error.rows << ',' << r.steps << ','
      << r.rhs_evals << ',' << r.events << ',' << r.ticks << ',' << r.stick_slip << ','
      << field(r.regime);
   return os.str();
@@ -117,16 +115,23 @@ std::string precisionTable(const std::vector<Record>& records) {
     const bool ran = r.status != "skipped (predicted over budget)";
     os << "| " << r.method.label() << " | " << r.method.setting() << " | ";
     if (r.timed())
-      os << num(r.wall_median_s) << " (" << r.runs << ")";
+      os << benchNumber(r.wall_median_s, 3) << " (" << r.runs << ")";
     else if (r.status == "over budget")
-      os << "> " << num(r.wall_median_s, "%.0f");
-    os << " | " << (r.timed() ? num(r.cpu_median_s) : "") << " | ";
+      os << "> " << benchNumber(r.wall_median_s, 0, Notation::Fixed);
+    os << " | " << (r.timed() ? benchNumber(r.cpu_median_s, 3) : "") << " | ";
     const bool has_error = r.status == "ok" || r.status == "cross-check" || r.status == "reference";
     if (has_error && r.error.rows > 0)
-      os << (r.status == "reference" ? std::string("-") : num(r.error.envelope, "%.1e")) << " | "
-         << (r.status == "reference" ? std::string("-") : num(r.error.max_dA, "%.1e")) << " | "
-         << (r.status == "reference" ? std::string("-") : num(r.error.max_dpsi, "%.1e")) << " | "
-         << (r.status == "reference" ? std::string("-") : num(r.error.final_state, "%.1e"))
+      os << (r.status == "reference" ? std::string("-")
+                                     : benchNumber(r.error.envelope, 1, Notation::Scientific))
+         << " | "
+         << (r.status == "reference" ? std::string("-")
+                                     : benchNumber(r.error.max_dA, 1, Notation::Scientific))
+         << " | "
+         << (r.status == "reference" ? std::string("-")
+                                     : benchNumber(r.error.max_dpsi, 1, Notation::Scientific))
+         << " | "
+         << (r.status == "reference" ? std::string("-")
+                                     : benchNumber(r.error.final_state, 1, Notation::Scientific))
          << " | ";
     else
       os << " |  |  |  | ";
@@ -168,21 +173,26 @@ std::string ratiosMarkdown(const std::vector<Record>& records, std::string& csv_
          << "error): ";
       if (rs.empty()) {
         // no common error: say where each front lies
-        os << "no common error range (" << engines[i] << " reaches " << num(a.front().error, "%.1e")
-           << " ... " << num(a.back().error, "%.1e") << " in " << num(a.front().time_s) << " ... "
-           << num(a.back().time_s) << " s; " << engines[j] << " " << num(b.front().error, "%.1e")
-           << " ... " << num(b.back().error, "%.1e") << " in " << num(b.front().time_s) << " ... "
-           << num(b.back().time_s) << " s)\n";
+        os << "no common error range (" << engines[i] << " reaches "
+           << benchNumber(a.front().error, 1, Notation::Scientific) << " ... "
+           << benchNumber(a.back().error, 1, Notation::Scientific) << " in "
+           << benchNumber(a.front().time_s, 3) << " ... " << benchNumber(a.back().time_s, 3)
+           << " s; " << engines[j] << " " << benchNumber(b.front().error, 1, Notation::Scientific)
+           << " ... " << benchNumber(b.back().error, 1, Notation::Scientific) << " in "
+           << benchNumber(b.front().time_s, 3) << " ... " << benchNumber(b.back().time_s, 3)
+           << " s)\n";
         continue;
       }
-      os << "geometric mean " << num(geometricMeanRatio(rs)) << " over errors "
-         << num(rs.front().error, "%.1e") << " ... " << num(rs.back().error, "%.1e") << "; ";
+      os << "geometric mean " << benchNumber(geometricMeanRatio(rs), 3) << " over errors "
+         << benchNumber(rs.front().error, 1, Notation::Scientific) << " ... "
+         << benchNumber(rs.back().error, 1, Notation::Scientific) << "; ";
       for (size_t k = 0; k < rs.size(); ++k) {
-        os << (k ? ", " : "") << num(rs[k].ratio()) << " at " << num(rs[k].error, "%.1e") << " ("
-           << num(rs[k].time_a_s) << " s / " << num(rs[k].time_b_s) << " s)";
+        os << (k ? ", " : "") << benchNumber(rs[k].ratio(), 3) << " at "
+           << benchNumber(rs[k].error, 1, Notation::Scientific) << " ("
+           << benchNumber(rs[k].time_a_s, 3) << " s / " << benchNumber(rs[k].time_b_s, 3) << " s)";
         csv_rows += field(scene) + "," + engines[i] + "," + engines[j] + "," +
-                    num(rs[k].error, "%.6g") + "," + num(rs[k].time_a_s, "%.6g") + "," +
-                    num(rs[k].time_b_s, "%.6g") + "," + num(rs[k].ratio(), "%.6g") + "\n";
+                    benchNumber(rs[k].error, 6) + "," + benchNumber(rs[k].time_a_s, 6) + "," +
+                    benchNumber(rs[k].time_b_s, 6) + "," + benchNumber(rs[k].ratio(), 6) + "\n";
       }
       os << "\n";
     }
@@ -314,9 +324,10 @@ std::string nscaleTable(const std::vector<Record>& records) {
       for (const Record& r : records)
         if (r.n_metronomes == n && r.method.label() == l) {
           if (r.timed() && r.steps > 0)
-            cell = num(1e3 * r.wall_median_s / r.periods) + " | " +
-                   num(static_cast<double>(r.steps) / r.periods) + " | " +
-                   num(1e6 * r.wall_median_s / (static_cast<double>(r.steps) * n)) + " |";
+            cell = benchNumber(1e3 * r.wall_median_s / r.periods, 3) + " | " +
+                   benchNumber(static_cast<double>(r.steps) / r.periods, 3) + " | " +
+                   benchNumber(1e6 * r.wall_median_s / (static_cast<double>(r.steps) * n), 3) +
+                   " |";
           else
             cell = r.status + " |  |  |";
         }

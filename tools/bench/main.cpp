@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "base/constants.h"
+#include "base/number_text.h"
 #include "tools/bench/bench_report.h"
 #include "tools/bench/bench_run.h"
 #include "tools/bench/peer_verdict_report.h"
@@ -28,6 +29,8 @@
 #include "tools/report/outputs.h"
 
 namespace mb = metrosync::bench;
+using metrosync::Notation;
+using metrosync::numberText;
 
 namespace {
 
@@ -75,12 +78,6 @@ double waitForLoad(const Common& c) {
   return load;
 }
 
-std::string fmt(double v, const char* f = "%.3g") {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 // One record: a first run (errors, counts), then repeat - 1 more for the timing medians.
 mb::Record measure(const mb::Scene& scene, const mb::Method& m, const mb::RunResult* ref,
                    const Common& c, double budget_s, int repeat, mb::RunResult* keep = nullptr) {
@@ -101,8 +98,9 @@ mb::Record measure(const mb::Scene& scene, const mb::Method& m, const mb::RunRes
   if (ref) rec.error = mb::compareRuns(first, *ref);
   if (first.over_budget) {
     rec.status = "over budget";
-    rec.note = "stopped after " + fmt(first.wall_s, "%.0f") + " s at row " +
-               std::to_string(first.envelope.size()) + " of ~" + fmt(scene.periods, "%.0f");
+    rec.note = "stopped after " + numberText(first.wall_s, 0, Notation::Fixed) + " s at row " +
+               std::to_string(first.envelope.size()) + " of ~" +
+               numberText(scene.periods, 0, Notation::Fixed);
     rec.wall_median_s = first.wall_s;
   } else if (!first.complete) {
     rec.status = "failed";
@@ -128,9 +126,10 @@ mb::Record measure(const mb::Scene& scene, const mb::Method& m, const mb::RunRes
   rec.load_max = *std::max_element(loads.begin(), loads.end());
   if (!c.quiet)
     std::cerr << "  " << scene.name << " " << m.label() << " " << m.setting() << ": " << rec.status
-              << (rec.runs ? ", wall " + fmt(rec.wall_median_s) + " s" : "")
-              << (ref ? ", error " + fmt(rec.error.envelope, "%.2e") : "") << ", load "
-              << fmt(rec.load_min, "%.2f") << "-" << fmt(rec.load_max, "%.2f") << "\n";
+              << (rec.runs ? ", wall " + numberText(rec.wall_median_s, 3) + " s" : "")
+              << (ref ? ", error " + numberText(rec.error.envelope, 2, Notation::Scientific) : "")
+              << ", load " << numberText(rec.load_min, 2, Notation::Fixed) << "-"
+              << numberText(rec.load_max, 2, Notation::Fixed) << "\n";
   if (!c.envelopes.empty()) {
     std::filesystem::create_directories(c.envelopes);
     std::string text = metrosync::envelopeHeader(rec.n_metronomes) + "\n";
@@ -173,7 +172,9 @@ std::string loadRange(const std::vector<mb::Record>& recs) {
   double lo = INFINITY, hi = -INFINITY;
   for (const auto& r : recs)
     if (r.runs > 0) lo = std::min(lo, r.load_min), hi = std::max(hi, r.load_max);
-  return std::isfinite(lo) ? fmt(lo, "%.2f") + " ... " + fmt(hi, "%.2f") : "n/a";
+  return std::isfinite(lo)
+             ? numberText(lo, 2, Notation::Fixed) + " ... " + numberText(hi, 2, Notation::Fixed)
+             : "n/a";
 }
 
 // The verdict against the peer over `scenes`: ratios.md, ratios.csv, nslope.csv in c.out, the page
@@ -314,10 +315,11 @@ void writeSceneReport(const mb::Scene& scene, const mb::Method& ref_method,
   md << "### " << scene.name << "\n\n"
      << "`" << (scene.path.empty() ? scene.name : scene.path)
      << "`: N = " << scene.rig.metronomes.size()
-     << ", epsilon = " << fmt(scene.scaled.epsilon, "%.4g")
-     << ", tau_end = " << fmt(scene.scaled.tau_end, "%.4g") << " (" << fmt(scene.periods, "%.0f")
-     << " fast periods, " << fmt(scene.rig.sim.t_end_s, "%.4g") << " s). Reference "
-     << ref_method.label() << " at " << ref_method.setting() << "; 1-minute load during the "
+     << ", epsilon = " << numberText(scene.scaled.epsilon, 4)
+     << ", tau_end = " << numberText(scene.scaled.tau_end, 4) << " ("
+     << numberText(scene.periods, 0, Notation::Fixed) << " fast periods, "
+     << numberText(scene.rig.sim.t_end_s, 4) << " s). Reference " << ref_method.label() << " at "
+     << ref_method.setting() << "; 1-minute load during the "
      << "timed runs " << loadRange(recs) << ".\n\n"
      << mb::precisionTable(recs) << "\nTime ratios at equal envelope error (a / b; < 1: a is "
      << "faster):\n\n"
@@ -326,7 +328,7 @@ void writeSceneReport(const mb::Scene& scene, const mb::Method& ref_method,
   mb::plotWorkPrecision(base + ".png", recs,
                         "work-precision: " + scene.name +
                             " (N = " + std::to_string(scene.rig.metronomes.size()) + ", " +
-                            fmt(scene.periods, "%.0f") + " fast periods)");
+                            numberText(scene.periods, 0, Notation::Fixed) + " fast periods)");
   if (!c.quiet) std::cout << md.str() << "\n";
 }
 
@@ -336,9 +338,9 @@ int precisionScene(const mb::Scene& scene, const PrecisionPlan& plan, const Prec
                    const Common& c, std::vector<mb::Record>& recs) {
   if (!c.quiet)
     std::cerr << scene.name << ": N = " << scene.rig.metronomes.size() << ", "
-              << fmt(scene.periods, "%.0f")
-              << " fast periods, tau_end = " << fmt(scene.scaled.tau_end, "%.4g")
-              << ", epsilon = " << fmt(scene.scaled.epsilon, "%.4g") << "\n";
+              << numberText(scene.periods, 0, Notation::Fixed)
+              << " fast periods, tau_end = " << numberText(scene.scaled.tau_end, 4)
+              << ", epsilon = " << numberText(scene.scaled.epsilon, 4) << "\n";
   const std::string base = c.out + "/wp-" + scene.name;
   const std::function<void()> save = [&]() {
     metrosync::writeFileAtomically(base + ".csv", mb::recordsCsv(recs));
@@ -473,14 +475,14 @@ int nscale(const NScaleOptions& o, const Common& c) {
     }
   }
   std::ostringstream md;
-  md << "Cost per fast period (median wall time of the run / " << fmt(o.periods, "%g")
+  md << "Cost per fast period (median wall time of the run / " << numberText(o.periods)
      << " fast periods, milliseconds) against N; board " << o.board_kg << " kg, mu-bar " << o.mu_bar
      << ", phases from seed " << o.seed << "; 1-minute load during the timed runs "
      << loadRange(recs) << ".\n\n"
      << mb::nscaleTable(recs);
   metrosync::writeFileAtomically(c.out + "/nscale.md", md.str());
   mb::plotNScaling(c.out + "/nscale.png", recs,
-                   "cost per fast period against N (" + fmt(o.periods, "%g") + " periods)");
+                   "cost per fast period against N (" + numberText(o.periods) + " periods)");
   if (!c.quiet) std::cout << md.str();
   return 0;
 }

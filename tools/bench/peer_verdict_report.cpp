@@ -5,22 +5,19 @@
 #include <cstdio>
 #include <sstream>
 
+#include "base/number_text.h"
 #include "tools/bench/bench_metrics.h"
 
 namespace metrosync::bench {
 
 namespace {
 
-std::string num(double v, const char* f = "%.3g") {
-  return benchNumber(v, f);
-}
-
 // "33.2 us", "1.09 ms", "2.5 s"
 std::string duration(double s) {
   if (!std::isfinite(s)) return "";
-  if (s < 1e-3) return num(s * 1e6) + " us";
-  if (s < 1) return num(s * 1e3) + " ms";
-  return num(s) + " s";
+  if (s < 1e-3) return benchNumber(s * 1e6, 3) + " us";
+  if (s < 1) return benchNumber(s * 1e3, 3) + " ms";
+  return benchNumber(s, 3) + " s";
 }
 
 std::string field(const std::string& s) {
@@ -72,7 +69,9 @@ std::string loadRange(const std::vector<VerdictScene>& scenes) {
   double lo = NAN, hi = NAN;
   for (const VerdictScene& s : scenes)
     lo = std::fmin(lo, s.load_min), hi = std::fmax(hi, s.load_max);
-  return std::isfinite(lo) ? num(lo, "%.2f") + " ... " + num(hi, "%.2f") : "not recorded";
+  return std::isfinite(lo)
+             ? numberText(lo, 2, Notation::Fixed) + " ... " + numberText(hi, 2, Notation::Fixed)
+             : "not recorded";
 }
 
 std::string ratiosCsvRows(const RatioTable& t) {
@@ -80,8 +79,9 @@ std::string ratiosCsvRows(const RatioTable& t) {
   for (const RatioRow& row : t.rows)
     for (const RatioCell& c : row.cells)
       s += measureName(t.measure) + "," + clockName(t.clock) + "," + field(row.scene) + "," +
-           std::to_string(row.n) + "," + num(c.error, "%.6g") + "," + num(c.time_ours_s, "%.6g") +
-           "," + num(c.time_peer_s, "%.6g") + "," + num(c.ratio, "%.6g") + "," +
+           std::to_string(row.n) + "," + benchNumber(c.error, 6) + "," +
+           benchNumber(c.time_ours_s, 6) + "," + benchNumber(c.time_peer_s, 6) + "," +
+           benchNumber(c.ratio, 6) + "," +
            (c.filled() ? (c.ratio < kTargetRatio ? "1" : "0") : "") + "," + field(c.reason) + "\n";
   return s;
 }
@@ -91,11 +91,11 @@ std::string slopeCsvRows(const std::vector<SlopeRow>& rows, ErrorMeasure m, Cloc
   for (const SlopeRow& r : rows)
     for (int side = 0; side < 2; ++side)
       for (size_t k = 0; k < r.ns.size(); ++k)
-        s += measureName(m) + "," + clockName(c) + "," + num(r.error, "%.6g") + "," +
+        s += measureName(m) + "," + clockName(c) + "," + benchNumber(r.error, 6) + "," +
              (side == 0 ? "metrosync" : "peer") + "," + field(r.scenes[k]) + "," +
              std::to_string(r.ns[k]) + "," +
-             num((side == 0 ? r.ours_per_period_s : r.peer_per_period_s)[k], "%.6g") + "," +
-             num(side == 0 ? r.slope_ours : r.slope_peer, "%.4g") + "\n";
+             benchNumber((side == 0 ? r.ours_per_period_s : r.peer_per_period_s)[k], 6) + "," +
+             benchNumber(side == 0 ? r.slope_ours : r.slope_peer, 4) + "\n";
   return s;
 }
 
@@ -118,8 +118,11 @@ std::string slopeMarkdown(const std::vector<SlopeRow>& rows, ErrorMeasure m, Clo
       os << " " << (std::isfinite(o) ? duration(o) : "not reached")
          << (std::isfinite(p) ? " (" + duration(p) + ")" : " (peer: not reached)") << " |";
     }
-    os << " " << (std::isfinite(r.slope_ours) ? num(r.slope_ours, "%.2f") : "n/a") << " | "
-       << (std::isfinite(r.slope_peer) ? num(r.slope_peer, "%.2f") : "n/a") << " |\n";
+    os << " "
+       << (std::isfinite(r.slope_ours) ? numberText(r.slope_ours, 2, Notation::Fixed) : "n/a")
+       << " | "
+       << (std::isfinite(r.slope_peer) ? numberText(r.slope_peer, 2, Notation::Fixed) : "n/a")
+       << " |\n";
   }
   os << "\nA cell reads \"not reached\" where the side's front does not cover that error on that "
         "scene; the slope is fitted over the scenes that do.\n";
@@ -130,7 +133,7 @@ std::string agreementMarkdown(const std::vector<Agreement>& ag, const Sides& sid
   std::ostringstream os;
   os << "The peer validated against metrosync at tight tolerance (a `--cross-check` of one side "
         "against the other side's reference; the issue's bound: final-state difference <= "
-     << num(kPeerAgreement, "%.0e") << "):\n\n"
+     << numberText(kPeerAgreement, 0, Notation::Scientific) << "):\n\n"
      << "| scene | reference | cross-check | final-state difference | envelope difference | |\n"
      << "|---|---|---|---|---|---|\n";
   for (const Agreement& a : ag) {
@@ -140,11 +143,12 @@ std::string agreementMarkdown(const std::vector<Agreement>& ag, const Sides& sid
          << sides.ours << " (add `--cross-check " << sides.peer << ":rkf78:1e-13`) |\n";
       continue;
     }
-    os << a.check << " | " << num(a.err_final, "%.1e") << " | " << num(a.err_envelope, "%.1e")
-       << " | "
-       << (a.self        ? std::string("the reference's own uncertainty (same engine)")
-           : a.flagged() ? "**FLAG: above " + num(kPeerAgreement, "%.0e") + "**"
-                         : "agrees (<= " + num(kPeerAgreement, "%.0e") + ")")
+    os << a.check << " | " << numberText(a.err_final, 1, Notation::Scientific) << " | "
+       << numberText(a.err_envelope, 1, Notation::Scientific) << " | "
+       << (a.self ? std::string("the reference's own uncertainty (same engine)")
+           : a.flagged()
+               ? "**FLAG: above " + numberText(kPeerAgreement, 0, Notation::Scientific) + "**"
+               : "agrees (<= " + numberText(kPeerAgreement, 0, Notation::Scientific) + ")")
        << " |\n";
   }
   return os.str();
@@ -154,7 +158,8 @@ std::string headerMarkdown(const std::vector<VerdictScene>& scenes, const Verdic
   std::ostringstream os;
   os << "# metrosync against the peer at equal error (issue 11)\n\n"
      << "ratio = peer time / metrosync time to reach the same error (> 1: metrosync is faster; "
-     << "the issue's target is >= " << num(kTargetRatio, "%.1f") << ", **bold**: below it). "
+     << "the issue's target is >= " << numberText(kTargetRatio, 1, Notation::Fixed)
+     << ", **bold**: below it). "
      << "Each side's front is its cheapest run at each error over all its integrators "
      << "(metrosync: " << methodsOf(scenes, true) << "; the peer: " << methodsOf(scenes, false)
      << "), interpolated linearly in log(time) against log(error) between measured points and "
@@ -173,16 +178,17 @@ std::string headerMarkdown(const std::vector<VerdictScene>& scenes, const Verdic
 std::string verdictLine(const RatioTable& t, const Verdict& v) {
   std::ostringstream os;
   os << "Verdict at equal " << measureName(t.measure) << " error (" << clockName(t.clock)
-     << " medians, target >= " << num(kTargetRatio, "%.1f") << " from "
+     << " medians, target >= " << numberText(kTargetRatio, 1, Notation::Fixed) << " from "
      << (t.errors.empty() ? "" : errorLabel(t.errors.front())) << " to "
      << (t.errors.empty() ? "" : errorLabel(t.errors.back())) << " on " << t.rows.size()
      << " scenes): ";
   if (v.met) return os.str() + "MET in all " + std::to_string(v.cells) + " cells.";
   os << "NOT MET";
   if (v.cells == 0) return os.str() + " (no scene has points on both sides).";
-  os << ": below " << num(kTargetRatio, "%.1f") << " in " << v.below << " of " << v.cells
-     << " cells";
-  if (std::isfinite(v.worst)) os << " (worst " << num(v.worst, "%.2f") << ", " << v.worst_at << ")";
+  os << ": below " << numberText(kTargetRatio, 1, Notation::Fixed) << " in " << v.below << " of "
+     << v.cells << " cells";
+  if (std::isfinite(v.worst))
+    os << " (worst " << numberText(v.worst, 2, Notation::Fixed) << ", " << v.worst_at << ")";
   if (!v.below_where.empty()) os << " at " << joined(v.below_where, "; ");
   if (v.empty > 0)
     os << (v.below ? "; " : ", ") << v.empty << " not measured on both sides at "
@@ -204,7 +210,7 @@ std::string ratioTableMarkdown(const RatioTable& t) {
     std::vector<std::pair<std::string, std::string>> why;
     for (const RatioCell& c : row.cells) {
       if (c.filled()) {
-        const std::string r = num(c.ratio, "%.2f");
+        const std::string r = numberText(c.ratio, 2, Notation::Fixed);
         os << " " << (c.ratio < kTargetRatio ? "**" + r + "**" : r) << " |";
         continue;
       }
@@ -243,12 +249,12 @@ VerdictPages verdictPages(const std::vector<VerdictScene>& scenes, const Verdict
       continue;
     }
     w += "the peer's cross-check " + a.check + " differs from the reference " + a.reference +
-         " by " + num(a.err_final, "%.1e") + " in final state (> " + num(kPeerAgreement, "%.0e") +
-         ")";
+         " by " + numberText(a.err_final, 1, Notation::Scientific) + " in final state (> " +
+         numberText(kPeerAgreement, 0, Notation::Scientific) + ")";
     for (const Agreement& b : ag)
       if (b.self && b.scene == a.scene)
-        w += "; the reference's own engine differs from it by " + num(b.err_final, "%.1e") + " (" +
-             b.check + ")";
+        w += "; the reference's own engine differs from it by " +
+             numberText(b.err_final, 1, Notation::Scientific) + " (" + b.check + ")";
     p.warnings.push_back(w);
   }
   p.ratios_csv =

@@ -11,6 +11,7 @@
 #include <memory>
 #include <sstream>
 
+#include "base/number_text.h"
 #include "models/scaling.h"
 #include "sim/analysis/compare.h"
 #include "sim/analysis/linear_decay.h"
@@ -45,15 +46,11 @@ std::string joined(const std::vector<std::string>& v, const std::string& sep = "
   return s;
 }
 
-std::string fmt(double v, const char* f = "%.4g") {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-std::string fmtList(const std::vector<double>& v, const char* f = "%.4g") {
+// the numbers separated by spaces, numberText(x, precision, notation) each
+std::string fmtList(const std::vector<double>& v, int precision = 4,
+                    Notation notation = Notation::General) {
   std::string s;
-  for (double x : v) s += (s.empty() ? "" : " ") + fmt(x, f);
+  for (double x : v) s += (s.empty() ? "" : " ") + numberText(x, precision, notation);
   return s;
 }
 
@@ -161,8 +158,8 @@ RunReport runModel(const Engine& engine, const LoadedRig& r, FileSink& sink) {
     rep.model = engine.model();
     rep.engine = engine.name();
     rep.complete = false;
-    rep.failure = "stopped at t = " + fmt(t, "%.6g") +
-                  (r.rig.units == Units::Physical ? " s" : "") + ": " + why;
+    rep.failure = "stopped at t = " + numberText(t) + (r.rig.units == Units::Physical ? " s" : "") +
+                  ": " + why;
     rep.wall_seconds = secondsSince(t0);
     return rep;
   };
@@ -197,18 +194,19 @@ void printRunSummary(const std::string& model, const LoadedRig& r, const RunRepo
   std::cout << modelTitle(model) << " (" << rep.engine
             << (rep.integrator.empty() ? "" : ", " + rep.integrator) << "): regime "
             << regimeName(v) << "\n";
-  std::cout << "  final tau = " << fmt(rep.final_row.tau) << ": A = " << fmtList(rep.final_row.A)
-            << " (theta_c = " << fmtList(r.scaled.theta_c) << ")";
+  std::cout << "  final tau = " << numberText(rep.final_row.tau, 4)
+            << ": A = " << fmtList(rep.final_row.A) << " (theta_c = " << fmtList(r.scaled.theta_c)
+            << ")";
   if (!rep.final_row.psi.empty()) std::cout << ", psi = " << fmtList(rep.final_row.psi);
   std::cout << "\n  " << rep.counts.steps << " steps";
   if (!rep.counts.escapements.empty()) {
     std::vector<double> e(rep.counts.escapements.begin(), rep.counts.escapements.end());
-    std::cout << ", escapements " << fmtList(e, "%.0f");
+    std::cout << ", escapements " << fmtList(e, 0, Notation::Fixed);
   }
   if (model == "full")
     std::cout << ", " << rep.counts.stick_slip << " stick-slip switches, "
               << rep.counts.slip_reversals << " slip reversals";
-  std::cout << ", wall time " << fmt(rep.wall_seconds, "%.3g") << " s\n";
+  std::cout << ", wall time " << numberText(rep.wall_seconds, 3) << " s\n";
 }
 
 void printFiles(const OutputDir& dir, const std::vector<std::string>& files) {

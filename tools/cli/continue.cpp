@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "base/constants.h"
+#include "base/number_text.h"
 #include "models/scaling.h"
 #include "sim/analysis/continuation/arclength.h"
 #include "sim/analysis/continuation/fold_curve.h"
@@ -43,12 +44,6 @@ struct FoldSeed {
 ContinueOptions& options() {
   static ContinueOptions opt;
   return opt;
-}
-
-std::string fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
 }
 
 // The rig with --set, then `extra` (the parameter's KEY=VALUE, named --param in messages; keys
@@ -92,7 +87,7 @@ bool sameSlowFlow(const ScaledParams& a, const ScaledParams& b) {
 ScaledParams scaledAt(const ContinueOptions& opt, const std::vector<std::string>& keys,
                       const std::vector<double>& values) {
   std::vector<std::string> o;
-  for (size_t k = 0; k < keys.size(); ++k) o.push_back(keys[k] + "=" + fmt(values[k]));
+  for (size_t k = 0; k < keys.size(); ++k) o.push_back(keys[k] + "=" + roundTripText(values[k]));
   try {
     return computeScaled(loadWith(opt, o));
   } catch (const std::exception&) {
@@ -122,7 +117,8 @@ ScaledParams finiteScaledAt(const ContinueOptions& opt, double value, const std:
     for (double x : *v)
       if (!std::isfinite(x)) bad = name;
   if (!bad.empty())
-    throw UsageError(which + ": " + opt.param + " = " + fmt(value) + " makes the scaled " + bad +
+    throw UsageError(which + ": " + opt.param + " = " + roundTripText(value) +
+                     " makes the scaled " + bad +
                      " infinite or undefined; choose a value nearer the rig's");
   return p;
 }
@@ -144,13 +140,14 @@ double startValue(const ContinueOptions& opt, const std::string& option = "--par
                      ": the key is not set in the rig (its default applies); give --from VALUE");
   const double from = opt.from ? *opt.from : *in_rig;  // both finite (tools/cli/number_option.h)
   if (opt.to == from)
-    throw UsageError("--to " + fmt(opt.to) + ": must differ from the start value " + opt.param +
-                     " = " + fmt(from));
+    throw UsageError("--to " + roundTripText(opt.to) + ": must differ from the start value " +
+                     opt.param + " = " + roundTripText(from));
   const ScaledParams a = finiteScaledAt(opt, from, opt.from ? "--from" : "the rig's value");
   const ScaledParams b = finiteScaledAt(opt, opt.to, "--to");
   if (sameSlowFlow(a, b))
     throw UsageError(option + " " + opt.param + ": has no effect on the slow flow (its scaled " +
-                     "parameters are the same at " + fmt(from) + " and " + fmt(opt.to) + ")");
+                     "parameters are the same at " + roundTripText(from) + " and " +
+                     roundTripText(opt.to) + ")");
   return from;
 }
 
@@ -196,8 +193,8 @@ std::vector<Cd> startState(const ContinueOptions& opt, const ScaledParams& sp, s
   const SettledState st = settleFromStart(sp, sp.tau_end > 0 ? sp.tau_end : 300.0);
   if (!st.settled)
     throw UsageError("the rig's start does not settle to a locked state (slow flow up to tau = " +
-                     fmt(st.tau) + "): " + st.why + "; give --start A_1,..,psi_N");
-  how = "the rig's start, settled by the slow flow at tau = " + fmt(st.tau);
+                     roundTripText(st.tau) + "): " + st.why + "; give --start A_1,..,psi_N");
+  how = "the rig's start, settled by the slow flow at tau = " + roundTripText(st.tau);
   return st.z;
 }
 
@@ -302,7 +299,8 @@ void followAll(const ContinueOptions& opt, const ScaledParams& sp, double from,
   const SlowFlowProblem prob(paramsAt(opt), from, ref);
   const std::vector<Vec> states = allLockedStates(prob, from);
   if (states.empty())
-    throw UsageError("--all: Newton finds no locked state at " + opt.param + " = " + fmt(from));
+    throw UsageError("--all: Newton finds no locked state at " + opt.param + " = " +
+                     roundTripText(from));
   result.start = "--all: " + std::to_string(states.size()) +
                  " locked state(s) found by Newton from a grid of seeds";
   for (const Vec& x : states) {
@@ -319,8 +317,8 @@ void printSummary(const ContinuationResult& r, const std::string& dir) {
   std::cout << "continue " << r.param << " from " << r.from << " to " << r.to << ": "
             << r.branches.size() << " branch(es), " << r.points.size() << " points\n";
   for (const auto& s : r.special)
-    std::cout << "  " << s.type << " at " << r.param << " = " << fmt(s.at.value) << " (branch "
-              << s.at.branch << "): " << s.detail << "\n";
+    std::cout << "  " << s.type << " at " << r.param << " = " << roundTripText(s.at.value)
+              << " (branch " << s.at.branch << "): " << s.detail << "\n";
   std::cout << "files in " << dir << "\n";
 }
 
@@ -344,8 +342,8 @@ bool onACurve(const std::vector<FoldCurve>& curves, CurveKind kind, double p1, d
 // The fold and Hopf points found in key1 at key2 = v2 (every locked state at lo1 followed).
 std::vector<FoldSeed> pointsInRow(ContinueOptions o, const std::string& key2, double v2,
                                   double lo1) {
-  o.sets.push_back(key2 + "=" + fmt(v2));
-  const ScaledParams sp = computeScaled(loadWith(o, {o.param + "=" + fmt(lo1)}));
+  o.sets.push_back(key2 + "=" + roundTripText(v2));
+  const ScaledParams sp = computeScaled(loadWith(o, {o.param + "=" + roundTripText(lo1)}));
   ContinuationResult result;
   std::vector<FoldSeed> seeds;
   try {
@@ -454,7 +452,7 @@ int continueCommand(const ContinueOptions& opt) {
   if (opt.model == "full") return continueFullCommand(opt);
   const double from = startValue(opt);
   const double from2 = opt.fold_key.empty() ? 0.0 : secondStart(opt);
-  const Rig rig = loadWith(opt, {opt.param + "=" + fmt(from)});
+  const Rig rig = loadWith(opt, {opt.param + "=" + roundTripText(from)});
   const ScaledParams sp = computeScaled(rig);
   const ContinuationSettings settings = settingsFor(opt, from);
   ContinuationResult result;
@@ -474,8 +472,9 @@ int continueCommand(const ContinueOptions& opt) {
     }
     if (!opt.fold_key.empty()) foldCurves(opt, from2, folds, result);
   } catch (const std::invalid_argument& e) {  // the slow flow at a value on the way: not finite
-    throw UsageError("--param " + opt.param + " from " + fmt(from) + " to " + fmt(opt.to) + ": " +
-                     e.what() + " on the way (the range leaves the range of the numbers); " +
+    throw UsageError("--param " + opt.param + " from " + roundTripText(from) + " to " +
+                     roundTripText(opt.to) + ": " + e.what() +
+                     " on the way (the range leaves the range of the numbers); " +
                      "choose a --to nearer the start");
   }
   const OutputDir dir(outDir(opt, rig));

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "base/constants.h"
+#include "base/number_text.h"
 #include "models/scaling.h"
 #include "sim/analysis/fit/ceres_plugin.h"
 #include "sim/analysis/fit/data_file.h"
@@ -33,12 +34,6 @@ constexpr double kRowsPerPeriod = 100.0;
 const char* kFitExitCodes =
     "Exit codes: 0 fitted; 2 bad command line, rig or data file (nothing written); 3 the model "
     "fails at the starting values; 1 anything else.";
-
-std::string fmt(double v, const char* f = "%.6g") {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 // A rig the commands can fit: loaded with the overrides, in physical units.
 Rig loadPhysicalRig(const std::string& text, const std::string& name,
@@ -182,12 +177,13 @@ void printFit(const FitSetup& s, const FitResult& r, const FitContext& ctx, cons
   for (std::size_t j = 0; j < s.free.size(); ++j) {
     std::cout << "  " << s.free[j].key << " = ";
     if (r.values[j])
-      std::cout << fmt(*r.values[j]) << " +- " << fmt(*r.std_errors[j], "%.2g");
+      std::cout << numberText(*r.values[j]) << " +- " << numberText(*r.std_errors[j], 2);
     else
-      std::cout << "not identifiable from these data (kept at " << fmt(r.used[j]) << ")";
-    std::cout << "   (start " << fmt(ctx.starts[j]) << ", from " << ctx.start_from[j] << ")\n";
+      std::cout << "not identifiable from these data (kept at " << numberText(r.used[j]) << ")";
+    std::cout << "   (start " << numberText(ctx.starts[j]) << ", from " << ctx.start_from[j]
+              << ")\n";
   }
-  std::cout << "  rms residual " << fmt(r.rms, "%.3g")
+  std::cout << "  rms residual " << numberText(r.rms, 3)
             << (s.quantity_names.size() == 1 && s.quantity_names[0] == "x" ? " m" : " rad")
             << "\nfiles: " << dir.path() << "/ (";
   for (std::size_t k = 0; k < files.size(); ++k) std::cout << (k ? ", " : "") << files[k];
@@ -211,7 +207,7 @@ void writeFitFiles(const FitOptions& opt, const std::string& text, const Rig& ri
       "Fitted by metrosync " + std::string(metrosyncVersion()) + " fit: rig " + opt.rig_path +
           ", data " + opt.data_path + ", " + ctx.model + " model",
       "free: " + keys + " (values, standard errors, correlations in fit.json)",
-      "rms residual " + fmt(r.rms, "%.3g") + "; the original rig's comments are not kept"};
+      "rms residual " + numberText(r.rms, 3) + "; the original rig's comments are not kept"};
   writeFileAtomically(dir.file("fitted.yaml"),
                       rigYamlWithOverrides(text, opt.rig_path, fittedSets(opt, s, r), header));
   std::vector<std::string> files = {"fitted.yaml"};
@@ -389,7 +385,7 @@ void measureDecay(const MeasureOptions& opt, const Rig& rig, int i, Measurements
   const bool below = f.largest_amplitude < rig.metronomes[i].theta_c_rad;
   if (!below)
     std::cerr << "metrosync: warning: " << opt.decay << ": the largest swing, "
-              << fmt(f.largest_amplitude, "%.3g")
+              << numberText(f.largest_amplitude, 3)
               << " rad, reaches theta_c: the escapement ticks, the decay is not free\n";
   m.json["free_decay"] = {{"file", opt.decay},
                           {"column", theta},

@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "base/number_text.h"
 #include "sim/record/atomic_file.h"
 #include "tools/report/plot.h"
 
@@ -17,13 +18,6 @@ namespace {
 
 using continuation::ContinuationResult;
 using continuation::ResultPoint;
-
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.12g", v);
-  return buf;
-}
 
 // JSON has no NaN or infinity: null there.
 nlohmann::json jnum(double v) {
@@ -43,16 +37,16 @@ std::string plotData(const ContinuationResult& r) {
   for (const ResultPoint& q : r.points) {
     if (q.branch != branch && branch >= 0) d << "\n";
     branch = q.branch;
-    d << num(q.value);
-    for (double a : q.A) d << " " << num(a);
-    for (double p : q.psi) d << " " << num(p);
+    d << numberText(q.value, 12);
+    for (double a : q.A) d << " " << numberText(a, 12);
+    for (double p : q.psi) d << " " << numberText(p, 12);
     d << " " << (q.stable ? 1 : 0) << "\n";
   }
   d << "\n\n";
   for (const auto& s : r.special) {
-    d << num(s.at.value);
-    for (double a : s.at.A) d << " " << num(a);
-    for (double p : s.at.psi) d << " " << num(p);
+    d << numberText(s.at.value, 12);
+    for (double a : s.at.A) d << " " << numberText(a, 12);
+    for (double p : s.at.psi) d << " " << numberText(p, 12);
     d << " " << (s.type == "fold" ? 1 : s.type == "hopf" ? 2 : s.type == "branch" ? 3 : 4) << "\n";
   }
   if (r.special.empty()) d << "nan" << std::string(2 * r.metronomes, ' ') << "\n";
@@ -128,10 +122,10 @@ std::string foldCurveCsv(const ContinuationResult& r, CurveKind kind) {
   for (const FoldCurve& curve : r.fold_curves) {
     if (curve.kind != kind) continue;
     for (const auto& q : curve.points) {
-      c << id << "," << num(q.p1) << "," << num(q.p2);
-      for (double a : q.A) c << "," << num(a);
-      for (double p : q.psi) c << "," << num(p);
-      if (hopf) c << "," << num(q.frequency);
+      c << id << "," << numberText(q.p1, 12) << "," << numberText(q.p2, 12);
+      for (double a : q.A) c << "," << numberText(a, 12);
+      for (double p : q.psi) c << "," << numberText(p, 12);
+      if (hopf) c << "," << numberText(q.frequency, 12);
       c << "\n";
     }
     ++id;
@@ -147,12 +141,12 @@ std::string cyclesCsv(const ContinuationResult& r) {
   c << ",stable,max_multiplier\n";
   for (const auto& cycle : r.cycles)
     for (const auto& q : cycle.points) {
-      c << cycle.id << "," << num(q.value) << "," << num(q.period);
+      c << cycle.id << "," << numberText(q.value, 12) << "," << numberText(q.period, 12);
       for (size_t i = 0; i < q.A_min.size(); ++i)
-        c << "," << num(q.A_min[i]) << "," << num(q.A_max[i]);
+        c << "," << numberText(q.A_min[i], 12) << "," << numberText(q.A_max[i], 12);
       for (size_t j = 0; j < q.psi_min.size(); ++j)
-        c << "," << num(q.psi_min[j]) << "," << num(q.psi_max[j]);
-      c << "," << (q.stable ? 1 : 0) << "," << num(q.max_multiplier) << "\n";
+        c << "," << numberText(q.psi_min[j], 12) << "," << numberText(q.psi_max[j], 12);
+      c << "," << (q.stable ? 1 : 0) << "," << numberText(q.max_multiplier, 12) << "\n";
     }
   return c.str();
 }
@@ -164,11 +158,11 @@ std::string branchesCsv(const ContinuationResult& r) {
   for (int j = 2; j <= r.metronomes; ++j) c << ",psi_" << j;
   c << ",stable,max_real,ticking,platform,s\n";
   for (const ResultPoint& q : r.points) {
-    c << q.branch << "," << num(q.value);
-    for (double a : q.A) c << "," << num(a);
-    for (double p : q.psi) c << "," << num(p);
-    c << "," << (q.stable ? 1 : 0) << "," << num(q.max_real) << "," << q.ticking << ","
-      << q.platform << "," << num(q.s) << "\n";
+    c << q.branch << "," << numberText(q.value, 12);
+    for (double a : q.A) c << "," << numberText(a, 12);
+    for (double p : q.psi) c << "," << numberText(p, 12);
+    c << "," << (q.stable ? 1 : 0) << "," << numberText(q.max_real, 12) << "," << q.ticking << ","
+      << q.platform << "," << numberText(q.s, 12) << "\n";
   }
   return c.str();
 }
@@ -248,7 +242,8 @@ std::vector<std::string> writeContinuation(const OutputDir& dir, const Continuat
     written.push_back("hopf_curve.csv");
     std::ostringstream d;
     for (const auto& curve : r.fold_curves) {
-      for (const auto& q : curve.points) d << num(q.p1) << " " << num(q.p2) << "\n";
+      for (const auto& q : curve.points)
+        d << numberText(q.p1, 12) << " " << numberText(q.p2, 12) << "\n";
       d << "\n\n";
     }
     if (!r.fold_curves.empty() && drawPng(dir, "fold_curve.png", d.str(),

@@ -13,23 +13,12 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "base/number_text.h"
 #include "tools/report/build_info.h"
 
 namespace metrosync {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-// %.12g, by std::to_chars (same text, a third of snprintf's time: trajectory rows are the
-// hot spot of a fast run's output)
-std::string formatNumber(double v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 12);
-  return std::string(buf, r.ptr);
-}
-
-}  // namespace
 
 // ---------------------------------------------------------------------------------------------
 // OutputDir
@@ -185,11 +174,12 @@ void FileSink::eventRecord(const char* kind, int metronome, const std::vector<do
   if (before.size() != want || after.size() != want)
     throw std::logic_error("event record of the wrong width");
   const double t = after[0];
-  std::string line = formatNumber(t) + "," + formatNumber(opt_.epsilon * t / opt_.time_unit) + "," +
-                     kind + "," + (metronome < 0 ? "platform" : std::to_string(metronome + 1));
+  std::string line = numberText(t, 12) + "," + numberText(opt_.epsilon * t / opt_.time_unit, 12) +
+                     "," + kind + "," +
+                     (metronome < 0 ? "platform" : std::to_string(metronome + 1));
   for (const auto* row : {&before, &after})
-    for (size_t k = 1; k < row->size(); ++k) line += "," + formatNumber((*row)[k]);
-  if (opt_.seconds) line += "," + formatNumber(t);
+    for (size_t k = 1; k < row->size(); ++k) line += "," + numberText((*row)[k], 12);
+  if (opt_.seconds) line += "," + numberText(t, 12);
   events_->writeLine(line);
   ++event_rows_;
   if (observer_) observer_(kind, metronome, before, after);
@@ -216,7 +206,7 @@ void FileSink::trajectoryRow(const std::vector<double>& row) {
   line.reserve(want * 20);
   for (size_t k = 0; k < row.size(); ++k) {
     if (k) line += ',';
-    line += formatNumber(row[k]);
+    line += numberText(row[k], 12);
   }
   trajectory_->writeLine(line);
   ++trajectory_rows_;
@@ -229,7 +219,7 @@ void FileSink::envelopeRow(const EnvelopeRow& row) {
     throw std::logic_error("envelope row of the wrong width");
   if (opt_.seconds)
     envelope_->writeLine(formatEnvelopeRow(row) + "," +
-                         formatNumber(row.tau / opt_.epsilon * opt_.time_unit));
+                         numberText(row.tau / opt_.epsilon * opt_.time_unit, 12));
   else
     envelope_->writeLine(formatEnvelopeRow(row));
   ++envelope_rows_;

@@ -17,6 +17,11 @@
 
 namespace metrosync {
 
+// Text in a gnuplot script: a string in single quotes (a quote doubled), a number as %.10g with
+// NaN as gnuplot's NaN (a gap in a curve, an empty map cell).
+std::string gnuplotQuote(const std::string& s);
+std::string gnuplotNumber(double v);
+
 // Full path of `name` found on $PATH (executable), or "" when absent.
 std::string findExecutable(const std::string& name);
 

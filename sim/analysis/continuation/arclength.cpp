@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "base/number_text.h"
 #include "sim/analysis/continuation/borders.h"
 #include "sim/analysis/continuation/newton.h"
 #include "sim/analysis/continuation/smooth_events.h"
@@ -18,12 +19,6 @@ namespace {
 constexpr double kStepGrow = 1.5;
 constexpr int kEasyIterations = 4;
 constexpr double kMinStepFraction = 1e-7;
-
-std::string fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
 
 // The earliest event that ends the step early: the parameter leaving its range, or a border.
 struct Truncation {
@@ -81,7 +76,8 @@ Walk walk(const ContinuationSystem& sys, const BranchPoint& start, const Continu
     if (!next) {
       h *= 0.5;
       if (h < kMinStepFraction * s.step) {
-        w.end = "the corrector failed at step " + fmt(h) + " after p = " + fmt(cur.p());
+        w.end = "the corrector failed at step " + numberText(h, 10) +
+                " after p = " + numberText(cur.p(), 10);
         return w;
       }
       continue;
@@ -91,7 +87,7 @@ Walk walk(const ContinuationSystem& sys, const BranchPoint& start, const Continu
     smoothEvents(sys, cur, reached, cut ? cut->h : h, w.special, w.switches);
     w.points.push_back(reached);
     if (cut && cut->border < 0) {
-      w.end = "reached the end of the range, p = " + fmt(reached.p());
+      w.end = "reached the end of the range, p = " + numberText(reached.p(), 10);
       return w;
     }
     if (cut) {
@@ -111,7 +107,7 @@ Walk walk(const ContinuationSystem& sys, const BranchPoint& start, const Continu
     cur = *next;
     if (iterations <= kEasyIterations) h = std::min(h * kStepGrow, s.step_max);
   }
-  w.end = "max points reached at p = " + fmt(cur.p());
+  w.end = "max points reached at p = " + numberText(cur.p(), 10);
   return w;
 }
 
@@ -162,7 +158,8 @@ std::vector<Branch> continueFrom(const ContinuationSystem& sys, const Vec& x0, d
                                  const ContinuationSettings& s) {
   const Region region = regionAt(sys, x0, p0);
   const auto x = solveAt(sys, x0, p0, region);
-  if (!x) throw std::runtime_error("Newton does not converge at the start, p = " + fmt(p0));
+  if (!x)
+    throw std::runtime_error("Newton does not converge at the start, p = " + numberText(p0, 10));
   Vec y(sys.n + 1);
   y << *x, p0;
   Vec ref = Vec::Zero(sys.n + 1);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "base/number_text.h"
 #include "sim/analysis/continuation/arclength.h"
 #include "sim/analysis/continuation/derivatives.h"
 #include "sim/analysis/continuation/newton.h"
@@ -48,10 +49,9 @@ std::optional<BranchPoint> acrossJump(const ContinuationSystem& sys, const Branc
   y << *x, p;
   BranchPoint after = makePoint(sys, y, tangentAt(sys, y, at.tangent, side), side);
   b.stability_changes = at.stable != after.stable;
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.4g", (*x - at.y.head(sys.n)).norm());
   b.detail = "jump of the vector field at " + sys.borderName(k) + ": the fixed point moves by " +
-             buf + " at the same parameter; " + stabilityWords(at, after);
+             numberText((*x - at.y.head(sys.n)).norm(), 4) + " at the same parameter; " +
+             stabilityWords(at, after);
   return after;
 }
 

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "base/constants.h"
+#include "base/number_text.h"
 #include "sim/analysis/continuation/arclength.h"
 #include "sim/analysis/continuation/derivatives.h"
 #include "sim/analysis/continuation/newton.h"
@@ -133,12 +134,6 @@ bool orbitInside(const CycleField& f, const CyclePoint& c) {
   return true;
 }
 
-std::string fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.8g", v);
-  return buf;
-}
-
 // The kind of the multiplier that left the unit circle between a and b.
 std::string stabilityChange(const CyclePoint& a, const CyclePoint& b) {
   const CyclePoint& unstable = a.stable ? b : a;
@@ -149,7 +144,7 @@ std::string stabilityChange(const CyclePoint& a, const CyclePoint& b) {
                                ? "a complex pair crosses the unit circle (Neimark-Sacker: a torus)"
                            : worst.real() < 0 ? "a multiplier crosses -1 (period doubling)"
                                               : "a multiplier crosses +1 (fold of cycles)";
-  return "between p = " + fmt(a.p) + " and " + fmt(b.p) + ": " + kind;
+  return "between p = " + numberText(a.p, 8) + " and " + numberText(b.p, 8) + ": " + kind;
 }
 
 }  // namespace
@@ -197,13 +192,13 @@ CycleBranch continueCycleFromHopf(const CycleField& f, const Vec& y_h, double p_
   for (size_t k = start; k < b.points.size(); outward_forward ? ++k : --k) {
     const BranchPoint& bp = b.points[k];
     if (bp.y(f.n) > kMaxPeriodFactor * T_h) {
-      out.end = "the period passes " + fmt(kMaxPeriodFactor) +
+      out.end = "the period passes " + numberText(kMaxPeriodFactor, 8) +
                 " times the Hopf period (a homoclinic orbit?)";
       break;
     }
     CyclePoint c = describe(f, bp.y.head(f.n + 1), bp.p());
     if (!orbitInside(f, c)) {
-      out.end = "the orbit reaches a border of the vector field at p = " + fmt(c.p);
+      out.end = "the orbit reaches a border of the vector field at p = " + numberText(c.p, 8);
       break;
     }
     if (!out.points.empty() && out.points.back().stable != c.stable)

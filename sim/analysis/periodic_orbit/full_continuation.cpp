@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "base/constants.h"
-#include "sim/analysis/periodic_orbit/number_text.h"
+#include "base/number_text.h"
 #include "sim/analysis/periodic_orbit/orbit_continuation.h"
 #include "sim/engines/direct/direct_engine.h"
 

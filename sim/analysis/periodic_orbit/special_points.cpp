@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "base/constants.h"
-#include "sim/analysis/periodic_orbit/number_text.h"
+#include "base/number_text.h"
 
 namespace metrosync::orbit {
 
