@@ -9,7 +9,7 @@
 #include "base/number_text.h"
 #include "sim/analysis/continuation/arclength.h"
 #include "sim/analysis/continuation/start_states.h"
-#include "sim/analysis/validation.h"
+#include "sim/analysis/validation_measures.h"
 #include "sim/parallel/worker_pool.h"
 
 namespace metrosync {
