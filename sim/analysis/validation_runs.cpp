@@ -43,15 +43,21 @@ double windowStart(double tau_end, double epsilon) {
   return RegimeWindow(tau_end, epsilon).tauStart();  // the regime's window (sim/analysis/regime.h)
 }
 
-}  // namespace
-
-ModelRun runSlowModel(const ScaledParams& p, double epsilon, double tau_end) {
+// A run of `model` of p at epsilon to tau_end, before it ran.
+ModelRun modelRun(const char* model, const ScaledParams& p, double epsilon, double tau_end) {
   ModelRun run;
-  run.model = "slow";
+  run.model = model;
   run.epsilon = epsilon;
   run.tau_end = tau_end;
   run.mu = p.mu;
   run.theta_c = p.theta_c;
+  return run;
+}
+
+}  // namespace
+
+ModelRun runSlowModel(const ScaledParams& p, double epsilon, double tau_end) {
+  ModelRun run = modelRun("slow", p, epsilon, tau_end);
   ScaledParams q = p;
   q.epsilon = epsilon;
   q.tau_end = tau_end;
@@ -75,12 +81,7 @@ ModelRun runSlowModel(const ScaledParams& p, double epsilon, double tau_end) {
 
 ModelRun runFullModelAt(const ValidationEngines& engines, const ScaledParams& p,
                         const std::string& name, double epsilon, double tau_end) {
-  ModelRun run;
-  run.model = "full";
-  run.epsilon = epsilon;
-  run.tau_end = tau_end;
-  run.mu = p.mu;
-  run.theta_c = p.theta_c;
+  ModelRun run = modelRun("full", p, epsilon, tau_end);
   const Rig rig = rigAtEpsilon(p, name, epsilon, tau_end);
   KeepingSink sink(epsilon, windowStart(tau_end, epsilon));
   const Clock::time_point t0 = Clock::now();

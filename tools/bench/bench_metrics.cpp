@@ -7,6 +7,13 @@
 
 namespace metrosync::bench {
 
+std::string csvField(const std::string& s) {
+  if (s.find_first_of(",\"") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
 std::string benchNumber(double v, int precision, Notation notation) {
   return std::isfinite(v) ? numberText(v, precision, notation) : std::string();
 }

@@ -12,6 +12,8 @@ namespace metrosync::bench {
 // numberText(v, precision, notation) (base/number_text.h); "" for a NaN or an infinity (an empty
 // table cell).
 std::string benchNumber(double v, int precision, Notation notation = Notation::General);
+// A CSV field: quoted (quotes doubled) when it holds a comma or a quote.
+std::string csvField(const std::string& s);
 
 double median(std::vector<double> v);  // NaN for an empty vector
 

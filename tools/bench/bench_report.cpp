@@ -21,21 +21,6 @@ namespace metrosync::bench {
 
 namespace {
 
-// CSV field: quoted when it holds a comma or a quote
-std::string field(const std::string& s) {
-  if (s.find_first_of(",\"") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-// a gnuplot single-quoted string
-std::string gq(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
-  return q + "'";
-}
-
 bool runGnuplot(const std::string& png_path, const std::string& data, const std::string& script) {
   const std::string gnuplot = findExecutable("gnuplot");
   if (gnuplot.empty()) {
@@ -48,8 +33,8 @@ bool runGnuplot(const std::string& png_path, const std::string& data, const std:
   {
     std::ofstream(dat) << data;
     std::string s = script;
-    for (auto [key, val] :
-         {std::pair<std::string, std::string>{"@DATA@", gq(dat)}, {"@PNG@", gq(png)}}) {
+    for (auto [key, val] : {std::pair<std::string, std::string>{"@DATA@", gnuplotQuote(dat)},
+                            {"@PNG@", gnuplotQuote(png)}}) {
       for (size_t p; (p = s.find(key)) != std::string::npos;) s.replace(p, key.size(), val);
     }
     std::ofstream(gp) << s;
@@ -83,11 +68,11 @@ std::string csvHeader() {
 
 std::string csvRow(const Record& r) {
   std::ostringstream os;
-  os << field(r.scene) << ',' << r.n_metronomes << ',' << benchNumber(r.periods, 6) << ','
+  os << csvField(r.scene) << ',' << r.n_metronomes << ',' << benchNumber(r.periods, 6) << ','
      << r.method.engine << ',' << r.method.integrator << ',' << r.method.setting() << ','
      << benchNumber(r.method.accuracy > 0 ? r.method.accuracy : NAN, 6) << ','
      << benchNumber(r.method.steps_per_period > 0 ? r.method.steps_per_period : NAN, 6) << ','
-     << field(r.status) << ',' << field(r.note) << ',' << r.runs << ','
+     << csvField(r.status) << ',' << csvField(r.note) << ',' << r.runs << ','
      << benchNumber(r.wall_median_s, 6) << ',' << benchNumber(r.wall_min_s, 6) << ','
      << benchNumber(r.wall_max_s, 6) << ',' << benchNumber(r.cpu_median_s, 6) << ','
      << benchNumber(r.load_min, 2, Notation::Fixed) << ','
@@ -95,7 +80,7 @@ std::string csvRow(const Record& r) {
      << ',' << benchNumber(r.error.max_dA, 6) << ',' << benchNumber(r.error.max_dpsi, 6) << ','
      << benchNumber(r.error.final_state, 6) << ',' << r.error.rows << ',' << r.steps << ','
      << r.rhs_evals << ',' << r.events << ',' << r.ticks << ',' << r.stick_slip << ','
-     << field(r.regime);
+     << csvField(r.regime);
   return os.str();
 }
 
@@ -190,7 +175,7 @@ std::string ratiosMarkdown(const std::vector<Record>& records, std::string& csv_
         os << (k ? ", " : "") << benchNumber(rs[k].ratio(), 3) << " at "
            << benchNumber(rs[k].error, 1, Notation::Scientific) << " ("
            << benchNumber(rs[k].time_a_s, 3) << " s / " << benchNumber(rs[k].time_b_s, 3) << " s)";
-        csv_rows += field(scene) + "," + engines[i] + "," + engines[j] + "," +
+        csv_rows += csvField(scene) + "," + engines[i] + "," + engines[j] + "," +
                     benchNumber(rs[k].error, 6) + "," + benchNumber(rs[k].time_a_s, 6) + "," +
                     benchNumber(rs[k].time_b_s, 6) + "," + benchNumber(rs[k].ratio(), 6) + "\n";
       }
@@ -210,7 +195,8 @@ bool plotWorkPrecision(const std::string& png_path, const std::vector<Record>& r
     for (const Record& r : records) {
       if (r.method.label() != label || r.status != "ok" || !r.timed()) continue;
       if (!(r.error.envelope > 0)) continue;
-      block << r.error.envelope << ' ' << r.wall_median_s << ' ' << gq(r.method.setting()) << '\n';
+      block << r.error.envelope << ' ' << r.wall_median_s << ' ' << gnuplotQuote(r.method.setting())
+            << '\n';
       ++n;
     }
     if (n == 0) continue;
@@ -220,7 +206,7 @@ bool plotWorkPrecision(const std::string& png_path, const std::vector<Record>& r
   if (titles.empty()) return false;
   std::ostringstream gp;
   gp << "set terminal pngcairo size 1100,750 font 'Sans,11'\nset output @PNG@\n"
-     << "set title " << gq(title) << "\nset logscale xy\nset format x '10^{%L}'\n"
+     << "set title " << gnuplotQuote(title) << "\nset logscale xy\nset format x '10^{%L}'\n"
      << "set format y '10^{%L}'\nset xlabel 'envelope error: max(max |dA_i|, max |dpsi_j|) "
         "against the reference (scaled units)'\n"
      << "set ylabel 'wall time, median (s)'\nset grid\nset key outside right top\n"
@@ -246,7 +232,7 @@ bool plotWorkPrecision(const std::string& png_path, const std::vector<Record>& r
        << (siconos  ? 2
            : direct ? 1
                     : 4)
-       << " title " << gq(titles[k]);
+       << " title " << gnuplotQuote(titles[k]);
   }
   gp << "\n";
   return runGnuplot(png_path, data.str(), gp.str());
@@ -290,19 +276,19 @@ bool plotNScaling(const std::string& png_path, const std::vector<Record>& record
   const size_t k_lin = titles.size(), k_sq = titles.size() + 1;
   std::ostringstream gp;
   gp << "set terminal pngcairo size 1400,600 font 'Sans,11'\nset output @PNG@\n"
-     << "set multiplot layout 1,2 title " << gq(title) << "\nset logscale xy\nset grid\n"
+     << "set multiplot layout 1,2 title " << gnuplotQuote(title) << "\nset logscale xy\nset grid\n"
      << "set xlabel 'N (metronomes)'\nset key left top\n"
      << "set format y '10^{%L}'\nset ylabel 'wall time per fast period, median (s)'\nplot ";
   for (size_t k = 0; k < titles.size(); ++k)
     gp << (k ? ", " : "") << "@DATA@ index " << k << " using 1:2 with linespoints lw 2 title "
-       << gq(titles[k]);
+       << gnuplotQuote(titles[k]);
   gp << ", @DATA@ index " << k_lin << " using 1:2 with lines dt 2 lw 1.5 lc 'gray40' title "
      << "'proportional to N', @DATA@ index " << k_sq
      << " using 1:2 with lines dt 3 lw 1.5 lc 'gray20' title 'proportional to N^2'\n"
      << "set format y '%g'\nset ylabel 'wall time per step and metronome, median (us)'\nplot ";
   for (size_t k = 0; k < titles.size(); ++k)
     gp << (k ? ", " : "") << "@DATA@ index " << k << " using 1:3 with linespoints lw 2 title "
-       << gq(titles[k]);
+       << gnuplotQuote(titles[k]);
   gp << "\nunset multiplot\n";
   return runGnuplot(png_path, data.str(), gp.str());
 }

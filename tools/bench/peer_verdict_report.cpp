@@ -20,13 +20,6 @@ std::string duration(double s) {
   return benchNumber(s, 3) + " s";
 }
 
-std::string field(const std::string& s) {
-  if (s.find_first_of(",\"") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
 std::string joined(const std::vector<std::string>& v, const std::string& sep) {
   std::string s;
   for (const auto& x : v) s += (s.empty() ? "" : sep) + x;
@@ -78,11 +71,12 @@ std::string ratiosCsvRows(const RatioTable& t) {
   std::string s;
   for (const RatioRow& row : t.rows)
     for (const RatioCell& c : row.cells)
-      s += measureName(t.measure) + "," + clockName(t.clock) + "," + field(row.scene) + "," +
+      s += measureName(t.measure) + "," + clockName(t.clock) + "," + csvField(row.scene) + "," +
            std::to_string(row.n) + "," + benchNumber(c.error, 6) + "," +
            benchNumber(c.time_ours_s, 6) + "," + benchNumber(c.time_peer_s, 6) + "," +
            benchNumber(c.ratio, 6) + "," +
-           (c.filled() ? (c.ratio < kTargetRatio ? "1" : "0") : "") + "," + field(c.reason) + "\n";
+           (c.filled() ? (c.ratio < kTargetRatio ? "1" : "0") : "") + "," + csvField(c.reason) +
+           "\n";
   return s;
 }
 
@@ -92,7 +86,7 @@ std::string slopeCsvRows(const std::vector<SlopeRow>& rows, ErrorMeasure m, Cloc
     for (int side = 0; side < 2; ++side)
       for (size_t k = 0; k < r.ns.size(); ++k)
         s += measureName(m) + "," + clockName(c) + "," + benchNumber(r.error, 6) + "," +
-             (side == 0 ? "metrosync" : "peer") + "," + field(r.scenes[k]) + "," +
+             (side == 0 ? "metrosync" : "peer") + "," + csvField(r.scenes[k]) + "," +
              std::to_string(r.ns[k]) + "," +
              benchNumber((side == 0 ? r.ours_per_period_s : r.peer_per_period_s)[k], 6) + "," +
              benchNumber(side == 0 ? r.slope_ours : r.slope_peer, 4) + "\n";

@@ -46,23 +46,6 @@ ContinueOptions& options() {
   return opt;
 }
 
-// The rig with --set, then `extra` (the parameter's KEY=VALUE, named --param in messages; keys
-// as in docs/keys.md: metronomes.*.X sets X of every metronome).
-Rig loadWith(const ContinueOptions& opt, std::vector<std::string> extra) {
-  std::vector<std::string> o = opt.sets;
-  o.insert(o.end(), extra.begin(), extra.end());
-  try {
-    return opt.rig_path.empty() ? defaultRig(o) : loadRigFile(opt.rig_path, o);
-  } catch (const RigError& e) {
-    std::string what = e.what();
-    for (const auto& x : extra)
-      for (size_t at = what.find("--set " + x); at != std::string::npos;
-           at = what.find("--set " + x, at))
-        what.replace(at, 5, "--param");
-    throw RigError(what);
-  }
-}
-
 std::string rigDisplay(const ContinueOptions& opt) {
   return opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
 }
@@ -89,9 +72,9 @@ ScaledParams scaledAt(const ContinueOptions& opt, const std::vector<std::string>
   std::vector<std::string> o;
   for (size_t k = 0; k < keys.size(); ++k) o.push_back(keys[k] + "=" + roundTripText(values[k]));
   try {
-    return computeScaled(loadWith(opt, o));
+    return computeScaled(loadContinueRig(opt, o));
   } catch (const std::exception&) {
-    ScaledParams bad = computeScaled(loadWith(opt, {}));
+    ScaledParams bad = computeScaled(loadContinueRig(opt, {}));
     for (double& v : bad.nu) v = std::nan("");
     return bad;
   }
@@ -125,7 +108,7 @@ ScaledParams finiteScaledAt(const ContinueOptions& opt, double value, const std:
 
 // The start value of opt.param, typed after `option` (--param, or --fold for KEY2).
 double startValue(const ContinueOptions& opt, const std::string& option = "--param") {
-  const Rig rig = loadWith(opt, {});  // the rig itself must load
+  const Rig rig = loadContinueRig(opt, {});  // the rig itself must load
   const std::string display = rigDisplay(opt);
   const std::string text = rigText(opt);
   const RigKey key = resolveOptionKey({text, display, opt.sets}, option, opt.param, false).key;
@@ -343,7 +326,7 @@ bool onACurve(const std::vector<FoldCurve>& curves, CurveKind kind, double p1, d
 std::vector<FoldSeed> pointsInRow(ContinueOptions o, const std::string& key2, double v2,
                                   double lo1) {
   o.sets.push_back(key2 + "=" + roundTripText(v2));
-  const ScaledParams sp = computeScaled(loadWith(o, {o.param + "=" + roundTripText(lo1)}));
+  const ScaledParams sp = computeScaled(loadContinueRig(o, {o.param + "=" + roundTripText(lo1)}));
   ContinuationResult result;
   std::vector<FoldSeed> seeds;
   try {
@@ -448,11 +431,26 @@ int continueCommand() {
   return continueCommand(options());
 }
 
+Rig loadContinueRig(const ContinueOptions& opt, const std::vector<std::string>& extra) {
+  std::vector<std::string> o = opt.sets;
+  o.insert(o.end(), extra.begin(), extra.end());
+  try {
+    return opt.rig_path.empty() ? defaultRig(o) : loadRigFile(opt.rig_path, o);
+  } catch (const RigError& e) {
+    std::string what = e.what();
+    for (const auto& x : extra)
+      for (size_t at = what.find("--set " + x); at != std::string::npos;
+           at = what.find("--set " + x, at))
+        what.replace(at, 5, "--param");
+    throw RigError(what);
+  }
+}
+
 int continueCommand(const ContinueOptions& opt) {
   if (opt.model == "full") return continueFullCommand(opt);
   const double from = startValue(opt);
   const double from2 = opt.fold_key.empty() ? 0.0 : secondStart(opt);
-  const Rig rig = loadWith(opt, {opt.param + "=" + roundTripText(from)});
+  const Rig rig = loadContinueRig(opt, {opt.param + "=" + roundTripText(from)});
   const ScaledParams sp = computeScaled(rig);
   const ContinuationSettings settings = settingsFor(opt, from);
   ContinuationResult result;

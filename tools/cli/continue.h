@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "models/rig.h"
 #include "sim/analysis/continuation/fold_curve.h"
 
 namespace metrosync::cli {
@@ -54,5 +55,9 @@ std::vector<continuation::FoldCurve> boundaryCurves(const std::string& rig_path,
                                                     double hi2);
 // The same with the options given (the Python module's continue_).
 int continueCommand(const ContinueOptions& opt);
+
+// The rig with --set, then `extra` (the parameter's KEY=VALUE, named --param in messages; keys
+// as in docs/keys.md: metronomes.*.X sets X of every metronome). Throws RigError.
+Rig loadContinueRig(const ContinueOptions& opt, const std::vector<std::string>& extra);
 
 }  // namespace metrosync::cli

@@ -29,24 +29,9 @@ void checkOptions(const ContinueOptions& opt) {
   if (opt.max_points < 2) throw UsageError("--max-points: must be >= 2");
 }
 
-Rig loadRig(const ContinueOptions& opt, const std::vector<std::string>& extra) {
-  std::vector<std::string> o = opt.sets;
-  o.insert(o.end(), extra.begin(), extra.end());
-  try {
-    return opt.rig_path.empty() ? defaultRig(o) : loadRigFile(opt.rig_path, o);
-  } catch (const RigError& e) {
-    std::string what = e.what();
-    for (const std::string& x : extra)
-      for (size_t at = what.find("--set " + x); at != std::string::npos;
-           at = what.find("--set " + x, at))
-        what.replace(at, 5, "--param");
-    throw RigError(what);
-  }
-}
-
 // The rig with KEY = p, the key as --set applies it (a '*' sets every element: docs/keys.md).
 Rig rigAt(const ContinueOptions& opt, double p) {
-  return loadRig(opt, {opt.param + "=" + roundTripText(p)});
+  return loadContinueRig(opt, {opt.param + "=" + roundTripText(p)});
 }
 
 // Whether two rigs have the same equations (starts and run settings aside).
@@ -68,7 +53,7 @@ bool sameDynamics(const Rig& a, const Rig& b) {
 }
 
 double startValue(const ContinueOptions& opt) {
-  loadRig(opt, {});  // the rig itself must load
+  loadContinueRig(opt, {});  // the rig itself must load
   const std::string display = opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
   const std::string text = opt.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.rig_path);
   // the one key resolver (docs/keys.md); a key with '*': the rig's value at its first element

@@ -22,15 +22,6 @@ std::string terminal(bool svg, int width, int height) {
              : "set terminal pngcairo size " + size + " enhanced font 'sans,11' linewidth 1.2\n";
 }
 
-// "0", "π/2", "π", "3π/2", "2π", "-π", ... for k halves of pi
-std::string halfPiLabel(long k) {
-  if (k == 0) return "0";
-  const std::string sign = k < 0 ? "-" : "";
-  const long a = std::labs(k);
-  if (a % 2 == 1) return sign + (a == 1 ? "" : std::to_string(a)) + "π/2";
-  return sign + (a == 2 ? "" : std::to_string(a / 2)) + "π";
-}
-
 // tics at multiples of pi/2 over [lo, hi] (fewer when the range is wide)
 std::string piTics(const char* axis, double lo, double hi) {
   long step = 1;

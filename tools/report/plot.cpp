@@ -32,16 +32,6 @@ const char* colour(int i) {
   return kColours[i % 8];
 }
 
-// a gnuplot single-quoted string: a quote inside is written twice
-// "0", "π/2", "π", "3π/2", "2π", "-π", ... for k halves of pi
-std::string halfPiLabel(long k) {
-  if (k == 0) return "0";
-  const std::string sign = k < 0 ? "-" : "";
-  const long a = std::labs(k);
-  if (a % 2 == 1) return sign + (a == 1 ? "" : std::to_string(a)) + "π/2";
-  return sign + (a == 2 ? "" : std::to_string(a / 2)) + "π";
-}
-
 // ytics at multiples of pi (or pi/2) so that phase plots read in units of pi
 std::string piTics(double lo, double hi) {
   const double span_halves = (hi - lo) / (kPi / 2);
@@ -205,6 +195,14 @@ int runGnuplot(const std::string& gnuplot, const std::string& script, const std:
   while (waitpid(pid, &status, 0) < 0)
     if (errno != EINTR) return -1;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string halfPiLabel(long k) {
+  if (k == 0) return "0";
+  const std::string sign = k < 0 ? "-" : "";
+  const long a = std::labs(k);
+  if (a % 2 == 1) return sign + (a == 1 ? "" : std::to_string(a)) + "π/2";
+  return sign + (a == 2 ? "" : std::to_string(a / 2)) + "π";
 }
 
 std::string gnuplotQuote(const std::string& s) {

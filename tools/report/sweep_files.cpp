@@ -21,6 +21,7 @@
 #include "base/number_text.h"
 #include "sim/record/atomic_file.h"
 #include "sim/record/safe_open.h"
+#include "tools/report/progress_log.h"
 
 namespace metrosync {
 
@@ -428,23 +429,12 @@ std::string progressText(long done, long total, long failed, double rate_per_s, 
                          int width) {
   char buf[160];
   std::string eta = "ETA --:--";
-  if (eta_s >= 0 && std::isfinite(eta_s)) {
-    const long s = std::lround(eta_s);
-    if (s >= 3600)
-      std::snprintf(buf, sizeof buf, "ETA %ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
-    else
-      std::snprintf(buf, sizeof buf, "ETA %ld:%02ld", s / 60, s % 60);
-    eta = buf;
-  }
+  if (eta_s >= 0 && std::isfinite(eta_s)) eta = "ETA " + clockText(eta_s);
   const double pct = total > 0 ? 100.0 * static_cast<double>(done) / total : 100.0;
   std::string rate;
-  if (rate_per_s > 0 && std::isfinite(rate_per_s)) {
-    if (rate_per_s >= 1)
-      std::snprintf(buf, sizeof buf, "  %.3g points/s", rate_per_s);
-    else
-      std::snprintf(buf, sizeof buf, "  %.3g s/point", 1.0 / rate_per_s);
-    rate = buf;
-  }
+  if (rate_per_s > 0 && std::isfinite(rate_per_s))
+    rate = rate_per_s >= 1 ? "  " + numberText(rate_per_s, 3) + " points/s"
+                           : "  " + numberText(1.0 / rate_per_s, 3) + " s/point";
   std::snprintf(buf, sizeof buf, "  %ld/%ld  %3.0f%%", done, total, pct);
   std::string tail = buf + rate + "  " + eta;
   if (failed > 0) tail += "  " + std::to_string(failed) + " failed";

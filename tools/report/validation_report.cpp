@@ -91,7 +91,6 @@ bool isAliveRegime(Regime r) {
 
 // ---- gnuplot --------------------------------------------------------------------------------
 
-// gnuplot single-quoted string
 const char* const kColours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9",
                                 "#000000", "#f0e442", "#7f7f7f", "#8c564b", "#1f77b4", "#bcbd22"};
 
