@@ -49,6 +49,10 @@ struct RunReport {
   // the integrator and its events alone: wall_seconds less the time spent taking samples and
   // handing rows to the sink (docs/outputs.md)
   double engine_seconds = 0.0;
+  // after the run, the time its files took to be written: the rows' text is made on writer
+  // threads while the run goes on (tools/report/deferred_rows.h), and this is what was left when
+  // it ended (0 for runs without files)
+  double write_seconds = 0.0;
   RunCounts counts;
   bool has_ledger = false;
   EnergyLedger ledger;

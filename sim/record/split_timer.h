@@ -18,9 +18,15 @@ class SplitTimer {
  public:
   SplitTimer() : wall0_(std::chrono::steady_clock::now()), ticks0_(now()) {}
 
-  // Marks the start and the end of a recording stretch.
-  void beginRecording() { mark_ = now(); }
-  void endRecording() { recording_ += now() - mark_; }
+  // Marks the start and the end of a recording stretch. Stretches may nest (a sample taken
+  // inside a stretch that hands rows over): only the outermost one counts, so no tick is counted
+  // twice.
+  void beginRecording() {
+    if (depth_++ == 0) mark_ = now();
+  }
+  void endRecording() {
+    if (--depth_ == 0) recording_ += now() - mark_;
+  }
 
   // Wall seconds since construction, and the part of them spent recording.
   double wallSeconds() const {
@@ -43,6 +49,7 @@ class SplitTimer {
   std::chrono::steady_clock::time_point wall0_;
   std::uint64_t ticks0_;
   std::uint64_t mark_ = 0, recording_ = 0;
+  int depth_ = 0;
 };
 
 // Counts the recording stretch of its scope.

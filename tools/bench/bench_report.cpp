@@ -63,7 +63,7 @@ std::string csvHeader() {
   return "scene,n,periods,engine,integrator,setting,accuracy,steps_per_period,status,note,runs,"
          "wall_median_s,wall_min_s,wall_max_s,cpu_median_s,load1_min,load1_max,err_envelope,"
          "max_abs_dA,max_abs_dpsi,err_final_state,rows_compared,steps,rhs_evals,events,ticks,"
-         "stick_slip,regime";
+         "stick_slip,regime,wall_final_median_s,cpu_final_median_s,final_sampled_diff";
 }
 
 std::string csvRow(const Record& r) {
@@ -80,7 +80,8 @@ std::string csvRow(const Record& r) {
      << ',' << benchNumber(r.error.max_dA, 6) << ',' << benchNumber(r.error.max_dpsi, 6) << ','
      << benchNumber(r.error.final_state, 6) << ',' << r.error.rows << ',' << r.steps << ','
      << r.rhs_evals << ',' << r.events << ',' << r.ticks << ',' << r.stick_slip << ','
-     << csvField(r.regime);
+     << csvField(r.regime) << ',' << benchNumber(r.wall_final_median_s, 6) << ','
+     << benchNumber(r.cpu_final_median_s, 6) << ',' << benchNumber(r.final_sampled_diff, 6);
   return os.str();
 }
 
@@ -92,35 +93,34 @@ std::string recordsCsv(const std::vector<Record>& records) {
 
 std::string precisionTable(const std::vector<Record>& records) {
   std::ostringstream os;
-  os << "| engine:integrator | setting | wall median s (runs) | cpu s | envelope error | max "
-        "abs dA | max abs dpsi | final-state error | steps | rhs evals | events | ticks | "
-        "stick-slip | regime | status |\n";
-  os << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  os << "| engine:integrator | setting | final-state error | CPU s, no samples | wall s, no "
+        "samples | envelope error | max abs dA | max abs dpsi | CPU s, envelope | wall s, "
+        "envelope (runs) | steps | rhs evals | events | ticks | stick-slip | regime | status |\n";
+  os << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  auto err = [&](const Record& r, double v) {
+    const bool has = r.status == "ok" || r.status == "cross-check";
+    return r.status == "reference" ? std::string("-")
+           : has                   ? benchNumber(v, 1, Notation::Scientific)
+                                   : std::string();
+  };
   auto line = [&](const Record& r) {
     const bool ran = r.status != "skipped (predicted over budget)";
-    os << "| " << r.method.label() << " | " << r.method.setting() << " | ";
-    if (r.timed())
+    const bool peer = r.method.engine == "peer";  // one timing: its own medians
+    os << "| " << r.method.label() << " | " << r.method.setting() << " | "
+       << err(r, r.error.final_state) << " | "
+       << (r.timed() ? benchNumber(peer ? r.cpu_median_s : r.cpu_final_median_s, 3) : "") << " | "
+       << (r.timed() ? benchNumber(peer ? r.wall_median_s : r.wall_final_median_s, 3) : "") << " | "
+       << err(r, r.error.envelope) << " | " << err(r, r.error.max_dA) << " | "
+       << err(r, r.error.max_dpsi) << " | "
+       << (r.timed() && !peer ? benchNumber(r.cpu_median_s, 3) : "") << " | ";
+    if (r.timed() && !peer)
       os << benchNumber(r.wall_median_s, 3) << " (" << r.runs << ")";
+    else if (r.timed())
+      os << "(" << r.runs << " in the peer)";
     else if (r.status == "over budget")
       os << "> " << benchNumber(r.wall_median_s, 0, Notation::Fixed);
-    os << " | " << (r.timed() ? benchNumber(r.cpu_median_s, 3) : "") << " | ";
-    const bool has_error = r.status == "ok" || r.status == "cross-check" || r.status == "reference";
-    if (has_error && r.error.rows > 0)
-      os << (r.status == "reference" ? std::string("-")
-                                     : benchNumber(r.error.envelope, 1, Notation::Scientific))
-         << " | "
-         << (r.status == "reference" ? std::string("-")
-                                     : benchNumber(r.error.max_dA, 1, Notation::Scientific))
-         << " | "
-         << (r.status == "reference" ? std::string("-")
-                                     : benchNumber(r.error.max_dpsi, 1, Notation::Scientific))
-         << " | "
-         << (r.status == "reference" ? std::string("-")
-                                     : benchNumber(r.error.final_state, 1, Notation::Scientific))
-         << " | ";
-    else
-      os << " |  |  |  | ";
-    if (ran && r.status != "over budget")
+    os << " | ";
+    if (ran && r.status != "over budget" && r.steps > 0)
       os << r.steps << " | " << r.rhs_evals << " | " << r.events << " | " << r.ticks << " | "
          << r.stick_slip << " | " << r.regime << " | ";
     else
@@ -134,108 +134,157 @@ std::string precisionTable(const std::vector<Record>& records) {
   return os.str();
 }
 
-std::vector<WorkPoint> frontOf(const std::vector<Record>& records, const std::string& who) {
+double finalStateCpu(const Record& r) {
+  return r.method.engine == "peer" || !std::isfinite(r.cpu_final_median_s) ? r.cpu_median_s
+                                                                           : r.cpu_final_median_s;
+}
+
+std::vector<WorkPoint> frontOf(const std::vector<Record>& records, const std::string& who,
+                               bool final_state) {
   std::vector<WorkPoint> pts;
   for (const Record& r : records) {
     if (r.status != "ok" || !r.timed()) continue;
     if (r.method.engine != who && r.method.label() != who) continue;
-    pts.push_back({r.error.envelope, r.wall_median_s});
+    if (final_state)
+      pts.push_back({r.error.final_state, finalStateCpu(r)});
+    else
+      pts.push_back({r.error.envelope, r.cpu_median_s});
   }
   return paretoFront(pts);
 }
 
 std::string ratiosMarkdown(const std::vector<Record>& records, std::string& csv_rows) {
-  std::vector<std::string> engines;
-  for (const char* e : {"direct", "simbody", "siconos", "odeint"})
-    if (!frontOf(records, e).empty()) engines.push_back(e);
   const std::string scene = records.empty() ? "" : records.front().scene;
   std::ostringstream os;
-  for (size_t i = 0; i < engines.size(); ++i) {
-    for (size_t j = i + 1; j < engines.size(); ++j) {
-      const auto a = frontOf(records, engines[i]), b = frontOf(records, engines[j]);
-      const auto rs = ratiosAtEqualError(a, b);
-      os << "- **" << engines[i] << " / " << engines[j] << "** (best integrator of each at each "
-         << "error): ";
-      if (rs.empty()) {
-        // no common error: say where each front lies
-        os << "no common error range (" << engines[i] << " reaches "
-           << benchNumber(a.front().error, 1, Notation::Scientific) << " ... "
-           << benchNumber(a.back().error, 1, Notation::Scientific) << " in "
-           << benchNumber(a.front().time_s, 3) << " ... " << benchNumber(a.back().time_s, 3)
-           << " s; " << engines[j] << " " << benchNumber(b.front().error, 1, Notation::Scientific)
-           << " ... " << benchNumber(b.back().error, 1, Notation::Scientific) << " in "
-           << benchNumber(b.front().time_s, 3) << " ... " << benchNumber(b.back().time_s, 3)
-           << " s)\n";
-        continue;
+  for (const bool final_state : {true, false}) {
+    const std::string measure = final_state ? "final-state" : "envelope";
+    std::vector<std::string> engines;
+    for (const char* e : {"direct", "peer", "odeint", "simbody", "siconos"})
+      if (!frontOf(records, e, final_state).empty()) engines.push_back(e);
+    for (size_t i = 0; i < engines.size(); ++i) {
+      for (size_t j = i + 1; j < engines.size(); ++j) {
+        const auto a = frontOf(records, engines[i], final_state);
+        const auto b = frontOf(records, engines[j], final_state);
+        const auto rs = ratiosAtEqualError(a, b);
+        os << "- **" << engines[i] << " / " << engines[j] << "**, " << measure
+           << " error (best integrator of each at each error): ";
+        if (rs.empty()) {
+          // no common error: say where each front lies
+          os << "no common error range (" << engines[i] << " reaches "
+             << benchNumber(a.front().error, 1, Notation::Scientific) << " ... "
+             << benchNumber(a.back().error, 1, Notation::Scientific) << " in "
+             << benchNumber(a.front().time_s, 3) << " ... " << benchNumber(a.back().time_s, 3)
+             << " s; " << engines[j] << " " << benchNumber(b.front().error, 1, Notation::Scientific)
+             << " ... " << benchNumber(b.back().error, 1, Notation::Scientific) << " in "
+             << benchNumber(b.front().time_s, 3) << " ... " << benchNumber(b.back().time_s, 3)
+             << " s)\n";
+          continue;
+        }
+        os << "geometric mean " << benchNumber(geometricMeanRatio(rs), 3) << " over errors "
+           << benchNumber(rs.front().error, 1, Notation::Scientific) << " ... "
+           << benchNumber(rs.back().error, 1, Notation::Scientific) << "; ";
+        for (size_t k = 0; k < rs.size(); ++k) {
+          os << (k ? ", " : "") << benchNumber(rs[k].ratio(), 3) << " at "
+             << benchNumber(rs[k].error, 1, Notation::Scientific) << " ("
+             << benchNumber(rs[k].time_a_s, 3) << " s / " << benchNumber(rs[k].time_b_s, 3)
+             << " s)";
+          csv_rows += measure + "," + csvField(scene) + "," + engines[i] + "," + engines[j] + "," +
+                      benchNumber(rs[k].error, 6) + "," + benchNumber(rs[k].time_a_s, 6) + "," +
+                      benchNumber(rs[k].time_b_s, 6) + "," + benchNumber(rs[k].ratio(), 6) + "\n";
+        }
+        os << "\n";
       }
-      os << "geometric mean " << benchNumber(geometricMeanRatio(rs), 3) << " over errors "
-         << benchNumber(rs.front().error, 1, Notation::Scientific) << " ... "
-         << benchNumber(rs.back().error, 1, Notation::Scientific) << "; ";
-      for (size_t k = 0; k < rs.size(); ++k) {
-        os << (k ? ", " : "") << benchNumber(rs[k].ratio(), 3) << " at "
-           << benchNumber(rs[k].error, 1, Notation::Scientific) << " ("
-           << benchNumber(rs[k].time_a_s, 3) << " s / " << benchNumber(rs[k].time_b_s, 3) << " s)";
-        csv_rows += csvField(scene) + "," + engines[i] + "," + engines[j] + "," +
-                    benchNumber(rs[k].error, 6) + "," + benchNumber(rs[k].time_a_s, 6) + "," +
-                    benchNumber(rs[k].time_b_s, 6) + "," + benchNumber(rs[k].ratio(), 6) + "\n";
-      }
-      os << "\n";
     }
   }
   return os.str();
 }
 
-bool plotWorkPrecision(const std::string& png_path, const std::vector<Record>& records,
-                       const std::string& title) {
+namespace {
+
+// One gnuplot data block per engine:integrator of (error, CPU time) points; their titles.
+std::string workPrecisionBlocks(const std::vector<Record>& records, bool final_state,
+                                std::vector<std::string>& titles) {
   std::ostringstream data;
-  std::vector<std::string> titles;
   for (const std::string& label : labelsInOrder(records)) {
     std::ostringstream block;
     int n = 0;
     for (const Record& r : records) {
       if (r.method.label() != label || r.status != "ok" || !r.timed()) continue;
-      if (!(r.error.envelope > 0)) continue;
-      block << r.error.envelope << ' ' << r.wall_median_s << ' ' << gnuplotQuote(r.method.setting())
-            << '\n';
+      const double e = final_state ? r.error.final_state : r.error.envelope;
+      const double t = final_state ? finalStateCpu(r) : r.cpu_median_s;
+      if (!(e > 0) || !(t > 0)) continue;
+      block << e << ' ' << t << ' ' << gnuplotQuote(r.method.setting()) << '\n';
       ++n;
     }
     if (n == 0) continue;
     data << "# " << label << "\n" << block.str() << "\n\n";
     titles.push_back(label);
   }
-  if (titles.empty()) return false;
+  return data.str();
+}
+
+// Point type and dash by engine; the colour by the label's place among all labels, so that a
+// method has the same colour in both panels.
+std::string curveStyle(const std::string& label, const std::vector<std::string>& all) {
+  static const char* const kColours[] = {"#9400d3", "#009e73", "#56b4e9", "#e69f00",
+                                         "#d55e00", "#0072b2", "#cc79a7", "#000000"};
+  const size_t k = std::find(all.begin(), all.end(), label) - all.begin();
+  const bool siconos = label.rfind("siconos", 0) == 0;
+  const bool direct = label.rfind("direct", 0) == 0;
+  const bool peer = label.rfind("peer", 0) == 0;
+  return std::string(" pt ") +
+         (siconos  ? "9"
+          : direct ? "7"
+          : peer   ? "13"
+                   : "5") +
+         " dt " +
+         (siconos  ? "2"
+          : direct ? "1"
+          : peer   ? "3"
+                   : "4") +
+         " lc rgb '" + kColours[k % (sizeof kColours / sizeof kColours[0])] + "'";
+}
+
+// One panel: the blocks from `first` on.
+std::string workPrecisionPanel(const std::vector<std::string>& titles, size_t first,
+                               const std::vector<std::string>& all, const std::string& xlabel,
+                               const std::string& ylabel) {
   std::ostringstream gp;
-  gp << "set terminal pngcairo size 1100,750 font 'Sans,11'\nset output @PNG@\n"
-     << "set title " << gnuplotQuote(title) << "\nset logscale xy\nset format x '10^{%L}'\n"
-     << "set format y '10^{%L}'\nset xlabel 'envelope error: max(max |dA_i|, max |dpsi_j|) "
-        "against the reference (scaled units)'\n"
-     << "set ylabel 'wall time, median (s)'\nset grid\nset key outside right top\n"
-     << "set xrange [*:*] reverse\n";
-  // the reference's own uncertainty: the cross-checks' distance from it
-  double floor_err = 0;
-  for (const Record& r : records)
-    if (r.status == "cross-check" && std::isfinite(r.error.envelope))
-      floor_err = std::max(floor_err, r.error.envelope);
-  if (floor_err > 0)
-    gp << "set arrow from " << floor_err << ", graph 0 to " << floor_err
-       << ", graph 1 nohead dt 3 lc 'gray'\nset label 'reference cross-check' at " << floor_err
-       << ", graph 0.97 right offset -0.5,0 textcolor 'gray'\n";
-  gp << "plot ";
-  for (size_t k = 0; k < titles.size(); ++k) {
-    const bool siconos = titles[k].rfind("siconos", 0) == 0;
-    const bool direct = titles[k].rfind("direct", 0) == 0;
-    gp << (k ? ", " : "") << "@DATA@ index " << k << " using 1:2 with linespoints lw 2 pt "
-       << (siconos  ? 9
-           : direct ? 7
-                    : 5)
-       << " dt "
-       << (siconos  ? 2
-           : direct ? 1
-                    : 4)
-       << " title " << gnuplotQuote(titles[k]);
-  }
+  gp << "set xlabel " << gnuplotQuote(xlabel) << "\nset ylabel " << gnuplotQuote(ylabel)
+     << "\nplot ";
+  for (size_t k = 0; k < titles.size(); ++k)
+    gp << (k ? ", " : "") << "@DATA@ index " << first + k << " using 1:2 with linespoints lw 2"
+       << curveStyle(titles[k], all) << " title " << gnuplotQuote(titles[k]);
   gp << "\n";
-  return runGnuplot(png_path, data.str(), gp.str());
+  return gp.str();
+}
+
+}  // namespace
+
+bool plotWorkPrecision(const std::string& png_path, const std::vector<Record>& records,
+                       const std::string& title) {
+  std::vector<std::string> final_titles, env_titles;
+  const std::string data = workPrecisionBlocks(records, true, final_titles) +
+                           workPrecisionBlocks(records, false, env_titles);
+  if (final_titles.empty() && env_titles.empty()) return false;
+  const std::vector<std::string> all = labelsInOrder(records);
+  std::ostringstream gp;
+  gp << "set terminal pngcairo size 1600,700 font 'Sans,11'\nset output @PNG@\n"
+     << "set multiplot layout 1," << (env_titles.empty() || final_titles.empty() ? 1 : 2)
+     << " title " << gnuplotQuote(title) << "\nset logscale xy\nset format x '10^{%L}'\n"
+     << "set format y '10^{%L}'\nset grid\nset key left top\nset xrange [*:*] reverse\n";
+  if (!final_titles.empty())
+    gp << workPrecisionPanel(final_titles, 0, all,
+                             "final-state error: max |d(xdot, theta_i, thetadot_i)| against the "
+                             "reference (scaled)",
+                             "CPU time, median of the runs without samples (s)");
+  if (!env_titles.empty())
+    gp << workPrecisionPanel(env_titles, final_titles.size(), all,
+                             "envelope error: max(max |dA_i|, max |dpsi_j|) against the "
+                             "reference (scaled)",
+                             "CPU time, median of the runs recording the envelope (s)");
+  gp << "unset multiplot\n";
+  return runGnuplot(png_path, data, gp.str());
 }
 
 bool plotNScaling(const std::string& png_path, const std::vector<Record>& records,

@@ -14,6 +14,7 @@
 #include "base/constants.h"
 #include "sim/analysis/regime.h"
 #include "sim/engines/engine.h"
+#include "tools/bench/careful_peer.h"
 #include "tools/bench/odeint_peer.h"
 #include "tools/bench/siconos_peer.h"
 #include "yaml/rig_loader.h"
@@ -26,12 +27,17 @@ namespace {
 // engines' own handlers (which turn std::exception into complete = false) let it through.
 struct OverBudget {};
 
-// Keeps the envelope rows only; stops the run when the wall-clock budget is spent.
+// Keeps the envelope rows only (or, for Sampling::FinalState, asks for no samples at all); stops
+// the run when the wall-clock budget is spent.
 class BenchSink : public RunSink {
  public:
-  explicit BenchSink(double budget_s)
-      : budget_s_(budget_s), start_(std::chrono::steady_clock::now()) {}
-  bool wantsEventRows() const override { return false; }  // as the peer, which builds none
+  BenchSink(double budget_s, Sampling sampling)
+      : budget_s_(budget_s),
+        envelope_(sampling == Sampling::Envelope),
+        start_(std::chrono::steady_clock::now()) {}
+  bool wantsEventRows() const override { return false; }   // as the peer, which builds none
+  bool wantsTrajectory() const override { return false; }  // the final state comes in the report
+  bool wantsEnvelope() const override { return envelope_; }
   void envelopeRow(const EnvelopeRow& row) override {
     rows.push_back(row);
     if (budget_s_ > 0 &&
@@ -43,6 +49,7 @@ class BenchSink : public RunSink {
 
  private:
   double budget_s_;
+  bool envelope_;
   std::chrono::steady_clock::time_point start_;
 };
 
@@ -106,6 +113,7 @@ bool engineAvailable(const std::string& engine) {
   if (e) return e->model() == "full";  // the bench times the full model's engines
   if (engine == "siconos") return siconosAvailable();
   if (engine == "odeint") return odeintAvailable();
+  if (engine == "peer") return !peerLocation().path.empty();
   return false;
 }
 
@@ -113,6 +121,7 @@ std::vector<std::string> integratorsOf(const std::string& engine) {
   if (const Engine* e = findEngine(engine)) return e->integrators();
   if (engine == "siconos") return {"moreau-jean"};
   if (engine == "odeint") return odeintIntegratorNames();
+  if (engine == "peer") return peerIntegratorNames();
   return {};
 }
 
@@ -120,11 +129,13 @@ Method parseMethod(const std::string& spec) {
   Method m;
   const size_t a = spec.find(':');
   m.engine = spec.substr(0, a);
+  if (m.engine == "peer" && !engineAvailable(m.engine))
+    throw std::invalid_argument("'" + spec + "': " + peerLocation().missing);
   if (!engineAvailable(m.engine))
-    throw std::invalid_argument("'" + spec + "': engine '" + m.engine +
-                                "' is not available (simbody, direct" +
-                                (siconosAvailable() ? ", siconos" : "; siconos: not built") +
-                                (odeintAvailable() ? ", odeint" : "; odeint: not built") + ")");
+    throw std::invalid_argument(
+        "'" + spec + "': engine '" + m.engine + "' is not available (simbody, direct" +
+        (siconosAvailable() ? ", siconos" : "; siconos: not built") +
+        (odeintAvailable() ? ", odeint" : "; odeint: not built") + ", peer)");
   std::string rest = a == std::string::npos ? "" : spec.substr(a + 1);
   const size_t b = rest.find(':');
   m.integrator = rest.substr(0, b);
@@ -140,14 +151,15 @@ Method parseMethod(const std::string& spec) {
   return m;
 }
 
-RunResult runOnce(const Scene& scene, const Method& method, double budget_s) {
+RunResult runOnce(const Scene& scene, const Method& method, double budget_s, Sampling sampling) {
+  if (method.engine == "peer") return runCarefulPeer(scene, method, 1, budget_s).result;
   RunResult r;
   r.method = method;
   Rig rig = scene.rig;
   rig.sim.integrator = method.engine == "siconos" ? "" : method.integrator;
   if (method.accuracy > 0) rig.sim.accuracy = method.accuracy;
 
-  BenchSink sink(budget_s);
+  BenchSink sink(budget_s, sampling);
   RunReport rep;
   const double cpu0 = cpuSeconds();
   const auto wall0 = std::chrono::steady_clock::now();
@@ -181,7 +193,9 @@ RunResult runOnce(const Scene& scene, const Method& method, double budget_s) {
   for (long e : rep.counts.escapements) r.ticks += e;
   r.envelope = std::move(sink.rows);
   r.final_state = scaledFinalState(scene, rep.final_trajectory_row);
-  if (r.complete) {
+  if (r.complete && sampling == Sampling::FinalState) {
+    r.regime = "n/a (final state only)";
+  } else if (r.complete) {
     std::vector<bool> locked;
     for (const auto& m : rig.metronomes) locked.push_back(m.locked);
     r.regime = classifyRegime(r.envelope, scene.scaled.tau_end, scene.scaled.epsilon,
@@ -206,6 +220,8 @@ ErrorVsRef compareRuns(const RunResult& run, const RunResult& ref) {
       e.max_dpsi = std::max(e.max_dpsi, std::abs(wrapToPi(a.psi[j] - b.psi[j])));
   }
   e.envelope = std::max(e.max_dA, e.max_dpsi);
+  if (n == 0)  // a run without an envelope (the careful peer, a final-state run): not measured
+    e.max_dA = e.max_dpsi = e.envelope = std::numeric_limits<double>::quiet_NaN();
   if (run.final_state.size() == ref.final_state.size() && !run.final_state.empty()) {
     for (size_t k = 0; k < run.final_state.size(); ++k)
       e.final_state = std::max(e.final_state, std::abs(run.final_state[k] - ref.final_state[k]));

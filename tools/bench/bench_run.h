@@ -1,7 +1,12 @@
 // One timed run of the full model on any engine, and its error against a reference run.
 //   engines: "simbody" (sim/engines/simbody/simbody_engine.h), "direct"
-//   (sim/engines/direct/direct_engine.h),
-//            "siconos" (tools/bench/siconos_peer.h, when built with Siconos)
+//            (sim/engines/direct/direct_engine.h), "siconos" (tools/bench/siconos_peer.h, when
+//            built with Siconos), "odeint" (tools/bench/odeint_peer.h, when built with Boost),
+//            "peer" (the careful peer, a separate program: tools/bench/careful_peer.h)
+//   sampling: a run either records the envelope (the envelope error's runs) or takes no samples
+//            at all (RunSink::wantsEnvelope and wantsTrajectory false: the integrator and its
+//            events only, what the final-state comparison times; the direct engine takes the
+//            same steps and events and ends in the same state either way)
 //   error:   on the envelope (max over rows of |A_i - A_i,ref| and of |psi_j - psi_j,ref| mod 2 pi,
 //            scaled units) and on the final state (max of |dxdot|, |dtheta_i|, |dthetadot_i|,
 //            scaled units; the platform's position x is left out: it is a drift coordinate that
@@ -32,7 +37,7 @@ Scene sceneFromRig(const std::string& name, const Rig& rig);
 
 // What runs: an engine, one of its integrators and its accuracy knob.
 struct Method {
-  std::string engine;             // simbody | direct | siconos
+  std::string engine;             // simbody | direct | siconos | odeint | peer
   std::string integrator;         // the engine's integrator name (siconos: moreau-jean)
   double accuracy = 0.0;          // relative local error target (simbody, direct)
   double steps_per_period = 0.0;  // siconos: h = fast period / steps_per_period
@@ -61,9 +66,14 @@ struct RunResult {
   std::string regime;
 };
 
-// Runs `scene` with `method`. The run is abandoned (over_budget) once it has taken more than
-// budget_s of wall time (checked once per fast period).
-RunResult runOnce(const Scene& scene, const Method& method, double budget_s);
+// What a run records: the envelope (64 samples per fast period), or nothing but its final state.
+enum class Sampling { Envelope, FinalState };
+
+// Runs `scene` with `method` (the careful peer: one integration). The run is abandoned
+// (over_budget) once it has taken more than budget_s of wall time (checked once per fast period
+// while the envelope is recorded; the peer is stopped after budget_s).
+RunResult runOnce(const Scene& scene, const Method& method, double budget_s,
+                  Sampling sampling = Sampling::Envelope);
 
 struct ErrorVsRef {
   double max_dA = 0.0;    // max over rows and metronomes of |A_i - A_i,ref|

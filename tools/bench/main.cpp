@@ -1,12 +1,20 @@
-// metrosync_bench: speed against error of the full model's engines (issue "Speed against error").
+// metrosync_bench: speed against error of the full model's engines (issues "Speed against
+// error", 11 and 23).
 //   precision  work-precision on rig files: every engine:integrator at every accuracy (Siconos's
-//              Moreau-Jean peer at every step size), against a reference run at the tightest
-//              tolerance that a second integrator cross-checks; CSV, Markdown, gnuplot PNG, and
-//              the time ratios of the engines at equal error
+//              Moreau-Jean peer at every step size; the careful peer, a separate program, as
+//              peer:dopri5 and peer:rkf78), against a reference run at the tightest tolerance
+//              that a second integrator cross-checks; CSV, Markdown, gnuplot PNG, the time ratios
+//              of the engines at equal error, and the verdict against the peer (ratios.md)
+//   ratios     the verdict recomputed from precision's CSV files
+//   peer       where the careful peer is, or why it is missing
 //   nscale     cost per fast period against the number of metronomes N, per engine
-// Timings are medians of --repeat runs in this process (no process start-up in them); before
-// each timed run the tool waits until the 1-minute load average is below --max-load, because the
-// machine is shared, and it records the load it saw.
+//   runcost    `metrosync run` (the built binary) against its engine: wall_seconds / engine_seconds
+//   maps       the wall time of the 64 x 64 full-model and 100 x 100 slow-flow regime maps
+//   summary    the summary of one run of tools/bench/speed.sh, and README.md's speed paragraph
+// Timings are medians of --repeat runs in this process (no process start-up in them; the careful
+// peer's inside its own process; runcost and maps time whole processes); before each timed run
+// the tool waits until the 1-minute load average is below --max-load, because the machine is
+// shared, and it records the load it saw.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -21,10 +29,16 @@
 
 #include "base/constants.h"
 #include "base/number_text.h"
+#include "tools/bench/bench_measure.h"
 #include "tools/bench/bench_report.h"
 #include "tools/bench/bench_run.h"
+#include "tools/bench/careful_peer.h"
+#include "tools/bench/map_timing.h"
+#include "tools/bench/peer_scene.h"
 #include "tools/bench/peer_verdict_report.h"
+#include "tools/bench/run_cost.h"
 #include "tools/bench/siconos_peer.h"
+#include "tools/bench/speed_summary.h"
 #include "tools/bench/wp_csv.h"
 #include "tools/report/outputs.h"
 
@@ -34,16 +48,7 @@ using metrosync::numberText;
 
 namespace {
 
-struct Common {
-  std::string envelopes;  // directory for every first run's envelope.csv ("" = none)
-  int repeat = 5;
-  double budget_s = 60;
-  double max_load = 1.2;  // 0: do not wait
-  double max_wait_s = 3600;
-  std::string out = "docs/bench";
-  bool quiet = false;
-  std::string engine;  // --engine: only this engine's methods ("" = every engine's)
-};
+using Common = mb::BenchOptions;
 
 // The methods of `c.engine` only (all of them when it is empty); none left is an error.
 std::vector<mb::Method> ofEngine(std::vector<mb::Method> methods, const Common& c) {
@@ -58,88 +63,6 @@ std::vector<mb::Method> ofEngine(std::vector<mb::Method> methods, const Common& 
   if (methods.empty())
     throw std::invalid_argument("--engine " + c.engine + ": none of --methods is of that engine");
   return methods;
-}
-
-// Waits (up to max_wait_s) until the 1-minute load average is below max_load; returns the load
-// seen last.
-double waitForLoad(const Common& c) {
-  double load = mb::loadAverage1();
-  if (!(c.max_load > 0)) return load;
-  const auto t0 = std::chrono::steady_clock::now();
-  bool told = false;
-  while (load >= c.max_load &&
-         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() <
-             c.max_wait_s) {
-    if (!told && !c.quiet)
-      std::cerr << "  (load " << load << " >= " << c.max_load << ": waiting)\n", told = true;
-    std::this_thread::sleep_for(std::chrono::seconds(10));
-    load = mb::loadAverage1();
-  }
-  return load;
-}
-
-// One record: a first run (errors, counts), then repeat - 1 more for the timing medians.
-mb::Record measure(const mb::Scene& scene, const mb::Method& m, const mb::RunResult* ref,
-                   const Common& c, double budget_s, int repeat, mb::RunResult* keep = nullptr) {
-  mb::Record rec;
-  rec.scene = scene.name;
-  rec.n_metronomes = static_cast<int>(scene.rig.metronomes.size());
-  rec.periods = scene.periods;
-  rec.method = m;
-  std::vector<double> walls, cpus, loads;
-  loads.push_back(waitForLoad(c));
-  mb::RunResult first = mb::runOnce(scene, m, budget_s);
-  rec.steps = first.counts.steps;
-  rec.rhs_evals = first.counts.rhs_evals;
-  rec.events = first.counts.events;
-  rec.ticks = first.ticks;
-  rec.stick_slip = first.counts.stick_slip;
-  rec.regime = first.regime;
-  if (ref) rec.error = mb::compareRuns(first, *ref);
-  if (first.over_budget) {
-    rec.status = "over budget";
-    rec.note = "stopped after " + numberText(first.wall_s, 0, Notation::Fixed) + " s at row " +
-               std::to_string(first.envelope.size()) + " of ~" +
-               numberText(scene.periods, 0, Notation::Fixed);
-    rec.wall_median_s = first.wall_s;
-  } else if (!first.complete) {
-    rec.status = "failed";
-    rec.note = first.failure;
-  } else {
-    rec.status = "ok";
-    walls.push_back(first.wall_s);
-    cpus.push_back(first.cpu_s);
-    for (int k = 1; k < repeat; ++k) {
-      loads.push_back(waitForLoad(c));
-      const mb::RunResult again = mb::runOnce(scene, m, budget_s);
-      if (!again.complete) break;
-      walls.push_back(again.wall_s);
-      cpus.push_back(again.cpu_s);
-    }
-    rec.runs = static_cast<int>(walls.size());
-    rec.wall_median_s = mb::median(walls);
-    rec.wall_min_s = *std::min_element(walls.begin(), walls.end());
-    rec.wall_max_s = *std::max_element(walls.begin(), walls.end());
-    rec.cpu_median_s = mb::median(cpus);
-  }
-  rec.load_min = *std::min_element(loads.begin(), loads.end());
-  rec.load_max = *std::max_element(loads.begin(), loads.end());
-  if (!c.quiet)
-    std::cerr << "  " << scene.name << " " << m.label() << " " << m.setting() << ": " << rec.status
-              << (rec.runs ? ", wall " + numberText(rec.wall_median_s, 3) + " s" : "")
-              << (ref ? ", error " + numberText(rec.error.envelope, 2, Notation::Scientific) : "")
-              << ", load " << numberText(rec.load_min, 2, Notation::Fixed) << "-"
-              << numberText(rec.load_max, 2, Notation::Fixed) << "\n";
-  if (!c.envelopes.empty()) {
-    std::filesystem::create_directories(c.envelopes);
-    std::string text = metrosync::envelopeHeader(rec.n_metronomes) + "\n";
-    for (const auto& row : first.envelope) text += metrosync::formatEnvelopeRow(row) + "\n";
-    std::string name = scene.name + "-" + m.engine + "-" + m.integrator + "-" + m.setting();
-    std::replace(name.begin(), name.end(), '/', '_');
-    metrosync::writeFileAtomically(c.envelopes + "/" + name + ".csv", text);
-  }
-  if (keep) *keep = std::move(first);
-  return rec;
 }
 
 // A comma-separated list of numbers; std::invalid_argument naming the item that is not one.
@@ -178,16 +101,22 @@ std::string loadRange(const std::vector<mb::Record>& recs) {
 }
 
 // The verdict against the peer over `scenes`: ratios.md, ratios.csv, nslope.csv in c.out, the page
-// on stdout, its failed guards on stderr. Nothing (and a note) when no scene has both sides.
+// on stdout, its failed guards on stderr. Nothing (and a note) when no scene has both sides (or
+// the peer's reason for not running it) and fewer than two scenes of the N-slope were measured.
 void writeVerdict(const std::vector<mb::VerdictScene>& scenes, const mb::VerdictOptions& o,
                   const Common& c) {
-  const bool any = std::any_of(scenes.begin(), scenes.end(), [](const mb::VerdictScene& s) {
-    return !s.ours.empty() && !s.peer.empty();
-  });
-  if (!any) {
+  // the ratio tables need both sides (or a scene the peer could not run); the N-slope only
+  // metrosync's points on two or more of its scenes
+  int both = 0, slope_scenes = 0;
+  for (const mb::VerdictScene& s : scenes) {
+    both += !s.ours.empty() && (!s.peer.empty() || !s.peer_skipped.empty());
+    slope_scenes +=
+        !s.ours.empty() && std::count(o.slope_scenes.begin(), o.slope_scenes.end(), s.name) > 0;
+  }
+  if (both == 0 && slope_scenes < 2) {
     if (!c.quiet)
       std::cerr << "(no scene has timed points of both " << o.sides.ours << " and " << o.sides.peer
-                << ": no ratio table)\n";
+                << ", nor two N-slope scenes: no verdict)\n";
     return;
   }
   const mb::VerdictPages p = mb::verdictPages(scenes, o);
@@ -195,6 +124,7 @@ void writeVerdict(const std::vector<mb::VerdictScene>& scenes, const mb::Verdict
   metrosync::writeFileAtomically(c.out + "/ratios.md", p.markdown);
   metrosync::writeFileAtomically(c.out + "/ratios.csv", p.ratios_csv);
   metrosync::writeFileAtomically(c.out + "/nslope.csv", p.slope_csv);
+  metrosync::writeFileAtomically(c.out + "/verdicts.md", p.verdicts_markdown);
   if (!c.quiet) std::cout << p.markdown << "\n";
   for (const std::string& w : p.warnings) std::cerr << "metrosync_bench: warning: " << w << "\n";
   if (!c.quiet) std::cerr << p.verdict_line << "\n";
@@ -243,12 +173,22 @@ struct PrecisionPlan {
 PrecisionPlan precisionPlan(const PrecisionOptions& o, const Common& c) {
   PrecisionPlan plan;
   if (o.methods.empty()) {
-    for (const char* e : {"direct", "simbody", "siconos", "odeint"})
+    for (const char* e : {"direct", "simbody", "siconos", "odeint", "peer"})
       if (mb::engineAvailable(e))
         for (const auto& i : mb::integratorsOf(e))
           plan.methods.push_back(mb::parseMethod(std::string(e) + ":" + i));
   } else {
-    for (const auto& s : splitList(o.methods)) plan.methods.push_back(mb::parseMethod(s));
+    for (const auto& s : splitList(o.methods)) {
+      const size_t star = s.find(":*");  // ENGINE:* = every integrator of the engine
+      if (star == std::string::npos || star + 2 != s.size()) {
+        plan.methods.push_back(mb::parseMethod(s));
+        continue;
+      }
+      const std::string e = s.substr(0, star);
+      mb::parseMethod(e);  // an unknown or missing engine: its message
+      for (const auto& i : mb::integratorsOf(e))
+        plan.methods.push_back(mb::parseMethod(e + ":" + i));
+    }
   }
   plan.methods = ofEngine(std::move(plan.methods), c);
   plan.accuracies = parseList(o.accuracies);
@@ -256,6 +196,10 @@ PrecisionPlan precisionPlan(const PrecisionOptions& o, const Common& c) {
       o.simbody_accuracies.empty() ? plan.accuracies : parseList(o.simbody_accuracies);
   plan.siconos_steps = parseList(o.siconos_steps);
   plan.reference = mb::parseMethod(o.reference);
+  if (plan.reference.engine == "peer")
+    throw std::invalid_argument("--reference " + o.reference +
+                                ": the careful peer reports no envelope; give it as a "
+                                "--cross-check of an in-process reference");
   for (const auto& s : o.cross_checks) plan.cross_checks.push_back(mb::parseMethod(s));
   return plan;
 }
@@ -287,7 +231,7 @@ void measureSettings(const mb::Scene& scene, const mb::Method& base_m,
       recs.push_back(notRun(scene, m, "skipped (predicted over budget)"));
       continue;
     }
-    mb::Record r = measure(scene, m, &ref, c, c.budget_s, c.repeat);
+    mb::Record r = mb::measure(scene, m, &ref, c, c.budget_s, c.repeat, true);
     recs.push_back(r);
     save();
     if (r.status == "over budget") {
@@ -321,8 +265,8 @@ void writeSceneReport(const mb::Scene& scene, const mb::Method& ref_method,
      << numberText(scene.rig.sim.t_end_s, 4) << " s). Reference " << ref_method.label() << " at "
      << ref_method.setting() << "; 1-minute load during the "
      << "timed runs " << loadRange(recs) << ".\n\n"
-     << mb::precisionTable(recs) << "\nTime ratios at equal envelope error (a / b; < 1: a is "
-     << "faster):\n\n"
+     << mb::precisionTable(recs) << "\nTime ratios at equal error (CPU medians, a / b; < 1: a "
+     << "is faster):\n\n"
      << ratios << "\n![work-precision " << scene.name << "](wp-" << scene.name << ".png)\n";
   metrosync::writeFileAtomically(base + ".md", md.str());
   mb::plotWorkPrecision(base + ".png", recs,
@@ -346,7 +290,7 @@ int precisionScene(const mb::Scene& scene, const PrecisionPlan& plan, const Prec
     metrosync::writeFileAtomically(base + ".csv", mb::recordsCsv(recs));
   };
   mb::RunResult ref;
-  mb::Record rr = measure(scene, plan.reference, nullptr, c, o.ref_budget_s, 1, &ref);
+  mb::Record rr = mb::measure(scene, plan.reference, nullptr, c, o.ref_budget_s, 1, false, &ref);
   if (rr.status != "ok") {
     std::cerr << "metrosync_bench: " << scene.name << ": the reference run "
               << plan.reference.label() << " " << plan.reference.setting()
@@ -356,7 +300,11 @@ int precisionScene(const mb::Scene& scene, const PrecisionPlan& plan, const Prec
   rr.status = "reference";
   recs.push_back(rr);
   for (const mb::Method& m : plan.cross_checks) {
-    mb::Record cr = measure(scene, m, &ref, c, o.ref_budget_s, 1);
+    if (m.engine == "peer" && !mb::peerUnsupported(scene).empty()) {
+      recs.push_back(notRun(scene, m, "not run", mb::peerUnsupported(scene)));
+      continue;
+    }
+    mb::Record cr = mb::measure(scene, m, &ref, c, o.ref_budget_s, 1, false);
     if (cr.status == "ok") cr.status = "cross-check";
     recs.push_back(cr);
     save();
@@ -364,6 +312,10 @@ int precisionScene(const mb::Scene& scene, const PrecisionPlan& plan, const Prec
   for (const mb::Method& m : plan.methods) {
     if (m.engine == "siconos" && !mb::siconosUnsupported(scene.rig).empty()) {
       recs.push_back(notRun(scene, m, "not run", mb::siconosUnsupported(scene.rig)));
+      continue;
+    }
+    if (m.engine == "peer" && !mb::peerUnsupported(scene).empty()) {
+      recs.push_back(notRun(scene, m, "not run", mb::peerUnsupported(scene)));
       continue;
     }
     measureSettings(scene, m, plan.settingsOf(m), ref, c, recs, save);
@@ -468,7 +420,7 @@ int nscale(const NScaleOptions& o, const Common& c) {
     const mb::Scene scene = mb::sceneFromRig("n" + std::to_string(n), nRig(n, o));
     for (size_t k = 0; k < methods.size(); ++k) {
       if (stopped[k]) continue;  // a larger N would only take longer
-      mb::Record r = measure(scene, methods[k], nullptr, c, c.budget_s, c.repeat);
+      mb::Record r = mb::measure(scene, methods[k], nullptr, c, c.budget_s, c.repeat, false);
       recs.push_back(r);
       if (r.status == "over budget") stopped[k] = true;
       metrosync::writeFileAtomically(c.out + "/nscale.csv", mb::recordsCsv(recs));
@@ -484,6 +436,59 @@ int nscale(const NScaleOptions& o, const Common& c) {
   mb::plotNScaling(c.out + "/nscale.png", recs,
                    "cost per fast period against N (" + numberText(o.periods) + " periods)");
   if (!c.quiet) std::cout << md.str();
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+int runCost(const mb::RunCostOptions& o, const Common& c, const std::string& command) {
+  if (o.scenes.empty()) throw std::invalid_argument("runcost: no --scene");
+  const std::vector<mb::RunCostRow> rows = mb::measureRunCost(o, c);
+  std::filesystem::create_directories(c.out);
+  const std::string md = mb::runCostMarkdown(rows, command);
+  metrosync::writeFileAtomically(c.out + "/run.csv", mb::runCostCsv(rows));
+  metrosync::writeFileAtomically(c.out + "/run.md", md);
+  if (!c.quiet) std::cout << md << "\n";
+  for (const auto& r : rows)
+    if (!r.failure.empty()) return 3;
+  return 0;
+}
+
+int maps(const mb::MapOptions& o, const Common& c) {
+  const std::vector<mb::MapRow> rows = mb::timeMaps(o, c);
+  std::filesystem::create_directories(c.out);
+  const std::string md = mb::mapsMarkdown(rows);
+  metrosync::writeFileAtomically(c.out + "/maps.csv", mb::mapsCsv(rows));
+  metrosync::writeFileAtomically(c.out + "/maps.md", md);
+  if (!c.quiet) std::cout << md << "\n";
+  for (const auto& r : rows)
+    if (!r.failure.empty()) return 3;
+  return 0;
+}
+
+struct SummaryOptions {
+  std::string dir = "docs/bench/speed";
+  std::string readme;  // README.md to rewrite between the markers ("" = none)
+  std::string date, commit;
+};
+
+// DIR/README.md and the paragraph (stdout); README.md's marked block rewritten when asked.
+int summary(const SummaryOptions& o, const Common& c) {
+  mb::SpeedInputs in = mb::readSpeedInputs(o.dir);
+  in.date = o.date;
+  in.commit = o.commit;
+  in.folder = o.dir;
+  const mb::SpeedFacts f = mb::speedFacts(in);
+  const std::string paragraph = mb::speedParagraph(f, in);
+  metrosync::writeFileAtomically(o.dir + "/README.md", mb::speedPage(f, in));
+  if (!o.readme.empty()) {
+    std::ifstream r(o.readme);
+    if (!r) throw std::invalid_argument(o.readme + ": cannot be read");
+    std::stringstream text;
+    text << r.rdbuf();
+    metrosync::writeFileAtomically(
+        o.readme, mb::replaceBetweenMarkers(text.str(), mb::kSpeedBegin, mb::kSpeedEnd, paragraph));
+  }
+  if (!c.quiet) std::cout << paragraph;
   return 0;
 }
 
@@ -510,14 +515,16 @@ void addCommon(CLI::App* cmd, Common& c) {
 
 // The verdict's options as typed (lists as comma-separated strings).
 struct VerdictArgs {
-  std::string errors = "1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10";
+  std::string errors = "1e-5,1e-6,1e-7,1e-8,1e-9";
   std::string slope_scenes = "experiment-short,n8,n32,n128";
   std::string slope_errors = "1e-5,1e-6,1e-8";
+  std::string peer_engine = "peer";
   mb::VerdictOptions options(const std::string& command) const {
     mb::VerdictOptions o;
     o.errors = parseList(errors);
     o.slope_scenes = splitList(slope_scenes);
     o.slope_errors = parseList(slope_errors);
+    o.sides.peer = peer_engine;
     o.command = command;
     return o;
   }
@@ -525,7 +532,11 @@ struct VerdictArgs {
 
 void addVerdictOptions(CLI::App* cmd, VerdictArgs& v) {
   cmd->add_option("--ratio-errors", v.errors,
-                  "errors of the ratio table's columns (metrosync against the odeint peer)")
+                  "errors of the ratio table's columns (metrosync against the peer)")
+      ->capture_default_str();
+  cmd->add_option("--peer-engine", v.peer_engine,
+                  "the engine the verdict compares metrosync's direct engine with: peer (the "
+                  "careful peer, a separate program) or odeint (the bench's in-process peer)")
       ->capture_default_str();
   cmd->add_option("--slope-scenes", v.slope_scenes,
                   "the scenes that differ only in N: the N-slope's points")
@@ -534,23 +545,32 @@ void addVerdictOptions(CLI::App* cmd, VerdictArgs& v) {
       ->capture_default_str();
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"metrosync_bench: work-precision and N-scaling of the full model's engines"};
-  app.require_subcommand(1);
+// Every subcommand's options, as the command line sets them.
+struct Args {
   Common common;
-
   PrecisionOptions po;
+  VerdictArgs verdict;
+  std::string peer_path;
+  std::vector<std::string> ratio_files;
+  NScaleOptions no;
+  mb::RunCostOptions ro;
+  std::vector<std::string> variants;
+  mb::MapOptions mo;
+  SummaryOptions so;
+};
+
+CLI::App* addPrecisionCommand(CLI::App& app, Args& a) {
+  PrecisionOptions& po = a.po;
   CLI::App* pc = app.add_subcommand("precision", "work-precision on rig files");
   pc->add_option("--scene", po.scenes, "rig file (repeatable)")->required();
   pc->add_option("--set", po.sets, "override a rig key of every scene (KEY=VALUE)");
   pc->add_option("--methods", po.methods,
-                 "engine:integrator list (default: every integrator of every engine built in)");
+                 "engine:integrator list, ENGINE:* for every integrator of ENGINE (default: "
+                 "every integrator of every engine built in)");
   pc->add_option("--simbody-accuracies", po.simbody_accuracies,
                  "accuracies of the simbody engine (default: --accuracies); its runs cost "
                  "seconds each, the direct engine's milliseconds");
-  pc->add_option("--accuracies", po.accuracies, "accuracies (simbody, direct)")
+  pc->add_option("--accuracies", po.accuracies, "accuracies (simbody, direct, odeint, peer)")
       ->capture_default_str();
   pc->add_option("--siconos-steps", po.siconos_steps,
                  "Moreau-Jean steps per fast period (h = 2 pi / omega0 / this)")
@@ -561,23 +581,31 @@ int main(int argc, char** argv) {
                  "engine:integrator:accuracy checked against the reference (repeatable)");
   pc->add_option("--ref-budget", po.ref_budget_s, "seconds the reference runs may take")
       ->capture_default_str();
-  VerdictArgs verdict_args;
-  addVerdictOptions(pc, verdict_args);
-  addCommon(pc, common);
+  addVerdictOptions(pc, a.verdict);
+  addCommon(pc, a.common);
+  pc->add_option("--peer", a.peer_path,
+                 "the careful peer's binary (methods peer:dopri5, peer:rkf78); default: "
+                 "$METROSYNC_PEER, else what ../shared/peer/build.sh beside the source tree "
+                 "builds");
+  return pc;
+}
 
-  std::vector<std::string> ratio_files;
+CLI::App* addRatiosCommand(CLI::App& app, Args& a) {
   CLI::App* rc = app.add_subcommand(
-      "ratios", "the verdict against the odeint peer recomputed from precision's wp-*.csv files");
-  rc->add_option("csv", ratio_files, "wp-<scene>.csv files (*-equal-error.csv are skipped)")
+      "ratios", "the verdict against the peer recomputed from precision's wp-*.csv files");
+  rc->add_option("csv", a.ratio_files, "wp-<scene>.csv files (*-equal-error.csv are skipped)")
       ->required()
       ->check(CLI::ExistingFile);
-  rc->add_option("--out", common.out,
-                 "output directory of ratios.md, ratios.csv, nslope.csv (default: the first "
-                 "file's)");
-  rc->add_flag("-q,--quiet", common.quiet, "no tables on stdout");
-  addVerdictOptions(rc, verdict_args);
+  rc->add_option("--out", a.common.out,
+                 "output directory of ratios.md, ratios.csv, nslope.csv, verdicts.md (default: "
+                 "the first file's)");
+  rc->add_flag("-q,--quiet", a.common.quiet, "no tables on stdout");
+  addVerdictOptions(rc, a.verdict);
+  return rc;
+}
 
-  NScaleOptions no;
+CLI::App* addNScaleCommand(CLI::App& app, Args& a) {
+  NScaleOptions& no = a.no;
   CLI::App* nc = app.add_subcommand("nscale", "cost per fast period against N");
   nc->add_option("--n", no.ns, "numbers of metronomes")->capture_default_str();
   nc->add_option("--periods", no.periods, "fast periods per run")->capture_default_str();
@@ -585,19 +613,106 @@ int main(int argc, char** argv) {
   nc->add_option("--mu", no.mu_bar, "platform mu-bar")->capture_default_str();
   nc->add_option("--board", no.board_kg, "board mass, kg")->capture_default_str();
   nc->add_option("--seed", no.seed, "seed of the start phases")->capture_default_str();
-  addCommon(nc, common);
+  addCommon(nc, a.common);
+  return nc;
+}
 
+CLI::App* addRunCostCommand(CLI::App& app, Args& a) {
+  CLI::App* uc = app.add_subcommand(
+      "runcost", "`metrosync run` against its engine: wall_seconds / engine_seconds, the process");
+  uc->add_option("--metrosync", a.ro.metrosync, "the metrosync binary")->capture_default_str();
+  uc->add_option("--scene", a.ro.scenes, "rig file (repeatable)")->required();
+  uc->add_option("--variant", a.variants,
+                 "space-separated KEY=VALUE overrides (--set) of one variant, \"\" for none "
+                 "(repeatable; default: none, and simulation.sample=100)");
+  uc->add_option("--tmp", a.ro.tmp,
+                 "where the runs write their files (default: the system's temporary directory)");
+  addCommon(uc, a.common);
+  return uc;
+}
+
+CLI::App* addMapsCommand(CLI::App& app, Args& a) {
+  CLI::App* mc =
+      app.add_subcommand("maps", "wall time of the full 64 x 64 and slow 100 x 100 maps");
+  mc->add_option("--metrosync", a.mo.metrosync, "the metrosync binary")->capture_default_str();
+  mc->add_option("--rig", a.mo.rig, "the map's rig")->capture_default_str();
+  mc->add_option("--maps", a.mo.maps, "which maps: full, slow")->capture_default_str();
+  mc->add_option("--jobs", a.mo.jobs, "the sweep's --jobs")->capture_default_str();
+  mc->add_option("--tmp", a.mo.tmp, "where the sweeps write");
+  addCommon(mc, a.common);
+  return mc;
+}
+
+CLI::App* addSummaryCommand(CLI::App& app, Args& a) {
+  CLI::App* sc = app.add_subcommand(
+      "summary",
+      "the speed summary of one run of tools/bench/speed.sh: DIR/README.md, the "
+      "paragraph on stdout, and README.md's marked block rewritten with --readme");
+  sc->add_option("--dir", a.so.dir, "the folder speed.sh wrote")->capture_default_str();
+  sc->add_option("--readme", a.so.readme,
+                 "a README.md whose text between the markers '<!-- speed:begin' and '<!-- "
+                 "speed:end' is replaced by the paragraph");
+  sc->add_option("--date", a.so.date, "the date of the measurement, for the text");
+  sc->add_option("--commit", a.so.commit, "the commit measured, for the text");
+  sc->add_flag("-q,--quiet", a.common.quiet, "no paragraph on stdout");
+  return sc;
+}
+
+CLI::App* addPeerCommand(CLI::App& app, Args& a) {
+  CLI::App* lc = app.add_subcommand(
+      "peer",
+      "where the careful peer is (its path on stdout, exit 0), or why it is missing "
+      "(exit 1); builds it if its build script is found");
+  lc->add_option("--peer", a.peer_path, "the peer's binary (as for precision)");
+  return lc;
+}
+
+int peerCommand() {
+  const mb::PeerLocation& loc = mb::peerLocation();
+  if (loc.path.empty()) {
+    std::cerr << "metrosync_bench: " << loc.missing << "\n";
+    return 1;
+  }
+  std::cout << loc.path << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"metrosync_bench: work-precision and N-scaling of the full model's engines"};
+  app.require_subcommand(1);
+  Args a;
+  CLI::App* pc = addPrecisionCommand(app, a);
+  CLI::App* lc = addPeerCommand(app, a);
+  CLI::App* rc = addRatiosCommand(app, a);
+  addNScaleCommand(app, a);
+  CLI::App* uc = addRunCostCommand(app, a);
+  CLI::App* mc = addMapsCommand(app, a);
+  CLI::App* sc = addSummaryCommand(app, a);
   CLI11_PARSE(app, argc, argv);
   try {
-    if (pc->parsed() || rc->parsed()) po.verdict = verdict_args.options(commandLine(argc, argv));
-    if (pc->parsed()) return precision(po, common);
+    if (!a.peer_path.empty()) mb::setPeerPath(a.peer_path);
+    if (lc->parsed()) return peerCommand();
+    if (pc->parsed() || rc->parsed()) a.po.verdict = a.verdict.options(commandLine(argc, argv));
+    if (pc->parsed()) return precision(a.po, a.common);
+    if (uc->parsed()) {
+      if (!a.variants.empty()) a.ro.variants = a.variants;
+      a.ro.repeat = a.common.repeat;
+      return runCost(a.ro, a.common, commandLine(argc, argv));
+    }
+    if (mc->parsed()) {
+      a.mo.repeat = mc->count("--repeat") ? a.common.repeat : 1;  // a map takes a minute
+      return maps(a.mo, a.common);
+    }
+    if (sc->parsed()) return summary(a.so, a.common);
     if (rc->parsed()) {
       if (rc->count("--out") == 0)
-        common.out = std::filesystem::path(ratio_files.front()).parent_path().string();
-      if (common.out.empty()) common.out = ".";
-      return ratios(ratio_files, po.verdict, common);
+        a.common.out = std::filesystem::path(a.ratio_files.front()).parent_path().string();
+      if (a.common.out.empty()) a.common.out = ".";
+      return ratios(a.ratio_files, a.po.verdict, a.common);
     }
-    return nscale(no, common);
+    return nscale(a.no, a.common);
   } catch (const std::exception& e) {
     std::cerr << "metrosync_bench: error: " << e.what() << "\n";
     return 2;

@@ -343,7 +343,9 @@ class PeerRun {
     eq_.mode = m;
   }
   bool handleEvents();
-  void sample(double s, const State& z) { env_.sample(s, angles(z).data(), rates(z).data()); }
+  void sample(double s, const State& z) {
+    if (record_) env_.sample(s, angles(z).data(), rates(z).data());
+  }
   static double sampleTime(long k) { return static_cast<double>(k) * (kTwoPi / kSamplesPerPeriod); }
   void emitSamples(double s_limit, bool inclusive);
   // per rig metronome (locked: 0), scaled
@@ -353,6 +355,9 @@ class PeerRun {
 
   const Rig& rig_;
   RunSink& sink_;
+  // the sink wants the envelope: samples are taken (and rkf78, without an interpolant, ends its
+  // steps on them); otherwise the run takes none and the tolerance alone sets rkf78's steps
+  bool record_;
   ScaledParams sp_;
   Equations eq_;
   EnvelopeRecorder env_;
@@ -376,6 +381,7 @@ std::vector<bool> activeMetronomes(const Rig& rig) {
 PeerRun::PeerRun(const Rig& rig, RunSink& sink, const OdeintOptions& opt)
     : rig_(rig),
       sink_(sink),
+      record_(sink.wantsEnvelope()),
       sp_(computeScaled(rig)),
       eq_(rig, sp_),
       env_(sp_.epsilon, activeMetronomes(rig), sink) {
@@ -555,6 +561,7 @@ void PeerRun::resolve(State& z, const std::vector<std::pair<int, int>>& ticks, b
 
 // Envelope samples on the grid before s_limit (or at it, if inclusive).
 void PeerRun::emitSamples(double s_limit, bool inclusive) {
+  if (!record_) return;
   for (;; ++k_sample_) {
     const double s = sampleTime(k_sample_);
     if (!(s < s_end_ && (s < s_limit || (inclusive && s == s_limit)))) break;
@@ -617,7 +624,8 @@ RunReport PeerRun::run() {
   drv_->restart(z, 0.0);
   try {
     while (drv_->s1 < s_end_) {
-      drv_->advance(drv_->endsOnSamples() ? std::min(sampleTime(k_sample_), s_end_) : s_end_);
+      const bool on_samples = record_ && drv_->endsOnSamples();
+      drv_->advance(on_samples ? std::min(sampleTime(k_sample_), s_end_) : s_end_);
       for (double v : drv_->y1)
         if (!std::isfinite(v)) throw std::runtime_error("non-finite state");
       if (!handleEvents()) emitSamples(drv_->s1, true);
@@ -631,7 +639,7 @@ RunReport PeerRun::run() {
   report_.final_trajectory_row = makeRow(drv_->s1, drv_->y1);
   sink_.trajectoryRow(report_.final_trajectory_row);
   sample(drv_->s1, drv_->y1);
-  report_.final_row = env_.finish();
+  if (record_) report_.final_row = env_.finish();
   report_.counts.steps = drv_->steps;
   report_.counts.rhs_evals = eq_.evals;
   report_.wall_seconds =

@@ -11,7 +11,7 @@
 //               by Illinois root finding on the dense-output interpolant (calc_state)
 //               "rkf78":  runge_kutta_fehlberg78, controlled, no interpolant; events are located
 //               by root finding on exact steps (re-stepping from the step's start to each trial
-//               time), and every step ends on the next envelope sample
+//               time), and while the envelope is recorded every step ends on the next sample
 //   events      a tick when |theta_j| passes theta_c,j outwards (the impulse J-bar_j through the
 //               full mass matrix, platform free, every tick of the instant together), then the
 //               platform's Coulomb rule: stuck while the holding force fits in mu-bar M g, else
@@ -19,7 +19,11 @@
 //               have no platform events; a fixed platform takes no impulse
 //   recording   the project's EnvelopeRecorder, fed 64 samples per fast period and the states on
 //               both sides of every event (the direct engine's schedule, so that the envelopes
-//               compare sample for sample); the first and last trajectory rows; no files
+//               compare sample for sample); the first and last trajectory rows; no files. A sink
+//               that declines the envelope (RunSink::wantsEnvelope false) gets no samples taken:
+//               rkf78 then steps as its tolerance allows instead of ending every step on the
+//               next sample (with samples its steps are at most T/64 long, so that its error and
+//               cost hardly depend on the tolerance)
 //
 // Counts: steps = accepted steps, rhs_evals = right-hand-side evaluations of every kind (failed
 // steps, root finding, re-steps), escapements per metronome, stick-slip switches, event windows.

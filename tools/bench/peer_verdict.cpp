@@ -20,7 +20,10 @@ double errorOf(const SidePoint& p, ErrorMeasure m) {
   return m == ErrorMeasure::FinalState ? p.err_final : p.err_envelope;
 }
 
-double timeOf(const SidePoint& p, Clock c) {
+// The final-state error is compared on the runs without samples where they were timed.
+double timeOf(const SidePoint& p, ErrorMeasure m, Clock c) {
+  const double fin = c == Clock::Cpu ? p.cpu_final_s : p.wall_final_s;
+  if (m == ErrorMeasure::FinalState && std::isfinite(fin)) return fin;
   return c == Clock::Cpu ? p.cpu_s : p.wall_s;
 }
 
@@ -57,7 +60,7 @@ std::string errorLabel(double error) {
 
 std::vector<WorkPoint> sideFront(const std::vector<SidePoint>& points, ErrorMeasure m, Clock c) {
   std::vector<WorkPoint> pts;
-  for (const SidePoint& p : points) pts.push_back({errorOf(p, m), timeOf(p, c)});
+  for (const SidePoint& p : points) pts.push_back({errorOf(p, m), timeOf(p, m, c)});
   return paretoFront(pts);
 }
 
@@ -100,7 +103,7 @@ RatioTable ratioTable(const std::vector<VerdictScene>& scenes, ErrorMeasure m, C
   t.errors = errors;
   std::vector<const VerdictScene*> order;
   for (const VerdictScene& s : scenes)
-    if (!s.ours.empty() && !s.peer.empty()) order.push_back(&s);
+    if (!s.ours.empty() && (!s.peer.empty() || !s.peer_skipped.empty())) order.push_back(&s);
   std::stable_sort(order.begin(), order.end(), [](const VerdictScene* a, const VerdictScene* b) {
     return a->n < b->n || (a->n == b->n && a->name < b->name);
   });
@@ -108,36 +111,62 @@ RatioTable ratioTable(const std::vector<VerdictScene>& scenes, ErrorMeasure m, C
     RatioRow row;
     row.scene = s->name;
     row.n = s->n;
+    row.skipped = s->peer.empty() ? s->peer_skipped : "";
     const auto fo = sideFront(s->ours, m, c), fp = sideFront(s->peer, m, c);
-    for (double e : errors) row.cells.push_back(equalErrorCell(fo, fp, e));
+    for (double e : errors) {
+      row.cells.push_back(equalErrorCell(fo, fp, e));
+      if (!row.skipped.empty()) row.cells.back().reason = kPeerNotRun + (": " + row.skipped);
+    }
     t.rows.push_back(row);
   }
   return t;
 }
 
+namespace {
+
+// Adds one row's cells to `v` (the rows's own verdict when `v` starts empty).
+void tally(const RatioRow& row, Verdict& v) {
+  if (!row.skipped.empty()) return;
+  for (const RatioCell& c : row.cells) {
+    ++v.cells;
+    if (!c.filled()) {
+      ++v.empty;
+    } else {
+      if (c.ratio < kTargetRatio) ++v.below;
+      if (!(c.ratio >= v.worst))
+        v.worst = c.ratio, v.worst_at = row.scene + " at " + errorLabel(c.error);
+    }
+  }
+  const auto low = [](const RatioCell& c) { return c.filled() && c.ratio < kTargetRatio; };
+  const auto gap = [](const RatioCell& c) { return !c.filled(); };
+  if (const std::string w = errorsWhere(row, low); !w.empty())
+    v.below_where.push_back(row.scene + ": " + w);
+  if (const std::string w = errorsWhere(row, gap); !w.empty())
+    v.empty_where.push_back(row.scene + ": " + w);
+}
+
+}  // namespace
+
 Verdict verdictOf(const RatioTable& t) {
   Verdict v;
   v.worst = kNaN;
-  for (const RatioRow& row : t.rows) {
-    for (const RatioCell& c : row.cells) {
-      ++v.cells;
-      if (!c.filled()) {
-        ++v.empty;
-      } else {
-        if (c.ratio < kTargetRatio) ++v.below;
-        if (!(c.ratio >= v.worst))
-          v.worst = c.ratio, v.worst_at = row.scene + " at " + errorLabel(c.error);
-      }
-    }
-    const auto low = [](const RatioCell& c) { return c.filled() && c.ratio < kTargetRatio; };
-    const auto gap = [](const RatioCell& c) { return !c.filled(); };
-    if (const std::string w = errorsWhere(row, low); !w.empty())
-      v.below_where.push_back(row.scene + ": " + w);
-    if (const std::string w = errorsWhere(row, gap); !w.empty())
-      v.empty_where.push_back(row.scene + ": " + w);
-  }
+  for (const RatioRow& row : t.rows) tally(row, v);
   v.met = v.cells > 0 && v.below == 0 && v.empty == 0;
   return v;
+}
+
+Verdict verdictOf(const RatioRow& row) {
+  Verdict v;
+  v.worst = kNaN;
+  tally(row, v);
+  v.met = v.cells > 0 && v.below == 0 && v.empty == 0;
+  return v;
+}
+
+bool peerMeasured(const std::vector<VerdictScene>& scenes, ErrorMeasure m) {
+  for (const VerdictScene& s : scenes)
+    if (!sideFront(s.peer, m, Clock::Cpu).empty()) return true;
+  return false;
 }
 
 double logLogSlope(const std::vector<double>& x, const std::vector<double>& y) {
@@ -178,6 +207,7 @@ std::vector<SlopeRow> nSlope(const std::vector<VerdictScene>& scenes,
       ns.push_back(s->n);
       r.ours_per_period_s.push_back(timeAtError(sideFront(s->ours, m, c), e) / s->periods);
       r.peer_per_period_s.push_back(timeAtError(sideFront(s->peer, m, c), e) / s->periods);
+      r.peer_skipped.push_back(s->peer.empty() ? s->peer_skipped : "");
     }
     r.slope_ours = logLogSlope(ns, r.ours_per_period_s);
     r.slope_peer = logLogSlope(ns, r.peer_per_period_s);
@@ -187,10 +217,18 @@ std::vector<SlopeRow> nSlope(const std::vector<VerdictScene>& scenes,
 }
 
 bool Agreement::flagged() const {
-  return !self && (!validated || !(err_final <= kPeerAgreement));
+  return !self && skipped.empty() && (!validated || !(err_final <= bound));
 }
 
-std::vector<Agreement> peerAgreement(const std::vector<VerdictScene>& scenes, const Sides& sides) {
+double agreementBound(const std::vector<double>& errors) {
+  double b = kPeerAgreement;
+  for (double e : errors)
+    if (e > 0) b = std::min(b, e / kAgreementMargin);
+  return b;
+}
+
+std::vector<Agreement> peerAgreement(const std::vector<VerdictScene>& scenes, const Sides& sides,
+                                     double bound) {
   std::vector<Agreement> out;
   for (const VerdictScene& s : scenes) {
     const bool ref_ours = s.reference_engine == sides.ours;
@@ -209,13 +247,18 @@ std::vector<Agreement> peerAgreement(const std::vector<VerdictScene>& scenes, co
       a.self = self;
       a.err_final = cc.err_final;
       a.err_envelope = cc.err_envelope;
+      a.bound = bound;
       out.push_back(a);
       any = any || across;
     }
-    if (!any) {
+    // a scene the peer ran without a cross-check is not validated; one it could not run says
+    // why; one where the peer was not asked for is not the validation's business
+    if (!any && (!s.peer.empty() || !s.peer_skipped.empty())) {
       Agreement a;
       a.scene = s.name;
       a.reference = s.reference;
+      a.skipped = s.peer.empty() ? s.peer_skipped : "";
+      a.bound = bound;
       out.push_back(a);
     }
   }

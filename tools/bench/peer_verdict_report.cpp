@@ -63,7 +63,7 @@ std::string loadRange(const std::vector<VerdictScene>& scenes) {
   for (const VerdictScene& s : scenes)
     lo = std::fmin(lo, s.load_min), hi = std::fmax(hi, s.load_max);
   return std::isfinite(lo)
-             ? numberText(lo, 2, Notation::Fixed) + " ... " + numberText(hi, 2, Notation::Fixed)
+             ? benchNumber(lo, 2, Notation::Fixed) + " ... " + benchNumber(hi, 2, Notation::Fixed)
              : "not recorded";
 }
 
@@ -110,39 +110,53 @@ std::string slopeMarkdown(const std::vector<SlopeRow>& rows, ErrorMeasure m, Clo
     for (size_t k = 0; k < r.ns.size(); ++k) {
       const double o = r.ours_per_period_s[k], p = r.peer_per_period_s[k];
       os << " " << (std::isfinite(o) ? duration(o) : "not reached")
-         << (std::isfinite(p) ? " (" + duration(p) + ")" : " (peer: not reached)") << " |";
+         << (std::isfinite(p)            ? " (" + duration(p) + ")"
+             : r.peer_skipped[k].empty() ? std::string(" (peer: not reached)")
+                                         : std::string(" (peer: not run)"))
+         << " |";
     }
     os << " "
-       << (std::isfinite(r.slope_ours) ? numberText(r.slope_ours, 2, Notation::Fixed) : "n/a")
+       << (std::isfinite(r.slope_ours) ? benchNumber(r.slope_ours, 2, Notation::Fixed) : "n/a")
        << " | "
-       << (std::isfinite(r.slope_peer) ? numberText(r.slope_peer, 2, Notation::Fixed) : "n/a")
+       << (std::isfinite(r.slope_peer) ? benchNumber(r.slope_peer, 2, Notation::Fixed) : "n/a")
        << " |\n";
   }
   os << "\nA cell reads \"not reached\" where the side's front does not cover that error on that "
-        "scene; the slope is fitted over the scenes that do.\n";
+        "scene (\"not run\": the peer cannot run the scene); the slope is fitted over the scenes "
+        "that do. Target for metrosync (issue 23): slope "
+     << benchNumber(kSlopeTargetLow, 1, Notation::Fixed) << " ... "
+     << benchNumber(kSlopeTargetHigh, 1, Notation::Fixed) << ".\n";
   return os.str();
 }
 
 std::string agreementMarkdown(const std::vector<Agreement>& ag, const Sides& sides) {
   std::ostringstream os;
+  const double bound = ag.empty() ? kPeerAgreement : ag.front().bound;
   os << "The peer validated against metrosync at tight tolerance (a `--cross-check` of one side "
-        "against the other side's reference; the issue's bound: final-state difference <= "
-     << numberText(kPeerAgreement, 0, Notation::Scientific) << "):\n\n"
+        "against the other side's reference). Bound: final-state difference <= "
+     << benchNumber(bound, 0, Notation::Scientific) << " ("
+     << benchNumber(kPeerAgreement, 0, Notation::Scientific) << ", or "
+     << benchNumber(kAgreementMargin, 0, Notation::Fixed)
+     << " times below the smallest error of the ratio tables if that is tighter: far below the "
+        "errors compared):\n\n"
      << "| scene | reference | cross-check | final-state difference | envelope difference | |\n"
      << "|---|---|---|---|---|---|\n";
   for (const Agreement& a : ag) {
     os << "| " << a.scene << " | " << a.reference << " | ";
+    if (!a.skipped.empty()) {
+      os << " |  |  | the peer was not run: " << a.skipped << " |\n";
+      continue;
+    }
     if (!a.validated && !a.self) {
       os << " |  |  | **not validated**: no cross-check of " << sides.peer << " against "
          << sides.ours << " (add `--cross-check " << sides.peer << ":rkf78:1e-13`) |\n";
       continue;
     }
-    os << a.check << " | " << numberText(a.err_final, 1, Notation::Scientific) << " | "
-       << numberText(a.err_envelope, 1, Notation::Scientific) << " | "
-       << (a.self ? std::string("the reference's own uncertainty (same engine)")
-           : a.flagged()
-               ? "**FLAG: above " + numberText(kPeerAgreement, 0, Notation::Scientific) + "**"
-               : "agrees (<= " + numberText(kPeerAgreement, 0, Notation::Scientific) + ")")
+    os << a.check << " | " << benchNumber(a.err_final, 1, Notation::Scientific) << " | "
+       << benchNumber(a.err_envelope, 1, Notation::Scientific) << " | "
+       << (a.self        ? std::string("the reference's own uncertainty (same engine)")
+           : a.flagged() ? "**FLAG: above " + benchNumber(a.bound, 0, Notation::Scientific) + "**"
+                         : "agrees (<= " + benchNumber(a.bound, 0, Notation::Scientific) + ")")
        << " |\n";
   }
   return os.str();
@@ -150,19 +164,22 @@ std::string agreementMarkdown(const std::vector<Agreement>& ag, const Sides& sid
 
 std::string headerMarkdown(const std::vector<VerdictScene>& scenes, const VerdictOptions& o) {
   std::ostringstream os;
-  os << "# metrosync against the peer at equal error (issue 11)\n\n"
+  os << "# metrosync against the peer at equal error (issues 11 and 23)\n\n"
      << "ratio = peer time / metrosync time to reach the same error (> 1: metrosync is faster; "
-     << "the issue's target is >= " << numberText(kTargetRatio, 1, Notation::Fixed)
+     << "the issue's target is >= " << benchNumber(kTargetRatio, 1, Notation::Fixed)
      << ", **bold**: below it). "
      << "Each side's front is its cheapest run at each error over all its integrators "
      << "(metrosync: " << methodsOf(scenes, true) << "; the peer: " << methodsOf(scenes, false)
      << "), interpolated linearly in log(time) against log(error) between measured points and "
      << "never extrapolated: a cell is empty where a side's points do not bracket the error (the "
      << "reasons follow each table). Times are medians of " << fewestRuns(scenes)
-     << " or more runs per point, of the process's CPU time (the headline: the machine is "
-     << "shared, and the CPU time of these single-threaded runs carries much less of the other "
-     << "sessions' preemption than the wall time) and of the wall time. 1-minute load during the "
-     << "timed runs: " << loadRange(scenes) << ".\n\n";
+     << " or more runs per point, of the CPU time (the headline: the machine is shared, and the "
+     << "CPU time of these single-threaded runs carries much less of the other sessions' "
+     << "preemption than the wall time) and of the wall time. At equal final-state error both "
+     << "sides do the same work: integration and events, no samples (metrosync's runs with a "
+     << "sink that declines the trajectory and the envelope; the careful peer's own --repeat "
+     << "medians inside its process). 1-minute load during the timed runs: " << loadRange(scenes)
+     << ".\n\n";
   if (!o.command.empty()) os << "Made by:\n\n    " << wrapCommand(o.command) << "\n\n";
   return os.str();
 }
@@ -171,18 +188,19 @@ std::string headerMarkdown(const std::vector<VerdictScene>& scenes, const Verdic
 
 std::string verdictLine(const RatioTable& t, const Verdict& v) {
   std::ostringstream os;
+  const auto compared = std::count_if(t.rows.begin(), t.rows.end(),
+                                      [](const RatioRow& r) { return r.skipped.empty(); });
   os << "Verdict at equal " << measureName(t.measure) << " error (" << clockName(t.clock)
-     << " medians, target >= " << numberText(kTargetRatio, 1, Notation::Fixed) << " from "
+     << " medians, target >= " << benchNumber(kTargetRatio, 1, Notation::Fixed) << " from "
      << (t.errors.empty() ? "" : errorLabel(t.errors.front())) << " to "
-     << (t.errors.empty() ? "" : errorLabel(t.errors.back())) << " on " << t.rows.size()
-     << " scenes): ";
+     << (t.errors.empty() ? "" : errorLabel(t.errors.back())) << " on " << compared << " scenes): ";
   if (v.met) return os.str() + "MET in all " + std::to_string(v.cells) + " cells.";
   os << "NOT MET";
   if (v.cells == 0) return os.str() + " (no scene has points on both sides).";
-  os << ": below " << numberText(kTargetRatio, 1, Notation::Fixed) << " in " << v.below << " of "
+  os << ": below " << benchNumber(kTargetRatio, 1, Notation::Fixed) << " in " << v.below << " of "
      << v.cells << " cells";
   if (std::isfinite(v.worst))
-    os << " (worst " << numberText(v.worst, 2, Notation::Fixed) << ", " << v.worst_at << ")";
+    os << " (worst " << benchNumber(v.worst, 2, Notation::Fixed) << ", " << v.worst_at << ")";
   if (!v.below_where.empty()) os << " at " << joined(v.below_where, "; ");
   if (v.empty > 0)
     os << (v.below ? "; " : ", ") << v.empty << " not measured on both sides at "
@@ -200,11 +218,17 @@ std::string ratioTableMarkdown(const RatioTable& t) {
   std::vector<std::string> reasons;
   for (const RatioRow& row : t.rows) {
     os << "| " << row.scene << " | " << row.n << " |";
+    if (!row.skipped.empty()) {  // the reason in the first cell, the others empty
+      os << " peer not run: " << row.skipped << " |";
+      for (size_t k = 1; k < row.cells.size(); ++k) os << "  |";
+      os << "\n";
+      continue;
+    }
     // the reasons of this row's empty cells, each once with the errors it explains
     std::vector<std::pair<std::string, std::string>> why;
     for (const RatioCell& c : row.cells) {
       if (c.filled()) {
-        const std::string r = numberText(c.ratio, 2, Notation::Fixed);
+        const std::string r = benchNumber(c.ratio, 2, Notation::Fixed);
         os << " " << (c.ratio < kTargetRatio ? "**" + r + "**" : r) << " |";
         continue;
       }
@@ -224,56 +248,135 @@ std::string ratioTableMarkdown(const RatioTable& t) {
   return os.str();
 }
 
-VerdictPages verdictPages(const std::vector<VerdictScene>& scenes, const VerdictOptions& o) {
-  VerdictPages p;
-  std::ostringstream md;
-  md << headerMarkdown(scenes, o);
-  const int runs = fewestRuns(scenes);
-  if (runs < kMinRunsForResult)
-    p.warnings.push_back("medians of as few as " + std::to_string(runs) + " runs (fewer than " +
-                         std::to_string(kMinRunsForResult) +
-                         "): the ratio table is not a result; rerun with --repeat " +
-                         std::to_string(kMinRunsForResult) + " or more");
-  const std::vector<Agreement> ag = peerAgreement(scenes, o.sides);
-  for (const Agreement& a : ag) {
-    if (!a.flagged()) continue;  // self-checks never are
-    std::string w = a.scene + ": ";
-    if (!a.validated) {
-      p.warnings.push_back(w + "the peer is not validated (no cross-check against metrosync)");
+std::string sceneVerdictLine(const RatioRow& row) {
+  std::ostringstream os;
+  os << row.scene << " (N = " << row.n << "): ";
+  if (!row.skipped.empty()) return os.str() + "the peer was not run (" + row.skipped + ").";
+  const Verdict v = verdictOf(row);
+  double lo = NAN, hi = NAN;
+  for (const RatioCell& c : row.cells)
+    if (c.filled()) lo = std::fmin(lo, c.ratio), hi = std::fmax(hi, c.ratio);
+  const std::string a = benchNumber(lo, 2, Notation::Fixed),
+                    b = benchNumber(hi, 2, Notation::Fixed);
+  const std::string range = !std::isfinite(lo) ? "no cell" : (a == b ? a : a + "-" + b) + "x";
+  if (v.met) return os.str() + "MET, " + range + " in all " + std::to_string(v.cells) + " cells.";
+  os << "NOT MET, " << range;
+  // the row's own "scene: errors" entries, without the scene
+  const auto where = [&](const std::vector<std::string>& w) {
+    return w.empty() ? std::string() : w.front().substr(row.scene.size() + 2);
+  };
+  if (v.below)
+    os << "; below " << benchNumber(kTargetRatio, 1, Notation::Fixed) << " at "
+       << where(v.below_where);
+  if (v.empty) os << "; not measured on both sides at " << where(v.empty_where);
+  return os.str() + ".";
+}
+
+namespace {
+
+// metrosync's N-slope at each error, against issue 23's target.
+std::vector<std::string> slopeLines(const std::vector<SlopeRow>& rows, ErrorMeasure m) {
+  std::vector<std::string> out;
+  for (const SlopeRow& r : rows) {
+    std::string s = "N-slope of metrosync's cost per fast period at equal " + measureName(m) +
+                    " error " + errorLabel(r.error) + ": ";
+    if (!std::isfinite(r.slope_ours)) {
+      out.push_back(s + "n/a (fewer than two scenes reach it).");
       continue;
     }
-    w += "the peer's cross-check " + a.check + " differs from the reference " + a.reference +
-         " by " + numberText(a.err_final, 1, Notation::Scientific) + " in final state (> " +
-         numberText(kPeerAgreement, 0, Notation::Scientific) + ")";
+    const bool met = r.slope_ours <= kSlopeTargetHigh;
+    int used = 0;
+    for (double t : r.ours_per_period_s) used += std::isfinite(t) ? 1 : 0;
+    out.push_back(
+        s + "N^" + benchNumber(r.slope_ours, 2, Notation::Fixed) + " over " + std::to_string(used) +
+        " scenes (N = " + std::to_string(r.ns.front()) + " ... " + std::to_string(r.ns.back()) +
+        "), target " + benchNumber(kSlopeTargetLow, 1, Notation::Fixed) + "-" +
+        benchNumber(kSlopeTargetHigh, 1, Notation::Fixed) + ": " + (met ? "met." : "NOT met."));
+  }
+  return out;
+}
+
+// The guards that failed, one line each.
+std::vector<std::string> guardWarnings(const std::vector<VerdictScene>& scenes,
+                                       const std::vector<Agreement>& ag) {
+  std::vector<std::string> w;
+  const int runs = fewestRuns(scenes);
+  if (runs < kMinRunsForResult)
+    w.push_back("medians of as few as " + std::to_string(runs) + " runs (fewer than " +
+                std::to_string(kMinRunsForResult) +
+                "): the ratio table is not a result; rerun with --repeat " +
+                std::to_string(kMinRunsForResult) + " or more");
+  for (const Agreement& a : ag) {
+    if (!a.flagged()) continue;  // self-checks and skipped scenes never are
+    std::string line = a.scene + ": ";
+    if (!a.validated) {
+      w.push_back(line + "the peer is not validated (no cross-check against metrosync)");
+      continue;
+    }
+    line += "the peer's cross-check " + a.check + " differs from the reference " + a.reference +
+            " by " + benchNumber(a.err_final, 1, Notation::Scientific) + " in final state (> " +
+            benchNumber(a.bound, 0, Notation::Scientific) + ")";
     for (const Agreement& b : ag)
       if (b.self && b.scene == a.scene)
-        w += "; the reference's own engine differs from it by " +
-             numberText(b.err_final, 1, Notation::Scientific) + " (" + b.check + ")";
-    p.warnings.push_back(w);
+        line += "; the reference's own engine differs from it by " +
+                benchNumber(b.err_final, 1, Notation::Scientific) + " (" + b.check + ")";
+    w.push_back(line);
   }
+  return w;
+}
+
+}  // namespace
+
+VerdictPages verdictPages(const std::vector<VerdictScene>& scenes, const VerdictOptions& o) {
+  VerdictPages p;
+  const std::vector<Agreement> ag = peerAgreement(scenes, o.sides, agreementBound(o.errors));
+  p.warnings = guardWarnings(scenes, ag);
   p.ratios_csv =
       "measure,clock,scene,n,error,time_metrosync_s,time_peer_s,ratio,below_target,reason\n";
   p.slope_csv = "measure,clock,error,side,scene,n,time_per_period_s,slope\n";
   std::ostringstream body;
   for (ErrorMeasure m : {ErrorMeasure::FinalState, ErrorMeasure::Envelope}) {
+    const bool headline_measure = m == ErrorMeasure::FinalState;
+    if (!headline_measure && !peerMeasured(scenes, m)) {
+      body << "## Equal " << measureName(m) << " error\n\nNot compared: the peer (" << o.sides.peer
+           << ") reports no " << measureName(m) << " error.\n\n";
+      continue;
+    }
     for (Clock c : {Clock::Cpu, Clock::Wall}) {
       const RatioTable t = ratioTable(scenes, m, c, o.errors);
+      const bool headline = headline_measure && c == Clock::Cpu;
       const std::string line = verdictLine(t, verdictOf(t));
-      if (m == ErrorMeasure::FinalState && c == Clock::Cpu) p.verdict_line = line;
       body << "## Equal " << measureName(m) << " error, " << clockName(c) << " time"
-           << (m == ErrorMeasure::FinalState && c == Clock::Cpu ? " (the headline)" : "") << "\n\n"
-           << line << "\n\n"
-           << ratioTableMarkdown(t) << "\n";
+           << (headline ? " (the headline)" : "") << "\n\n"
+           << line << "\n\n";
+      std::ostringstream lines;
+      if (headline) {
+        p.verdict_line = line;
+        for (const RatioRow& row : t.rows) p.scene_lines.push_back(sceneVerdictLine(row));
+        for (const std::string& l : p.scene_lines) lines << "- " << l << "\n";
+        body << lines.str() << "\n";
+      }
+      body << ratioTableMarkdown(t) << "\n";
       p.ratios_csv += ratiosCsvRows(t);
       const auto slope = nSlope(scenes, o.slope_scenes, o.slope_errors, m, c);
       p.slope_csv += slopeCsvRows(slope, m, c);
+      if (headline) {
+        p.slope_lines = slopeLines(slope, m);
+        std::ostringstream v;
+        v << "**" << line << "**\n\n" << lines.str() << "\n" << ratioTableMarkdown(t) << "\n";
+        for (const std::string& l : p.slope_lines) v << l << "\n\n";
+        v << slopeMarkdown(slope, m, c) << "\n" << agreementMarkdown(ag, o.sides);
+        p.verdicts_markdown = v.str();
+      }
       if (c == Clock::Cpu)
         body << "### Cost per fast period against N (" << measureName(m) << " error)\n\n"
              << slopeMarkdown(slope, m, c) << "\n";
     }
   }
-  md << "**" << p.verdict_line << "**\n\n";
+  std::ostringstream md;
+  md << headerMarkdown(scenes, o) << "**" << p.verdict_line << "**\n\n";
   for (const std::string& w : p.warnings) md << "**Warning: " << w << ".**\n\n";
+  for (const std::string& l : p.slope_lines) md << l << "\n\n";
   md << body.str() << "## Validation of the peer\n\n" << agreementMarkdown(ag, o.sides);
   p.markdown = md.str();
   return p;

@@ -1,6 +1,7 @@
 // The peer verdict (tools/bench/peer_verdict.h) as text: ratios.md (the ratio tables at equal
-// final-state and envelope error, CPU and wall, the verdict line, the N-slope, the guards),
-// ratios.csv (every cell) and nslope.csv (every point of the N-slope).
+// final-state error, and envelope error where the peer reports one, CPU and wall, the verdict
+// overall and per scene, the N-slope, the guards), ratios.csv (every cell) and nslope.csv (every
+// point of the N-slope).
 #pragma once
 
 #include <string>
@@ -11,7 +12,7 @@
 namespace metrosync::bench {
 
 struct VerdictOptions {
-  std::vector<double> errors = {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+  std::vector<double> errors = {1e-5, 1e-6, 1e-7, 1e-8, 1e-9};  // issue 23's range
   // the scenes that differ only in N (yaml/rigs/bench/)
   std::vector<std::string> slope_scenes = {"experiment-short", "n8", "n32", "n128"};
   std::vector<double> slope_errors = {1e-5, 1e-6, 1e-8};
@@ -22,15 +23,23 @@ struct VerdictOptions {
 // Everything the verdict computes, once.
 struct VerdictPages {
   std::string markdown;  // ratios.md
+  // verdicts.md: the headline verdict overall and per scene, its table, the N-slope against its
+  // target, the peer's validation (what docs/bench/speed/README.md quotes)
+  std::string verdicts_markdown;
   std::string ratios_csv, slope_csv;
-  std::string verdict_line;           // the headline verdict (final-state error, CPU)
-  std::vector<std::string> warnings;  // the guards that failed, one line each
+  std::string verdict_line;              // the headline verdict (final-state error, CPU)
+  std::vector<std::string> scene_lines;  // the headline verdict of each scene, one line each
+  std::vector<std::string> slope_lines;  // metrosync's N-slope at each error against its target
+  std::vector<std::string> warnings;     // the guards that failed, one line each
 };
 
 VerdictPages verdictPages(const std::vector<VerdictScene>& scenes, const VerdictOptions& o);
 
 // One line: "MET ..." or "NOT MET ...: where".
 std::string verdictLine(const RatioTable& t, const Verdict& v);
+// One scene's line: "peer-n2 (N = 2): MET, 2.1-3.4x from 1e-05 to 1e-09" or "... NOT MET: ..."
+// or "... the peer was not run: why".
+std::string sceneVerdictLine(const RatioRow& row);
 
 // The Markdown table of one measure and clock, cells below the target in bold, then the reason
 // of every empty cell.

@@ -22,6 +22,7 @@ struct Row {
   std::vector<std::string> f;
   std::string where;  // "source line L"
   const std::string& text(const std::string& key) const { return f[col->at(key)]; }
+  bool has(const std::string& key) const { return col->count(key) > 0; }
   double num(const std::string& key) const {
     const std::string& s = text(key);
     if (s.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -47,6 +48,8 @@ void addRow(VerdictScene& s, const Row& r, const Sides& sides) {
     s.reference = method;
   } else if (status == "cross-check") {
     s.cross_checks.push_back({engine, method, r.num("err_final_state"), r.num("err_envelope")});
+  } else if (status == "not run" && engine == sides.peer) {
+    s.peer_skipped = r.has("note") && !r.text("note").empty() ? r.text("note") : "not run";
   } else if (status == "ok" && (engine == sides.ours || engine == sides.peer)) {
     SidePoint p{method,
                 r.num("err_final_state"),
@@ -54,6 +57,9 @@ void addRow(VerdictScene& s, const Row& r, const Sides& sides) {
                 r.num("cpu_median_s"),
                 r.num("wall_median_s"),
                 static_cast<int>(r.num("runs"))};
+    // the runs without samples (columns absent from the files of earlier versions)
+    if (r.has("cpu_final_median_s")) p.cpu_final_s = r.num("cpu_final_median_s");
+    if (r.has("wall_final_median_s")) p.wall_final_s = r.num("wall_final_median_s");
     auto& pts = engine == sides.ours ? s.ours : s.peer;
     auto& labels = engine == sides.ours ? s.our_methods : s.peer_methods;
     pts.push_back(p);

@@ -259,7 +259,7 @@ int runCommand(const Options& opt) {
     });
   const auto progress = attachProgress(opt, r, sink, "run");
   RunReport report = runModel(*r.engine, r, sink);
-  sink.commit();
+  report.write_seconds = sink.commit();
   const RegimeVerdict verdict = judge(report, sink, r);
 
   std::vector<std::string> files = sink.fileNames();
@@ -309,7 +309,7 @@ int compareCommand(const Options& opt) {
   FileSink full_sink(dir, sinkOptions(r, true, "envelope_full.csv"));
   const auto full_progress = attachProgress(opt, r, full_sink, "compare (full model)");
   RunReport full = runModel(*r.engine, r, full_sink);
-  full_sink.commit();
+  full.write_seconds = full_sink.commit();
 
   FileSink slow_sink(dir, sinkOptions(r, false, "envelope_slow.csv"));
   const auto slow_progress = attachProgress(opt, r, slow_sink, "compare (slow flow)");
@@ -322,7 +322,7 @@ int compareCommand(const Options& opt) {
   } else {
     slow = runModel(*findEngine("slowflow"), r, slow_sink);
   }
-  slow_sink.commit();
+  slow.write_seconds = slow_sink.commit();
 
   const RegimeVerdict v_full = judge(full, full_sink, r);
   const RegimeVerdict v_slow = judge(slow, slow_sink, r);

@@ -136,10 +136,31 @@ void FileSink::clearStopRequest() {
   g_stop_requested = 0;
 }
 
+namespace {
+
+// the kinds of events.csv (docs/outputs.md), numbered so that a row's kind travels as a number
+constexpr const char* kEventKinds[] = {"tick", "stick", "slip"};
+
+double eventKindIndex(const char* kind) {
+  for (size_t k = 0; k < std::size(kEventKinds); ++k)
+    if (std::strcmp(kind, kEventKinds[k]) == 0) return static_cast<double>(k);
+  throw std::logic_error(std::string("unknown event kind ") + kind);
+}
+
+void appendNumbers(const double* v, size_t n, std::string& line) {
+  for (size_t k = 0; k < n; ++k) {
+    if (k) line += ',';
+    line += numberText(v[k], 12);
+  }
+}
+
+}  // namespace
+
 FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt)
     : opt_(opt), window_(opt.tau_end, opt.epsilon), plot_(opt.max_plot_rows) {
   if (opt_.n_metronomes < 1) throw std::invalid_argument("FileSink: no metronome");
   if (opt_.envelope_platform) window_.setEnvelopePlatform(opt_.law, opt_.mu);
+  const size_t n = static_cast<size_t>(opt_.n_metronomes);
   if (opt_.trajectory) {
     trajectory_ = std::make_unique<AtomicFile>(dir.file(opt_.trajectory_name));
     std::string h = "t,x,xdot";
@@ -147,13 +168,49 @@ FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt)
       h += ",theta_" + std::to_string(i) + ",thetadot_" + std::to_string(i);
     h += ",platform";
     trajectory_->writeLine(h);  // t is in seconds already for a physical rig (SPEC 3)
+    trajectory_text_ = std::make_unique<DeferredRows>(
+        *trajectory_, 2 * n + 4,
+        [w = 2 * n + 4](const double* row, std::string& line) { appendNumbers(row, w, line); });
     if (opt_.events) {
       events_ = std::make_unique<AtomicFile>(dir.file(opt_.events_name));
       events_->writeLine(eventsHeader(opt_.n_metronomes, opt_.seconds));
+      events_text_ = std::make_unique<DeferredRows>(*events_, 3 + 2 * (2 * n + 3), eventFormat());
     }
   }
   envelope_ = std::make_unique<AtomicFile>(dir.file(opt_.envelope_name));
   envelope_->writeLine(envelopeHeader(opt_.n_metronomes) + (opt_.seconds ? ",t_s" : ""));
+  envelope_text_ = std::make_unique<DeferredRows>(*envelope_, 2 * n + 1, envelopeFormat());
+}
+
+// an event's numbers: kind (its index in kEventKinds), who (-1: the platform), t, then the rows
+// before and after without their t
+DeferredRows::Format FileSink::eventFormat() const {
+  const size_t width = 2 * static_cast<size_t>(opt_.n_metronomes) + 3;
+  return [width, eps = opt_.epsilon, unit = opt_.time_unit, seconds = opt_.seconds](
+             const double* v, std::string& line) {
+    const double t = v[2];
+    const int who = static_cast<int>(v[1]);
+    line += numberText(t, 12) + "," + numberText(eps * t / unit, 12) + "," +
+            kEventKinds[static_cast<size_t>(v[0])] + "," +
+            (who < 0 ? std::string("platform") : std::to_string(who + 1)) + ",";
+    appendNumbers(v + 3, 2 * width, line);
+    if (seconds) line += "," + numberText(t, 12);
+  };
+}
+
+// an envelope row's numbers: tau, A_1..A_N, psi_1..psi_N-1, r (NaN: computed from A and psi)
+DeferredRows::Format FileSink::envelopeFormat() const {
+  const size_t n = static_cast<size_t>(opt_.n_metronomes);
+  return [n, eps = opt_.epsilon, unit = opt_.time_unit, seconds = opt_.seconds](const double* v,
+                                                                                std::string& line) {
+    EnvelopeRow row;
+    row.tau = v[0];
+    row.A.assign(v + 1, v + 1 + n);
+    row.psi.assign(v + 1 + n, v + 2 * n);
+    row.r = v[2 * n];
+    line += formatEnvelopeRow(row);
+    if (seconds) line += "," + numberText(row.tau / eps * unit, 12);
+  };
 }
 
 std::string eventsHeader(int n, bool seconds) {
@@ -173,14 +230,10 @@ void FileSink::eventRecord(const char* kind, int metronome, const std::vector<do
   const size_t want = 2 * static_cast<size_t>(opt_.n_metronomes) + 4;
   if (before.size() != want || after.size() != want)
     throw std::logic_error("event record of the wrong width");
-  const double t = after[0];
-  std::string line = numberText(t, 12) + "," + numberText(opt_.epsilon * t / opt_.time_unit, 12) +
-                     "," + kind + "," +
-                     (metronome < 0 ? "platform" : std::to_string(metronome + 1));
-  for (const auto* row : {&before, &after})
-    for (size_t k = 1; k < row->size(); ++k) line += "," + numberText((*row)[k], 12);
-  if (opt_.seconds) line += "," + numberText(t, 12);
-  events_->writeLine(line);
+  scratch_.assign({eventKindIndex(kind), static_cast<double>(metronome), after[0]});
+  scratch_.insert(scratch_.end(), before.begin() + 1, before.end());
+  scratch_.insert(scratch_.end(), after.begin() + 1, after.end());
+  events_text_->add(scratch_.data());
   ++event_rows_;
   if (observer_) observer_(kind, metronome, before, after);
 }
@@ -202,13 +255,7 @@ void FileSink::trajectoryRow(const std::vector<double>& row) {
   if (row.size() != want)
     throw std::logic_error("trajectory row with " + std::to_string(row.size()) +
                            " values, expected " + std::to_string(want));
-  std::string line;
-  line.reserve(want * 20);
-  for (size_t k = 0; k < row.size(); ++k) {
-    if (k) line += ',';
-    line += numberText(row[k], 12);
-  }
-  trajectory_->writeLine(line);
+  trajectory_text_->add(row.data());
   ++trajectory_rows_;
   checkStop(row[0]);
 }
@@ -217,11 +264,11 @@ void FileSink::envelopeRow(const EnvelopeRow& row) {
   if (static_cast<int>(row.A.size()) != opt_.n_metronomes ||
       static_cast<int>(row.psi.size()) != opt_.n_metronomes - 1)
     throw std::logic_error("envelope row of the wrong width");
-  if (opt_.seconds)
-    envelope_->writeLine(formatEnvelopeRow(row) + "," +
-                         numberText(row.tau / opt_.epsilon * opt_.time_unit, 12));
-  else
-    envelope_->writeLine(formatEnvelopeRow(row));
+  scratch_.assign(1, row.tau);
+  scratch_.insert(scratch_.end(), row.A.begin(), row.A.end());
+  scratch_.insert(scratch_.end(), row.psi.begin(), row.psi.end());
+  scratch_.push_back(row.r);
+  envelope_text_->add(scratch_.data());
   ++envelope_rows_;
   window_.add(row);
   plot_.add(row);
@@ -229,10 +276,16 @@ void FileSink::envelopeRow(const EnvelopeRow& row) {
   checkStop(row.tau / opt_.epsilon * opt_.time_unit);
 }
 
-void FileSink::commit() {
+double FileSink::commit() {
+  const auto t0 = std::chrono::steady_clock::now();
+  for (DeferredRows* w : {trajectory_text_.get(), envelope_text_.get(), events_text_.get()})
+    if (w) w->finish();
+  const double waited =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (trajectory_ && trajectory_->open()) trajectory_->commit();
   if (envelope_->open()) envelope_->commit();
   if (events_ && events_->open()) events_->commit();
+  return waited;
 }
 
 std::vector<std::string> FileSink::fileNames() const {
@@ -278,6 +331,7 @@ nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict)
       {"rhs_evals", report.counts.rhs_evals},   {"events", report.counts.events}};
   j["wall_seconds"] = report.wall_seconds;
   j["engine_seconds"] = report.engine_seconds;
+  j["write_seconds"] = report.write_seconds;
   j["complete"] = report.complete;
   if (!report.complete) j["failure"] = report.failure;
   if (report.has_ledger) {

@@ -20,6 +20,7 @@
 #include "sim/record/atomic_file.h"
 #include "sim/record/envelope.h"
 #include "sim/record/run_report.h"
+#include "tools/report/deferred_rows.h"
 
 namespace metrosync {
 
@@ -120,9 +121,12 @@ class FileSink : public RunSink {
   // stick/slip events tell the regime window what the platform does between trajectory rows
   void eventRow(const char* kind, const std::vector<double>& row) override;
 
-  // Renames every file written to its final name. Called after the run whether it completed or
-  // not (a failed run keeps its rows, marked incomplete in summary.json).
-  void commit();
+  // Writes the rows still queued for the writer threads (their text is made off the run's thread:
+  // tools/report/deferred_rows.h), then renames every file written to its final name. Called
+  // after the run whether it completed or not (a failed run keeps its rows, marked incomplete in
+  // summary.json). Returns the seconds spent waiting for the writers (summary.json's
+  // write_seconds).
+  double commit();
 
   long trajectoryRows() const { return trajectory_rows_; }
   long envelopeRows() const { return envelope_rows_; }
@@ -146,9 +150,14 @@ class FileSink : public RunSink {
 
  private:
   void checkStop(double t);
+  DeferredRows::Format eventFormat() const;
+  DeferredRows::Format envelopeFormat() const;
 
   RunFilesOptions opt_;
   std::unique_ptr<AtomicFile> trajectory_, envelope_, events_;
+  // the rows' text is made on writer threads (after the files, so they stop first)
+  std::unique_ptr<DeferredRows> trajectory_text_, envelope_text_, events_text_;
+  std::vector<double> scratch_;  // one row's numbers on their way to a writer
   long trajectory_rows_ = 0, envelope_rows_ = 0, event_rows_ = 0;
   EventObserver observer_;
   std::function<void(double)> progress_;

@@ -56,7 +56,7 @@ mb::VerdictScene scene(const std::string& name, int n, double periods) {
   s.periods = periods;
   s.reference_engine = "direct";
   s.reference = "direct:verner76:1e-13";
-  s.cross_checks.push_back({"odeint", "odeint:rkf78:1e-13", 1e-11, 1e-12});
+  s.cross_checks.push_back({"peer", "peer:rkf78:1e-13", 1e-11, 1e-12});
   return s;
 }
 
@@ -69,7 +69,7 @@ TEST(PeerVerdict, RatioOfTwoPowerLawsIsExactAtEveryError) {
   const PowerLaw ours{2e-3, 0.25}, peer{1e-3, 0.40};
   mb::VerdictScene s = scene("s", 2, 30);
   s.ours = curve("direct:a", ours, -11.9, -2.9, 3);
-  s.peer = curve("odeint:b", peer, -11.9, -2.9, 3);
+  s.peer = curve("peer:b", peer, -11.9, -2.9, 3);
   for (auto clock : {mb::Clock::Cpu, mb::Clock::Wall}) {
     const mb::RatioTable t = mb::ratioTable({s}, mb::ErrorMeasure::FinalState, clock, kDecades);
     ASSERT_EQ(t.rows.size(), 1u);
@@ -96,10 +96,10 @@ TEST(PeerVerdict, FrontTakesEachSidesCheapestIntegratorAtEachError) {
   mb::VerdictScene s = scene("s", 8, 100);
   append(s.ours, curve("direct:o1", o1, -11, -3, 1));
   append(s.ours, curve("direct:o2", o2, -11, -3, 1));
-  append(s.peer, curve("odeint:p1", p1, -11, -3, 1));
-  append(s.peer, curve("odeint:p2", p2, -11, -3, 1));
+  append(s.peer, curve("peer:p1", p1, -11, -3, 1));
+  append(s.peer, curve("peer:p2", p2, -11, -3, 1));
   // a third, dominated integrator (slower at every error) changes nothing
-  append(s.peer, curve("odeint:slow", {9e-3, 0.45}, -11, -3, 4));
+  append(s.peer, curve("peer:slow", {9e-3, 0.45}, -11, -3, 4));
   const mb::RatioTable t =
       mb::ratioTable({s}, mb::ErrorMeasure::FinalState, mb::Clock::Cpu, kDecades);
   for (const mb::RatioCell& c : t.rows[0].cells) {
@@ -111,8 +111,8 @@ TEST(PeerVerdict, FrontTakesEachSidesCheapestIntegratorAtEachError) {
 
 TEST(PeerVerdict, NeverExtrapolatesAndSaysWhy) {
   mb::VerdictScene s = scene("s", 2, 30);
-  s.ours = curve("direct:a", {1e-3, 0.3}, -8, -3, 2);   // 1e-8 ... 1e-3
-  s.peer = curve("odeint:b", {1e-3, 0.3}, -11, -5, 2);  // 1e-11 ... 1e-5
+  s.ours = curve("direct:a", {1e-3, 0.3}, -8, -3, 2);  // 1e-8 ... 1e-3
+  s.peer = curve("peer:b", {1e-3, 0.3}, -11, -5, 2);   // 1e-11 ... 1e-5
   const mb::RatioTable t =
       mb::ratioTable({s}, mb::ErrorMeasure::FinalState, mb::Clock::Cpu, kDecades);
   const auto& cells = t.rows[0].cells;
@@ -140,7 +140,7 @@ TEST(PeerVerdict, NeverExtrapolatesAndSaysWhy) {
 TEST(PeerVerdict, VerdictNamesWhereTheTargetIsMissed) {
   mb::VerdictScene fast = scene("fast", 2, 30), slow = scene("slow", 32, 30);
   fast.ours = curve("direct:a", {1e-3, 0.3}, -11, -3, 2);
-  fast.peer = curve("odeint:b", {2.5e-3, 0.3}, -11, -3, 2);  // ratio 2.5 everywhere
+  fast.peer = curve("peer:b", {2.5e-3, 0.3}, -11, -3, 2);  // ratio 2.5 everywhere
   mb::RatioTable t = mb::ratioTable({fast}, mb::ErrorMeasure::FinalState, mb::Clock::Cpu, kDecades);
   mb::Verdict v = mb::verdictOf(t);
   EXPECT_TRUE(v.met);
@@ -150,7 +150,7 @@ TEST(PeerVerdict, VerdictNamesWhereTheTargetIsMissed) {
 
   // ratio 2.5 * (e / 1e-7)^0.1: 2.5 at 1e-7, 1.986 at 1e-8, 1.577 at 1e-9
   slow.ours = curve("direct:a", {1e-3, 0.3}, -11, -3, 2);
-  slow.peer = curve("odeint:b", {2.5e-3 * std::pow(1e-7, -0.1), 0.2}, -9, -3, 2);
+  slow.peer = curve("peer:b", {2.5e-3 * std::pow(1e-7, -0.1), 0.2}, -9, -3, 2);
   t = mb::ratioTable({fast, slow}, mb::ErrorMeasure::FinalState, mb::Clock::Cpu, kDecades);
   v = mb::verdictOf(t);
   EXPECT_FALSE(v.met);
@@ -181,7 +181,7 @@ TEST(PeerVerdict, SlopeOfCostPerPeriodAgainstN) {
     const double periods = 10.0 + n;
     mb::VerdictScene s = scene(name, n, periods);
     s.ours = curve("direct:a", {periods * 1e-5 * std::pow(n, k_ours), 0.2}, -10, -3, 3);
-    s.peer = curve("odeint:b", {periods * 2e-5 * std::pow(n, k_peer), 0.2}, -10, -3, 3);
+    s.peer = curve("peer:b", {periods * 2e-5 * std::pow(n, k_peer), 0.2}, -10, -3, 3);
     scenes.push_back(s);
   }
   // a scene outside the N-scaling set, far off the law: left out
@@ -205,9 +205,9 @@ TEST(PeerVerdict, GuardsOnRunsAndThePeersValidation) {
   mb::VerdictScene a = scene("a", 2, 30), b = scene("b", 8, 30), c = scene("c", 32, 30);
   for (auto* s : {&a, &b, &c}) {
     s->ours = curve("direct:x", {1e-3, 0.3}, -11, -3, 2);
-    s->peer = curve("odeint:y", {3e-3, 0.3}, -11, -3, 2);
+    s->peer = curve("peer:y", {3e-3, 0.3}, -11, -3, 2);
   }
-  b.cross_checks = {{"odeint", "odeint:rkf78:1e-13", 2e-8, 1e-10}};  // above 1e-8
+  b.cross_checks = {{"peer", "peer:rkf78:1e-13", 2e-8, 1e-10}};  // above 1e-8
   // c: a check of another engine (ignored) and one of the reference's own (its uncertainty, not
   // a validation of the peer)
   c.cross_checks = {{"simbody", "simbody:rk-merson:1e-12", 1e-9, 1e-10},
@@ -224,16 +224,17 @@ TEST(PeerVerdict, GuardsOnRunsAndThePeersValidation) {
 
   mb::VerdictPages p = mb::verdictPages({a, b, c}, mb::VerdictOptions{});
   ASSERT_EQ(p.warnings.size(), 2u);  // b's agreement, c's missing validation; runs are 5
-  EXPECT_NE(p.markdown.find("**FLAG: above 1e-08**"), std::string::npos);
-  EXPECT_NE(p.verdict_line.find("MET in all 21 cells"), std::string::npos) << p.verdict_line;
+  // the default table goes down to 1e-9: the bound is ten times below it
+  EXPECT_NE(p.markdown.find("**FLAG: above 1e-10**"), std::string::npos);
+  EXPECT_NE(p.verdict_line.find("MET in all 15 cells"), std::string::npos) << p.verdict_line;
   a.ours[3].runs = 3;
   p = mb::verdictPages({a, b, c}, mb::VerdictOptions{});
   ASSERT_EQ(p.warnings.size(), 3u);
   EXPECT_NE(p.warnings[0].find("as few as 3 runs"), std::string::npos) << p.warnings[0];
-  // every cell of the four tables in ratios.csv: 3 scenes x 7 errors x 2 measures x 2 clocks
+  // every cell of the four tables in ratios.csv: 3 scenes x 5 errors x 2 measures x 2 clocks
   int lines = 0;
   for (char ch : p.ratios_csv) lines += ch == '\n';
-  EXPECT_EQ(lines, 1 + 3 * 7 * 4);
+  EXPECT_EQ(lines, 1 + 3 * 5 * 4);
 }
 
 TEST(PeerVerdict, ReadsTheWorkPrecisionCsvBack) {
@@ -246,15 +247,15 @@ TEST(PeerVerdict, ReadsTheWorkPrecisionCsvBack) {
       header +
       "s,2,32.6,direct,verner76,1e-13,1e-13,,reference,,1,0.007,0.007,0.007,0.006,3.1,3.1,0,0,0,"
       "0,0,1,1,1,1,0,in-phase\n"
-      "s,2,32.6,odeint,rkf78,1e-13,1e-13,,cross-check,,1,0.005,0.005,0.005,0.005,3.1,3.1,1.5e-13,"
+      "s,2,32.6,peer,rkf78,1e-13,1e-13,,cross-check,,1,0.005,0.005,0.005,0.005,3.1,3.1,1.5e-13,"
       "0,0,4e-13,33,1,1,1,1,0,in-phase\n"
       "s,2,32.6,direct,dopri5,1e-06,1e-06,,ok,,5,0.002,0.001,0.003,0.0015,2.5,3.7,1e-7,0,0,"
       "1e-6,33,1,1,1,1,0,\"a,b\"\n"
-      "s,2,32.6,odeint,dopri5,1e-06,1e-06,,ok,,4,0.004,0.001,0.005,0.003,2.9,3.2,2e-7,0,0,"
+      "s,2,32.6,peer,dopri5,1e-06,1e-06,,ok,,4,0.004,0.001,0.005,0.003,2.9,3.2,2e-7,0,0,"
       "3e-6,33,1,1,1,1,0,x\n"
       "s,2,32.6,simbody,rk-merson,1e-06,1e-06,,ok,,5,0.4,0.4,0.4,0.4,2.9,3.2,2e-7,0,0,"
       "3e-6,33,1,1,1,1,0,x\n"
-      "s,0,0,odeint,dopri5,1e-12,1e-12,,skipped (predicted over budget),,0,,,,,,,,,,,,,,,,,\n";
+      "s,0,0,peer,dopri5,1e-12,1e-12,,skipped (predicted over budget),,0,,,,,,,,,,,,,,,,,\n";
   const auto scenes = mb::parseWorkPrecisionCsv(text, "wp-s.csv");
   ASSERT_EQ(scenes.size(), 1u);
   const mb::VerdictScene& s = scenes[0];

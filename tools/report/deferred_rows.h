@@ -1,0 +1,54 @@
+// Rows of numbers formatted and written on a thread of their own: the run's thread copies a row's
+// numbers into a block and goes on; a writer thread turns full blocks into text (docs/outputs.md:
+// wall_seconds holds the copying, write_seconds what was left to write when the run ended).
+#pragma once
+
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace metrosync {
+
+class AtomicFile;
+
+class DeferredRows {
+ public:
+  // format(row, line): appends one row's text (without the newline) to `line`; called on the
+  // writer thread, so it may use only what it captured by value.
+  using Format = std::function<void(const double* row, std::string& line)>;
+
+  DeferredRows(AtomicFile& file, size_t width, Format format);
+  DeferredRows(const DeferredRows&) = delete;
+  DeferredRows& operator=(const DeferredRows&) = delete;
+  ~DeferredRows();  // stops the writer; rows not yet written are dropped (the file is discarded)
+
+  // Copies `width` numbers. Rethrows the writer's first error (a full disk, say).
+  void add(const double* row);
+  // Writes every row added so far and waits for it; rethrows the writer's first error.
+  void finish();
+
+ private:
+  void post(std::vector<double>&& block);
+  void writerLoop();
+  void writeBlock(const std::vector<double>& block, std::string& text);
+  void rethrow();
+
+  AtomicFile& file_;
+  const size_t width_;
+  const Format format_;
+  std::vector<double> block_;
+  std::mutex mutex_;
+  std::condition_variable wake_writer_, wake_run_;
+  std::deque<std::vector<double>> queue_;
+  bool busy_ = false, stop_ = false;
+  std::exception_ptr error_;
+  std::thread writer_;
+};
+
+}  // namespace metrosync
