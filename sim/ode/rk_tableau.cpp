@@ -74,11 +74,13 @@ RkTableau makeDopri5() {
   return t;
 }
 
-// The PI controller's weight of the previous error for Verner's pairs. Measured on the full
-// model (docs/bench/controller.md: 0, 0.04, 0.05, 0.06, 0.07 over accuracies 1e-4 .. 1e-12 on
-// three scenes with 400-700 events): 0.05 needs 10-30% fewer evaluations for the same final-state
-// error than the pure I-controller (beta 0), whose step sizes oscillate and are rejected one
-// attempt in seven; 0.07 and above are worse again.
+// The PI controller's weight of the previous error for Verner's pairs. Chosen by evaluation
+// counts at equal final-state error (against a verner76 run at 1e-13) with beta 0, 0.04, 0.05,
+// 0.06, 0.07 over accuracies 1e-5 .. 1e-9 on peer-n2, experiment-short and suppression
+// (yaml/rigs/bench/, 400-700 events each), measured with a development build that took beta from
+// the command line: 0.05 needed 10-30% fewer evaluations than the pure I-controller (beta 0),
+// whose step sizes oscillate and are rejected about one attempt in seven; 0.07 and above were
+// worse again. The work-precision fronts of docs/bench/speed/ are measured with it.
 constexpr double kVernerPiBeta = 0.05;
 
 RkTableau makeVerner65() {
