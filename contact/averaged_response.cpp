@@ -4,14 +4,13 @@
 #include <limits>
 #include <stdexcept>
 
+#include "base/constants.h"
 #include "contact/chebyshev_table.h"
 #include "contact/slip_duration.h"
 
 namespace metrosync {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-constexpr double kTwoPi = 6.283185307179586;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Taylor coefficients in powers of u^2 of N1(u) / u^5 and N2(u) / u^4 (see the header),
@@ -203,21 +202,6 @@ AveragedResponse viscousResponse(double c) {
   // x_p'' = A (sin t + c cos t) / (1 + c^2): project on sin t and cos t
   const double d = 2.0 * (1.0 + c * c);
   return {1.0 / d, c / d};
-}
-
-AveragedResponse averagedResponse(FrictionLaw law, double mu, double c, double A) {
-  switch (law) {
-    case FrictionLaw::Coulomb:
-      if (mu < 0.0) throw std::invalid_argument("averagedResponse: mu < 0");
-      return mu == 0.0 ? AveragedResponse{0.5, 0.0} : coulombResponse(std::fabs(A) / mu);
-    case FrictionLaw::Viscous:
-      return viscousResponse(c);
-    case FrictionLaw::None:
-      return {0.5, 0.0};
-    case FrictionLaw::Fixed:
-      return {0.0, 0.0};
-  }
-  return {kNaN, kNaN};
 }
 
 // ---- the periodic solution y_p ----------------------------------------------------------------

@@ -26,8 +26,7 @@
 // are interpolated (to ~1e-14 relative) from tables of N1 / q^5 and N2 / q^4 in q^2.
 #pragma once
 
-#include "contact/coulomb.h"
-#include "contact/friction_law.h"
+#include "contact/platform_mode.h"
 
 namespace metrosync {
 
@@ -82,11 +81,6 @@ AveragedResponse coulombStickSlipReference(double s);
 
 // Viscous platform x'' = -c x' + A sin t: beta1 = 1 / (2 (1 + c^2)), beta2 = c / (2 (1 + c^2)).
 AveragedResponse viscousResponse(double c);
-
-// The response for a friction law at drive amplitude A >= 0:
-//   Coulomb  s = A / mu (mu = 0: s = +inf, i.e. (1/2, 0));  Viscous  viscousResponse(c);
-//   None     (1/2, 0) (Coulomb with mu = 0);                 Fixed    (0, 0).
-AveragedResponse averagedResponse(FrictionLaw law, double mu, double c, double A);
 
 // The zero-mean 2 pi-periodic solution y_p(t; B) of y'' = F(y', B sin t) + B sin t (eq. c1,
 // unit Coulomb friction, appendix "ac"); y_p(t + pi) = -y_p(t). Multiply by mu (and shift t by

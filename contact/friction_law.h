@@ -1,14 +1,82 @@
-// Which law acts between the platform and the table: the names a rig file gives
-// (platform.friction.law) and the mode of a platform under dry friction.
+// A friction law between the platform and the table, as a value: which law (a kind from the
+// registry, contact/law_registry.h) and its parameter values, in the units of the rig it belongs
+// to (physical in PlatformSpec, scaled in ScaledParams). It carries everything the rest of the
+// code asks of a law: its name and keys (rig files, --set), its JSON, its scaling, the engines'
+// law at a normal force (contact/platform_friction.h), the slow flow's averaged response, and
+// whether it can hold the platform. Two laws are equal when they are the same kind with the same
+// values: every parameter counts, so a new one is never ignored by a comparison.
+//
+// To add a law: one file in contact/ defining its LawKind (contact/law_kind.h), one line in
+// contact/law_registry.h. Nothing else changes: readers, writers and engines go through here.
 #pragma once
+
+#include <nlohmann/json_fwd.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contact/law_kind.h"
+#include "contact/platform_mode.h"
 
 namespace metrosync {
 
-enum class FrictionLaw { Coulomb, Viscous, None, Fixed };
+// Physical / scaled for each LawScale (models/scaling.h): scaled = physical / factor.
+struct LawScales {
+  double coefficient = 1.0;  // eps^{3/2}
+  double viscous = 1.0;      // M omega0
+};
 
-const char* toString(FrictionLaw law);
+class FrictionLaw {
+ public:
+  // Coulomb's law with mu = 0 (a rig's default before its file is read).
+  FrictionLaw();
+  // `values` in the order of kind.parameters(); throws std::invalid_argument on a wrong count.
+  FrictionLaw(const LawKind& kind, std::vector<double> values);
 
-// The platform's state under Coulomb friction: stuck, or sliding in one direction.
-enum class PlatformMode : int { SlipNegative = -1, Stuck = 0, SlipPositive = 1 };
+  static FrictionLaw coulomb(double mu);
+  static FrictionLaw viscous(double c);
+  static FrictionLaw none();
+  static FrictionLaw fixed();
+
+  const LawKind& kind() const { return *kind_; }
+  const char* name() const { return kind_->name(); }
+  const std::vector<double>& values() const { return values_; }
+  bool is(const LawKind& k) const { return kind_ == &k; }
+  // The value of parameter `key`; nullopt if the law has no such parameter.
+  std::optional<double> value(const std::string& key) const;
+  double valueOr(const std::string& key, double fallback) const {
+    return value(key).value_or(fallback);
+  }
+  // The same law with parameter `key` set to v; throws std::invalid_argument if it has none.
+  FrictionLaw with(const std::string& key, double v) const;
+
+  FrictionLaw scaled(const LawScales& s) const;    // physical -> scaled
+  FrictionLaw physical(const LawScales& s) const;  // scaled -> physical
+
+  // The engines' law at normal force N (coefficients times N; viscous c as is).
+  PlatformFriction platform(double normal_force) const {
+    return kind_->platform(values_, normal_force);
+  }
+  bool setValued() const { return platform(1.0).setValued(); }
+  bool platformMoves() const { return platform(1.0).platformMoves(); }
+  // The rules across parameters (mu_static >= mu); nullopt when they hold.
+  std::optional<LawViolation> violation() const { return kind_->check(values_); }
+
+  // Scaled values only:
+  SlowResponse slowResponse() const { return kind_->slowResponse(values_); }
+  bool holdsDrive(double drive) const { return kind_->holdsDrive(values_, drive); }
+
+  // {"law": name, key: value, ...} in the units of the values.
+  nlohmann::json toJson() const;
+
+  friend bool operator==(const FrictionLaw& a, const FrictionLaw& b) {
+    return a.kind_ == b.kind_ && a.values_ == b.values_;
+  }
+  friend bool operator!=(const FrictionLaw& a, const FrictionLaw& b) { return !(a == b); }
+
+ private:
+  const LawKind* kind_;
+  std::vector<double> values_;
+};
 
 }  // namespace metrosync

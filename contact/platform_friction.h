@@ -1,39 +1,43 @@
-// The law between the platform and the table, as both engines see it: one value type that says
-// whether the law is set-valued (needs modes and switching events: Coulomb) and what force and
-// power it gives on a moving platform (the smooth part, every law).
-//
-// To add a law: a value type beside CoulombLaw / ViscousLaw in contact/, a FrictionLaw name
-// (contact/friction_law.h), its branch in force() and setValued() here, and its keys in the rig
-// loader (yaml/). The engines query only this type: minimal_equations.cpp (direct engine) and the
-// Simbody elements (contact/simbody/) need no change for a smooth law.
+// The law between the platform and the table as both engines see it, in their units (newtons):
+// a set-valued law (stick/slip, contact/set_valued_law.h) or a smooth force of the velocity, or
+// none, or a platform bolted to the table. A law value (contact/friction_law.h) makes one at a
+// given normal force; the engines query only this type: minimal_equations.cpp (direct engine),
+// the event resolver (sim/events/) and the Simbody elements (contact/simbody/).
 #pragma once
 
-#include "contact/coulomb.h"
-#include "contact/friction_law.h"
+#include "contact/platform_mode.h"
+#include "contact/set_valued_law.h"
 
 namespace metrosync {
 
+// Viscous platform friction F = -c v (the earlier models' law).
+struct ViscousLaw {
+  double c = 0.0;
+  double force(double v) const { return -c * v; }
+};
+
 struct PlatformFriction {
-  FrictionLaw law = FrictionLaw::None;
-  CoulombLaw coulomb;  // law == Coulomb
-  ViscousLaw viscous;  // law == Viscous
+  enum class Kind { SetValued, Viscous, None, Fixed };
+  Kind kind = Kind::None;
+  SetValuedLaw dry;    // kind == SetValued
+  ViscousLaw viscous;  // kind == Viscous
 
   // Set-valued at v = 0 (a stuck platform holds with any force up to a bound): the engines keep a
   // platform mode and locate stick/slip events. The other laws are smooth forces of v.
-  bool setValued() const { return law == FrictionLaw::Coulomb; }
+  bool setValued() const { return kind == Kind::SetValued; }
   // The platform can move at all (not bolted to the table).
-  bool platformMoves() const { return law != FrictionLaw::Fixed; }
+  bool platformMoves() const { return kind != Kind::Fixed; }
 
-  // Friction force on a platform moving at v in `mode` (mode matters for Coulomb only: its
-  // kinetic force while slipping, 0 while stuck, where the holding force is a constraint).
+  // Friction force on a platform moving at v in `mode` (mode matters for a set-valued law only:
+  // its kinetic force while slipping, 0 while stuck, where the holding force is a constraint).
   double force(double v, PlatformMode mode) const {
-    switch (law) {
-      case FrictionLaw::Coulomb:
-        return coulomb.slipForce(mode);
-      case FrictionLaw::Viscous:
+    switch (kind) {
+      case Kind::SetValued:
+        return dry.kineticForce(mode);
+      case Kind::Viscous:
         return viscous.force(v);
-      case FrictionLaw::None:
-      case FrictionLaw::Fixed:
+      case Kind::None:
+      case Kind::Fixed:
         return 0.0;
     }
     return 0.0;

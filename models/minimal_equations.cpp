@@ -8,13 +8,7 @@
 namespace metrosync {
 
 PlatformFriction platformFriction(const Rig& rig) {
-  PlatformFriction f;
-  f.law = rig.platform.law;
-  if (f.law == FrictionLaw::Coulomb)
-    f.coulomb =
-        CoulombLaw::fromCoefficient(rig.platform.mu_bar, rig.totalMass() * rig.gravity_m_s2);
-  if (f.law == FrictionLaw::Viscous) f.viscous.c = rig.platform.c_Ns_m;
-  return f;
+  return rig.platform.friction.platform(rig.totalMass() * rig.gravity_m_s2);
 }
 
 }  // namespace metrosync
@@ -22,7 +16,7 @@ PlatformFriction platformFriction(const Rig& rig) {
 namespace metrosync::direct {
 
 MetronomeEquations::MetronomeEquations(const Rig& rig)
-    : has_platform_(rig.platform.law != FrictionLaw::Fixed),
+    : has_platform_(rig.platform.friction.platformMoves()),
       friction_(platformFriction(rig)),
       mass_(rig.totalMass()) {
   const double g = rig.gravity_m_s2;

@@ -12,7 +12,7 @@
 //   Meff xddot = G + F,  Meff = M - sum_j c_j^2 / I_j,
 //   G = sum_j m_j L_j sin theta_j thetadot_j^2 - sum_j c_j r_j / I_j - k x  (- c-bar xdot viscous)
 // then thetaddot_j = (r_j - c_j xddot) / I_j. G is the push of everything but friction: a stuck
-// platform needs the holding force H = -G from friction (CoulombLaw's holding_force).
+// platform needs the holding force H = -G from friction (SetValuedLaw's holding_force).
 //
 // State vector y, (dim x 1): x, xdot, theta_1..theta_n, thetadot_1..thetadot_n (n swinging
 // pendulums, in rig order), then two quadratures for the energy ledger: the work done by the
@@ -27,8 +27,9 @@
 
 namespace metrosync {
 
-// The platform's law from the rig: the Coulomb bound mu-bar M g (eq. frictionlaw), M the
-// platform with everything on it, or the viscous c-bar. Both engines take it from here.
+// The platform's law from the rig at the normal force M g (eq. frictionlaw: a set-valued law's
+// bounds are its coefficients times M g), M the platform with everything on it, or the viscous
+// c-bar. Both engines take it from here.
 PlatformFriction platformFriction(const Rig& rig);
 
 }  // namespace metrosync
@@ -66,9 +67,9 @@ class MetronomeEquations {
   int numSwinging() const { return layout_.n; }
   const PendulumConstants& pendulum(int j) const { return pend_[j]; }
   bool hasPlatform() const { return has_platform_; }
-  FrictionLaw law() const { return friction_.law; }
   const PlatformFriction& friction() const { return friction_; }
-  const CoulombLaw& coulomb() const { return friction_.coulomb; }
+  // the set-valued law (friction().setValued() only)
+  const SetValuedLaw& dryFriction() const { return friction_.dry; }
   Escapement escapement(int j) const { return {pend_[j].theta_c, pend_[j].impulse}; }
   double totalMass() const { return mass_; }
 

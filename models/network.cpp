@@ -42,7 +42,7 @@ Rig Network::unionRig() const {
     for (const MetronomeSpec& m : p.rig.metronomes)
       if (!m.locked) rig.metronomes.push_back(m);
   if (rig.metronomes.empty()) throw std::invalid_argument("the network has no swinging pendulum");
-  if (rig.platform.law == FrictionLaw::Fixed) rig.platform.law = FrictionLaw::None;
+  if (!rig.platform.friction.platformMoves()) rig.platform.friction = FrictionLaw::none();
   rig.platform.mass_kg = std::max(rig.platform.mass_kg, 1.0);  // scales only
   return rig;
 }
@@ -53,7 +53,7 @@ Rig Network::scalesRig() const {
   for (const NetworkPlatform& p : platforms)
     for (const MetronomeSpec& m : p.rig.metronomes)
       if (!m.locked && rig.metronomes.empty()) rig.metronomes.push_back(m);
-  if (rig.platform.law == FrictionLaw::Fixed) rig.platform.law = FrictionLaw::None;
+  if (!rig.platform.friction.platformMoves()) rig.platform.friction = FrictionLaw::none();
   return rig;
 }
 

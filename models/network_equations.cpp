@@ -13,15 +13,13 @@ NetworkEquations::NetworkEquations(const Network& net) : couplings_(net.coupling
     // the pendulums' constants exactly as the single-platform equations make them
     const direct::MetronomeEquations one(np.rig);
     Block b;
-    b.moves = np.rig.platform.law != FrictionLaw::Fixed;
+    b.moves = np.rig.platform.friction.platformMoves();
     b.below = np.on;
     b.mass = np.rig.totalMass();
     b.k = np.rig.platform.spring_N_m;
     b.c = np.spring_c_Ns_m;
-    b.friction = platformFriction(np.rig);
-    if (b.friction.law == FrictionLaw::Coulomb)  // the normal force carries what rests on it
-      b.friction.coulomb = CoulombLaw::fromCoefficient(np.rig.platform.mu_bar,
-                                                       net.carriedMass(p) * net.gravity_m_s2);
+    // the normal force carries what rests on it
+    b.friction = np.rig.platform.friction.platform(net.carriedMass(p) * net.gravity_m_s2);
     b.first = static_cast<int>(pend_.size());
     b.count = one.numSwinging();
     for (int j = 0; j < one.numSwinging(); ++j) {

@@ -30,10 +30,8 @@ struct MetronomeSpec {
 };
 
 struct PlatformSpec {
-  double mass_kg = 0.0;  // the board alone (boxes and pendulums are added for M_total)
-  FrictionLaw law = FrictionLaw::Coulomb;
-  double mu_bar = 0.0;       // Coulomb: |F| = mu-bar * M_total * g (eq. frictionlaw)
-  double c_Ns_m = 0.0;       // viscous: F = -c xdot
+  double mass_kg = 0.0;      // the board alone (boxes and pendulums are added for M_total)
+  FrictionLaw friction;      // physical units: mu-bar (|F| = mu-bar M_total g), c-bar in N s/m
   double spring_N_m = 0.0;   // optional spring to ground (section 3A); 0 = none
   double start_x_m = 0.0;    // x-bar(0)
   double start_v_m_s = 0.0;  // x-bar'(0)

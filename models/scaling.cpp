@@ -11,6 +11,10 @@
 
 namespace metrosync {
 
+LawScales lawScales(double epsilon, double M_omega0) {
+  return LawScales{epsilon * std::sqrt(epsilon), M_omega0};
+}
+
 ScaledParams computeScaled(const Rig& rig) {
   if (rig.metronomes.empty())
     throw std::invalid_argument("computeScaled: the rig has no metronome");
@@ -34,9 +38,7 @@ ScaledParams computeScaled(const Rig& rig) {
   p.tau_end = eps * omega0 * rig.sim.t_end_s;
 
   // platform: mu = mu-bar / eps^{3/2} (Coulomb), c = c-bar / (M omega0) (viscous)
-  p.law = rig.platform.law;
-  if (p.law == FrictionLaw::Coulomb) p.mu = rig.platform.mu_bar / (eps * sqrt_eps);
-  if (p.law == FrictionLaw::Viscous) p.c = rig.platform.c_Ns_m / (M * omega0);
+  p.friction = rig.platform.friction.scaled(lawScales(eps, M * omega0));
   p.x0 = rig.platform.start_x_m / p.x_scale_m;
   p.xdot0 = rig.platform.start_v_m_s / (p.x_scale_m * omega0);
 
@@ -116,9 +118,7 @@ Rig rigFromScaled(const ScaledRigInput& in) {
         " metronomes: the pendulums alone would outweigh M = 1/epsilon (the platform mass would "
         "be <= 0; need epsilon * sum_i (1 + epsilon zeta_i)(1 + epsilon alpha_i) < 1)");
 
-  rig.platform.law = in.law;
-  rig.platform.mu_bar = in.law == FrictionLaw::Coulomb ? in.mu * eps32 : 0.0;
-  rig.platform.c_Ns_m = in.law == FrictionLaw::Viscous ? in.c * M : 0.0;  // c-bar = c M omega0
+  rig.platform.friction = in.friction.physical(lawScales(eps, M));  // c-bar = c M omega0
   rig.platform.start_x_m = eps32 * in.x0;  // x_scale = I1 eps^{3/2} / (m1 L1)
   rig.platform.start_v_m_s = eps32 * in.xdot0;
 

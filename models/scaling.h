@@ -9,6 +9,7 @@
 //     eps J_i         = J-bar_i / (I_i sqrt(eps) omega0) (jump of thetadot_i on a still platform)
 //     theta_c,i       = theta-bar_c,i / sqrt(eps)
 //   viscous platform: c = c-bar / (M omega0)  (scaled platform equation xddot = -c xdot - ...)
+//   (each law parameter scales by its LawScale, contact/law_kind.h: lawScales below)
 #pragma once
 
 #include <optional>
@@ -20,9 +21,7 @@ namespace metrosync {
 
 struct ScaledParams {
   double epsilon = 0.0;
-  FrictionLaw law = FrictionLaw::Coulomb;
-  double mu = 0.0;  // scaled Coulomb coefficient (0 for none/viscous/fixed)
-  double c = 0.0;   // scaled viscous coefficient
+  FrictionLaw friction;  // the platform's law in scaled units (mu = mu-bar / eps^{3/2}, ...)
   // per metronome, (N x 1)
   std::vector<double> nu, J, theta_c, alpha, zeta;
   std::vector<std::optional<double>> A_star;  // eq. A_star; empty where J < J_c
@@ -37,6 +36,9 @@ struct ScaledParams {
   double tau_end = 0.0;       // slow time at the end of the run
 };
 
+// The factors of a law's parameters: eps^{3/2} for a coefficient, M omega0 for a viscous c.
+LawScales lawScales(double epsilon, double M_omega0);
+
 // Scaled parameters of a rig (physical or an equivalent system built from scaled input).
 ScaledParams computeScaled(const Rig& rig);
 
@@ -49,8 +51,7 @@ struct ScaledMetronomeInput {
 struct ScaledRigInput {
   std::string name = "rig";
   double epsilon = 0.0;
-  FrictionLaw law = FrictionLaw::Coulomb;
-  double mu = 0.0, c = 0.0;
+  FrictionLaw friction;  // in scaled units
   std::vector<ScaledMetronomeInput> metronomes;
   double x0 = 0.0, xdot0 = 0.0;
   double tau_end = 0.0;

@@ -87,7 +87,7 @@ void resolveOn(Network& net, const Node& list, const RigSource& src,
     if (net.platforms[i].on == i)
       failAt(src, on->at, path + " = " + on->scalar + ": a platform cannot rest on itself");
     const PlatformSpec& ps = net.platforms[i].rig.platform;
-    if (ps.law == FrictionLaw::Fixed)
+    if (!ps.friction.platformMoves())
       failAt(src, on->at,
              path + " = " + on->scalar +
                  ": a platform resting on another cannot be fixed to it (give its metronomes to "
@@ -159,7 +159,7 @@ void readCouplings(Network& net, const Node& root, const RigSource& src,
   }
   const bool all_fixed = std::all_of(
       net.platforms.begin(), net.platforms.end(),
-      [](const NetworkPlatform& p) { return p.rig.platform.law == FrictionLaw::Fixed; });
+      [](const NetworkPlatform& p) { return !p.rig.platform.friction.platformMoves(); });
   if (all_fixed && !net.couplings.empty())
     failAt(src, list->at,
            "couplings: every platform is fixed, so the couplings join nothing that moves");

@@ -43,7 +43,7 @@ void CoulombContact::calcForce(const State& s, Vector_<SpatialVec>&, Vector_<Vec
                                Vector& mobilityForces) const {
   const PlatformMode m = mode(s);
   if (m != PlatformMode::Stuck)
-    slider_.applyOneMobilityForce(s, 0, law_.slipForce(m), mobilityForces);
+    slider_.applyOneMobilityForce(s, 0, law_.kineticForce(m), mobilityForces);
 }
 
 }  // namespace metrosync

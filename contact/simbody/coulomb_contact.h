@@ -1,9 +1,9 @@
-// The Simbody adapter of CoulombLaw (contact/coulomb.h) for one contact of a network of platforms
-// (docs/networks.md): a Force::Custom element on the slider of the platform above the contact,
-// whose coordinate is the slip of that platform relative to what it rests on (the table, or the
-// platform below). The contact's mode (stuck, slipping right, slipping left) is a discrete state
-// variable; while slipping the element applies the kinetic force -bound * mode, a force pair on
-// the platform and (through the relative slider) the platform below; while stuck the slider's
+// The Simbody adapter of SetValuedLaw (contact/set_valued_law.h) for one contact of a network of
+// platforms (docs/networks.md): a Force::Custom element on the slider of the platform above the
+// contact, whose coordinate is the slip of that platform relative to what it rests on (the table,
+// or the platform below). The contact's mode (stuck, slipping right, slipping left) is a discrete
+// state variable; while slipping the element applies the kinetic force -bound * mode, a force pair
+// on the platform and (through the relative slider) the platform below; while stuck the slider's
 // ACCELERATION is locked at zero, so that several stuck contacts are held together by one solve
 // of Simbody's prescribed motion, and each lock's generalized force is that contact's holding
 // force. The slip velocity is kept as it is (zero to rounding after a stop): unlike
@@ -14,17 +14,17 @@
 
 #include <Simbody.h>
 
-#include "contact/coulomb.h"
+#include "contact/set_valued_law.h"
 
 namespace metrosync {
 
 class CoulombContact : public SimTK::Force::Custom::Implementation {
  public:
   CoulombContact(const SimTK::GeneralForceSubsystem& forces,
-                 const SimTK::MobilizedBody::Slider& slider, CoulombLaw law)
+                 const SimTK::MobilizedBody::Slider& slider, SetValuedLaw law)
       : forces_(forces), slider_(slider), law_(law) {}
 
-  const CoulombLaw& law() const { return law_; }
+  const SetValuedLaw& law() const { return law_; }
   PlatformMode mode(const SimTK::State& s) const;
   // Stuck: the slider's acceleration locked at zero (its velocity untouched); a slip: unlocked.
   // Lowers the stage to Model.
@@ -47,7 +47,7 @@ class CoulombContact : public SimTK::Force::Custom::Implementation {
  private:
   const SimTK::GeneralForceSubsystem& forces_;
   SimTK::MobilizedBody::Slider slider_;
-  CoulombLaw law_;
+  SetValuedLaw law_;
   mutable SimTK::DiscreteVariableIndex mode_index_;
 };
 

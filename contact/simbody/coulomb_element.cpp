@@ -51,7 +51,7 @@ PlatformMode CoulombElement::resolveSwitch(const System& system, State& s) const
   if (m == PlatformMode::Stuck) {
     const double h = holdingForce(s);
     if (!law_.breaksFree(h)) return m;
-    const PlatformMode to = CoulombLaw::slipDirection(h);
+    const PlatformMode to = SetValuedLaw::slipDirection(h);
     slip(s, to);
     system.realize(s, Stage::Acceleration);
     return to;
@@ -70,7 +70,7 @@ void CoulombElement::calcForce(const State& s, Vector_<SpatialVec>&, Vector_<Vec
                                Vector& mobilityForces) const {
   const PlatformMode m = mode(s);
   if (m != PlatformMode::Stuck)
-    slider_.applyOneMobilityForce(s, 0, law_.slipForce(m), mobilityForces);
+    slider_.applyOneMobilityForce(s, 0, law_.kineticForce(m), mobilityForces);
 }
 
 }  // namespace metrosync

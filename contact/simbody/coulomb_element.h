@@ -1,5 +1,5 @@
-// The thin Simbody adapter of CoulombLaw (contact/coulomb.h): a Force::Custom element on the
-// platform's slider. The platform's mode (stuck, slipping right, slipping left) is a discrete
+// The thin Simbody adapter of SetValuedLaw (contact/set_valued_law.h): a Force::Custom element on
+// the platform's slider. The platform's mode (stuck, slipping right, slipping left) is a discrete
 // state variable; while slipping the element applies the kinetic force -bound*sign(xdot); while
 // stuck the slider is locked at zero velocity and the lock's generalized force is the static
 // friction that holds it. Mode switches are made by the event resolver (sim/events/), never here.
@@ -7,17 +7,17 @@
 
 #include <Simbody.h>
 
-#include "contact/coulomb.h"
+#include "contact/set_valued_law.h"
 
 namespace metrosync {
 
 class CoulombElement : public SimTK::Force::Custom::Implementation {
  public:
   CoulombElement(const SimTK::GeneralForceSubsystem& forces,
-                 const SimTK::MobilizedBody::Slider& slider, CoulombLaw law)
+                 const SimTK::MobilizedBody::Slider& slider, SetValuedLaw law)
       : forces_(forces), slider_(slider), law_(law) {}
 
-  const CoulombLaw& law() const { return law_; }
+  const SetValuedLaw& law() const { return law_; }
   PlatformMode mode(const SimTK::State& s) const;
 
   // Stick: lock the slider at zero velocity (sets xdot = 0). Lowers the stage to Model.
@@ -53,7 +53,7 @@ class CoulombElement : public SimTK::Force::Custom::Implementation {
 
   const SimTK::GeneralForceSubsystem& forces_;
   SimTK::MobilizedBody::Slider slider_;
-  CoulombLaw law_;
+  SetValuedLaw law_;
   mutable SimTK::DiscreteVariableIndex mode_index_;
 };
 

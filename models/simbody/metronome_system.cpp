@@ -45,6 +45,7 @@ MetronomeSystem::MetronomeSystem(const Rig& rig) : rig_(rig), matter_(system_), 
   Force::Gravity(forces_, matter_, -YAxis, g);
 
   const PlatformFriction friction = platformFriction(rig_);
+  platform_friction_ = friction;
   has_platform_ = friction.platformMoves();
   MobilizedBody parent = matter_.Ground();
   if (has_platform_) {
@@ -60,10 +61,10 @@ MetronomeSystem::MetronomeSystem(const Rig& rig) : rig_(rig), matter_(system_), 
       Force::MobilityLinearSpring(forces_, slider_, MobilizerQIndex(0), rig_.platform.spring_N_m,
                                   0.0);
     if (friction.setValued()) {
-      auto* element = new CoulombElement(forces_, slider_, friction.coulomb);
+      auto* element = new CoulombElement(forces_, slider_, friction.dry);
       Force::Custom(forces_, element);  // takes ownership
       coulomb_ = element;
-    } else if (friction.law != FrictionLaw::None) {
+    } else if (friction.kind != PlatformFriction::Kind::None) {
       Force::Custom(forces_, new SmoothFrictionElement(slider_, friction));
     }
   }

@@ -65,7 +65,10 @@ class MetronomeSystem {
   const SimTK::MobilizedBody::Pin& pin(int i) const { return pins_[i]; }
   bool swings(int i) const { return !rig_.metronomes[i].locked; }
   const SimTK::MobilizedBody::Slider& slider() const { return slider_; }
+  // the set-valued law's element (friction().setValued() only), else nullptr
   const CoulombElement* coulomb() const { return coulomb_; }
+  // the platform's law at its normal force (models/minimal_equations.h); Fixed without a platform
+  const PlatformFriction& friction() const { return platform_friction_; }
   const DissipationMeter& meter() const { return *meter_; }
 
   SimTK::MultibodySystem& system() { return system_; }
@@ -88,6 +91,7 @@ class MetronomeSystem {
   SimTK::SimbodyMatterSubsystem matter_;
   SimTK::GeneralForceSubsystem forces_;
   bool has_platform_ = false;
+  PlatformFriction platform_friction_;
   SimTK::MobilizedBody::Slider slider_;
   std::vector<SimTK::MobilizedBody::Pin> pins_;
   const CoulombElement* coulomb_ = nullptr;

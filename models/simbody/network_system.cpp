@@ -134,10 +134,10 @@ void NetworkSystem::addPlatform(int p, std::vector<char>& made) {
   Body::Rigid board(MassProperties(carried, Vec3(0), UnitInertia(1)));
   sliders_[p] = MobilizedBody::Slider(parent, Transform(), board, Transform());
   if (b.friction.setValued()) {
-    auto* element = new CoulombContact(forces_, sliders_[p], b.friction.coulomb);
+    auto* element = new CoulombContact(forces_, sliders_[p], b.friction.dry);
     Force::Custom(forces_, element);  // takes ownership
     contacts_[p] = element;
-  } else if (b.friction.law != FrictionLaw::None) {
+  } else if (b.friction.kind != PlatformFriction::Kind::None) {
     Force::Custom(forces_, new SmoothFrictionElement(sliders_[p], b.friction));
   }
 }

@@ -3,12 +3,30 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sim/analysis/regime.h"
+#include "base/constants.h"
 
 namespace metrosync {
 
-namespace {
-constexpr double kPi = 3.14159265358979323846;
+namespace {}
+
+GroupLocking groupLocking(const RegimeWindow& w, const std::vector<int>& alive) {
+  std::vector<size_t> idx;
+  for (size_t i = 0; i < alive.size(); ++i)
+    if (alive[i] == 1) idx.push_back(i);
+  GroupLocking g;
+  g.alive = static_cast<int>(idx.size());
+  g.all_locked = true;
+  // each alive metronome with those locked to it (itself included); the largest such set
+  std::vector<int> locked_to(idx.size(), 1);
+  for (size_t a = 0; a < idx.size(); ++a)
+    for (size_t b = a + 1; b < idx.size(); ++b) {
+      const bool locked = w.pairRange(idx[a], idx[b]) < NetworkRules::kLocked;
+      g.all_locked = g.all_locked && locked;
+      locked_to[a] += locked;
+      locked_to[b] += locked;
+    }
+  g.largest_locked = idx.empty() ? 0 : *std::max_element(locked_to.begin(), locked_to.end());
+  return g;
 }
 
 NetworkWindow::NetworkWindow(int groups, double t_end, double period)
@@ -32,21 +50,26 @@ void NetworkWindow::add(double t, const std::vector<Order>& g) {
   ++rows_;
 }
 
-std::string classifyNetwork(const NetworkWindow& w) {
+std::string classifyNetwork(const NetworkWindow& w, const std::vector<GroupLocking>& locking) {
   if (w.rows() == 0) return "unknown";
-  bool all_coherent = true, any_coherent = false, any_incoherent = false;
-  bool locked = true, antiphase = false;
+  bool all_coherent = !locking.empty(), all_pairs = true;  // pairs: two or more alive each
+  bool all_in_phase = true, locked = true, antiphase = false;
   for (int g = 0; g < w.groups(); ++g) {
-    const double r = w.meanR(g);
-    all_coherent = all_coherent && r > NetworkRules::kCoherent;
-    any_coherent = any_coherent || r > NetworkRules::kCoherent;
-    any_incoherent = any_incoherent || r < NetworkRules::kIncoherent;
+    const bool coherent = g < static_cast<int>(locking.size()) && locking[g].coherent();
+    all_coherent = all_coherent && coherent;
+    all_pairs = all_pairs && coherent && locking[g].alive >= 2;
+    all_in_phase = all_in_phase && w.meanR(g) > NetworkRules::kCoherent;
     locked = locked && w.dPhiRange(g) < NetworkRules::kLocked;
     antiphase = antiphase || std::abs(wrapToPi(w.dPhiFinal(g))) > kPi / 2;
   }
-  if (all_coherent && locked) return antiphase ? "antiphase-groups" : "synchronized";
-  if (any_coherent && any_incoherent) return "chimera";
-  return "disordered";
+  if (all_coherent && all_in_phase && locked)
+    return antiphase ? "antiphase-groups" : "synchronized";
+  // a chimera: a synchronous part (two or more locked metronomes) beside an incoherent one
+  for (const GroupLocking& a : locking)
+    for (const GroupLocking& b : locking)
+      if (&a != &b && a.coherent() && a.alive >= 2 && b.incoherent()) return "chimera";
+  // every group locked within itself (a group of one metronome says nothing of that)
+  return all_pairs ? "coherent-groups" : "disordered";
 }
 
 }  // namespace metrosync

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "base/constants.h"
 #include "models/network_equations.h"
 #include "models/scaling.h"
 #include "sim/analysis/network_regime.h"
@@ -10,9 +11,7 @@
 
 namespace metrosync {
 
-namespace {
-constexpr double kTwoPi = 6.283185307179586;
-}
+namespace {}
 
 struct NetworkVerdict::Impl {
   const Network& net;
@@ -50,6 +49,7 @@ struct NetworkVerdict::Impl {
     const double tau_end = n.sim.t_end_s * omega0 * sp.epsilon;
     for (std::size_t p = 0; p < n.platforms.size(); ++p) regimes.emplace_back(tau_end, sp.epsilon);
   }
+  std::vector<RegimeVerdict> verdicts() const;
   double amplitude(const std::vector<double>& y, int j) const {
     return std::hypot(y[lay.theta(j)], y[lay.omega(j)] / omega[j]) / sp.angle_scale;
   }
@@ -102,20 +102,30 @@ bool NetworkVerdict::empty() const {
   return !impl_->seen;
 }
 
+// Each platform's single-platform verdict on its own swinging metronomes (none: Regime::Unknown).
+std::vector<RegimeVerdict> NetworkVerdict::Impl::verdicts() const {
+  std::vector<RegimeVerdict> v;
+  for (std::size_t p = 0; p < net.platforms.size(); ++p) {
+    std::vector<double> theta_c;
+    for (const MetronomeSpec& ms : net.platforms[p].rig.metronomes)
+      if (!ms.locked) theta_c.push_back(ms.theta_c_rad / sp.angle_scale);
+    v.push_back(theta_c.empty() ? RegimeVerdict{} : classifyRegime(regimes[p], theta_c));
+  }
+  return v;
+}
+
 std::string NetworkVerdict::label() const {
-  return classifyNetwork(impl_->window);
+  const Impl& m = *impl_;
+  const std::vector<RegimeVerdict> v = m.verdicts();
+  std::vector<GroupLocking> locking;
+  for (std::size_t p = 0; p < v.size(); ++p)
+    locking.push_back(groupLocking(m.regimes[p], v[p].alive));
+  return classifyNetwork(m.window, locking);
 }
 
 std::vector<std::string> NetworkVerdict::platformRegimes() const {
-  const Impl& m = *impl_;
   std::vector<std::string> names;
-  for (std::size_t p = 0; p < m.net.platforms.size(); ++p) {
-    std::vector<double> theta_c;
-    for (const MetronomeSpec& ms : m.net.platforms[p].rig.metronomes)
-      if (!ms.locked) theta_c.push_back(ms.theta_c_rad / m.sp.angle_scale);
-    names.push_back(theta_c.empty() ? "unknown"
-                                    : regimeName(classifyRegime(m.regimes[p], theta_c)));
-  }
+  for (const RegimeVerdict& v : impl_->verdicts()) names.push_back(regimeName(v));
   return names;
 }
 
@@ -133,6 +143,10 @@ const std::vector<Order>& NetworkVerdict::groups() const {
 
 const Order& NetworkVerdict::overall() const {
   return impl_->all;
+}
+
+const NetworkWindow& NetworkVerdict::window() const {
+  return impl_->window;
 }
 
 }  // namespace metrosync

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "models/network.h"
+#include "sim/analysis/network_regime.h"
 #include "sim/analysis/order_parameter.h"
 #include "sim/record/envelope.h"
 #include "sim/record/network_report.h"
@@ -38,6 +39,8 @@ class NetworkVerdict : public NetworkSink {
   const std::vector<double>& phases() const;
   const std::vector<Order>& groups() const;
   const Order& overall() const;
+  // The label's window (its start, rows, each platform's mean r and phase drift).
+  const NetworkWindow& window() const;
 
  private:
   struct Impl;

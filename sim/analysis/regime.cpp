@@ -76,21 +76,19 @@ void RegimeWindow::platformMode(int mode, double x) {
   pending_slip_ = pending_slip_ || mode != 0;
 }
 
-void RegimeWindow::setEnvelopePlatform(FrictionLaw law, double mu) {
+void RegimeWindow::setEnvelopePlatform(const FrictionLaw& law) {
   envelope_platform_ = true;
   law_ = law;
-  mu_ = mu;
 }
 
 namespace {
-// the slow flow's platform in one envelope row: slips when s = |Z| / mu > 1 (Coulomb)
-bool envelopeSlips(const EnvelopeRow& row, FrictionLaw law, double mu) {
-  if (law == FrictionLaw::Fixed) return false;
-  if (law != FrictionLaw::Coulomb) return true;
+// the slow flow's platform in one envelope row: slips when the law cannot hold the averaged
+// drive |Z| = r sum_j A_j (Coulomb: s = |Z| / mu > 1)
+bool envelopeSlips(const EnvelopeRow& row, const FrictionLaw& law) {
   double sum = 0.0;
   for (double a : row.A) sum += a;
   const double r = std::isnan(row.r) ? orderParameter(row.A, row.psi) : row.r;
-  return r * sum > mu;
+  return !law.holdsDrive(r * sum);
 }
 }  // namespace
 
@@ -113,7 +111,7 @@ void RegimeWindow::add(const EnvelopeRow& row) {
     pending_slip_ = mode_now_ != 0;
   } else if (envelope_platform_) {
     known = true;
-    slipped = envelopeSlips(row, law_, mu_);
+    slipped = envelopeSlips(row, law_);
   }
   if (row.tau < tau_start_) return;
   in_window_ = true;

@@ -48,6 +48,7 @@
 #include <string>
 #include <vector>
 
+#include "base/constants.h"
 #include "contact/friction_law.h"
 #include "sim/record/envelope.h"
 
@@ -77,10 +78,10 @@ struct RegimeRules {
   // 0.1 rad must show it over several periods, and the full model's period averages need a few
   // rows to vary at all
   double min_periods = 5.0;
-  double drift_rad = 3.141592653589793;  // drift: range of some psi_j > this
-  double settled_rad = 0.1;              // settled: range of every psi_j < this
-  double in_phase_rad = 0.2;             // |final psi_j - 0| (mod 2 pi) <= this
-  double antiphase_rad = 0.5;            // |final psi_j - pi| (mod 2 pi) <= this
+  double drift_rad = kPi;      // drift: range of some psi_j > this
+  double settled_rad = 0.1;    // settled: range of every psi_j < this
+  double in_phase_rad = 0.2;   // |final psi_j - 0| (mod 2 pi) <= this
+  double antiphase_rad = 0.5;  // |final psi_j - pi| (mod 2 pi) <= this
   // splay (N >= 3): every gap between neighbouring phases within this of 2 pi / a (a alive), but
   // never more than a quarter of 2 pi / a
   double splay_rad = 0.2;
@@ -108,10 +109,11 @@ class RegimeWindow {
   // (0 stuck, +-1 sliding) and the position x in scaled units of every trajectory row and every
   // event; a row counts as slipping when the platform slid at any such call since the previous
   // row (or was sliding at it). Slow flow (no trajectory rows): with the rig's friction law set
-  // by setEnvelopePlatform, a row slips when the averaged drive s = |sum_j A_j e^{i phi_j}| / mu
-  // > 1 (Coulomb), always (viscous, none), never (fixed). Without either: never `uncoupled`.
+  // by setEnvelopePlatform, a row slips when the law cannot hold the averaged drive
+  // |sum_j A_j e^{i phi_j}| (FrictionLaw::holdsDrive: Coulomb holds while it is <= mu; viscous and
+  // none never hold, fixed always). Without either: never `uncoupled`.
   void platformMode(int mode, double x_scaled);
-  void setEnvelopePlatform(FrictionLaw law, double mu);
+  void setEnvelopePlatform(const FrictionLaw& law);
   long platformRows() const { return platform_rows_; }  // window rows with the platform known
   long slipRows() const { return slip_rows_; }          // ... and the platform slipping
   // full model: max - min of the platform's scaled x over the window (-1: no trajectory row)
@@ -153,8 +155,7 @@ class RegimeWindow {
   bool platform_seen_ = false, pending_slip_ = false;
   int mode_now_ = 0;
   bool envelope_platform_ = false;
-  FrictionLaw law_ = FrictionLaw::Coulomb;
-  double mu_ = 0.0;
+  FrictionLaw law_;  // scaled
   long platform_rows_ = 0, slip_rows_ = 0;
   bool in_window_ = false;  // a row of the window has come
   double x_min_ = HUGE_VAL, x_max_ = -HUGE_VAL;

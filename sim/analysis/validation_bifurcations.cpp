@@ -142,7 +142,7 @@ std::vector<BifurcationFamilySpec> paperBifurcationFamilies(bool quick) {
   mu.name = "f4.3 in mu";
   mu.scenario = "f4.3-mu0.2";
   mu.key = "platform.friction.mu";
-  mu.set = [](ScaledParams& p, double v) { p.mu = v; };
+  mu.set = [](ScaledParams& p, double v) { p.friction = p.friction.with("mu", v); };
   mu.start = 0.2, mu.lo = 0.1, mu.hi = 0.5;
   mu.full_epsilons = eps, mu.full_points = points, mu.full_halfwidth = 0.08;
   mu.meaning =

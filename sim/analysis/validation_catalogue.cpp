@@ -59,9 +59,7 @@ Rig rigAtEpsilon(const ScaledParams& p, const std::string& name, double epsilon,
   ScaledRigInput in;
   in.name = name;
   in.epsilon = epsilon;
-  in.law = p.law;
-  in.mu = p.mu;
-  in.c = p.c;
+  in.friction = p.friction;
   for (size_t i = 0; i < p.nu.size(); ++i) {
     if (i < p.locked.size() && p.locked[i])
       throw std::invalid_argument("rigAtEpsilon: locked metronomes are not supported");

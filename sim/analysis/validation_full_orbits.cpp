@@ -161,7 +161,7 @@ std::vector<FullPointSeries> seriesOf(const FullFamilySpec& spec,
 }  // namespace
 
 std::vector<FullFamilySpec> paperFullFamilies() {
-  auto mu = [](ScaledParams& p, double v) { p.mu = v; };
+  auto mu = [](ScaledParams& p, double v) { p.friction = p.friction.with("mu", v); };
   auto alpha = [](ScaledParams& p, double v) { p.alpha.at(1) = v; };
   std::vector<FullFamilySpec> f(3);
   f[0] = {"f4.3 in mu",
@@ -223,7 +223,8 @@ void asymmetricState(const std::vector<Scenario>& scenarios, bool quick, Asymmet
   const Scenario& sc = findScenario(scenarios, "experiment-low-friction-antiphase");
   const ScaledParams q = sc.scaled;
   const std::string name = sc.spec.name;
-  a.scenario = name, a.epsilon = q.epsilon, a.mu = q.mu, a.eps_lo = kEpsLow;
+  a.scenario = name, a.epsilon = q.epsilon, a.mu = q.friction.valueOr("mu", 0.0),
+  a.eps_lo = kEpsLow;
   const ModelRun slow = runSlowModel(q, q.epsilon, q.tau_end);
   a.A_slow = slow.final().A, a.psi_slow = slow.final().psi;
   auto atEps = [&](const ScaledParams& base) {
@@ -242,9 +243,10 @@ void asymmetricState(const std::vector<Scenario>& scenarios, bool quick, Asymmet
     a.eps_ends = f.end_backward + "; " + f.end_forward;
     if (!quick) {
       std::string how;
-      const Family m =
-          settledFamily(rigsOf(q, name, q.epsilon, [](ScaledParams& p, double v) { p.mu = v; }),
-                        q.mu, 0.0, kMuHigh, how);
+      const Family m = settledFamily(
+          rigsOf(q, name, q.epsilon,
+                 [](ScaledParams& p, double v) { p.friction = p.friction.with("mu", v); }),
+          a.mu, 0.0, kMuHigh, how);
       a.mu_from = m.points.front().p, a.mu_to = m.points.back().p;
       a.mu_ends = m.end_backward + "; " + m.end_forward;
       for (const OrbitBifurcation& b : m.special)

@@ -6,6 +6,7 @@
 
 #include "base/number_text.h"
 #include "contact/averaged_response.h"
+#include "contact/law_registry.h"
 #include "sim/analysis/compare.h"
 #include "sim/parallel/worker_pool.h"
 
@@ -121,15 +122,15 @@ void queueMuSweep(const ValidationPlan& plan, const std::vector<Scenario>& scena
     tasks.push_back({b.tau_end / b.epsilon, [&res, &plan, &engines, &log, scp = &sc, k] {
                        FrictionSweepPoint& pt = res.sweep[k];
                        ScaledParams q = scp->scaled;
-                       q.mu = plan.sweep_mu[k];
-                       pt.mu = q.mu;
-                       pt.mu_bar = q.mu * std::pow(q.epsilon, 1.5);
+                       q.friction = FrictionLaw::coulomb(plan.sweep_mu[k]);
+                       pt.mu = plan.sweep_mu[k];
+                       pt.mu_bar = pt.mu * std::pow(q.epsilon, 1.5);
                        pt.slow = runSlowModel(q, q.epsilon, q.tau_end);
                        pt.full =
-                           runFullModelAt(engines, q, scp->spec.name + "-mu" + numberText(q.mu),
+                           runFullModelAt(engines, q, scp->spec.name + "-mu" + numberText(pt.mu),
                                           q.epsilon, q.tau_end);
-                       log.run("sweep mu = " + numberText(q.mu) + " slow", pt.slow);
-                       log.run("sweep mu = " + numberText(q.mu) + " full", pt.full);
+                       log.run("sweep mu = " + numberText(pt.mu) + " slow", pt.slow);
+                       log.run("sweep mu = " + numberText(pt.mu) + " full", pt.full);
                      }});
   }
 }

@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "contact/averaged_response.h"
+#include "contact/law_registry.h"
 #include "sim/analysis/validation_catalogue.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 
@@ -49,7 +50,7 @@ ModelRun modelRun(const char* model, const ScaledParams& p, double epsilon, doub
   run.model = model;
   run.epsilon = epsilon;
   run.tau_end = tau_end;
-  run.mu = p.mu;
+  run.mu = p.friction.valueOr("mu", 0.0);
   run.theta_c = p.theta_c;
   return run;
 }
@@ -70,10 +71,11 @@ ModelRun runSlowModel(const ScaledParams& p, double epsilon, double tau_end) {
     run.verdict = classifyRegime(run.envelope, tau_end, epsilon, q.theta_c, q.locked);
   // the platform at the end: the Coulomb regime of the final drive s = |Z| / mu
   const EnvelopeRow& f = run.report.final_row;
-  if (p.law == FrictionLaw::Coulomb && !f.A.empty()) {
+  if (p.friction.is(coulombLaw()) && !f.A.empty()) {
     std::complex<double> Z = f.A[0];
     for (size_t j = 1; j < f.A.size(); ++j) Z += std::polar(f.A[j], -f.psi[j - 1]);
-    const double s = p.mu > 0 ? std::abs(Z) / p.mu : std::numeric_limits<double>::infinity();
+    const double mu = run.mu;
+    const double s = mu > 0 ? std::abs(Z) / mu : std::numeric_limits<double>::infinity();
     run.platform = toString(coulombRegime(s));
   }
   return run;
@@ -100,7 +102,7 @@ ModelRun runFullModelAt(const ValidationEngines& engines, const ScaledParams& p,
     run.report.final_row = run.envelope.back();
   if (run.report.complete)
     run.verdict = classifyRegime(run.envelope, tau_end, epsilon, p.theta_c, p.locked);
-  if (p.law == FrictionLaw::Coulomb && sink.window_rows > 0) {
+  if (p.friction.is(coulombLaw()) && sink.window_rows > 0) {
     run.platform_stuck_fraction =
         static_cast<double>(sink.stuck_rows) / static_cast<double>(sink.window_rows);
     // the share of the window the platform spends at rest: "stuck" and "slipping" allow 1% for

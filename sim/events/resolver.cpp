@@ -4,9 +4,12 @@
 
 namespace metrosync {
 
-EventResolver::EventResolver(std::vector<Escapement> escapements, std::optional<CoulombLaw> coulomb,
+EventResolver::EventResolver(std::vector<Escapement> escapements, const PlatformFriction& friction,
                              double period, const std::vector<double>& theta0)
-    : esc_(std::move(escapements)), coulomb_(coulomb), period_(period) {
+    : esc_(std::move(escapements)),
+      set_valued_(friction.setValued()),
+      law_(friction.dry),
+      period_(period) {
   armed_.assign(2 * esc_.size(), 0);
   // a witness that starts below zero can cross; one already past it waits for the next swing
   for (size_t j = 0; j < esc_.size(); ++j)
@@ -17,12 +20,12 @@ WindowOutcome EventResolver::resolve(EventSystem& sys, bool platform_reported) {
   WindowOutcome out;
   const std::vector<int>& due = dueTicks(sys);
   if (!due.empty()) {
-    const PlatformMode before = coulomb_ ? sys.mode() : PlatformMode::Stuck;
+    const PlatformMode before = set_valued_ ? sys.mode() : PlatformMode::Stuck;
     applyTicks(sys, due, out);
-    if (coulomb_) modeAfterImpulse(sys, before, out);
+    if (set_valued_) modeAfterImpulse(sys, before, out);
     sys.eventRow("tick");
   }
-  if (coulomb_ && (platform_reported || !due.empty())) coulombRule(sys, out);
+  if (set_valued_ && (platform_reported || !due.empty())) coulombRule(sys, out);
   return out;
 }
 
@@ -53,7 +56,7 @@ PlatformMode EventResolver::settleAtStart(EventSystem& sys) const {
   }
   sys.snapshotBefore();
   sys.setMode(PlatformMode::Stuck);
-  const PlatformMode m = coulomb_->modeAtRest(sys.holdingForce());
+  const PlatformMode m = law_.modeAtRest(sys.holdingForce());
   if (m != PlatformMode::Stuck) {
     sys.setMode(m);
     sys.eventRow("slip");
@@ -110,15 +113,16 @@ void EventResolver::modeAfterImpulse(EventSystem& sys, PlatformMode before, Wind
   countSwitch(sys, before, m, out);
 }
 
-// --- 3. the Coulomb rule ----------------------------------------------------------------------
+// --- 3. the law's stick/slip rule
+// ----------------------------------------------------------------------
 
 void EventResolver::coulombRule(EventSystem& sys, WindowOutcome& out) {
   sys.snapshotBefore();
   const PlatformMode m = sys.mode();
   if (m == PlatformMode::Stuck) {
     const double h = sys.holdingForce();
-    if (!coulomb_->breaksFree(h)) return;
-    const PlatformMode to = CoulombLaw::slipDirection(h);
+    if (!law_.breaksFree(h)) return;
+    const PlatformMode to = SetValuedLaw::slipDirection(h);
     sys.setMode(to);
     countSwitch(sys, m, to, out);
     return;
@@ -128,8 +132,8 @@ void EventResolver::coulombRule(EventSystem& sys, WindowOutcome& out) {
 }
 
 bool EventResolver::microSlip(EventSystem& sys) const {
-  // friction alone decelerates the platform at bound * (M^-1)_xx
-  const double decel = coulomb_->bound * sys.platformMobility();
+  // kinetic friction alone decelerates the platform at bound * (M^-1)_xx
+  const double decel = law_.kineticBound() * sys.platformMobility();
   return std::abs(sys.xdot()) < kPlasticStopPeriods * period_ * decel;
 }
 
@@ -142,7 +146,7 @@ void EventResolver::stopAndSettle(EventSystem& sys, PlatformMode before, WindowO
     out.friction_out -= sys.applyImpulse(impulse_, -v / sys.platformMobility());
   }
   sys.setMode(PlatformMode::Stuck);
-  const PlatformMode after = coulomb_->modeAtRest(sys.holdingForce());
+  const PlatformMode after = law_.modeAtRest(sys.holdingForce());
   if (after != PlatformMode::Stuck) sys.setMode(after);
   countSwitch(sys, before, after, out);
 }

@@ -4,22 +4,21 @@
 //   1. ticks: every pendulum whose escapement is due on an armed side (contact/escapement.h),
 //      whichever witnesses were reported and in whatever order, is applied as ONE combined
 //      generalized impulse through the mass matrix with the platform free;
-//   2. the platform after the impulse (Coulomb): a stuck platform still at xdot == 0 exactly
-//      stays stuck; any other velocity is a slip in its direction;
-//   3. the platform's Coulomb rule on the resulting state: a stuck platform whose holding force
-//      has reached the bound breaks free; a slip whose velocity has reached zero (or passed it)
-//      stops; a slip that friction would stop within kPlasticStopPeriods of a period stops at
-//      once. Every stop is plastic: friction's impulse on x alone through M^-1, the pendulums
-//      taking the reaction, so momentum is exact; then the law's mode at rest.
+//   2. the platform after the impulse (a set-valued law, contact/set_valued_law.h): a stuck
+//      platform still at xdot == 0 exactly stays stuck; any other velocity is a slip its way;
+//   3. the law's stick/slip rule on the resulting state: a stuck platform whose holding force
+//      has reached the static bound breaks free; a slip whose velocity has reached zero (or
+//      passed it) stops; a slip that friction would stop within kPlasticStopPeriods of a period
+//      stops at once. Every stop is plastic: friction's impulse on x alone through M^-1, the
+//      pendulums taking the reaction, so momentum is exact; then the law's mode at rest.
 //   4. counts and event rows.
 // No tolerance ever zeroes a velocity without its reaction, and nothing is disarmed by time.
 #pragma once
 
-#include <optional>
 #include <vector>
 
-#include "contact/coulomb.h"
 #include "contact/escapement.h"
+#include "contact/platform_friction.h"
 #include "sim/events/event_system.h"
 
 namespace metrosync {
@@ -43,10 +42,11 @@ class EventResolver {
   // come from (nearly) cancelling ticks and from huge friction coefficients.
   static constexpr double kPlasticStopPeriods = 1e-6;
 
-  // escapements: one per pendulum (engine order); coulomb: empty when the platform's law is not
-  // set-valued; period: the fast period in the engine's time unit. `theta0` is the start state's
-  // angles: a side already past its critical angle at the start is disarmed.
-  EventResolver(std::vector<Escapement> escapements, std::optional<CoulombLaw> coulomb,
+  // escapements: one per pendulum (engine order); friction: the platform's law (the stick/slip
+  // rules run only for a set-valued one, contact/set_valued_law.h); period: the fast period in the
+  // engine's time unit. `theta0` is the start state's angles: a side already past its critical
+  // angle at the start is disarmed.
+  EventResolver(std::vector<Escapement> escapements, const PlatformFriction& friction,
                 double period, const std::vector<double>& theta0);
 
   // Resolves a window on sys's state. platform_reported: the platform's witness crossed.
@@ -61,7 +61,7 @@ class EventResolver {
 
   // A platform whose support moved under it (a network of platforms: an impulse on the platform
   // it rests on changed its slip velocity): its mode after that impulse, as after its own ticks
-  // (step 2, micro-slips stopped plastically), then the Coulomb rule (step 3).
+  // (step 2, micro-slips stopped plastically), then the stick/slip rule (step 3).
   WindowOutcome settleAfterSupportImpulse(EventSystem& sys);
 
   // The platform's mode at the start: at xdot == 0 the law's mode at rest (a "slip" row if it
@@ -80,7 +80,8 @@ class EventResolver {
                           WindowOutcome& out);
 
   std::vector<Escapement> esc_;
-  std::optional<CoulombLaw> coulomb_;
+  bool set_valued_;   // the platform's law has stick and slip (else no platform rule applies)
+  SetValuedLaw law_;  // set_valued_ only
   double period_;
   std::vector<char> armed_;  // (2n x 1): [2j] side -1, [2j+1] side +1
   // scratch of one window, kept so that a window allocates nothing: the due ticks, (n x 1)

@@ -5,8 +5,8 @@
 // risingSign() and locates the crossing on its dense output.
 #pragma once
 
-#include "contact/coulomb.h"
 #include "contact/escapement.h"
+#include "contact/set_valued_law.h"
 #include "models/slow_flow.h"
 
 namespace metrosync {
@@ -42,12 +42,13 @@ struct TickWitness {
   double value(const Escapement& e, double theta) const { return e.witness(theta, side); }
 };
 
-// The platform under Coulomb friction: falls through zero at its next switch.
-//   stuck:    the stick margin bound - |H| (friction can no longer hold it: stick -> slip)
+// The platform under a set-valued friction law (contact/set_valued_law.h): falls through zero at
+// its next switch.
+//   stuck:    the stick margin static bound - |H| (friction can no longer hold it: stick -> slip)
 //   slipping: mode * xdot (the slip's velocity reaches zero: it stops or reverses)
 struct PlatformWitness {
   static constexpr Direction kDirection = Direction::Falling;
-  static double value(const CoulombLaw& law, PlatformMode mode, double xdot, double holding) {
+  static double value(const SetValuedLaw& law, PlatformMode mode, double xdot, double holding) {
     if (mode == PlatformMode::Stuck) return law.stickMargin(holding);
     return static_cast<int>(mode) * xdot;
   }

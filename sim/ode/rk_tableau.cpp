@@ -83,14 +83,8 @@ RkTableau makeDopri5() {
 // worse again. The work-precision fronts of docs/bench/speed/ are measured with it.
 constexpr double kVernerPiBeta = 0.05;
 
-RkTableau makeVerner65() {
-  // 9 stages per step (the 9th, c = 1 with a = b, is f(t1, y1)); 3 more for the interpolant
-  RkTableau t = sized("verner65", 9, 12, 6);
-  t.order = 6;
-  t.error_order = 5;
-  t.fsal = true;
-  t.pi_beta = kVernerPiBeta;
-  std::vector<double> bhat(9, 0.0);
+// makeVerner65: the nodes c and the stages' coefficients a
+void verner65Stages(RkTableau& t) {
   t.c[1] = .6e-1;
   t.c[2] = .9593333333333333333333333333333333333333e-1;
   t.c[3] = .1439;
@@ -155,6 +149,10 @@ RkTableau makeVerner65() {
   t.a[11][8] = -1.075694020996303327721922083840048543815;
   t.a[11][9] = -3.231539970732086111815287724591251178493;
   t.a[11][10] = -4.707539085458634781568599908721077305888;
+}
+
+// makeVerner65: the solution's weights b and the embedded pair's bhat
+void verner65Weights(RkTableau& t, std::vector<double>& bhat) {
   t.b[0] = .3438957868357036009278820124728322386520e-1;
   t.b[3] = .2582624555633503404659558098586120858767;
   t.b[4] = .4209371189673537150642551514069801967032;
@@ -167,6 +165,10 @@ RkTableau makeVerner65() {
   bhat[5] = .8065792249988867707634161808995217981443;
   bhat[7] = -.6071194891777959797672951465256217122488;
   bhat[8] = .5686113944047569241147603178766138153594e-1;
+}
+
+// makeVerner65: the dense output's polynomials
+void verner65Interpolant(RkTableau& t) {
   t.p[0][0] = 1.;
   t.p[0][1] = -7.778593856495575136226418215566379752761;
   t.p[0][2] = 27.05243857226709904520065977500082888716;
@@ -218,19 +220,27 @@ RkTableau makeVerner65() {
   t.p[11][3] = -204.0451560169727241908912630729337947505;
   t.p[11][4] = 190.4813593783585673285592182591371561363;
   t.p[11][5] = -63.49378645945285577618640608637905204545;
+}
+
+RkTableau makeVerner65() {
+  // 9 stages per step (the 9th, c = 1 with a = b, is f(t1, y1)); 3 more for the interpolant
+  RkTableau t = sized("verner65", 9, 12, 6);
+  t.order = 6;
+  t.error_order = 5;
+  t.fsal = true;
+  t.pi_beta = kVernerPiBeta;
+  std::vector<double> bhat(9, 0.0);
+  verner65Stages(t);
+  verner65Weights(t, bhat);
+  verner65Interpolant(t);
   setError(t, bhat);
   return t;
 }
 
-RkTableau makeVerner76() {
-  // 10 stages per step plus the FSAL stage f(t1, y1) (stage 9, also at c = 1, serves only the
-  // error estimate); 5 more for the interpolant
-  RkTableau t = sized("verner76", 11, 16, 7);
-  t.order = 7;
-  t.error_order = 6;
-  t.fsal = true;
-  t.pi_beta = kVernerPiBeta;
-  std::vector<double> bhat(11, 0.0);
+// makeVerner76: the nodes c and the stages' coefficients a
+void verner76StagesLate(RkTableau& t);
+
+void verner76Stages(RkTableau& t) {
   t.c[1] = .5000000000000000000000000000000000000000e-2;
   t.c[2] = .1088888888888888888888888888888888888889;
   t.c[3] = .1633333333333333333333333333333333333333;
@@ -258,6 +268,11 @@ RkTableau makeVerner76() {
   t.a[5][2] = 10.80451388645613769565396655365532838482;
   t.a[5][3] = -8.353914657396199411968048547819291691541;
   t.a[5][4] = .8204875949566569791420417341743839209619;
+  verner76StagesLate(t);
+}
+
+// verner76: the coefficients a of stages 6 and on (the interpolant's extra stages included)
+void verner76StagesLate(RkTableau& t) {
   t.a[6][0] = 6.067741434696770992718360183877276714679;
   t.a[6][2] = -24.71127363591108579734203485290746001803;
   t.a[6][3] = 20.42751793078889394045773111748346612697;
@@ -336,6 +351,10 @@ RkTableau makeVerner76() {
   t.a[15][10] = -.6377932504865363437569726480040013149706e-2;
   t.a[15][11] = -.1732549590836186403386348310205265959935;
   t.a[15][12] = -.1822815677762202619429607513861847306420;
+}
+
+// makeVerner76: the solution's weights b and the embedded pair's bhat
+void verner76Weights(RkTableau& t, std::vector<double>& bhat) {
   t.b[0] = .4715561848627222170431765108838175679569e-1;
   t.b[3] = .2575056429843415189596436101037687580986;
   t.b[4] = .2621665397741262047713863095764527711129;
@@ -349,6 +368,10 @@ RkTableau makeVerner76() {
   bhat[5] = .2188431703143156830983120833512893824578;
   bhat[6] = .2289871705411202883378173889763552365362;
   bhat[9] = .2029518466335628222767054793810430358554e-1;
+}
+
+// makeVerner76: the dense output's polynomials
+void verner76Interpolant(RkTableau& t) {
   t.p[0][0] = 1.;
   t.p[0][1] = -8.413387198332767469319987751201351965810;
   t.p[0][2] = 33.67550888449089654479469983556967202215;
@@ -428,6 +451,20 @@ RkTableau makeVerner76() {
   t.p[15][4] = 732.8314489076540326880337353277812147333;
   t.p[15][5] = -606.3044574733512377981129469949015057785;
   t.p[15][6] = 188.0495196316683024640077644607192667895;
+}
+
+RkTableau makeVerner76() {
+  // 10 stages per step plus the FSAL stage f(t1, y1) (stage 9, also at c = 1, serves only the
+  // error estimate); 5 more for the interpolant
+  RkTableau t = sized("verner76", 11, 16, 7);
+  t.order = 7;
+  t.error_order = 6;
+  t.fsal = true;
+  t.pi_beta = kVernerPiBeta;
+  std::vector<double> bhat(11, 0.0);
+  verner76Stages(t);
+  verner76Weights(t, bhat);
+  verner76Interpolant(t);
   setError(t, bhat);
   return t;
 }

@@ -12,7 +12,8 @@
 
 namespace metrosync {
 
-// Receives the state at every sample time (simulation.sample, default period/20) and at the end.
+// Receives the state at every sample time (simulation.sample, default period/20) strictly before
+// the run's end, then its final state: at exactly the requested end when the run completed.
 struct NetworkSink {
   virtual ~NetworkSink() = default;
   // y in the layout of network::Layout (models/network_equations.h: x_p, xdot_p, ..., theta_j,
@@ -30,9 +31,11 @@ struct NetworkRunReport {
   long steps = 0, rhs_evals = 0, events = 0, stick_slip = 0, slip_reversals = 0;
   std::vector<long> ticks;  // per metronome, global numbering (locked ones stay 0)
   EnergyLedger ledger;      // damping_out_J includes the ground and coupling dampers
-  double t_end = 0.0;
+  double t_end = 0.0;       // the requested end exactly when complete, else where the run stopped
   std::vector<double> final_state;  // in the layout of network::Layout
   double fast_period_s = 0.0;       // 2 pi / omega0 of the network's first swinging pendulum
+  // as a single run's (sim/record/run_report.h): the whole run, and its part outside the sink
+  double wall_seconds = 0.0, engine_seconds = 0.0;
 };
 
 }  // namespace metrosync

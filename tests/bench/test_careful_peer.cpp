@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/law_registry.h"
 #include "tests/common/run_metrosync.h"
 #include "tools/bench/bench_run.h"
 #include "tools/bench/careful_peer.h"
@@ -135,16 +136,24 @@ TEST(PeerScene, WhatThePeerLacksIsSaid) {
   EXPECT_NE(why([](metrosync::Rig& r) { r.platform.spring_N_m = 3; }).find("spring"),
             std::string::npos);
   EXPECT_NE(why([](metrosync::Rig& r) {
-              r.platform.law = metrosync::FrictionLaw::Viscous;
+              r.platform.friction = metrosync::FrictionLaw::viscous(0.05);
             }).find("viscous"),
             std::string::npos);
+  EXPECT_NE(why([](metrosync::Rig& r) {
+              r.platform.friction = metrosync::FrictionLaw::fixed();
+            }).find("fixed"),
+            std::string::npos);
+  // static friction above kinetic: the peer has Coulomb's law only
   EXPECT_NE(
-      why([](metrosync::Rig& r) { r.platform.law = metrosync::FrictionLaw::Fixed; }).find("fixed"),
+      why([](metrosync::Rig& r) {
+        r.platform.friction = metrosync::FrictionLaw(metrosync::staticCoulombLaw(), {1e-3, 2e-3});
+      }).find("static friction"),
       std::string::npos);
   // no friction at all is the peer's free platform (mu = 0)
-  EXPECT_EQ(why([](metrosync::Rig& r) { r.platform.law = metrosync::FrictionLaw::None; }), "");
+  EXPECT_EQ(why([](metrosync::Rig& r) { r.platform.friction = metrosync::FrictionLaw::none(); }),
+            "");
   metrosync::Rig none = base.rig;
-  none.platform.law = metrosync::FrictionLaw::None;
+  none.platform.friction = metrosync::FrictionLaw::none();
   EXPECT_EQ(argMap(mb::peerSceneArguments(mb::sceneFromRig("x", none))).at("--mu")[0], 0.0);
 }
 

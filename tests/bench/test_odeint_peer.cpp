@@ -64,8 +64,7 @@ metrosync::Rig wittnerRig(int n, double periods) {
   metrosync::Rig rig;
   rig.name = "n" + std::to_string(n);
   rig.platform.mass_kg = 0.8;
-  rig.platform.law = metrosync::FrictionLaw::Coulomb;
-  rig.platform.mu_bar = 1e-4;
+  rig.platform.friction = metrosync::FrictionLaw::coulomb(1e-4);
   std::mt19937 gen(11);
   std::uniform_real_distribution<double> phase(0.0, 6.283185307179586);
   const double w0 = std::sqrt(9.81 / 0.0225);
@@ -130,7 +129,10 @@ TEST(OdeintPeer, AgreesWithTheDirectEngineForAnyNumberOfMetronomes) {
 }
 
 TEST(OdeintPeer, AgreesUnderEveryFrictionLaw) {
-  for (const char* law : {"{law: viscous, c: 0.05}", "{law: none}", "{law: fixed}"}) {
+  // static friction above kinetic too: the peer's own stick/slip rule (tools/bench/odeint_peer)
+  // against the engine's event resolver
+  for (const char* law : {"{law: viscous, c: 0.05}", "{law: none}", "{law: fixed}",
+                          "{law: coulomb, mu: 6.5e-4, mu_static: 1.3e-3}"}) {
     const mb::Scene scene =
         mb::loadScene(benchRig("experiment-short"), {std::string("platform.friction=") + law});
     const mb::RunResult ref = run(scene, "direct:verner76:1e-12");

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tests/common/run_metrosync.h"
+#include "yaml/rig_loader.h"
 
 namespace metrosync {
 namespace {
@@ -153,26 +154,26 @@ TEST(KeysCli, MessagesQuoteWhatWasTyped) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-// `fit --free metronomes.*.X` reaches fit as one group of every metronome's X: fit cannot fit a
-// shared value yet and says so naming the key as typed (and no --set the user did not type); a
-// wildcard over one element is that element.
+// `fit --free metronomes.*.X` reaches fit as one group of every metronome's X, fitted as one shared
+// value (issue 27): fit.json names it as typed and lists the rig keys behind it, and fitted.yaml
+// gives every metronome the one value.
 TEST(KeysCli, FreeWildcardReachesFitAsOneGroup) {
   const std::string rig = kRigs + "experiment.yaml";
   const std::string d = scratchDir("keys", "fit", true);
   const std::string data = d + "/data.csv";
-  std::ofstream(data) << "t,theta_1\n0,0.5\n0.01,0.49\n0.02,0.47\n";
-  const CommandResult r =
-      runMetrosync("fit " + shellQuote(rig) + " " + shellQuote(data) +
-                   " --free 'metronomes.*.pendulum.decay_rate' -q --out " + shellQuote(d + "/o"));
-  EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_EQ(r.err.rfind("metrosync: error: --free metronomes.*.pendulum.decay_rate: the key stands "
-                        "for 2 rig keys (metronomes.0.pendulum.decay_rate ... "
-                        "metronomes.1.pendulum.decay_rate), to be fitted as one shared value",
-                        0),
-            0u)
-      << r.err;
-  EXPECT_EQ(r.err.find("--set"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists(d + "/o"));
+  std::ofstream(data) << "t,theta_1\n0,0.785\n0.01,0.77\n0.02,0.72\n0.03,0.65\n";
+  const CommandResult r = runMetrosync("fit " + shellQuote(rig) + " " + shellQuote(data) +
+                                       " --free 'metronomes.*.pendulum.decay_rate' --no-plot -q "
+                                       "--out " +
+                                       shellQuote(d + "/o"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(slurp(d + "/o/fit.json"));
+  EXPECT_EQ(j["free"], nlohmann::json({"metronomes.*.pendulum.decay_rate"}));
+  EXPECT_EQ(
+      j["keys"]["metronomes.*.pendulum.decay_rate"],
+      nlohmann::json({"metronomes.0.pendulum.decay_rate", "metronomes.1.pendulum.decay_rate"}));
+  const Rig fitted = loadRigFile(d + "/o/fitted.yaml");
+  EXPECT_EQ(fitted.metronomes[0].damping_kg_s, fitted.metronomes[1].damping_kg_s);
 }
 
 }  // namespace

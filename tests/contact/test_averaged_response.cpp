@@ -9,12 +9,14 @@
 #include <limits>
 #include <vector>
 
+#include "base/constants.h"
 #include "contact/averaged_response.h"
+#include "contact/friction_law.h"
+#include "contact/law_registry.h"
 
 namespace metrosync {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 const double kSb = std::sqrt(1.0 + kPi * kPi / 4.0);
 
 // Gauss-Legendre nodes and weights on [-1, 1] (Newton on P_n): exact for polynomials of degree
@@ -391,23 +393,31 @@ TEST(ViscousResponse, MatchesATimeSteppedPlatform) {
   EXPECT_EQ(viscousResponse(0.0).beta2, 0.0);
 }
 
-TEST(AveragedResponse, DispatchesOnTheFrictionLaw) {
-  const AveragedResponse c = averagedResponse(FrictionLaw::Coulomb, 0.4, 0.0, 0.6);
+TEST(AveragedResponse, EachLawCarriesItsOwn) {
+  auto at = [](const FrictionLaw& law, double A) { return law.slowResponse().at(A); };
+  const AveragedResponse c = at(FrictionLaw::coulomb(0.4), 0.6);
   EXPECT_EQ(c.beta1, coulombBeta1(0.6 / 0.4));
   EXPECT_EQ(c.beta2, coulombBeta2(0.6 / 0.4));
-  const AveragedResponse free = averagedResponse(FrictionLaw::Coulomb, 0.0, 0.0, 0.6);
+  const AveragedResponse free = at(FrictionLaw::coulomb(0.0), 0.6);
   EXPECT_EQ(free.beta1, 0.5);
   EXPECT_EQ(free.beta2, 0.0);
-  const AveragedResponse none = averagedResponse(FrictionLaw::None, 0.3, 0.2, 2.0);
+  const AveragedResponse none = at(FrictionLaw::none(), 2.0);
   EXPECT_EQ(none.beta1, 0.5);
   EXPECT_EQ(none.beta2, 0.0);
-  const AveragedResponse fixed = averagedResponse(FrictionLaw::Fixed, 0.3, 0.2, 2.0);
+  const AveragedResponse fixed = at(FrictionLaw::fixed(), 2.0);
   EXPECT_EQ(fixed.beta1, 0.0);
   EXPECT_EQ(fixed.beta2, 0.0);
-  const AveragedResponse visc = averagedResponse(FrictionLaw::Viscous, 0.0, 0.5, 2.0);
+  const AveragedResponse visc = at(FrictionLaw::viscous(0.5), 2.0);
   EXPECT_DOUBLE_EQ(visc.beta1, 1.0 / 2.5);
   EXPECT_DOUBLE_EQ(visc.beta2, 0.5 / 2.5);
-  EXPECT_THROW(averagedResponse(FrictionLaw::Coulomb, -0.1, 0.0, 1.0), std::invalid_argument);
+  EXPECT_THROW(at(FrictionLaw::coulomb(-0.1), 1.0), std::invalid_argument);
+  // static friction: Coulomb's response at mu_static == mu, none derived above it
+  const AveragedResponse equal = at(FrictionLaw(staticCoulombLaw(), {0.4, 0.4}), 0.6);
+  EXPECT_EQ(equal.beta1, c.beta1);
+  EXPECT_EQ(equal.beta2, c.beta2);
+  const FrictionLaw above(staticCoulombLaw(), {0.4, 0.5});
+  EXPECT_EQ(above.slowResponse().kind, SlowResponse::Kind::None);
+  EXPECT_THROW(at(above, 0.6), std::invalid_argument);
 }
 
 }  // namespace

@@ -1,23 +1,28 @@
-// CoulombLaw, the one rule both engines use for the platform's stick and slip; the escapement
+// SetValuedLaw, the one rule both engines use for the platform's stick and slip; the escapement
 // rule; the platform's law as both engines query it. Property tests over many random inputs and
 // at the exact ties (|holding| == bound, xdot == 0 exactly, |theta| == theta_c).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
+#include <vector>
 
-#include "contact/coulomb.h"
 #include "contact/escapement.h"
+#include "contact/friction_law.h"
+#include "contact/law_registry.h"
 #include "contact/platform_friction.h"
+#include "contact/set_valued_law.h"
 
 namespace metrosync {
 namespace {
 
 constexpr int kTrials = 20000;
 
-TEST(CoulombLaw, HoldsStrictlyInsideTheBoundAndBreaksFreeAtIt) {
-  const CoulombLaw law{2.0};
+TEST(SetValuedLaw, HoldsStrictlyInsideTheBoundAndBreaksFreeAtIt) {
+  const SetValuedLaw law = SetValuedLaw::coulomb(2.0);
   const double below = std::nextafter(2.0, 0.0);
   EXPECT_FALSE(law.breaksFree(0.0));
   EXPECT_FALSE(law.breaksFree(below));
@@ -28,27 +33,27 @@ TEST(CoulombLaw, HoldsStrictlyInsideTheBoundAndBreaksFreeAtIt) {
   EXPECT_TRUE(law.breaksFree(std::numeric_limits<double>::quiet_NaN()));  // never "holds" NaN
 }
 
-TEST(CoulombLaw, SlipsAgainstTheNeededHoldingForce) {
-  const CoulombLaw law{1.0};
+TEST(SetValuedLaw, SlipsAgainstTheNeededHoldingForce) {
+  const SetValuedLaw law = SetValuedLaw::coulomb(1.0);
   // friction would have to push +x to hold: the other forces push -x
   EXPECT_EQ(law.modeAtRest(1.5), PlatformMode::SlipNegative);
   EXPECT_EQ(law.modeAtRest(-1.5), PlatformMode::SlipPositive);
   EXPECT_EQ(law.modeAtRest(0.3), PlatformMode::Stuck);
   // the kinetic force opposes the slip
-  EXPECT_EQ(law.slipForce(PlatformMode::SlipPositive), -1.0);
-  EXPECT_EQ(law.slipForce(PlatformMode::SlipNegative), 1.0);
-  EXPECT_EQ(law.slipForce(PlatformMode::Stuck), 0.0);
+  EXPECT_EQ(law.kineticForce(PlatformMode::SlipPositive), -1.0);
+  EXPECT_EQ(law.kineticForce(PlatformMode::SlipNegative), 1.0);
+  EXPECT_EQ(law.kineticForce(PlatformMode::Stuck), 0.0);
   EXPECT_DOUBLE_EQ(law.stickMargin(-0.25), 0.75);
 }
 
 // The decisions must be one rule: whatever the input, canHold, breaksFree, modeAtRest and the
 // sign of the stick margin say the same thing, and a slip from rest goes the way the other forces
 // push (against the holding force).
-void expectConsistent(const CoulombLaw& law, double h) {
+void expectConsistent(const SetValuedLaw& law, double h) {
   const bool hold = law.canHold(h);
-  EXPECT_EQ(hold, !law.breaksFree(h)) << "h " << h << " bound " << law.bound;
+  EXPECT_EQ(hold, !law.breaksFree(h)) << "h " << h << " bound " << law.staticBound();
   EXPECT_EQ(hold, law.modeAtRest(h) == PlatformMode::Stuck) << "h " << h;
-  EXPECT_EQ(hold, law.stickMargin(h) > 0) << "h " << h << " bound " << law.bound;
+  EXPECT_EQ(hold, law.stickMargin(h) > 0) << "h " << h << " bound " << law.staticBound();
   if (!hold) {
     EXPECT_LE(static_cast<int>(law.modeAtRest(h)) * h, 0.0) << "h " << h;
   }
@@ -60,26 +65,26 @@ void expectConsistent(const CoulombLaw& law, double h) {
   EXPECT_EQ(law.modeAt(-tiny, h), PlatformMode::SlipNegative);
 }
 
-TEST(CoulombLaw, OneRuleOverRandomInputs) {
+TEST(SetValuedLaw, OneRuleOverRandomInputs) {
   std::mt19937_64 rng(20261123);
   std::uniform_real_distribution<double> mag(-3.0, 3.0), exp10(-12.0, 12.0);
   for (int k = 0; k < kTrials; ++k) {
-    const CoulombLaw law{std::pow(10.0, exp10(rng))};
-    expectConsistent(law, mag(rng) * law.bound);
+    const SetValuedLaw law = SetValuedLaw::coulomb(std::pow(10.0, exp10(rng)));
+    expectConsistent(law, mag(rng) * law.staticBound());
     expectConsistent(law, std::pow(10.0, exp10(rng)) * (k % 2 ? 1 : -1));
   }
 }
 
-TEST(CoulombLaw, OneRuleAtTheExactTies) {
+TEST(SetValuedLaw, OneRuleAtTheExactTies) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> exp10(-12.0, 12.0);
   for (int k = 0; k < kTrials; ++k) {
-    const CoulombLaw law{std::pow(10.0, exp10(rng))};
-    for (double h : {law.bound, -law.bound}) {
+    const SetValuedLaw law = SetValuedLaw::coulomb(std::pow(10.0, exp10(rng)));
+    for (double h : {law.staticBound(), -law.staticBound()}) {
       expectConsistent(law, h);
       EXPECT_FALSE(law.canHold(h)) << "a tie breaks free";
       EXPECT_EQ(law.stickMargin(h), 0.0);
-      EXPECT_EQ(law.modeAtRest(h), CoulombLaw::slipDirection(h));
+      EXPECT_EQ(law.modeAtRest(h), SetValuedLaw::slipDirection(h));
       // one ulp inside holds
       const double inside = std::nextafter(h, 0.0);
       expectConsistent(law, inside);
@@ -87,12 +92,14 @@ TEST(CoulombLaw, OneRuleAtTheExactTies) {
     }
   }
   // a zero bound (mu = 0) holds nothing, not even a zero force
-  expectConsistent(CoulombLaw{0.0}, 0.0);
-  EXPECT_FALSE(CoulombLaw{0.0}.canHold(0.0));
+  expectConsistent(SetValuedLaw::coulomb(0.0), 0.0);
+  EXPECT_FALSE(SetValuedLaw::coulomb(0.0).canHold(0.0));
 }
 
-TEST(CoulombLaw, BoundIsTheCoefficientTimesTheNormalForce) {
-  EXPECT_DOUBLE_EQ(CoulombLaw::fromCoefficient(0.25, 8.0).bound, 2.0);
+TEST(SetValuedLaw, BoundIsTheCoefficientTimesTheNormalForce) {
+  const SetValuedLaw law = FrictionLaw::coulomb(0.25).platform(8.0).dry;
+  EXPECT_DOUBLE_EQ(law.staticBound(), 2.0);
+  EXPECT_DOUBLE_EQ(law.kineticBound(), 2.0);
 }
 
 TEST(Escapement, DueExactlyFromTheSlackOutwards) {
@@ -122,25 +129,25 @@ TEST(Escapement, DueExactlyFromTheSlackOutwards) {
   EXPECT_FALSE((Escapement{0.9, 0.0}.due(1.0, 1.0)));  // no escapement
 }
 
-TEST(PlatformFriction, EveryLawDissipatesAndOnlyCoulombIsSetValued) {
+TEST(PlatformFriction, EveryLawDissipatesAndOnlyTheCoulombLawsAreSetValued) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> v_dist(-10.0, 10.0), c_dist(0.0, 5.0);
-  for (FrictionLaw law :
-       {FrictionLaw::Coulomb, FrictionLaw::Viscous, FrictionLaw::None, FrictionLaw::Fixed}) {
-    PlatformFriction f;
-    f.law = law;
-    f.coulomb.bound = c_dist(rng);
-    f.viscous.c = c_dist(rng);
-    EXPECT_EQ(f.setValued(), law == FrictionLaw::Coulomb);
+  for (const LawKind* kind : lawRegistry()) {
+    std::vector<double> values;
+    for (std::size_t k = 0; k < kind->parameters().size(); ++k) values.push_back(c_dist(rng));
+    std::sort(values.begin(), values.end());  // mu_static >= mu
+    const FrictionLaw law(*kind, values);
+    const PlatformFriction f = law.platform(c_dist(rng));
+    EXPECT_EQ(f.setValued(), law.name() == std::string("coulomb")) << law.name();
     for (int k = 0; k < 1000; ++k) {
       const double v = v_dist(rng);
       const PlatformMode m = v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative;
-      EXPECT_GE(f.power(v, m), 0.0) << toString(law);
+      EXPECT_GE(f.power(v, m), 0.0) << law.name();
       EXPECT_EQ(f.power(v, m), -f.force(v, m) * v);
     }
-    EXPECT_EQ(f.force(0.0, PlatformMode::Stuck), 0.0) << toString(law);
+    EXPECT_EQ(f.force(0.0, PlatformMode::Stuck), 0.0) << law.name();
   }
-  PlatformFriction viscous{FrictionLaw::Viscous, {}, {0.5}};
+  const PlatformFriction viscous = FrictionLaw::viscous(0.5).platform(1.0);
   EXPECT_DOUBLE_EQ(viscous.force(2.0, PlatformMode::Stuck), -1.0);
 }
 

@@ -29,20 +29,34 @@ TEST(Border, EscapementSwitchFoundWhereAEqualsThetaC) {
   ContinuationSettings s;
   s.p_min = 0.05, s.p_max = 0.9, s.step = 0.02, s.step_max = 0.05;
   const auto branches = continueFrom(prob.system(), *x, 0.9, s);
-  int found = 0;
+  int found = 0, left = 0;
   for (const Branch& b : branches)
     for (const Bifurcation& e : b.special) {
       if (e.type != BifurcationType::Border) continue;
       const Vec xb = e.point.y.head(prob.system().n);
       const auto A = prob.amplitudes(xb);
-      if (e.border == 1) {
+      if (e.border == 1 && e.detail.find("boundary equilibrium") != std::string::npos) {
         ++found;
         EXPECT_NEAR(A[1], e.point.p(), 1e-10);  // on the border: |z_2| = theta_c,2
         EXPECT_EQ(e.point.region[1], 0);        // reached from the disengaged side
         EXPECT_NE(e.detail.find("A_2 = theta_c"), std::string::npos) << e.detail;
+      } else if (e.border == 1) {
+        ++left;
+        EXPECT_NEAR(A[1], e.point.p(), 1e-10);    // it leaves the border on it
+        EXPECT_EQ(e.point.region[1], kOnBorder);  // from the border states
       }
     }
   EXPECT_EQ(found, 1);
+  EXPECT_EQ(left, 1);
+  // through the border: on to the end of the range, with ticking states past it
+  bool ticking = false, at_end = false;
+  for (const Branch& b : branches)
+    for (const BranchPoint& q : b.points) {
+      ticking = ticking || q.region[1] == 1;
+      at_end = at_end || q.p() == s.p_min;
+    }
+  EXPECT_TRUE(ticking);
+  EXPECT_TRUE(at_end);
   // every point lies in the region whose formulas it solves (or on its border)
   for (const Branch& b : branches)
     for (const BranchPoint& q : b.points) {

@@ -27,7 +27,7 @@ TEST(ContinueCli, F44FilesAndTheFold) {
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string csv = slurp(out + "/branches.csv");
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "branch,metronomes.1.alpha,A_1,A_2,psi_2,stable,max_real,ticking,platform,s");
+            "branch,metronomes.1.alpha,A_1,A_2,psi_2,stable,max_real,ticking,platform,s,weight");
   const auto bif = nlohmann::json::parse(slurp(out + "/bifurcations.json"));
   int folds = 0;
   for (const auto& b : bif) {

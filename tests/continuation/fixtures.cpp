@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/constants.h"
 #include "contact/averaged_response.h"
 #include "yaml/rig_loader.h"
 
@@ -18,8 +19,7 @@ double smallestMu(double s, double nu);
 ScaledParams singleMetronome(double mu) {
   ScaledParams p;
   p.epsilon = 0.073;
-  p.law = FrictionLaw::Coulomb;
-  p.mu = mu;
+  p.friction = FrictionLaw::coulomb(mu);
   p.nu = {0.7};
   p.J = {2.8};
   p.theta_c = {0.9};
@@ -45,8 +45,8 @@ Vec singleTicking(const SlowFlowProblem& prob, double mu) {
   // dA/dtau = -beta2(A/mu) A - nu A / 2 + (J/pi) sqrt(1 - theta_c^2/A^2) (e3.1a, N = 1): it is
   // < 0 for large A, > 0 just above the upper root; bisect from A = 10 down to A_star
   auto rate = [&](double A) {
-    return -coulombBeta2(A / p.mu) * A - p.nu[0] * A / 2 +
-           p.J[0] / M_PI * std::sqrt(1 - p.theta_c[0] * p.theta_c[0] / (A * A));
+    return -coulombBeta2(A / *p.friction.value("mu")) * A - p.nu[0] * A / 2 +
+           p.J[0] / kPi * std::sqrt(1 - p.theta_c[0] * p.theta_c[0] / (A * A));
   };
   double lo = *p.A_star[0] * 0.999, hi = 10;
   while (rate(lo) < 0) lo = 0.5 * (lo + p.theta_c[0]);
@@ -73,7 +73,7 @@ double worstResidual(const SlowFlowProblem& prob, const std::vector<Branch>& bra
 }
 
 double amplitudeRate(double A, double s, double nu) {
-  return -coulombBeta2(s) * A - nu * A / 2 + kJ / M_PI * std::sqrt(1 - kThetaC * kThetaC / (A * A));
+  return -coulombBeta2(s) * A - nu * A / 2 + kJ / kPi * std::sqrt(1 - kThetaC * kThetaC / (A * A));
 }
 
 namespace {
@@ -112,6 +112,26 @@ double closedFormFoldMu(double nu, double s_lo, double s_hi) {
       lo = a;
   }
   return smallestMu(0.5 * (lo + hi), nu);
+}
+
+std::vector<std::complex<double>> rk4SlowFlow(const ScaledParams& p, const SlowFlowModes& modes,
+                                              std::vector<std::complex<double>> z, double T,
+                                              int n) {
+  using Z = std::vector<std::complex<double>>;
+  const double h = T / n;
+  auto f = [&](const Z& w) { return slowFlowRhs(p, modes, w); };
+  auto axpy = [](const Z& a, double s, const Z& b) {
+    Z r(a.size());
+    for (size_t i = 0; i < a.size(); ++i) r[i] = a[i] + s * b[i];
+    return r;
+  };
+  for (int k = 0; k < n; ++k) {
+    const Z k1 = f(z), k2 = f(axpy(z, h / 2, k1)), k3 = f(axpy(z, h / 2, k2)),
+            k4 = f(axpy(z, h, k3));
+    for (size_t i = 0; i < z.size(); ++i)
+      z[i] += h / 6 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+  }
+  return z;
 }
 
 }  // namespace metrosync::continuation::testing

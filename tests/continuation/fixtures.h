@@ -2,9 +2,12 @@
 // branch in mu) and the paper's f4.4 rig in alpha.
 #pragma once
 
+#include <complex>
 #include <string>
+#include <vector>
 
 #include "models/scaling.h"
+#include "models/slow_flow.h"
 #include "sim/analysis/continuation/arclength.h"
 #include "sim/analysis/continuation/slow_flow_problem.h"
 #include "sim/analysis/continuation/start_states.h"
@@ -33,5 +36,10 @@ double closedFormFoldMu(double nu, double s_lo = 1.0, double s_hi = 4.0);
 
 // The largest residual of the slow flow (max |dz_i/dtau - i Omega z_i|) over all branch points.
 double worstResidual(const SlowFlowProblem& prob, const std::vector<Branch>& branches);
+
+// Classical RK4 on the slow flow dz/dtau = f(z) (models/slow_flow.h, modes held) over [0, T] in
+// n steps: an integration that shares nothing with the continuation's shooting (Verner 7(6)).
+std::vector<std::complex<double>> rk4SlowFlow(const ScaledParams& p, const SlowFlowModes& modes,
+                                              std::vector<std::complex<double>> z, double T, int n);
 
 }  // namespace metrosync::continuation::testing

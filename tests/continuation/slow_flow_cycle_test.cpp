@@ -11,6 +11,7 @@
 #include <complex>
 #include <cstdio>
 
+#include "base/constants.h"
 #include "sim/analysis/continuation/slow_flow_cycles.h"
 #include "tests/continuation/fixtures.h"
 #include "yaml/rig_loader.h"
@@ -25,25 +26,6 @@ ScaledParams f43(double mu) {
   char a[64];
   std::snprintf(a, sizeof a, "platform.friction.mu=%.17g", mu);
   return computeScaled(loadRigFile(path, {a}));
-}
-
-// RK4 on dz/dtau = f(z) (modes held) over [0, T] with n steps.
-std::vector<Cd> integrate(const ScaledParams& p, const SlowFlowModes& modes, std::vector<Cd> z,
-                          double T, int n) {
-  const double h = T / n;
-  auto f = [&](const std::vector<Cd>& w) { return slowFlowRhs(p, modes, w); };
-  auto axpy = [](const std::vector<Cd>& a, double s, const std::vector<Cd>& b) {
-    std::vector<Cd> r(a.size());
-    for (size_t i = 0; i < a.size(); ++i) r[i] = a[i] + s * b[i];
-    return r;
-  };
-  for (int k = 0; k < n; ++k) {
-    const auto k1 = f(z), k2 = f(axpy(z, h / 2, k1)), k3 = f(axpy(z, h / 2, k2)),
-               k4 = f(axpy(z, h, k3));
-    for (size_t i = 0; i < z.size(); ++i)
-      z[i] += h / 6 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-  }
-  return z;
 }
 
 TEST(SlowFlowCycle, InPhaseSubcriticalHopfCycleClosesUnderIndependentIntegration) {
@@ -61,7 +43,7 @@ TEST(SlowFlowCycle, InPhaseSubcriticalHopfCycleClosesUnderIndependentIntegration
   ASSERT_GT(hopf->lyapunov, 0);  // subcritical
   const ResultCycle c = followSlowFlowCycle(prob, hopf->point, s);
   ASSERT_GT(c.points.size(), 5u) << c.end;
-  EXPECT_NEAR(c.points.front().period, 2 * M_PI / c.frequency, 1e-2);
+  EXPECT_NEAR(c.points.front().period, kTwoPi / c.frequency, 1e-2);
   for (const ResultCyclePoint& q : c.points) {
     EXPECT_LT(q.value, hopf->point.p());  // the stable side of the locked state
     EXPECT_FALSE(q.stable);
@@ -78,8 +60,8 @@ TEST(SlowFlowCycle, InPhaseSubcriticalHopfCycleClosesUnderIndependentIntegration
     const Cd turn = std::polar(1.0, std::arg(start[0]) - std::arg(z[0]));
     return std::max(std::abs(z[0] * turn - start[0]), std::abs(z[1] * turn - start[1]));
   };
-  EXPECT_LT(distance(integrate(p, modes, start, q.period, 20000)), 1e-6);
-  EXPECT_GT(distance(integrate(p, modes, start, q.period / 2, 10000)), 1e-2);
+  EXPECT_LT(distance(testing::rk4SlowFlow(p, modes, start, q.period, 20000)), 1e-6);
+  EXPECT_GT(distance(testing::rk4SlowFlow(p, modes, start, q.period / 2, 10000)), 1e-2);
 }
 
 }  // namespace

@@ -19,15 +19,18 @@ struct RandomCase {
   std::vector<double> y;  // the engine's state layout
 };
 
-RandomCase makeCase(std::mt19937& rng, int n, FrictionLaw law) {
+enum class Law { Coulomb, Viscous, None };
+
+RandomCase makeCase(std::mt19937& rng, int n, Law law) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   RandomCase rc;
   Rig& rig = rc.rig;
   rig.gravity_m_s2 = 9.81;
   rig.platform.mass_kg = 0.05 + 0.3 * u(rng);
-  rig.platform.law = law;
-  rig.platform.mu_bar = 1e-3 * u(rng);
-  rig.platform.c_Ns_m = 0.1 * u(rng);
+  const double mu_bar = 1e-3 * u(rng), c_bar = 0.1 * u(rng);
+  rig.platform.friction = law == Law::Coulomb   ? FrictionLaw::coulomb(mu_bar)
+                          : law == Law::Viscous ? FrictionLaw::viscous(c_bar)
+                                                : FrictionLaw::none();
   rig.platform.spring_N_m = 20 * u(rng);
   for (int i = 0; i < n; ++i) {
     MetronomeSpec m;
@@ -65,8 +68,7 @@ Dense dense(const MetronomeEquations& eq, const Rig& rig, const std::vector<doub
   d.M = Eigen::MatrixXd::Zero(n + 1, n + 1);
   d.Q = Eigen::VectorXd::Zero(n + 1);
   d.M(0, 0) = rig.totalMass();
-  d.Q(0) = -rig.platform.spring_N_m * y[0] -
-           (rig.platform.law == FrictionLaw::Viscous ? rig.platform.c_Ns_m * y[1] : 0.0);
+  d.Q(0) = -rig.platform.spring_N_m * y[0] - rig.platform.friction.valueOr("c", 0.0) * y[1];
   int j = 0;
   for (const MetronomeSpec& m : rig.metronomes) {
     if (m.locked) continue;
@@ -86,7 +88,7 @@ TEST(DirectEquations, SchurSolveMatchesTheDenseMassMatrix) {
   std::mt19937 rng(12345);
   for (int trial = 0; trial < 200; ++trial) {
     const int n = 1 + trial % 7;
-    const FrictionLaw law = static_cast<FrictionLaw>(trial % 3);  // Coulomb, Viscous, None
+    const Law law = static_cast<Law>(trial % 3);  // Coulomb, Viscous, None
     RandomCase rc = makeCase(rng, n, law);
     MetronomeEquations eq(rc.rig);
     const Dense d = dense(eq, rc.rig, rc.y);
@@ -94,8 +96,9 @@ TEST(DirectEquations, SchurSolveMatchesTheDenseMassMatrix) {
       std::vector<double> dy(rc.y.size());
       eq.rhs(rc.y.data(), mode, dy.data());
       Eigen::VectorXd rhs = d.Q;
-      const double bound = rc.rig.platform.mu_bar * rc.rig.totalMass() * rc.rig.gravity_m_s2;
-      if (law == FrictionLaw::Coulomb) rhs(0) += -bound * static_cast<int>(mode);
+      const double bound =
+          rc.rig.platform.friction.valueOr("mu", 0.0) * rc.rig.totalMass() * rc.rig.gravity_m_s2;
+      if (law == Law::Coulomb) rhs(0) += -bound * static_cast<int>(mode);
       const Eigen::VectorXd qdd = d.M.ldlt().solve(rhs);
       // relative to the size of the accelerations: the two solves differ by rounding only
       const double scale = 1.0 + qdd.cwiseAbs().maxCoeff();
@@ -104,7 +107,7 @@ TEST(DirectEquations, SchurSolveMatchesTheDenseMassMatrix) {
         EXPECT_NEAR(dy[eq.layout().omega(j)], qdd(j + 1), 1e-12 * scale) << "trial " << trial;
     }
     // held still (Coulomb stuck): xddot = 0, and friction supplies the platform row's residual
-    if (law == FrictionLaw::Coulomb) {
+    if (law == Law::Coulomb) {
       std::vector<double> ys = rc.y, dy(rc.y.size());
       ys[StateLayout::kV] = 0.0;
       eq.rhs(ys.data(), PlatformMode::Stuck, dy.data());
@@ -142,7 +145,7 @@ TEST(DirectEquations, CombinedImpulseMatchesTheDenseMassMatrix) {
   std::uniform_real_distribution<double> px_dist(-1e-3, 1e-3);
   for (int trial = 0; trial < 100; ++trial) {
     const int n = 1 + trial % 6;
-    RandomCase rc = makeCase(rng, n, FrictionLaw::Coulomb);
+    RandomCase rc = makeCase(rng, n, Law::Coulomb);
     MetronomeEquations eq(rc.rig);
     const Dense d = dense(eq, rc.rig, rc.y);
     std::vector<double> pins(eq.numSwinging(), 0.0);
@@ -188,7 +191,7 @@ TEST(DirectEquations, CombinedImpulseMatchesTheDenseMassMatrix) {
 TEST(DirectEquations, EnergyRateIsMinusTheDissipatedPower) {
   std::mt19937 rng(99);
   for (int trial = 0; trial < 100; ++trial) {
-    const FrictionLaw law = static_cast<FrictionLaw>(trial % 3);
+    const Law law = static_cast<Law>(trial % 3);
     RandomCase rc = makeCase(rng, 1 + trial % 5, law);
     MetronomeEquations eq(rc.rig);
     const PlatformMode mode =

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <string>
 
+#include "contact/friction_law.h"
+#include "contact/law_registry.h"
 #include "sim/events/resolver.h"
 
 namespace metrosync {
@@ -52,7 +54,7 @@ struct FakeSystem : EventSystem {
   void eventRow(const char* kind) override { rows.emplace_back(kind); }
 };
 
-const CoulombLaw kLaw{0.2};
+const PlatformFriction kLaw = FrictionLaw::coulomb(0.2).platform(1.0);
 constexpr double kPeriod = 6.283185307179586;
 constexpr double kThetaC = 0.9;
 
@@ -178,18 +180,50 @@ TEST(EventResolver, NearlyCancellingTicksEndInAPlasticStopWithItsReaction) {
 // push beyond the bound the other way reverses (counted apart from stick <-> slip).
 TEST(EventResolver, TheTieBreaksFreeAndReversalsAreCountedApart) {
   FakeSystem s;
-  s.holding = kLaw.bound;
+  s.holding = kLaw.dry.staticBound();
   EventResolver r = makeResolver(s);
   WindowOutcome out = r.resolve(s, true);
   EXPECT_EQ(s.m, PlatformMode::SlipNegative);
   EXPECT_EQ(out.stick_slip, 1);
   s.v = 1e-13;  // the slip's velocity has just passed zero (window end)
-  s.holding = -2 * kLaw.bound;
+  s.holding = -2 * kLaw.dry.staticBound();
   out = r.resolve(s, true);
   EXPECT_EQ(s.m, PlatformMode::SlipPositive);
   EXPECT_EQ(out.stick_slip, 0);
   EXPECT_EQ(out.slip_reversals, 1);
   EXPECT_EQ(s.v, 0.0);
+}
+
+// Static friction above kinetic (mu_static = 0.3 > mu = 0.2): a stuck platform holds every push
+// below the static bound, even above the kinetic one; a slip that stops under such a push sticks,
+// where Coulomb's law (one bound, 0.2) would slip again, the other way.
+TEST(EventResolver, StaticFrictionHoldsBetweenTheKineticAndTheStaticBound) {
+  const PlatformFriction stiction = FrictionLaw(staticCoulombLaw(), {0.2, 0.3}).platform(1.0);
+  FakeSystem s;
+  s.holding = 0.25;  // between the bounds
+  EventResolver r({{kThetaC, 0.1}, {kThetaC, 0.1}}, stiction, kPeriod, {0.0, 0.0});
+  WindowOutcome out = r.resolve(s, true);
+  EXPECT_EQ(s.m, PlatformMode::Stuck);
+  EXPECT_EQ(out.stick_slip, 0);
+  s.holding = 0.3;  // the static bound itself breaks free (the tie)
+  out = r.resolve(s, true);
+  EXPECT_EQ(s.m, PlatformMode::SlipNegative);
+  EXPECT_EQ(out.stick_slip, 1);
+  s.v = 1e-13;  // the slip has just passed zero (window end); the push is between the bounds
+  s.holding = -0.25;
+  out = r.resolve(s, true);
+  EXPECT_EQ(s.m, PlatformMode::Stuck) << "static friction holds it";
+  EXPECT_EQ(s.v, 0.0);
+  // the same with Coulomb's law at the kinetic bound: the stop turns into a slip the other way
+  FakeSystem c;
+  c.m = PlatformMode::SlipNegative;
+  c.v = 1e-13;
+  c.holding = -0.25;
+  EventResolver coulomb({{kThetaC, 0.1}, {kThetaC, 0.1}}, kLaw, kPeriod, {0.0, 0.0});
+  coulomb.resolve(c, true);
+  EXPECT_EQ(c.m, PlatformMode::SlipPositive);
+  // the kinetic bound sets the micro-slip rule: friction decelerates at 0.2 * (M^-1)_xx
+  EXPECT_EQ(stiction.dry.kineticForce(PlatformMode::SlipPositive), -0.2);
 }
 
 }  // namespace

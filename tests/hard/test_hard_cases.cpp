@@ -220,7 +220,7 @@ TEST(HardCases, ZeroFrictionIsAFreePlatform) {
   Rig coulomb = hardRig("mu-zero.yaml");
   coulomb.units = Units::Physical;
   Rig none = coulomb;
-  none.platform.law = FrictionLaw::None;
+  none.platform.friction = FrictionLaw::none();
   const HardRun a = runDirect(coulomb, 1e-11), b = runDirect(none, 1e-11);
   expectSound(a, "mu = 0");
   expectSound(b, "law none");
@@ -309,7 +309,7 @@ void expectCreep(const std::string& file, double delta, double t_tol) {
   expectSound(r, file);
   EXPECT_LT(wall, 2.0) << "creeping must not stall the integrator";
   const double M = rig.totalMass(), k = rig.platform.spring_N_m;
-  const double bound = rig.platform.mu_bar * M * rig.gravity_m_s2;
+  const double bound = rig.platform.friction.valueOr("mu", 0.0) * M * rig.gravity_m_s2;
   const double x_eq = bound / k;
   ASSERT_NEAR(rig.platform.start_x_m, x_eq * (1 + delta), 1e-3 * delta * x_eq);
   EXPECT_EQ(r.report.counts.stick_slip, 1) << "one stop, and stuck for good";

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "base/constants.h"
+#include "contact/law_registry.h"
 #include "models/scaling.h"
 
 namespace metrosync {
@@ -19,8 +20,7 @@ Rig sectionThreeRig() {
   Rig rig;
   rig.gravity_m_s2 = 9.81;
   rig.platform.mass_kg = 0.1432;
-  rig.platform.law = FrictionLaw::Coulomb;
-  rig.platform.mu_bar = 4.6e-3;
+  rig.platform.friction = FrictionLaw::coulomb(4.6e-3);
   for (const char* name : {"A", "B"}) {
     MetronomeSpec mt;
     mt.name = name;
@@ -44,10 +44,10 @@ TEST(Scaling, ReproducesThePapersSectionThreeNumbers) {
 
   // Tolerances: half a unit in the last digit the paper prints, so each assertion fails as soon
   // as the value would round differently.
-  EXPECT_NEAR(p.epsilon, 0.073, 0.0005);  // "epsilon = m/M = 0.073"
-  EXPECT_NEAR(p.theta_c[0], 0.9, 0.05);   // "theta_c = 0.9"
-  EXPECT_NEAR(p.nu[0], 0.65, 0.005);      // "nu = 0.65"
-  EXPECT_NEAR(p.mu, 0.23, 0.005);         // "mu = 0.23"
+  EXPECT_NEAR(p.epsilon, 0.073, 0.0005);              // "epsilon = m/M = 0.073"
+  EXPECT_NEAR(p.theta_c[0], 0.9, 0.05);               // "theta_c = 0.9"
+  EXPECT_NEAR(p.nu[0], 0.65, 0.005);                  // "nu = 0.65"
+  EXPECT_NEAR(*p.friction.value("mu"), 0.23, 0.005);  // "mu = 0.23"
   const double A_star = 0.785 / std::sqrt(p.epsilon);
   EXPECT_NEAR(A_star, 2.9, 0.05);  // "A_star = 2.9"
   const double J = impulseForAmplitude(p.nu[0], A_star, p.theta_c[0]);
@@ -65,8 +65,7 @@ TEST(Scaling, NonIdenticalPairMatchesThePapersDefinitions) {
   Rig rig;
   rig.gravity_m_s2 = 9.81;
   rig.platform.mass_kg = 0.2;
-  rig.platform.law = FrictionLaw::Coulomb;
-  rig.platform.mu_bar = 1e-3;
+  rig.platform.friction = FrictionLaw::coulomb(1e-3);
   rig.platform.start_x_m = 1e-3;
   rig.platform.start_v_m_s = -2e-3;
   MetronomeSpec a, b;
@@ -109,7 +108,7 @@ TEST(Scaling, NonIdenticalPairMatchesThePapersDefinitions) {
   EXPECT_EQ(p.zeta[0], 0.0);
   EXPECT_NEAR(p.theta_c[0], 0.25 / se, 1e-14);
   EXPECT_NEAR(p.theta_c[1], 0.3 / se, 1e-14);
-  EXPECT_NEAR(p.mu, 1e-3 / (eps * se), 1e-15);
+  EXPECT_NEAR(*p.friction.value("mu"), 1e-3 / (eps * se), 1e-15);
 
   // unit conversions and starts: t = t-bar omega0, theta = theta-bar / sqrt(eps),
   // x = m1 L1 x-bar / (I1 eps^{3/2})
@@ -125,12 +124,16 @@ TEST(Scaling, NonIdenticalPairMatchesThePapersDefinitions) {
   EXPECT_NEAR(p.xdot0, m1 * L1 * -2e-3 / (I1 * eps * se) / omega0, 1e-12);
   EXPECT_NEAR(p.tau_end, eps * omega0 * 50.0, 1e-12);
 
-  // viscous: c = c-bar / (M omega0); mu is then 0
-  rig.platform.law = FrictionLaw::Viscous;
-  rig.platform.c_Ns_m = 0.05;
+  // viscous: c = c-bar / (M omega0); the law has no mu
+  rig.platform.friction = FrictionLaw::viscous(0.05);
   const ScaledParams v = computeScaled(rig);
-  EXPECT_NEAR(v.c, 0.05 / (M * omega0), 1e-15);
-  EXPECT_EQ(v.mu, 0.0);
+  EXPECT_NEAR(*v.friction.value("c"), 0.05 / (M * omega0), 1e-15);
+  EXPECT_FALSE(v.friction.value("mu"));
+  // static friction above kinetic: both coefficients scale as mu = mu-bar / eps^{3/2}
+  rig.platform.friction = FrictionLaw(staticCoulombLaw(), {1e-3, 2e-3});
+  const ScaledParams s = computeScaled(rig);
+  EXPECT_NEAR(*s.friction.value("mu"), 1e-3 / (eps * se), 1e-15);
+  EXPECT_NEAR(*s.friction.value("mu_static"), 2e-3 / (eps * se), 1e-15);
 }
 
 // Random scaled inputs -> equivalent physical system -> scaled again.
@@ -139,17 +142,17 @@ TEST(Scaling, RoundTripThroughTheEquivalentSystem) {
   auto uni = [&](double lo, double hi) {
     return std::uniform_real_distribution<double>(lo, hi)(rng);
   };
-  const FrictionLaw laws[] = {FrictionLaw::Coulomb, FrictionLaw::Viscous, FrictionLaw::None,
-                              FrictionLaw::Fixed};
   for (int trial = 0; trial < 500; ++trial) {
     ScaledRigInput in;
     const int n = 1 + trial % 5;
     // with |alpha|, |zeta| <= 2, eps <= 0.6 / (1.69 n) keeps eps * sum_i (1 + eps zeta_i)
     // (1 + eps alpha_i) below 0.51: every draw has an equivalent system with a platform
     in.epsilon = uni(0.01, 0.6 / (n * 1.69));
-    in.law = laws[trial % 4];
-    in.mu = uni(0, 3);
-    in.c = uni(0, 3);
+    const double mu = uni(0, 3), c = uni(0, 3);
+    const FrictionLaw laws[] = {FrictionLaw::coulomb(mu), FrictionLaw::viscous(c),
+                                FrictionLaw::none(), FrictionLaw::fixed(),
+                                FrictionLaw(staticCoulombLaw(), {mu, mu + c})};
+    in.friction = laws[trial % 5];
     in.x0 = uni(-2, 2);
     in.xdot0 = uni(-2, 2);
     in.tau_end = uni(1, 1000);
@@ -180,9 +183,10 @@ TEST(Scaling, RoundTripThroughTheEquivalentSystem) {
     };
     const double detune_tol = 16 * DBL_EPSILON / in.epsilon;
     EXPECT_TRUE(close(p.epsilon, in.epsilon)) << p.epsilon << " vs " << in.epsilon;
-    EXPECT_EQ(p.law, in.law);
-    EXPECT_TRUE(close(p.mu, in.law == FrictionLaw::Coulomb ? in.mu : 0.0)) << p.mu;
-    EXPECT_TRUE(close(p.c, in.law == FrictionLaw::Viscous ? in.c : 0.0)) << p.c;
+    EXPECT_TRUE(p.friction.is(in.friction.kind()));
+    for (std::size_t k = 0; k < in.friction.values().size(); ++k)
+      EXPECT_TRUE(close(p.friction.values()[k], in.friction.values()[k]))
+          << p.friction.name() << " " << k;
     EXPECT_TRUE(close(p.x0, in.x0));
     EXPECT_TRUE(close(p.xdot0, in.xdot0));
     EXPECT_TRUE(close(p.tau_end, in.tau_end)) << p.tau_end << " vs " << in.tau_end;

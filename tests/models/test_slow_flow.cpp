@@ -14,6 +14,8 @@
 
 #include "base/constants.h"
 #include "contact/averaged_response.h"
+#include "contact/law_registry.h"
+#include "models/slow_flow.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 
 namespace metrosync {
@@ -29,14 +31,13 @@ double aStar(double nu, double J, double theta_c) {
 
 // N identical metronomes started at amplitudes A0 and phases phi0 (theta0 = A sin phi,
 // thetadot0 = A cos phi).
-ScaledParams metronomes(FrictionLaw law, double mu, const std::vector<double>& nu,
+ScaledParams metronomes(const FrictionLaw& law, const std::vector<double>& nu,
                         const std::vector<double>& J, const std::vector<double>& theta_c,
                         const std::vector<double>& alpha, const std::vector<double>& A0,
                         const std::vector<double>& phi0) {
   ScaledParams p;
   p.epsilon = 0.02;
-  p.law = law;
-  p.mu = mu;
+  p.friction = law;
   p.nu = nu;
   p.J = J;
   p.theta_c = theta_c;
@@ -53,7 +54,7 @@ ScaledParams metronomes(FrictionLaw law, double mu, const std::vector<double>& n
 // The paper's two-metronome set-ups (section 4): common nu, J, theta_c, A(0) = 1.9 for both,
 // metronome 1 at phase psi0, metronome 2 at phase 0 with detuning alpha2.
 ScaledParams paperPair(double nu, double mu, double J, double psi0, double alpha2 = 0.0) {
-  return metronomes(FrictionLaw::Coulomb, mu, {nu, nu}, {J, J}, {0.9, 0.9}, {0.0, alpha2},
+  return metronomes(FrictionLaw::coulomb(mu), {nu, nu}, {J, J}, {0.9, 0.9}, {0.0, alpha2},
                     {1.9, 1.9}, {psi0, 0.0});
 }
 
@@ -107,7 +108,7 @@ TEST(SlowFlowRhs, TwoMetronomesMatchThePapersE31) {
     const double A1 = 0.05 + 4.0 * U(rng), A2 = 0.05 + 4.0 * U(rng);
     const double phi1 = kTwoPi * U(rng), phi2 = kTwoPi * U(rng);
     if (std::fabs(A1 - thc) < 1e-9 || std::fabs(A2 - thc) < 1e-9) continue;  // indicator edge
-    ScaledParams p = metronomes(FrictionLaw::Coulomb, mu, {nu, nu}, {J, J}, {thc, thc},
+    ScaledParams p = metronomes(FrictionLaw::coulomb(mu), {nu, nu}, {J, J}, {thc, thc},
                                 {0.0, alpha}, {A1, A2}, {phi1, phi2});
     // e3.1a-c as printed, with A = sqrt(A1^2 + A2^2 + 2 A1 A2 cos psi) and beta at s = A / mu
     const double psi = phi1 - phi2;
@@ -151,11 +152,8 @@ TEST(SlowFlowRhs, EnergyIdentityWithoutEscapementOrDamping) {
   // for any N; beta1 only exchanges energy, alpha and A^3/16 only turn phases).
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> U(0.0, 1.0);
-  const FrictionLaw laws[] = {FrictionLaw::Coulomb, FrictionLaw::Viscous, FrictionLaw::None,
-                              FrictionLaw::Fixed};
   for (int trial = 0; trial < 400; ++trial) {
     const int n = 1 + trial % 5;
-    const FrictionLaw law = laws[(trial / 5) % 4];
     std::vector<double> zeros(n, 0.0), thc(n), alpha(n), A(n), phi(n);
     for (int i = 0; i < n; ++i) {
       thc[i] = 0.9;
@@ -163,8 +161,10 @@ TEST(SlowFlowRhs, EnergyIdentityWithoutEscapementOrDamping) {
       A[i] = 0.1 + 3 * U(rng);
       phi[i] = kTwoPi * U(rng);
     }
-    ScaledParams p = metronomes(law, 0.05 + 2 * U(rng), zeros, zeros, thc, alpha, A, phi);
-    p.c = 3 * U(rng);
+    const double mu = 0.05 + 2 * U(rng), c = 3 * U(rng);
+    const FrictionLaw laws[] = {FrictionLaw::coulomb(mu), FrictionLaw::viscous(c),
+                                FrictionLaw::none(), FrictionLaw::fixed()};
+    ScaledParams p = metronomes(laws[(trial / 5) % 4], zeros, zeros, thc, alpha, A, phi);
     const auto z = slowFlowStart(p);
     const auto dz = slowFlowRhs(p, z);
     cplx Z = 0.0;
@@ -174,7 +174,7 @@ TEST(SlowFlowRhs, EnergyIdentityWithoutEscapementOrDamping) {
       dE += 2 * (std::conj(z[i]) * dz[i]).real();  // d|z_i|^2/dtau
       E += std::norm(z[i]);
     }
-    const double beta2 = averagedResponse(law, p.mu, p.c, std::abs(Z)).beta2;
+    const double beta2 = p.friction.slowResponse().at(std::abs(Z)).beta2;
     // the rotation terms cancel only to rounding: ~1e-16 (E^2 / 16 + |alpha| E + |Z|^2)
     EXPECT_NEAR(dE, -2 * beta2 * std::norm(Z), 1e-14 * (1 + E) * (1 + E)) << trial;
   }
@@ -186,10 +186,10 @@ TEST(SlowFlowRun, SingleMetronomeOnAStillPlatformSettlesAtAStar) {
   // R'(A_star) ~ -0.29 for these parameters: after tau = 150 the transient is e^{-40}; what is
   // left is integration error (rtol 1e-10 on A ~ 2): tolerance 1e-8.
   const double nu = 0.7, J = 2.8, thc = 0.9;
-  for (FrictionLaw law : {FrictionLaw::Fixed, FrictionLaw::Coulomb}) {
+  for (const FrictionLaw& law : {FrictionLaw::fixed(), FrictionLaw::coulomb(100.0)}) {
     for (double A0 : {1.2, 1.9, 5.0}) {
       // Coulomb with mu = 100: s = A / mu < 1, the platform never slips
-      ScaledParams p = metronomes(law, 100.0, {nu}, {J}, {thc}, {0.0}, {A0}, {0.3});
+      ScaledParams p = metronomes(law, {nu}, {J}, {thc}, {0.0}, {A0}, {0.3});
       SlowRun r = run(p, 150.0);
       ASSERT_TRUE(r.report.complete) << r.report.failure;
       EXPECT_NEAR(r.report.final_row.A[0], aStar(nu, J, thc), 1e-8) << "A0 = " << A0;
@@ -204,7 +204,7 @@ TEST(SlowFlowRun, BelowTheCriticalImpulseTheMetronomeDies) {
   // decays as exp(-nu tau / 2) exactly (the escapement is off). Compared while A > 1e-3, where
   // atol = 1e-12 is negligible: relative error ~rtol per unit tau, tolerance 1e-8.
   const double nu = 0.7, thc = 0.9, J = 0.9 * kPi * nu * thc;
-  ScaledParams p = metronomes(FrictionLaw::Fixed, 0.0, {nu}, {J}, {thc}, {0.0}, {3.0}, {0.0});
+  ScaledParams p = metronomes(FrictionLaw::fixed(), {nu}, {J}, {thc}, {0.0}, {3.0}, {0.0});
   SlowRun r = run(p, 100.0);
   ASSERT_TRUE(r.report.complete);
   EXPECT_EQ(r.report.counts.events, 1);  // one switch: the escapement disengages
@@ -266,7 +266,7 @@ TEST(SlowFlowRun, EscapementSwitchIsLocatedWherePhaseRateJumps) {
   // theta_c), so 40-point Gauss is exact to rounding.
   const double nu = 0.7, thc = 0.9, J1 = 1.0, J2 = 2.8, A10 = 1.5, psi0 = 1.0;
   const double As = aStar(nu, J2, thc);
-  ScaledParams p = metronomes(FrictionLaw::Fixed, 0.0, {nu, nu}, {J1, J2}, {thc, thc}, {0.0, 0.0},
+  ScaledParams p = metronomes(FrictionLaw::fixed(), {nu, nu}, {J1, J2}, {thc, thc}, {0.0, 0.0},
                               {A10, As}, {psi0, 0.0});
   p.epsilon = 0.002;  // rows every 0.0126 in tau
   auto R = [&](double A) { return -nu * A / 2 + J1 / kPi * std::sqrt((A - thc) * (A + thc)) / A; };
@@ -322,7 +322,7 @@ TEST(SlowFlowRun, PureRotationMatchesTheClosedFormOnTheOutputGrid) {
   // Checks the start (theta0 = A sin phi, thetadot0 = A cos phi), the row grid and the dense
   // output (interpolated rows): rtol 1e-10 over tau = 20 at rates ~0.3: tolerance 1e-8.
   const double A1 = 1.3, A2 = 2.1, psi0 = 0.7, alpha2 = 0.4;
-  ScaledParams p = metronomes(FrictionLaw::Fixed, 0.0, {0.0, 0.0}, {0.0, 0.0}, {0.9, 0.9},
+  ScaledParams p = metronomes(FrictionLaw::fixed(), {0.0, 0.0}, {0.0, 0.0}, {0.9, 0.9},
                               {0.0, alpha2}, {A1, A2}, {psi0, 0.0});
   p.epsilon = 0.05;
   const double tau_end = 20.0;
@@ -362,7 +362,7 @@ TEST(SlowFlowRun, LockedMetronomeTakesNoPart) {
   // leave the other two exactly as they are without it.
   ScaledParams two = paperPair(0.7, 0.3, 2.8, 0.03);
   ScaledParams three =
-      metronomes(FrictionLaw::Coulomb, 0.3, {0.7, 0.7, 0.1}, {2.8, 2.8, 5.0}, {0.9, 0.9, 0.5},
+      metronomes(FrictionLaw::coulomb(0.3), {0.7, 0.7, 0.1}, {2.8, 2.8, 5.0}, {0.9, 0.9, 0.5},
                  {0.0, 0.0, 1.0}, {1.9, 1.9, 3.0}, {0.03, 0.0, 1.0});
   three.locked[2] = true;
   SlowRun a = run(two, 40.0), b = run(three, 40.0);
@@ -576,7 +576,7 @@ TEST(SlowFlowRun, AnEventStormEndsTheRun) {
 TEST(SlowFlowRun, SimultaneousSwitchesAreAllCrossedInTheirWindow) {
   for (double a2 : {1.9, std::nextafter(1.9, 2.0)}) {
     SCOPED_TRACE(a2);
-    const ScaledParams p = metronomes(FrictionLaw::Fixed, 0.0, {0.7, 0.7}, {1.0, 1.0}, {0.9, 0.9},
+    const ScaledParams p = metronomes(FrictionLaw::fixed(), {0.7, 0.7}, {1.0, 1.0}, {0.9, 0.9},
                                       {0.0, 0.0}, {1.9, a2}, {0.3, 0.3});
     const SlowRun r = run(p, 6.0);
     ASSERT_TRUE(r.report.complete) << r.report.failure;
@@ -599,10 +599,31 @@ TEST(SlowFlowRun, RejectsInconsistentParameters) {
   bad.epsilon = 0.0;
   EXPECT_THROW(runSlowFlow(bad, opt, sink), std::invalid_argument);
   bad = p;
-  bad.mu = -1.0;
+  bad.friction = FrictionLaw::coulomb(-1.0);
   EXPECT_THROW(runSlowFlow(bad, opt, sink), std::invalid_argument);
   opt.tau_end = -1.0;
   EXPECT_THROW(runSlowFlow(p, opt, sink), std::invalid_argument);
+}
+
+// Static friction above kinetic has no averaged response derived: the slow flow refuses it,
+// naming the key; at mu_static == mu it is Coulomb's law and runs bit for bit like it.
+TEST(SlowFlowRun, RefusesStaticFrictionAboveKineticAndRunsItAtEquality) {
+  const ScaledParams coulomb = paperPair(0.7, 0.3, 2.8, 0.4);
+  ScaledParams stiction = coulomb;
+  stiction.friction = FrictionLaw(staticCoulombLaw(), {0.3, 0.5});
+  try {
+    SlowFlow flow(stiction);
+    ADD_FAILURE() << "the slow flow took mu_static > mu";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("mu_static > mu"), std::string::npos) << e.what();
+  }
+  ScaledParams equal = coulomb;
+  equal.friction = FrictionLaw(staticCoulombLaw(), {0.3, 0.3});
+  const SlowRun a = run(coulomb, 20.0), b = run(equal, 20.0);
+  ASSERT_TRUE(a.report.complete && b.report.complete);
+  EXPECT_EQ(a.report.final_row.A, b.report.final_row.A);
+  EXPECT_EQ(a.report.final_row.psi, b.report.final_row.psi);
+  EXPECT_EQ(a.report.counts.events, b.report.counts.events);
 }
 
 }  // namespace

@@ -19,6 +19,7 @@ SRC = os.environ["METROSYNC_SOURCE_DIR"]
 BIN = os.environ["METROSYNC_BINARY"]
 MAP_RIG = os.path.join(SRC, "yaml/rigs/experiment-map.yaml")
 F44 = os.path.join(SRC, "yaml/rigs/paper/f4.4-alpha4.yaml")
+F43 = os.path.join(SRC, "yaml/rigs/paper/f4.3-mu0.2.yaml")
 EXPERIMENT = os.path.join(SRC, "yaml/rigs/experiment.yaml")
 
 
@@ -71,6 +72,27 @@ def test_continue_equals_bifurcations_json(tmp_path):
     np.testing.assert_array_equal(res.branches["A_2"],
                                   [float(r[header.index("A_2")]) for r in rows])
     assert list(res.branches["platform"]) == [r[header.index("platform")] for r in rows]
+
+
+def test_continue_cycles_and_curves_equal_the_files(tmp_path):
+    """continue_ returns the cycles (cycles.csv) and the two-parameter curves (fold_curve.csv,
+    hopf_curve.csv) the command writes; no_cycles=True follows none."""
+    cli = tmp_path / "cli"
+    args = ["--param", "platform.friction.mu", "--to", "0.35", "--fold", "metronomes.*.nu",
+            "--to2", "0.8"]
+    subprocess.run([BIN, "continue", F43, "--quiet", *args, "--out", str(cli)], check=True)
+    rig = metrosync.load_rig(F43)
+    res = metrosync.continue_(rig, param="platform.friction.mu", to=0.35,
+                              fold="metronomes.*.nu", to2=0.8)
+    for name, got in (("cycles.csv", res.cycles), ("hopf_curve.csv", res.hopf_curve)):
+        header, rows = read_rows(cli / name)
+        assert len(rows) > 0, name
+        for k, column in enumerate(header):
+            np.testing.assert_array_equal(got[column], [float(r[k]) for r in rows], err_msg=name)
+    assert len(res.summary["cycles"]) > 0
+    none = metrosync.continue_(rig, param="platform.friction.mu", to=0.35, no_cycles=True)
+    assert none.summary["cycles"] == []
+    assert none.cycles is None or len(next(iter(none.cycles.values()))) == 0
 
 
 def interrupted_within(call, delay=0.5):

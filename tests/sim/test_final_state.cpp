@@ -77,7 +77,7 @@ Average lastPeriodAverage(const std::vector<std::vector<double>>& traj) {
 // amplitudes still grow (1.9 towards ~2.9), so the last period differs from the last grid row.
 ScaledRigInput pair(double periods, double sample) {
   const double eps = 0.1;
-  ScaledRigInput in = testrigs::scaledPair(eps, FrictionLaw::Coulomb, 0.3, 0.0, 0.4);
+  ScaledRigInput in = testrigs::scaledPair(eps, FrictionLaw::coulomb(0.3), 0.0, 0.4);
   in.tau_end = eps * kTwoPi * periods;
   in.sample = sample;
   in.accuracy = 1e-10;

@@ -10,6 +10,8 @@
 #include "base/constants.h"
 #include "sim/analysis/network_regime.h"
 #include "sim/analysis/order_parameter.h"
+#include "sim/analysis/regime.h"
+#include "sim/record/envelope.h"
 
 namespace metrosync {
 namespace {
@@ -48,36 +50,119 @@ TEST(OrderParameter, PendulumPhaseInvertsTheEnvelope) {
     EXPECT_NEAR(pendulumPhase(A * std::sin(phi), A * omega * std::cos(phi), omega), phi, 1e-14);
 }
 
-// Two groups of 15 over 10 periods: group phases from `phase(g, i, t)`.
-template <class F>
-std::string label(F phase) {
-  const double period = 1.0, t_end = 50.0;
-  NetworkWindow w(2, t_end, period);
+// Groups of metronomes over 50 fast periods (the window: the last 5), every metronome alive
+// (A = 1 > theta_c = 0.5) unless `dead(g, i)`: the phases come from `phase(g, i, t)` (unwrapped),
+// the groups' order parameters feed the network window and each group's phases its own regime
+// window, as NetworkVerdict does.
+template <class F, class D>
+std::string label(F phase, D dead, const std::vector<int>& sizes = {15, 15}) {
+  const double period = 1.0, t_end = 50.0, epsilon = 1.0 / (2 * kPi);  // tau = t
+  const int groups = static_cast<int>(sizes.size());
+  NetworkWindow w(groups, t_end, period);
+  std::vector<RegimeWindow> own(groups, RegimeWindow(t_end, epsilon));
   for (int k = 0; k <= 1000; ++k) {
     const double t = t_end * k / 1000;
-    std::vector<Order> groups;
-    for (int g = 0; g < 2; ++g) {
+    std::vector<Order> orders;
+    for (int g = 0; g < groups; ++g) {
       std::vector<double> ph;
-      for (int i = 0; i < 15; ++i) ph.push_back(phase(g, i, t));
-      groups.push_back(orderParameter(ph));
+      EnvelopeRow row;
+      row.tau = t;
+      for (int i = 0; i < sizes[g]; ++i) {
+        ph.push_back(phase(g, i, t));
+        row.A.push_back(dead(g, i) ? 0.1 : 1.0);
+        if (i > 0) row.psi.push_back(ph[0] - ph[i]);
+      }
+      orders.push_back(orderParameter(ph));
+      own[g].add(row);
     }
-    w.add(t, groups);
+    w.add(t, orders);
   }
-  return classifyNetwork(w);
+  std::vector<GroupLocking> locking;
+  for (int g = 0; g < groups; ++g)
+    locking.push_back(
+        groupLocking(own[g], classifyRegime(own[g], std::vector<double>(sizes[g], 0.5)).alive));
+  return classifyNetwork(w, locking);
+}
+
+template <class F>
+std::string label(F phase, const std::vector<int>& sizes = {15, 15}) {
+  return label(
+      phase, [](int, int) { return false; }, sizes);
+}
+
+const double w0 = 2 * kPi;
+// every metronome at its own frequency, phases spread: no two stay locked over the window
+double drifting(int i, double t) {
+  return (w0 + 0.7 * i) * t + 2 * kPi * i / 15;
 }
 
 TEST(NetworkLabel, EachRuleOnGroupsBuiltForIt) {
-  const double w0 = 2 * kPi;
   EXPECT_EQ(label([&](int, int i, double t) { return w0 * t + 0.01 * i; }), "synchronized");
   EXPECT_EQ(label([&](int g, int i, double t) { return w0 * t + g * kPi + 0.01 * i; }),
             "antiphase-groups");
-  // group 2: every metronome at its own frequency (spread phases, drifting)
+  // group 2 incoherent beside a group in phase
+  EXPECT_EQ(label([&](int g, int i, double t) { return g == 0 ? w0 * t : drifting(i, t); }),
+            "chimera");
+  EXPECT_EQ(label([&](int, int i, double t) { return drifting(i, t); }), "disordered");
+}
+
+// The example: one board's pair in phase, the other's in antiphase, both locked (the
+// second board's r is 0). Coherent, so no chimera, whatever r says (main called it `chimera`).
+TEST(NetworkLabel, BoardsLockedInPhaseAndInAntiphaseAreNoChimera) {
+  const std::vector<int> two_pairs = {2, 2};
+  EXPECT_EQ(label([&](int g, int i, double t) { return w0 * t + g * i * kPi; }, two_pairs),
+            "coherent-groups");
+  // the same with a wobble of 0.1 rad within each period (a locked pair is never exact), and
+  // with the boards drifting against each other
+  EXPECT_EQ(
+      label([&](int g, int i,
+                double t) { return (w0 + 0.3 * g) * t + g * i * (kPi + 0.05 * std::sin(w0 * t)); },
+            two_pairs),
+      "coherent-groups");
+  // 15 a side: a group split into two halves in antiphase (r ~ 0.07) is locked, hence coherent
+  EXPECT_EQ(label([&](int g, int i, double t) { return w0 * t + g * (i % 2) * kPi; }),
+            "coherent-groups");
+}
+
+// Coherence is locking, not r: a locked group with r ~ 0 beside a drifting one is a chimera.
+TEST(NetworkLabel, ChimeraNeedsAnIncoherentGroupBesideALockedOne) {
   EXPECT_EQ(label([&](int g, int i, double t) {
-              return g == 0 ? w0 * t : (w0 + 0.7 * i) * t + 2 * kPi * i / 15;
+              return g == 0 ? w0 * t + (i % 2) * kPi : drifting(i, t);
             }),
             "chimera");
-  EXPECT_EQ(label([&](int, int i, double t) { return (w0 + 0.7 * i) * t + 2 * kPi * i / 15; }),
+  // two pairs: one locked, one whose members drift apart
+  EXPECT_EQ(
+      label([&](int g, int i, double t) { return g == 0 ? w0 * t : (w0 + 0.9 * i) * t; }, {2, 2}),
+      "chimera");
+  // a few solitary drifters in a locked majority: not incoherent (13 of 15 locked)
+  EXPECT_EQ(
+      label([&](int g, int i, double t) { return g == 0 || i < 13 ? w0 * t : drifting(i, t); }),
+      "disordered");
+  // two drifting clusters of 8 and 7: a locked majority, not incoherent
+  EXPECT_EQ(label([&](int g, int i, double t) {
+              return g == 0 ? w0 * t : (i < 8 ? w0 * t : (w0 + 0.5) * t);
+            }),
             "disordered");
+  // ... 7 and 8 of 15, but with one more drifter each side: no cluster above half
+  EXPECT_EQ(label([&](int g, int i, double t) {
+              return g == 0 ? w0 * t : i < 7 ? w0 * t : i < 14 ? (w0 + 0.5) * t : drifting(i, t);
+            }),
+            "chimera");
+  // frequencies spread evenly: each metronome locked to its neighbours only (0.4 rad over the
+  // window), the rest drifting: incoherent, though a chain of locked pairs runs through the group
+  EXPECT_EQ(label([&](int g, int i, double t) { return g == 0 ? w0 * t : (w0 + 0.08 * i) * t; }),
+            "chimera");
+  // a single alive metronome is no synchronous part: the other group drifts, no chimera
+  EXPECT_EQ(label([&](int g, int i, double t) { return g == 0 ? w0 * t : drifting(i, t); },
+                  [](int g, int i) { return g == 0 && i > 0; }),
+            "disordered");
+  // dead metronomes take no part: a locked group whose dead ones sit anywhere is coherent
+  EXPECT_EQ(label(
+                [&](int g, int i, double t) {
+                  return g == 0 ? w0 * t + (i > 10 ? 0.3 * i * t : 0.0) : drifting(i, t);
+                },
+                [](int g, int i) { return g == 0 && i > 10; }),
+            "chimera");
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "base/constants.h"
+#include "contact/law_registry.h"
 #include "sim/analysis/regime.h"
 
 namespace metrosync {
@@ -102,8 +103,7 @@ TEST(Regime, AnAmplitudeSwingingThroughThetaCIsAliveNotDying) {
   const double t_last = envelope(1, [](int, double) { return 1.0; }, {}).back().tau;
   const double c = t_last - 0.6 * 3;
   auto rows = envelope(
-      2,
-      [c](int i, double t) { return i == 0 ? 1.9 : 1.8 + 1.6 * std::cos(2 * M_PI * (t - c) / 3); },
+      2, [c](int i, double t) { return i == 0 ? 1.9 : 1.8 + 1.6 * std::cos(kTwoPi * (t - c) / 3); },
       [](int, double) { return 0.0; });
   const RegimeVerdict v = classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9});
   ASSERT_LT(rows.back().A[1], 0.9);  // it ends below theta_c
@@ -267,19 +267,25 @@ TEST(Regime, UncoupledWhenThePlatformNeverSlipsInTheWindow) {
 
 TEST(Regime, TheSlowFlowsPlatformSlipsWhenTheDriveExceedsMu) {
   // two metronomes at A = 1.9 in antiphase drive nothing (|Z| = 0), in phase |Z| = 3.8
-  auto judge = [](double psi, double mu, FrictionLaw law) {
+  auto judge = [](double psi, const FrictionLaw& law) {
     auto rows = envelope(
         2, [](int, double) { return 1.9; }, [=](int, double) { return psi; });
     RegimeWindow w(kTauEnd, kEps);
-    w.setEnvelopePlatform(law, mu);
+    w.setEnvelopePlatform(law);
     for (const auto& r : rows) w.add(r);
     return classifyRegime(w, {0.9, 0.9}).regime;
   };
-  EXPECT_EQ(judge(0.0, 3.7, FrictionLaw::Coulomb), Regime::InPhase);    // s = 3.8 / 3.7 > 1
-  EXPECT_EQ(judge(0.0, 3.9, FrictionLaw::Coulomb), Regime::Uncoupled);  // s < 1
-  EXPECT_EQ(judge(kPi, 0.1, FrictionLaw::Coulomb), Regime::Uncoupled);  // |Z| = 0
-  EXPECT_EQ(judge(kPi, 0.0, FrictionLaw::Viscous), Regime::Antiphase);  // always moves
-  EXPECT_EQ(judge(0.0, 0.0, FrictionLaw::Fixed), Regime::Uncoupled);    // never moves
+  EXPECT_EQ(judge(0.0, FrictionLaw::coulomb(3.7)), Regime::InPhase);    // s = 3.8 / 3.7 > 1
+  EXPECT_EQ(judge(0.0, FrictionLaw::coulomb(3.9)), Regime::Uncoupled);  // s < 1
+  EXPECT_EQ(judge(kPi, FrictionLaw::coulomb(0.1)), Regime::Uncoupled);  // |Z| = 0
+  EXPECT_EQ(judge(kPi, FrictionLaw::viscous(0.0)), Regime::Antiphase);  // always moves
+  EXPECT_EQ(judge(0.0, FrictionLaw::fixed()), Regime::Uncoupled);       // never moves
+  // the law decides whether it holds: static friction above kinetic holds a drive of 3.8 that
+  // the kinetic coefficient alone would not (a set-valued law that is not Coulomb's is not
+  // "always slipping")
+  const FrictionLaw held(staticCoulombLaw(), {3.7, 3.9});
+  EXPECT_EQ(judge(0.0, held), Regime::Uncoupled);
+  EXPECT_EQ(judge(0.0, FrictionLaw(staticCoulombLaw(), {3.7, 3.7})), Regime::InPhase);
 }
 
 // N = 3..8 metronomes at A = 1.5 with constant phases phi_i (relative to phi_1 = phases[0])

@@ -15,8 +15,7 @@ inline Rig experiment(double mu_bar, double duration_s) {
   rig.name = "experiment";
   rig.units = Units::Physical;
   rig.platform.mass_kg = 0.1432;
-  rig.platform.law = FrictionLaw::Coulomb;
-  rig.platform.mu_bar = mu_bar;
+  rig.platform.friction = FrictionLaw::coulomb(mu_bar);
   for (int i = 0; i < 2; ++i) {
     MetronomeSpec m;
     m.box_mass_kg = 0.0602;
@@ -35,13 +34,12 @@ inline Rig experiment(double mu_bar, double duration_s) {
 }
 
 // A scaled rig with identical metronomes (the paper's section 4 parameters by default).
-inline ScaledRigInput scaledPair(double eps, FrictionLaw law, double mu, double tau_end,
-                                 double psi0, double A0 = 1.9) {
+inline ScaledRigInput scaledPair(double eps, FrictionLaw law, double tau_end, double psi0,
+                                 double A0 = 1.9) {
   ScaledRigInput in;
   in.name = "pair";
   in.epsilon = eps;
-  in.law = law;
-  in.mu = mu;
+  in.friction = law;
   in.tau_end = tau_end;
   for (int i = 0; i < 2; ++i) {
     ScaledMetronomeInput m;

@@ -35,8 +35,9 @@ TEST(FullModel, SpringPlatformDecaysLinearlyAtTheCoulombRate) {
   ASSERT_GE(t.size(), 8u) << "too few reversals";
   const double M = rig.totalMass(), g = rig.gravity_m_s2, kappa = rig.platform.spring_N_m;
   const double T = 2 * kPi * std::sqrt(M / kappa);
-  const double slope_theory = rig.platform.mu_bar * T * g / (kPi * kPi);
-  EXPECT_NEAR(slope_theory, 4 * rig.platform.mu_bar * M * g / (T * kappa), 1e-15);
+  const double slope_theory = rig.platform.friction.valueOr("mu", 0.0) * T * g / (kPi * kPi);
+  EXPECT_NEAR(slope_theory, 4 * rig.platform.friction.valueOr("mu", 0.0) * M * g / (T * kappa),
+              1e-15);
   // least-squares slope of |x| at the reversals against time
   double st = 0, sa = 0, stt = 0, sta = 0;
   const double n = static_cast<double>(t.size());
@@ -62,10 +63,10 @@ TEST(FullModel, SingleMetronomeSettlesToAStarWithErrorShrinkingWithEpsilon) {
       J / (kPi * nu) * std::sqrt(2 * (1 + std::sqrt(1 - kPi * kPi * nu * nu * tc * tc / (J * J))));
   std::vector<double> errors;
   for (double eps : {0.04, 0.01}) {
-    ScaledRigInput in = testrigs::scaledPair(eps, FrictionLaw::Fixed, 0.0, 30.0, 0.0);
+    ScaledRigInput in = testrigs::scaledPair(eps, FrictionLaw::fixed(), 30.0, 0.0);
     in.metronomes.resize(1);
     Rig rig = rigFromScaled(in);
-    EXPECT_TRUE(rig.platform.law == FrictionLaw::Fixed);
+    EXPECT_TRUE(rig.platform.friction == FrictionLaw::fixed());
     MemorySink sink;
     RunReport r = runFullModel(rig, sink);
     ASSERT_TRUE(r.complete) << r.failure;
@@ -78,7 +79,7 @@ TEST(FullModel, SingleMetronomeSettlesToAStarWithErrorShrinkingWithEpsilon) {
 }
 
 TEST(FullModel, MetronomeBelowCriticalImpulseStops) {
-  ScaledRigInput in = testrigs::scaledPair(0.02, FrictionLaw::Fixed, 0.0, 30.0, 0.0, 2.5);
+  ScaledRigInput in = testrigs::scaledPair(0.02, FrictionLaw::fixed(), 30.0, 0.0, 2.5);
   in.metronomes.resize(1);
   in.metronomes[0].J = 0.9 * kPi * in.metronomes[0].nu * in.metronomes[0].theta_c;  // J < J_c
   MemorySink sink;
@@ -92,7 +93,7 @@ TEST(FullModel, MetronomeBelowCriticalImpulseStops) {
 // Identical metronomes in exact antiphase: the forces on the platform cancel at every instant
 // and the ticks come in cancelling pairs, so a Coulomb platform never moves.
 TEST(FullModel, ExactAntiphaseKeepsCoulombPlatformStill) {
-  ScaledRigInput in = testrigs::scaledPair(0.073, FrictionLaw::Coulomb, 0.2, 20.0, 0.0);
+  ScaledRigInput in = testrigs::scaledPair(0.073, FrictionLaw::coulomb(0.2), 20.0, 0.0);
   in.metronomes[0].theta0 = 0.0;
   in.metronomes[0].thetadot0 = -1.9;
   in.metronomes[1].theta0 = 0.0;
@@ -117,7 +118,7 @@ TEST(FullModel, ExactAntiphaseKeepsCoulombPlatformStill) {
 // thetadot_i is conserved by every step and every tick (the escapement is internal).
 TEST(FullModel, FreePlatformConservesHorizontalMomentum) {
   Rig rig = testrigs::experiment(0.0, 10.0);
-  rig.platform.law = FrictionLaw::None;
+  rig.platform.friction = FrictionLaw::none();
   rig.platform.start_v_m_s = 0.01;
   rig.sim.accuracy = 1e-10;
   MemorySink sink;
@@ -228,7 +229,7 @@ TEST(FullModel, ResultDoesNotDependOnMetronomeOrder) {
 // theta_c within far less than one step); a hair below, it must not.
 TEST(FullModel, GrazingCrossingIsNotMissed) {
   for (double rel : {1e-7, -1e-7}) {
-    ScaledRigInput in = testrigs::scaledPair(0.02, FrictionLaw::Fixed, 0.0, 0.03, 0.0);
+    ScaledRigInput in = testrigs::scaledPair(0.02, FrictionLaw::fixed(), 0.03, 0.0);
     in.metronomes.resize(1);
     in.metronomes[0].nu = 0.0;
     Rig rig = rigFromScaled(in);

@@ -313,7 +313,7 @@ TEST(OrderParameter, OneInPhaseZeroForASplayState) {
 std::vector<EnvelopeRow> slowFlowRows(const std::vector<double>& phases) {
   ScaledRigInput in;
   in.epsilon = 0.05;
-  in.law = FrictionLaw::Fixed;
+  in.friction = FrictionLaw::fixed();
   in.tau_end = 5.0;
   for (double phi : phases) {
     ScaledMetronomeInput m;

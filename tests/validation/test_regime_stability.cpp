@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 
 struct JudgingSink : RunSink {
   JudgingSink(const Rig& rig, const ScaledParams& p, bool full) : window(p.tau_end, p.epsilon) {
-    if (!full) window.setEnvelopePlatform(p.law, p.mu);
+    if (!full) window.setEnvelopePlatform(p.friction);
     x_unit = rig.units == Units::Physical ? p.x_scale_m : 1.0;
   }
   void trajectoryRow(const std::vector<double>& row) override {

@@ -83,8 +83,8 @@ TEST(ShippedRigs, PaperRigsSayWhatTheCaptionsSay) {
     // the scaled rig round-trips through its equivalent physical system: rounding only
     const double tol = 1e-12;
     EXPECT_NEAR(p.epsilon, 0.073, tol);
-    EXPECT_EQ(p.law, FrictionLaw::Coulomb);
-    EXPECT_NEAR(p.mu, c.mu, tol);
+    EXPECT_EQ(p.friction.name(), std::string("coulomb"));
+    EXPECT_NEAR(*p.friction.value("mu"), c.mu, tol);
     ASSERT_EQ(p.nu.size(), 2u);
     for (int i = 0; i < 2; ++i) {
       EXPECT_NEAR(p.nu[i], c.nu, tol);
@@ -117,18 +117,18 @@ TEST(ShippedRigs, ExperimentRigsMatchSectionThree) {
     SCOPED_TRACE(e.name);
     const Rig rig = loadRigFile(testval::rigsDir() + "/" + std::string(e.name) + ".yaml");
     EXPECT_EQ(rig.units, Units::Physical);
-    EXPECT_DOUBLE_EQ(rig.platform.mu_bar, e.mu_bar);
+    EXPECT_EQ(rig.platform.friction, FrictionLaw::coulomb(e.mu_bar));
     const ScaledParams p = computeScaled(rig);
     // the paper rounds: epsilon 0.073, theta_c 0.9, nu 0.65, J 3.14, mu 0.23 (high friction)
     EXPECT_NEAR(p.epsilon, 0.073, 5e-4);
-    EXPECT_NEAR(p.mu, e.mu_bar / std::pow(p.epsilon, 1.5), 1e-12);
+    EXPECT_NEAR(*p.friction.value("mu"), e.mu_bar / std::pow(p.epsilon, 1.5), 1e-12);
     for (int i = 0; i < 2; ++i) {
       EXPECT_NEAR(p.theta_c[i], 0.9, 5e-3);
       EXPECT_NEAR(p.nu[i], 0.65, 5e-3);
       EXPECT_NEAR(p.J[i], 3.14, 5e-3);
     }
     if (e.mu_bar > 1e-3) {
-      EXPECT_NEAR(p.mu, 0.23, 5e-3);
+      EXPECT_NEAR(*p.friction.value("mu"), 0.23, 5e-3);
     }
     // near, not at, the symmetric start (an exact one would stay symmetric forever)
     const double off = std::abs(std::remainder(startPsi(p) - (e.antiphase ? kPi : 0.0), 2 * kPi));

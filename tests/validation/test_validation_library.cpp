@@ -77,7 +77,7 @@ TEST(ValidationLibrary, RigAtEpsilonKeepsEveryScaledParameter) {
       // through the equivalent physical system and back: rounding, amplified by 1/eps in alpha
       EXPECT_NEAR(q.epsilon, eps, 1e-15);
       EXPECT_NEAR(q.tau_end, 7.0, 1e-12);
-      EXPECT_NEAR(q.mu, p.mu, 1e-12);
+      EXPECT_NEAR(*q.friction.value("mu"), *p.friction.value("mu"), 1e-12);
       for (size_t i = 0; i < p.nu.size(); ++i) {
         EXPECT_NEAR(q.nu[i], p.nu[i], 1e-12);
         EXPECT_NEAR(q.J[i], p.J[i], 1e-12);

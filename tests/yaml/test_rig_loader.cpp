@@ -6,17 +6,18 @@
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "base/constants.h"
+#include "contact/law_registry.h"
 #include "models/scaling.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A valid physical rig; line numbers are in the margin comments of the tests below.
 const char* const kPhysical = R"(units: physical
@@ -98,8 +99,7 @@ TEST(RigLoader, PhysicalRigLoads) {
   EXPECT_EQ(rig.units, Units::Physical);
   EXPECT_EQ(rig.gravity_m_s2, 9.81);
   EXPECT_EQ(rig.platform.mass_kg, 0.15);
-  EXPECT_EQ(rig.platform.law, FrictionLaw::Coulomb);
-  EXPECT_EQ(rig.platform.mu_bar, 6.5e-4);
+  EXPECT_EQ(rig.platform.friction, FrictionLaw::coulomb(6.5e-4));
   EXPECT_EQ(rig.platform.spring_N_m, 0.0);
   ASSERT_EQ(rig.metronomes.size(), 2u);
   const MetronomeSpec& a = rig.metronomes[0];
@@ -143,7 +143,7 @@ TEST(RigLoader, ScaledRigLoadsAsItsEquivalentSystem) {
   // the inputs come back through rigFromScaled/computeScaled to rounding (see test_scaling):
   // 1e-13 absolute on O(1) values, alpha (recovered / eps) 1e-12
   EXPECT_NEAR(p.epsilon, 0.073, 1e-15);
-  EXPECT_NEAR(p.mu, 0.4, 1e-13);
+  EXPECT_NEAR(*p.friction.value("mu"), 0.4, 1e-13);
   EXPECT_NEAR(p.nu[0], 0.7, 1e-13);
   EXPECT_NEAR(p.J[1], 2.8, 1e-13);
   EXPECT_NEAR(p.theta_c[1], 0.9, 1e-13);
@@ -218,15 +218,22 @@ simulation:
 
 TEST(RigLoader, FrictionLaws) {
   const Rig v = loadRigText(withLine(kPhysical, 4, "  friction: {law: viscous, c: 0.05}"), "r");
-  EXPECT_EQ(v.platform.law, FrictionLaw::Viscous);
-  EXPECT_EQ(v.platform.c_Ns_m, 0.05);
-  EXPECT_EQ(v.platform.mu_bar, 0.0);
-  EXPECT_EQ(loadRigText(withLine(kPhysical, 4, "  friction: {law: none}"), "r").platform.law,
-            FrictionLaw::None);
-  EXPECT_EQ(loadRigText(withLine(kPhysical, 4, "  friction: {law: fixed}"), "r").platform.law,
-            FrictionLaw::Fixed);
+  EXPECT_EQ(v.platform.friction, FrictionLaw::viscous(0.05));
+  EXPECT_EQ(loadRigText(withLine(kPhysical, 4, "  friction: {law: none}"), "r").platform.friction,
+            FrictionLaw::none());
+  EXPECT_EQ(loadRigText(withLine(kPhysical, 4, "  friction: {law: fixed}"), "r").platform.friction,
+            FrictionLaw::fixed());
   const Rig s = loadRigText(withLine(kScaled, 4, "  friction: {law: viscous, c: 0.3}"), "r");
-  EXPECT_NEAR(computeScaled(s).c, 0.3, 1e-13);  // scaled c comes back to rounding
+  EXPECT_NEAR(*computeScaled(s).friction.value("c"), 0.3, 1e-13);  // back to rounding
+  // static friction above kinetic: the keys choose the law, in either units
+  const Rig st = loadRigText(
+      withLine(kPhysical, 4, "  friction: {law: coulomb, mu: 6.5e-4, mu_static: 1e-3}"), "r");
+  EXPECT_EQ(st.platform.friction, FrictionLaw(staticCoulombLaw(), {6.5e-4, 1e-3}));
+  const Rig ss =
+      loadRigText(withLine(kScaled, 4, "  friction: {law: coulomb, mu: 0.4, mu_static: 0.4}"), "r");
+  EXPECT_NEAR(*computeScaled(ss).friction.value("mu_static"), 0.4, 1e-13);
+  const Rig set = loadRigText(kPhysical, "r", {"platform.friction.mu_static=2e-3"});
+  EXPECT_EQ(set.platform.friction, FrictionLaw(staticCoulombLaw(), {6.5e-4, 2e-3}));
 }
 
 TEST(RigLoader, NoEscapementMeansNoImpulse) {
@@ -266,9 +273,7 @@ bool sameRig(const Rig& a, const Rig& b, std::string& why) {
   cmp("units", static_cast<int>(a.units), static_cast<int>(b.units));
   cmp("gravity", a.gravity_m_s2, b.gravity_m_s2);
   cmp("platform.mass", a.platform.mass_kg, b.platform.mass_kg);
-  cmp("law", static_cast<int>(a.platform.law), static_cast<int>(b.platform.law));
-  cmp("mu_bar", a.platform.mu_bar, b.platform.mu_bar);
-  cmp("c", a.platform.c_Ns_m, b.platform.c_Ns_m);
+  cmp("friction", a.platform.friction.toJson().dump(), b.platform.friction.toJson().dump());
   cmp("spring", a.platform.spring_N_m, b.platform.spring_N_m);
   cmp("x0", a.platform.start_x_m, b.platform.start_x_m);
   cmp("v0", a.platform.start_v_m_s, b.platform.start_v_m_s);
@@ -300,8 +305,7 @@ TEST(DefaultRig, IsThePapersExperiment) {
   EXPECT_EQ(rig.name, "experiment");
   EXPECT_EQ(rig.units, Units::Physical);
   EXPECT_EQ(rig.platform.mass_kg, 0.1432);
-  EXPECT_EQ(rig.platform.law, FrictionLaw::Coulomb);
-  EXPECT_EQ(rig.platform.mu_bar, 6.5e-4);
+  EXPECT_EQ(rig.platform.friction, FrictionLaw::coulomb(6.5e-4));
   ASSERT_EQ(rig.metronomes.size(), 2u);
   EXPECT_NEAR(rig.totalMass(), 0.3088, 1e-12);  // "M = 308.8 g"
   for (const MetronomeSpec& m : rig.metronomes) {
@@ -348,7 +352,7 @@ TEST(DefaultRig, SectionThreeNumbersThroughTheLoader) {
   EXPECT_NEAR(p.epsilon, 0.073, 0.0005);
   EXPECT_NEAR(p.theta_c[0], 0.9, 0.05);
   EXPECT_NEAR(p.nu[0], 0.65, 0.005);
-  EXPECT_NEAR(p.mu, 0.23, 0.005);
+  EXPECT_NEAR(*p.friction.value("mu"), 0.23, 0.005);
   EXPECT_NEAR(*p.A_star[0], 2.9, 0.05);
   EXPECT_NEAR(p.J[0], 3.14, 0.005);
 }
@@ -558,7 +562,17 @@ TEST(RigValidation, FrictionLawAndItsCoefficient) {
                          {4, "  friction: {law: coulomb, mu: -0.1}", "-0.1",
                           "platform.friction.mu = -0.1", "must be >= 0"},
                          {4, "  friction: {law: viscous, c: -2}", "-2", "platform.friction.c = -2",
-                          "must be >= 0"}});
+                          "must be >= 0"},
+                         {4, "  friction: {law: viscous, c: 0.1, mu_static: 0.2}", "0.2",
+                          "platform.friction.mu_static = 0.2", "only with law: coulomb"},
+                         {4, "  friction: {law: coulomb, mu: 0.2, mu_static: 0.1}", "0.1",
+                          "platform.friction.mu_static = 0.1", "must be >= mu"},
+                         {4, "  friction: {law: coulomb, mu: 0.2, mu_static: -0.3}", "-0.3",
+                          "platform.friction.mu_static = -0.3", "must be >= 0"},
+                         {4, "  friction: {law: coulomb, mu: -0.2, mu_static: 0.3}", "-0.2",
+                          "platform.friction.mu = -0.2", "must be >= 0"},
+                         {4, "  friction: {law: coulomb, mu_static: 0.3}", "{",
+                          "platform.friction.mu: missing", "kinetic"}});
 }
 
 TEST(RigValidation, PhysicalRanges) {
@@ -651,7 +665,7 @@ TEST(RigOverrides, ChangeAddAndReplace) {
                   {"platform.friction.mu=4.6e-3", "simulation.accuracy=1e-10",
                    "metronomes.0.name=left", "platform.spring.k=30",
                    "metronomes.1.start={angle: -0.5, rate: 0.1}", "gravity=9.8", "gravity=9.7"});
-  EXPECT_EQ(rig.platform.mu_bar, 4.6e-3);
+  EXPECT_EQ(rig.platform.friction, FrictionLaw::coulomb(4.6e-3));
   EXPECT_EQ(rig.sim.accuracy, 1e-10);  // a valid key absent from the file
   EXPECT_EQ(rig.metronomes[0].name, "left");
   EXPECT_EQ(rig.platform.spring_N_m, 30.0);  // an absent map is created on the way
@@ -661,13 +675,12 @@ TEST(RigOverrides, ChangeAddAndReplace) {
 
   // a whole map as the value: switching the friction law
   const Rig v = loadRigText(kPhysical, "r", {"platform.friction={law: viscous, c: 0.05}"});
-  EXPECT_EQ(v.platform.law, FrictionLaw::Viscous);
-  EXPECT_EQ(v.platform.c_Ns_m, 0.05);
+  EXPECT_EQ(v.platform.friction, FrictionLaw::viscous(0.05));
 
   // SPEC's examples on a scaled rig
   const ScaledParams p = computeScaled(
       loadRigText(kScaled, "r", {"platform.friction.mu=0.3", "metronomes.0.start.phi=3.54"}));
-  EXPECT_NEAR(p.mu, 0.3, 1e-13);
+  EXPECT_NEAR(*p.friction.value("mu"), 0.3, 1e-13);
   EXPECT_NEAR(p.theta0[0], 1.9 * std::sin(3.54), 1e-13);
 }
 

@@ -22,7 +22,7 @@ TEST(ScaleReport, JsonHasExactlyTheSpecKeys) {
                                          "zeta", "A_star", "time_scale"}));
   EXPECT_EQ(j["law"], "coulomb");
   EXPECT_EQ(j["epsilon"].get<double>(), p.epsilon);
-  EXPECT_EQ(j["mu"].get<double>(), p.mu);
+  EXPECT_EQ(j["mu"].get<double>(), *p.friction.value("mu"));
   ASSERT_EQ(j["nu"].size(), 2u);
   EXPECT_EQ(j["J"][1].get<double>(), p.J[1]);
   EXPECT_EQ(j["A_star"][0].get<double>(), *p.A_star[0]);

@@ -384,8 +384,7 @@ metrosync::Rig nRig(int n, const NScaleOptions& o) {
   metrosync::Rig rig;
   rig.name = "n" + std::to_string(n);
   rig.platform.mass_kg = o.board_kg;
-  rig.platform.law = metrosync::FrictionLaw::Coulomb;
-  rig.platform.mu_bar = o.mu_bar;
+  rig.platform.friction = metrosync::FrictionLaw::coulomb(o.mu_bar);
   std::mt19937 gen(o.seed);
   std::uniform_real_distribution<double> phase(0.0, metrosync::kTwoPi);
   for (int i = 0; i < n; ++i) {

@@ -73,8 +73,9 @@ class Equations {
   static int th(int j) { return 2 + 2 * j; }
   static int om(int j) { return 3 + 2 * j; }
   const Pendulum& pendulum(int j) const { return pend_[j]; }
-  bool coulomb() const { return platform_ && law_ == FrictionLaw::Coulomb; }
-  double bound() const { return bound_; }
+  bool coulomb() const { return platform_ && law_ == PlatformFriction::Kind::SetValued; }
+  double bound() const { return bound_; }               // kinetic
+  double staticBound() const { return static_bound_; }  // holding
 
   // dz/ds (s the scaled time) in the current platform mode.
   void rhs(const State& z, State& dz);
@@ -93,16 +94,16 @@ class Equations {
 
   std::vector<Pendulum> pend_;
   bool platform_;
-  FrictionLaw law_;
-  double mass_, spring_ = 0, viscous_ = 0, bound_ = 0;
+  PlatformFriction::Kind law_;
+  double mass_, spring_ = 0, viscous_ = 0, bound_ = 0, static_bound_ = 0;
   double a_, xs_, w0_;  // sqrt(eps), the platform's length scale (m), omega0 (1/s)
   std::vector<double> c_, r_;
   double schur_ = 0;
 };
 
 Equations::Equations(const Rig& rig, const ScaledParams& sp)
-    : platform_(rig.platform.law != FrictionLaw::Fixed),
-      law_(rig.platform.law),
+    : platform_(rig.platform.friction.platformMoves()),
+      law_(rig.platform.friction.platform(1.0).kind),
       mass_(rig.totalMass()),
       a_(sp.angle_scale),
       xs_(sp.x_scale_m),
@@ -116,8 +117,12 @@ Equations::Equations(const Rig& rig, const ScaledParams& sp)
                      m.impulse_Nms});
   }
   spring_ = rig.platform.spring_N_m;
-  if (law_ == FrictionLaw::Viscous) viscous_ = rig.platform.c_Ns_m;
-  if (law_ == FrictionLaw::Coulomb) bound_ = rig.platform.mu_bar * mass_ * g;
+  const PlatformFriction f = rig.platform.friction.platform(mass_ * g);
+  if (law_ == PlatformFriction::Kind::Viscous) viscous_ = f.viscous.c;
+  if (law_ == PlatformFriction::Kind::SetValued) {
+    bound_ = f.dry.kineticBound();
+    static_bound_ = f.dry.staticBound();
+  }
   c_.resize(pend_.size());
   r_.resize(pend_.size());
 }
@@ -141,11 +146,11 @@ double Equations::push(const State& z, double v) {
 
 void Equations::rhs(const State& z, State& dz) {
   ++evals;
-  const bool moves = platform_ && !(law_ == FrictionLaw::Coulomb && mode == PlatformMode::Stuck);
+  const bool moves = platform_ && !(coulomb() && mode == PlatformMode::Stuck);
   const double G = push(z, xs_ * w0_ * z[1]);
   double xdd = 0;  // SI
   if (moves) {
-    const double F = law_ == FrictionLaw::Coulomb ? -bound_ * static_cast<int>(mode) : 0.0;
+    const double F = coulomb() ? -bound_ * static_cast<int>(mode) : 0.0;
     xdd = (G + F) / (mass_ - schur_);
   }
   const double w0sq = w0_ * w0_;
@@ -392,7 +397,7 @@ PeerRun::PeerRun(const Rig& rig, RunSink& sink, const OdeintOptions& opt)
     const Pendulum& p = eq_.pendulum(j);
     fastest = std::min(fastest, kTwoPi * std::sqrt(p.inertia / p.mgL) * w0);
   }
-  if (rig.platform.law != FrictionLaw::Fixed && rig.platform.spring_N_m > 0)
+  if (rig.platform.friction.platformMoves() && rig.platform.spring_N_m > 0)
     fastest = std::min(fastest, kTwoPi * std::sqrt(rig.totalMass() / rig.platform.spring_N_m) * w0);
   const double max_dt = kMaxStepFraction * fastest;
   if (opt.stepper == "dopri5")
@@ -445,7 +450,7 @@ std::vector<double> PeerRun::makeRow(double s, const State& z) const {
 double PeerRun::witness(const Witness& w, const State& z) {
   if (w.pendulum >= 0)
     return w.side * z[Equations::th(w.pendulum)] - eq_.pendulum(w.pendulum).theta_c;
-  if (eq_.mode == PlatformMode::Stuck) return std::abs(eq_.holdingForce(z)) - eq_.bound();
+  if (eq_.mode == PlatformMode::Stuck) return std::abs(eq_.holdingForce(z)) - eq_.staticBound();
   return -static_cast<int>(eq_.mode) * z[1];
 }
 
@@ -532,7 +537,7 @@ double PeerRun::locateEarliest() {
 void PeerRun::settleAtRest(State& z) {
   z[1] = 0.0;
   const double H = eq_.holdingForce(z);
-  setMode(std::abs(H) < eq_.bound()
+  setMode(std::abs(H) < eq_.staticBound()
               ? PlatformMode::Stuck
               : (H > 0 ? PlatformMode::SlipNegative : PlatformMode::SlipPositive));
 }
@@ -552,7 +557,7 @@ void PeerRun::resolve(State& z, const std::vector<std::pair<int, int>>& ticks, b
   if (!eq_.coulomb() || !(platform || !ticks.empty())) return;
   if (eq_.mode == PlatformMode::Stuck) {
     const double H = eq_.holdingForce(z);
-    if (std::abs(H) >= eq_.bound())  // the push has reached the bound: it breaks free
+    if (std::abs(H) >= eq_.staticBound())  // the push has reached the bound: it breaks free
       setMode(H > 0 ? PlatformMode::SlipNegative : PlatformMode::SlipPositive);
   } else if (static_cast<int>(eq_.mode) * z[1] <= 0) {
     settleAtRest(z);  // the slip has come to rest
@@ -605,7 +610,7 @@ bool PeerRun::handleEvents() {
 RunReport PeerRun::run() {
   const auto wall0 = std::chrono::steady_clock::now();
   State z(eq_.dim(), 0.0);
-  if (rig_.platform.law != FrictionLaw::Fixed) z[0] = sp_.x0, z[1] = sp_.xdot0;
+  if (rig_.platform.friction.platformMoves()) z[0] = sp_.x0, z[1] = sp_.xdot0;
   for (int j = 0; j < eq_.n(); ++j) {
     z[Equations::th(j)] = sp_.theta0[eq_.pendulum(j).rig_index];
     z[Equations::om(j)] = sp_.thetadot0[eq_.pendulum(j).rig_index];

@@ -26,14 +26,12 @@ std::string peerUnsupported(const Scene& scene) {
            std::to_string(kPeerMaxMetronomes) + " metronomes";
   for (const MetronomeSpec& m : rig.metronomes)
     if (m.locked) return "metronome " + m.name + " is locked: the peer has no locked pendulum";
-  switch (rig.platform.law) {
-    case FrictionLaw::Viscous:
-      return "viscous friction: the peer has Coulomb friction or none";
-    case FrictionLaw::Fixed:
-      return "a fixed platform: the peer's platform moves";
-    default:
-      break;
-  }
+  const PlatformFriction f = rig.platform.friction.platform(1.0);
+  if (f.kind == PlatformFriction::Kind::Viscous)
+    return "viscous friction: the peer has Coulomb friction or none";
+  if (f.kind == PlatformFriction::Kind::Fixed) return "a fixed platform: the peer's platform moves";
+  if (f.setValued() && f.dry.staticBound() != f.dry.kineticBound())
+    return "static friction above kinetic: the peer has Coulomb's law";
   if (rig.platform.spring_N_m != 0) return "a platform spring: the peer has none";
   return "";
 }
@@ -46,8 +44,8 @@ std::vector<std::string> peerSceneArguments(const Scene& scene) {
   y0.insert(y0.end(), sp.thetadot0.begin(), sp.thetadot0.end());
   y0.push_back(sp.x0);
   y0.push_back(sp.xdot0);
-  // computeScaled's mu is 0 without Coulomb friction: the peer's free platform
-  const double mu = sp.law == FrictionLaw::Coulomb ? sp.mu : 0.0;
+  // a law without mu (none) is the peer's free platform, mu = 0
+  const double mu = sp.friction.valueOr("mu", 0.0);
   return {"--eps",   numberText(sp.epsilon, 17),
           "--mu",    numberText(mu, 17),
           "--nu",    exactList(sp.nu),

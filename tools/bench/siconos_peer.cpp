@@ -23,8 +23,9 @@ bool siconosAvailable() {
 }
 
 std::string siconosUnsupported(const Rig& rig) {
-  if (rig.platform.law != FrictionLaw::Coulomb)
-    return "platform friction law is not coulomb (the peer models Coulomb friction as a relay)";
+  if (rig.platform.friction != FrictionLaw::coulomb(rig.platform.friction.valueOr("mu", 0.0)))
+    return "platform friction law is not coulomb with one mu (the peer models Coulomb friction as "
+           "a relay)";
   if (rig.platform.spring_N_m != 0) return "platform spring (not modelled by the peer)";
   for (const auto& m : rig.metronomes)
     if (m.locked) return "locked metronome (not modelled by the peer)";
@@ -149,7 +150,8 @@ RunReport PeerRun::run() {
   const double h = opt_.step_s;
   const double t_end = rig_.sim.t_end_s;
   const double g = rig_.gravity_m_s2;
-  const double bound = rig_.platform.mu_bar * rig_.totalMass() * g * h;  // impulse per step
+  const double bound =
+      rig_.platform.friction.valueOr("mu", 0.0) * rig_.totalMass() * g * h;  // impulse per step
   g_fint_evals = 0;
 
   // --- 3. the Siconos objects ---------------------------------------------------------------

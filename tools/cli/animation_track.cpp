@@ -127,8 +127,8 @@ void addThetaC(Scene& sc, double tc) {
 animation::ScenePlatform platformOf(const std::string& name, const PlatformSpec& p) {
   animation::ScenePlatform sp;
   sp.name = name;
-  sp.fixed = p.law == FrictionLaw::Fixed;
-  sp.coulomb = p.law == FrictionLaw::Coulomb;
+  sp.fixed = !p.friction.platformMoves();
+  sp.coulomb = p.friction.setValued();  // stick/slip: drawn with its modes
   sp.ground_spring = p.spring_N_m > 0;
   return sp;
 }
@@ -196,8 +196,8 @@ class RigSink : public RunSink {
       s.theta.push_back(row[3 + 2 * i] * a_unit_);
       s.omega.push_back(row[4 + 2 * i] * a_unit_ / t_unit_);
     }
-    s.contact = {contactOf(rig_.platform.law == FrictionLaw::Coulomb,
-                           static_cast<int>(std::lround(row.back())))};
+    s.contact = {
+        contactOf(rig_.platform.friction.setValued(), static_cast<int>(std::lround(row.back())))};
     return s;
   }
 
@@ -248,7 +248,7 @@ ScaledParams networkScales(const Network& net) {
   for (const NetworkPlatform& p : net.platforms)
     for (const MetronomeSpec& m : p.rig.metronomes)
       if (!m.locked && rig.metronomes.empty()) rig.metronomes.push_back(m);
-  if (rig.platform.law == FrictionLaw::Fixed) rig.platform.law = FrictionLaw::None;
+  if (!rig.platform.friction.platformMoves()) rig.platform.friction = FrictionLaw::none();
   return computeScaled(rig);
 }
 

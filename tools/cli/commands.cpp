@@ -124,8 +124,7 @@ RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::stri
   o.time_unit = r.rig.units == Units::Physical ? r.scaled.time_scale_s : 1.0;
   o.envelope_platform = !trajectory;  // the slow flow's `uncoupled` rule (sim/analysis/regime.h)
   o.x_unit = r.rig.units == Units::Physical ? r.scaled.x_scale_m : 1.0;
-  o.law = r.scaled.law;
-  o.mu = r.scaled.mu;
+  o.law = r.scaled.friction;
   return o;
 }
 
@@ -302,6 +301,7 @@ int compareCommand(const Options& opt) {
     throw UsageError("--engine " + opt.engine + ": compare runs the full model (--engine " +
                      engineNames("full") + ") against the slow flow");
   LoadedRig r = loadAndCheck(opt, "full");
+  requireSlowFlow(r.rig, rigDisplayName(opt));  // before anything is written
   installStopHandlers();
   const OutputDir dir = openOutputDir(opt, r.rig, "compare");
   const Clock::time_point t0 = Clock::now();

@@ -10,12 +10,13 @@
 #include "base/constants.h"
 #include "base/number_text.h"
 #include "models/scaling.h"
-#include "sim/analysis/continuation/arclength.h"
-#include "sim/analysis/continuation/fold_curve.h"
-#include "sim/analysis/continuation/result.h"
+#include "models/slow_flow.h"
+#include "sim/analysis/continuation/merge.h"
+#include "sim/analysis/continuation/slow_flow_continuation.h"
 #include "sim/analysis/continuation/start_states.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/continue_full.h"
+#include "tools/cli/engines.h"
 #include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
 #include "tools/report/continuation_report.h"
@@ -33,13 +34,6 @@ namespace {
 
 using namespace metrosync::continuation;
 using Cd = std::complex<double>;
-
-// A located fold or Hopf point, for --fold.
-struct FoldSeed {
-  int reference;
-  BranchPoint at;
-  CurveKind kind;
-};
 
 ContinueOptions& options() {
   static ContinueOptions opt;
@@ -59,10 +53,11 @@ std::string rigText(const ContinueOptions& opt) {
   return text.str();
 }
 
-// The slow flow's inputs: equal when KEY has no effect on it.
+// The slow flow's inputs: equal when KEY has no effect on it (the law compared as a value: every
+// parameter of it counts).
 bool sameSlowFlow(const ScaledParams& a, const ScaledParams& b) {
-  return a.law == b.law && a.mu == b.mu && a.c == b.c && a.nu == b.nu && a.J == b.J &&
-         a.theta_c == b.theta_c && a.alpha == b.alpha && a.locked == b.locked;
+  return a.friction == b.friction && a.nu == b.nu && a.J == b.J && a.theta_c == b.theta_c &&
+         a.alpha == b.alpha && a.locked == b.locked;
 }
 
 // The rig with KEY_k = p_k, scaled; values the rig refuses give NaN parameters, so the corrector
@@ -94,8 +89,10 @@ ScaledParams finiteScaledAt(const ContinueOptions& opt, double value, const std:
   const ScaledParams p = scaledAt(opt, {opt.param}, {value});
   const std::pair<const char*, const std::vector<double>*> lists[] = {
       {"nu", &p.nu}, {"J", &p.J}, {"theta_c", &p.theta_c}, {"alpha", &p.alpha}, {"zeta", &p.zeta}};
-  std::string bad = std::isfinite(p.mu) ? "" : "mu";
-  if (!std::isfinite(p.c)) bad = "c";
+  std::string bad;
+  const std::vector<LawParameter>& law_keys = p.friction.kind().parameters();
+  for (std::size_t k = 0; k < law_keys.size(); ++k)
+    if (!std::isfinite(p.friction.values()[k])) bad = law_keys[k].key;
   for (const auto& [name, v] : lists)
     for (double x : *v)
       if (!std::isfinite(x)) bad = name;
@@ -104,6 +101,24 @@ ScaledParams finiteScaledAt(const ContinueOptions& opt, double value, const std:
                      " makes the scaled " + bad +
                      " infinite or undefined; choose a value nearer the rig's");
   return p;
+}
+
+// The slow flow at values inside the range, sampled: a range beyond the numbers (--to 1e308)
+// makes its parameters infinite on the way although both ends are finite. Such a range is bad
+// input (exit 2), not a branch whose corrector fails at the first step.
+void checkRangeInside(const ContinueOptions& opt, double from, const std::string& option) {
+  constexpr int kRangeSamples = 8;  // the continuation's steps are ~1/100 of the range
+  for (int k = 1; k < kRangeSamples; ++k) {
+    const double v = from + (opt.to - from) * k / kRangeSamples;
+    try {
+      SlowFlow flow(scaledAt(opt, {opt.param}, {v}));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(option + " " + opt.param + " from " + roundTripText(from) + " to " +
+                       roundTripText(opt.to) + ": " + e.what() +
+                       " on the way (the range leaves the range of the " +
+                       "numbers); choose a --to nearer the start");
+    }
+  }
 }
 
 // The start value of opt.param, typed after `option` (--param, or --fold for KEY2).
@@ -131,6 +146,7 @@ double startValue(const ContinueOptions& opt, const std::string& option = "--par
     throw UsageError(option + " " + opt.param + ": has no effect on the slow flow (its scaled " +
                      "parameters are the same at " + roundTripText(from) + " and " +
                      roundTripText(opt.to) + ")");
+  checkRangeInside(opt, from, option);
   return from;
 }
 
@@ -151,13 +167,6 @@ std::vector<double> parseList(const std::string& text) {
     v.push_back(x);
   }
   return v;
-}
-
-int largest(const std::vector<Cd>& z) {
-  int r = 0;
-  for (size_t i = 1; i < z.size(); ++i)
-    if (std::abs(z[i]) > std::abs(z[r])) r = static_cast<int>(i);
-  return r;
 }
 
 // The start state (rotated z, N x 1) and how it was found.
@@ -187,9 +196,17 @@ ContinuationSettings settingsFor(const ContinueOptions& opt, double from) {
   ContinuationSettings s;
   s.p_min = std::min(from, opt.to);
   s.p_max = std::max(from, opt.to);
-  const double span = s.p_max - s.p_min;
-  s.step = opt.step > 0 ? opt.step : span / 100;
-  s.step_max = std::max(s.step, span / 25);
+  // the arclength in units of the range: a step of h moves the parameter by up to h of its range
+  // or the state by up to h, whatever the size of the key (a physical mu of 1e-3 or a scaled 0.4)
+  s.p_scale = s.p_max - s.p_min;
+  constexpr double kFirstStep = 0.01, kMaxStep = 0.05;
+  // kMaxStep is the cap for a pair; when every metronome moves alike, the state's arclength grows
+  // as the square root of their number, so the cap does too: each amplitude moves as far per
+  // step as in a pair (32 metronomes: 4 times the pair's cap, not 500 points along a range)
+  const double metronomes = static_cast<double>(loadContinueRig(opt, {}).metronomes.size());
+  const double cap = kMaxStep * std::sqrt(std::max(1.0, metronomes / 2));
+  s.step = opt.step > 0 ? opt.step / s.p_scale : kFirstStep;
+  s.step_max = std::max(s.step, cap);
   s.max_points = opt.max_points;
   return s;
 }
@@ -206,135 +223,97 @@ double secondStart(const ContinueOptions& opt) {
   return startValue(second, "--fold");
 }
 
-void foldCurves(const ContinueOptions& opt, double from2, const std::vector<FoldSeed>& folds,
-                ContinuationResult& result) {
-  ContinueOptions second = opt;
-  second.to = opt.to2, second.step = 0;
-  ContinuationSettings s = settingsFor(second, from2);
-  // the curve's arclength is mostly in KEY and the state (O(1)), not only KEY2's span
-  constexpr double kFoldStep = 0.005, kFoldStepMax = 0.05;
-  s.step = std::max(s.step, kFoldStep);
-  s.step_max = std::max(s.step_max, kFoldStepMax);
-  result.param2 = opt.fold_key;
-  for (const FoldSeed& f : folds) {
-    const int n = static_cast<int>(f.at.y.size()) - 1;
-    const auto follow = f.kind == CurveKind::Fold ? continueFold : continueHopf;
-    result.fold_curves.push_back(
-        follow(paramsAt2(opt), f.reference, f.at.y.head(n), f.at.p(), from2, f.at.region, s, {}));
-  }
-}
-
 std::string outDir(const ContinueOptions& opt, const Rig& rig) {
   return opt.out.empty() ? "runs/" + rig.name + "-continue" : opt.out;
 }
 
-// Whether the state (A, psi) at parameter p lies on a branch already in r (between two of its
-// consecutive points, linearly interpolated).
-bool alreadyFollowed(const ContinuationResult& r, const std::vector<double>& A,
-                     const std::vector<double>& psi, double p) {
-  constexpr double kSame = 1e-3;  // far above the interpolation error of a step, far below a gap
-  for (size_t k = 1; k < r.points.size(); ++k) {
-    const ResultPoint &a = r.points[k - 1], &b = r.points[k];
-    if (a.branch != b.branch || (a.value - p) * (b.value - p) > 0 || a.value == b.value) continue;
-    const double w = (p - a.value) / (b.value - a.value);
-    double d = 0;
-    for (size_t i = 0; i < A.size(); ++i)
-      d = std::max(d, std::abs(A[i] - (a.A[i] + w * (b.A[i] - a.A[i]))));
-    for (size_t j = 0; j < psi.size(); ++j)
-      d = std::max(
-          d, std::abs(std::remainder(psi[j] - (a.psi[j] + w * (b.psi[j] - a.psi[j])), 2 * kPi)));
-    if (d < kSame) return true;
+// KEY2's settings for the curves: its range, in units of its span.
+ContinuationSettings curveSettings(double from2, double to2) {
+  ContinuationSettings s;
+  s.p_min = std::min(from2, to2), s.p_max = std::max(from2, to2);
+  s.p_scale = s.p_max - s.p_min;
+  // the curve's arclength is mostly in KEY and the state (O(1)), not only KEY2's span
+  constexpr double kCurveStep = 0.01, kCurveStepMax = 0.05;
+  s.step = kCurveStep, s.step_max = kCurveStepMax;
+  return s;
+}
+
+// The continuation's inputs from the options (the rig loaded with KEY = from).
+SlowFlowContinuationSpec slowFlowSpec(const ContinueOptions& opt, double from, std::string& how) {
+  const ScaledParams sp =
+      computeScaled(loadContinueRig(opt, {opt.param + "=" + roundTripText(from)}));
+  SlowFlowContinuationSpec spec;
+  spec.params = paramsAt(opt);
+  spec.from = from, spec.to = opt.to;
+  spec.settings = settingsFor(opt, from);
+  if (!opt.all) spec.start = startState(opt, sp, how);
+  spec.cycles = !opt.no_cycles;
+  spec.cycle_points = opt.cycle_points;
+  if (!opt.fold_key.empty()) {
+    spec.params2 = paramsAt2(opt);
+    spec.from2 = secondStart(opt), spec.to2 = opt.to2;
+    spec.settings2 = curveSettings(spec.from2, spec.to2);
   }
-  return false;
+  return spec;
 }
 
-// Whether a cycle from the Hopf point at parameter p is already in r (the same Hopf point found
-// on another branch, or again from the other side).
-bool cycleFollowed(const ContinuationResult& r, double p) {
-  constexpr double kSameHopf = 1e-7;  // Hopf points are located to ~1e-11 in the parameter
-  for (const ResultCycle& c : r.cycles)
-    if (std::abs(c.hopf_value - p) <= kSameHopf * std::max(1.0, std::abs(p))) return true;
-  return false;
-}
-
-void record(const ContinueOptions& opt, const SlowFlowProblem& prob,
-            const std::vector<Branch>& branches, const ContinuationSettings& settings,
-            ContinuationResult& result, std::vector<FoldSeed>& folds) {
-  appendBranches(prob, branches, result);
-  for (const Branch& b : branches)
-    for (const Bifurcation& e : b.special) {
-      if (e.type == BifurcationType::Fold)
-        folds.push_back({prob.reference(), e.point, CurveKind::Fold});
-      if (e.type != BifurcationType::Hopf) continue;
-      folds.push_back({prob.reference(), e.point, CurveKind::Hopf});
-      if (opt.no_cycles || cycleFollowed(result, e.point.p())) continue;
-      result.cycles.push_back(followSlowFlowCycle(prob, e.point, settings));
-      result.cycles.back().id = static_cast<int>(result.cycles.size()) - 1;
-    }
-}
-
-void followAll(const ContinueOptions& opt, const ScaledParams& sp, double from,
-               const ContinuationSettings& settings, ContinuationResult& result,
-               std::vector<FoldSeed>& folds) {
-  int ref = 0;
-  while (ref < static_cast<int>(sp.locked.size()) && sp.locked[ref]) ++ref;
-  if (ref == static_cast<int>(sp.locked.size())) throw UsageError("every metronome is locked");
-  const SlowFlowProblem prob(paramsAt(opt), from, ref);
-  const std::vector<Vec> states = allLockedStates(prob, from);
-  if (states.empty())
-    throw UsageError("--all: Newton finds no locked state at " + opt.param + " = " +
-                     roundTripText(from));
-  result.start = "--all: " + std::to_string(states.size()) +
-                 " locked state(s) found by Newton from a grid of seeds";
-  for (const Vec& x : states) {
-    if (alreadyFollowed(result, prob.amplitudes(x), prob.phaseDifferences(x), from)) continue;
-    // the largest amplitude as the reference: z_r real stays regular while z_r does not vanish
-    const std::vector<Cd> z = prob.unpack(x);
-    const SlowFlowProblem mine(paramsAt(opt), from, largest(z));
-    record(opt, mine, continueFrom(mine.system(), mine.pack(z, prob.omega(x)), from, settings),
-           settings, result, folds);
+void printBranchEnds(const ContinuationResult& r) {
+  for (const auto& b : r.branches) {
+    std::cout << "  branch " << b.id << " (" << b.points << " points"
+              << (b.neutral ? ", a neutral family" : "") << "): " << b.end_backward << " | "
+              << b.end_forward << "\n";
+    if (b.max_points)
+      std::cout << "    stopped by --max-points: raise it to follow the branch further\n";
   }
 }
 
-void printSummary(const ContinuationResult& r, const std::string& dir) {
+void printCycles(const ContinuationResult& r, int budget) {
+  for (const auto& c : r.cycles) {
+    std::cout << "  cycle " << c.id << " from the Hopf point at " << r.param << " = "
+              << roundTripText(c.hopf_value) << ": " << c.points.size() << " points (budget "
+              << budget << ", --cycle-points), " << c.end << "\n";
+    for (const auto& f : c.folds)
+      std::cout << "    fold of cycles at " << r.param << " = " << roundTripText(f.at.value)
+                << " (period " << roundTripText(f.at.period) << "): " << f.check << "\n";
+    for (const auto& w : c.changes) std::cout << "    " << w << "\n";
+  }
+}
+
+void printSummary(const ContinuationResult& r, const std::string& dir, int cycle_budget) {
   std::cout << "continue " << r.param << " from " << r.from << " to " << r.to << ": "
             << r.branches.size() << " branch(es), " << r.points.size() << " points\n";
+  printBranchEnds(r);
+  for (const auto& f : r.families)
+    std::cout << "  family " << f.id << " (branch " << f.branch << "): " << f.cause << "\n";
   for (const auto& s : r.special)
     std::cout << "  " << s.type << " at " << r.param << " = " << roundTripText(s.at.value)
               << " (branch " << s.at.branch << "): " << s.detail << "\n";
+  printCycles(r, cycle_budget);
   std::cout << "files in " << dir << "\n";
 }
 
-// Whether a curve of `kind` in `curves` passes within kSameCurve of (p1, p2) (interpolated
-// between consecutive points bracketing p2).
-bool onACurve(const std::vector<FoldCurve>& curves, CurveKind kind, double p1, double p2,
-              double span1) {
-  constexpr double kSameCurve = 1e-3;  // of key1's range: far above a curve's interpolation error
-  for (const FoldCurve& c : curves) {
-    if (c.kind != kind) continue;
-    for (size_t k = 1; k < c.points.size(); ++k) {
-      const FoldCurvePoint &a = c.points[k - 1], &b = c.points[k];
-      if ((a.p2 - p2) * (b.p2 - p2) > 0 || a.p2 == b.p2) continue;
-      const double w = (p2 - a.p2) / (b.p2 - a.p2);
-      if (std::abs(a.p1 + w * (b.p1 - a.p1) - p1) < kSameCurve * span1) return true;
-    }
-  }
-  return false;
-}
-
-// The fold and Hopf points found in key1 at key2 = v2 (every locked state at lo1 followed).
-std::vector<FoldSeed> pointsInRow(ContinueOptions o, const std::string& key2, double v2,
-                                  double lo1) {
-  o.sets.push_back(key2 + "=" + roundTripText(v2));
-  const ScaledParams sp = computeScaled(loadContinueRig(o, {o.param + "=" + roundTripText(lo1)}));
-  ContinuationResult result;
-  std::vector<FoldSeed> seeds;
+// The fold and Hopf points found in key1 at key2 = v2 (every locked state at lo1 followed) and
+// their curves over the map (those not on a curve already in `curves`), appended to it.
+void curvesFromRow(ContinueOptions o, const std::string& key2, double v2, double lo2, double hi2,
+                   const P1Range& range, std::vector<FoldCurve>& curves) {
+  ContinueOptions row = o;
+  row.sets.push_back(key2 + "=" + roundTripText(v2));
+  SlowFlowContinuationSpec spec;
+  spec.params = paramsAt(row);
+  spec.from = *o.from, spec.to = o.to;
+  spec.settings = settingsFor(o, spec.from);
+  spec.cycles = false;
+  spec.params2 = paramsAt2(o);
+  spec.from2 = v2, spec.to2 = hi2;
+  spec.settings2 = curveSettings(lo2, hi2);
+  spec.range1 = range;
+  spec.known_curves = curves;
   try {
-    followAll(o, sp, lo1, settingsFor(o, lo1), result, seeds);
-  } catch (const UsageError&) {
-    return {};  // no locked state in this row
+    const ContinuationResult r = continueSlowFlow(spec);
+    curves.insert(curves.end(), r.fold_curves.begin(), r.fold_curves.end());
+  } catch (const NoLockedState&) {
+    // no locked state in this row: no curve starts here
   }
-  return seeds;
 }
 
 }  // namespace
@@ -357,28 +336,15 @@ std::vector<FoldCurve> boundaryCurves(const std::string& rig_path,
   checkBoundaryKeys(rig_path, sets, key1, lo1, hi1, key2, lo2, hi2);
   ContinueOptions o;
   o.rig_path = rig_path, o.sets = sets, o.param = key1, o.from = lo1, o.to = hi1;
-  o.all = true, o.no_cycles = true, o.fold_key = key2, o.to2 = hi2;
-  ContinuationSettings s2;
-  s2.p_min = std::min(lo2, hi2), s2.p_max = std::max(lo2, hi2);
-  // the curve's arclength is mostly in key1 and the state (O(1)), not only key2's span
-  constexpr double kCurveStep = 0.005, kCurveStepMax = 0.05;
-  s2.step = std::max((s2.p_max - s2.p_min) / 100, kCurveStep);
-  s2.step_max = std::max((s2.p_max - s2.p_min) / 25, kCurveStepMax);
+  o.fold_key = key2, o.to2 = hi2;
   // the curves a little past the map's edges in key1 (so that they reach them), not beyond
   constexpr double kRangeMargin = 0.05;
   const double margin = kRangeMargin * std::abs(hi1 - lo1);
   const P1Range range{std::min(lo1, hi1) - margin, std::max(lo1, hi1) + margin};
   std::vector<FoldCurve> curves;
-  for (double f : {1.0 / 6, 0.5, 5.0 / 6}) {
-    const double v2 = lo2 + f * (hi2 - lo2);
-    for (const FoldSeed& seed : pointsInRow(o, key2, v2, lo1)) {
-      if (onACurve(curves, seed.kind, seed.at.p(), v2, std::abs(hi1 - lo1))) continue;
-      const int n = static_cast<int>(seed.at.y.size()) - 1;
-      const auto follow = seed.kind == CurveKind::Fold ? continueFold : continueHopf;
-      curves.push_back(follow(paramsAt2(o), seed.reference, seed.at.y.head(n), seed.at.p(), v2,
-                              seed.at.region, s2, range));
-    }
-  }
+  for (double f : {1.0 / 6, 0.5, 5.0 / 6})
+    curvesFromRow(o, key2, lo2 + f * (hi2 - lo2), lo2, hi2, range, curves);
+  mergeCurves(curves, std::abs(hi1 - lo1), std::abs(hi2 - lo2));
   return curves;
 }
 
@@ -403,7 +369,8 @@ CLI::App* addContinueCommand(CLI::App& app) {
   c->add_option("--start", opt.start,
                 "the start state A_1,..,A_N,psi_2,..,psi_N (default: the "
                 "rig's start, integrated until it settles)");
-  addNumber(c, "--step", opt.step, kPositive, "first arclength step (default |to - from| / 100)");
+  addNumber(c, "--step", opt.step, kPositive,
+            "first step, in KEY's units (default |to - from| / 100); steps then adapt");
   addInteger(c, "--max-points", opt.max_points, 2, kMaxContinuationPoints,
              "points per direction of each branch")
       ->default_str(std::to_string(opt.max_points));
@@ -412,6 +379,9 @@ CLI::App* addContinueCommand(CLI::App& app) {
   c->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
   c->add_flag("--no-cycles", opt.no_cycles,
               "do not follow the limit cycle born at each Hopf point (cycles.csv)");
+  addInteger(c, "--cycle-points", opt.cycle_points, 2, kMaxContinuationPoints,
+             "points of each limit cycle's branch at most")
+      ->default_str(std::to_string(opt.cycle_points));
   CLI::Option* fold = c->add_option("--fold", opt.fold_key,
                                     "a second rig key: continue every fold and Hopf point found in "
                                     "KEY in (KEY, KEY2), from KEY2's value in the rig -> "
@@ -446,38 +416,36 @@ Rig loadContinueRig(const ContinueOptions& opt, const std::vector<std::string>& 
   }
 }
 
-int continueCommand(const ContinueOptions& opt) {
-  if (opt.model == "full") return continueFullCommand(opt);
+ContinuationResult slowFlowContinuation(const ContinueOptions& opt) {
+  requireSlowFlow(loadContinueRig(opt, {}), rigDisplay(opt));
   const double from = startValue(opt);
-  const double from2 = opt.fold_key.empty() ? 0.0 : secondStart(opt);
-  const Rig rig = loadContinueRig(opt, {opt.param + "=" + roundTripText(from)});
-  const ScaledParams sp = computeScaled(rig);
-  const ContinuationSettings settings = settingsFor(opt, from);
+  std::string how;
+  const SlowFlowContinuationSpec spec = slowFlowSpec(opt, from, how);
   ContinuationResult result;
-  result.param = opt.param, result.from = from, result.to = opt.to;
-  result.metronomes = static_cast<int>(sp.nu.size());
-  result.theta_c = sp.theta_c;
-  std::vector<FoldSeed> folds;
   try {
-    if (opt.all) {
-      followAll(opt, sp, from, settings, result, folds);
-    } else {
-      const std::vector<Cd> z = startState(opt, sp, result.start);
-      const SlowFlowProblem prob(paramsAt(opt), from, largest(z));
-      const auto x = solveLocked(prob, prob.pack(z, prob.omegaGuess(from, z)), from);
-      if (!x) throw UsageError("Newton does not converge to a locked state from " + result.start);
-      record(opt, prob, continueFrom(prob.system(), *x, from, settings), settings, result, folds);
-    }
-    if (!opt.fold_key.empty()) foldCurves(opt, from2, folds, result);
+    result = continueSlowFlow(spec);
+  } catch (const NoLockedState& e) {
+    throw UsageError(std::string(e.what()) + " at " + opt.param + " = " + roundTripText(from) +
+                     (opt.all ? "" : " (" + how + ")"));
   } catch (const std::invalid_argument& e) {  // the slow flow at a value on the way: not finite
     throw UsageError("--param " + opt.param + " from " + roundTripText(from) + " to " +
                      roundTripText(opt.to) + ": " + e.what() +
                      " on the way (the range leaves the range of the numbers); " +
                      "choose a --to nearer the start");
   }
+  result.param = opt.param;
+  result.param2 = opt.fold_key;
+  result.start = opt.all ? "--all: every locked state Newton finds from a grid of seeds" : how;
+  return result;
+}
+
+int continueCommand(const ContinueOptions& opt) {
+  if (opt.model == "full") return continueFullCommand(opt);
+  const ContinuationResult result = slowFlowContinuation(opt);
+  const Rig rig = loadContinueRig(opt, {opt.param + "=" + roundTripText(result.from)});
   const OutputDir dir(outDir(opt, rig));
   writeContinuation(dir, result, rig.name);
-  if (!opt.quiet) printSummary(result, dir.path());
+  if (!opt.quiet) printSummary(result, dir.path(), opt.cycle_points);
   return kSuccess;
 }
 

@@ -10,6 +10,7 @@
 
 #include "models/rig.h"
 #include "sim/analysis/continuation/fold_curve.h"
+#include "sim/analysis/continuation/result.h"
 
 namespace metrosync::cli {
 
@@ -27,6 +28,7 @@ struct ContinueOptions {
   std::string out;                // --out DIR; empty: runs/<rig name>-continue
   bool quiet = false;
   bool no_cycles = false;  // --no-cycles
+  int cycle_points = 100;  // --cycle-points: each limit cycle's point budget
   std::string fold_key;    // --fold KEY2: continue each fold in KEY and KEY2
   double to2 = 0.0;        // --to2 VALUE: KEY2's other end (it starts at the rig's value)
 };
@@ -53,11 +55,15 @@ std::vector<continuation::FoldCurve> boundaryCurves(const std::string& rig_path,
                                                     const std::string& key1, double lo1, double hi1,
                                                     const std::string& key2, double lo2,
                                                     double hi2);
-// The same with the options given (the Python module's continue_).
+// The same with the options given.
 int continueCommand(const ContinueOptions& opt);
 
 // The rig with --set, then `extra` (the parameter's KEY=VALUE, named --param in messages; keys
 // as in docs/keys.md: metronomes.*.X sets X of every metronome). Throws RigError.
 Rig loadContinueRig(const ContinueOptions& opt, const std::vector<std::string>& extra);
+// The slow flow's continuation as values, nothing written (the Python module's continue_; one
+// function per model: `--model full` dispatches to its own). Bad input throws RigError or
+// UsageError.
+continuation::ContinuationResult slowFlowContinuation(const ContinueOptions& opt);
 
 }  // namespace metrosync::cli

@@ -37,9 +37,8 @@ Rig rigAt(const ContinueOptions& opt, double p) {
 // Whether two rigs have the same equations (starts and run settings aside).
 bool sameDynamics(const Rig& a, const Rig& b) {
   const PlatformSpec &pa = a.platform, &pb = b.platform;
-  if (a.gravity_m_s2 != b.gravity_m_s2 || pa.mass_kg != pb.mass_kg || pa.law != pb.law ||
-      pa.mu_bar != pb.mu_bar || pa.c_Ns_m != pb.c_Ns_m || pa.spring_N_m != pb.spring_N_m ||
-      a.metronomes.size() != b.metronomes.size())
+  if (a.gravity_m_s2 != b.gravity_m_s2 || pa.mass_kg != pb.mass_kg || pa.friction != pb.friction ||
+      pa.spring_N_m != pb.spring_N_m || a.metronomes.size() != b.metronomes.size())
     return false;
   for (size_t i = 0; i < a.metronomes.size(); ++i) {
     const MetronomeSpec &x = a.metronomes[i], &y = b.metronomes[i];

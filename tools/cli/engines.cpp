@@ -9,13 +9,20 @@ namespace metrosync::cli {
 const Engine& chooseEngine(const std::string& requested, const std::string& model, const Rig& rig,
                            const std::string& rig_name) {
   try {
-    return selectEngine(requested, model, rig.sim.integrator);
+    const Engine& e = selectEngine(requested, model, rig.sim.integrator);
+    if (e.model() == "slow") requireSlowFlow(rig, rig_name);
+    return e;
   } catch (const EngineSelectionError& e) {
     if (e.about_integrator) throw RigError(rig_name + ": " + e.what());
     throw UsageError(e.what());
   } catch (const PluginError& e) {
     throw UsageError(e.what());  // exit 2, before anything is written
   }
+}
+
+void requireSlowFlow(const Rig& rig, const std::string& rig_name) {
+  const SlowResponse r = rig.platform.friction.slowResponse();
+  if (r.kind == SlowResponse::Kind::None) throw RigError(rig_name + ": the slow flow: " + r.why);
 }
 
 std::string fullEngineHelp() {

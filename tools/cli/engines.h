@@ -13,9 +13,15 @@ namespace metrosync::cli {
 // The engine that runs `model` ("full", "slow", or "" = the engine's own) of `rig` with
 // `requested` ("" = the default: see selectEngine). Throws UsageError for an unknown engine or
 // one of the other model, RigError (prefixed by `rig_name`) when simulation.integrator is not
-// one of that engine's integrators.
+// one of that engine's integrators, or when the slow flow is chosen for a law without an averaged
+// response (requireSlowFlow).
 const Engine& chooseEngine(const std::string& requested, const std::string& model, const Rig& rig,
                            const std::string& rig_name);
+
+// The slow flow needs the averaged response of the rig's friction law (contact/law_kind.h):
+// throws RigError (exit 2), prefixed by `rig_name`, for a law that has none (static friction above
+// kinetic).
+void requireSlowFlow(const Rig& rig, const std::string& rig_name);
 
 // The --engine help of the commands that run the full model only (compare, validate, sweep's
 // full model, bench) and of those that run either (run, sweep).

@@ -80,7 +80,7 @@ int runMap(const FiguresOptions& opt, const std::string& rigs_dir, const OutputD
 
 double scaledMu(const std::vector<Scenario>& scenarios, const std::string& name) {
   for (const auto& s : scenarios)
-    if (s.spec.name == name) return s.scaled.mu;
+    if (s.spec.name == name) return s.scaled.friction.valueOr("mu", 0.0);
   return -1;
 }
 

@@ -161,6 +161,20 @@ void printSweepSummary(const SweepPlan& plan, const SweepRun& run, const OutputD
             << "files: " << dir.path() << "/ (" << joined(files) << ")\n";
 }
 
+// --boundaries: a curve that could not be followed (or all of them) is said on stderr; the map is
+// written all the same (exit 0), sweep.json has the same in `boundaries` / `boundaries_error`.
+void warnAboutBoundaries(const std::vector<continuation::FoldCurve>& curves,
+                         const std::string& error) {
+  if (!error.empty())
+    std::cerr << "metrosync: warning: --boundaries: no curves (" << error
+              << "); the map is written without them\n";
+  for (size_t i = 0; i < curves.size(); ++i)
+    if (!curves[i].failure.empty())
+      std::cerr << "metrosync: warning: --boundaries: the " << toString(curves[i].kind) << " curve "
+                << i << " through (" << curves[i].seed_p1 << ", " << curves[i].seed_p2
+                << ") could not be followed: " << curves[i].failure << "\n";
+}
+
 // The finish: regimes.csv sorted (in bounded passes), the maps from it, sweep.json; returns
 // sweep.json's status.
 nlohmann::json finishSweep(const SweepOptions& opt, const SweepPlan& plan, const SweepRun& run,
@@ -170,8 +184,13 @@ nlohmann::json finishSweep(const SweepOptions& opt, const SweepPlan& plan, const
                  [&](long g) { return plan.shard.contains(g); });
   std::vector<std::string> files = {"regimes.csv", "timings.csv"};
   std::vector<continuation::FoldCurve> curves;
+  std::string boundaries_error;  // the curves failed as a whole: the map is written without them
   if (opt.boundaries && complete && !interrupted) {
-    curves = mapBoundaries(opt, plan);
+    try {
+      curves = mapBoundaries(opt, plan);
+    } catch (const std::exception& e) {
+      boundaries_error = e.what();
+    }
     writeFileAtomically(dir.file("boundaries.csv"),
                         boundariesCsv(curves, plan.grid.axes()[0].key, plan.grid.axes()[1].key));
     files.push_back("boundaries.csv");
@@ -192,6 +211,8 @@ nlohmann::json finishSweep(const SweepOptions& opt, const SweepPlan& plan, const
   status["interrupted"] = interrupted;
   status["files"] = files;
   if (opt.boundaries) status["boundaries"] = boundariesJson(curves);
+  if (!boundaries_error.empty()) status["boundaries_error"] = boundaries_error;
+  warnAboutBoundaries(curves, boundaries_error);
   return status;
 }
 

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "base/number_text.h"
+#include "contact/law_registry.h"
 #include "sim/analysis/regime.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/engines.h"
@@ -125,7 +126,7 @@ std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
   const ScaledParams& sp = in.scaled;
   PointSink sink(sp.tau_end, sp.epsilon);
   // the `uncoupled` rule: the slow flow's averaged drive, the full model's own stick/slip
-  if (in.engine->model() != "full") sink.window.setEnvelopePlatform(sp.law, sp.mu);
+  if (in.engine->model() != "full") sink.window.setEnvelopePlatform(sp.friction);
   sink.x_unit = in.rig.units == Units::Physical ? sp.x_scale_m : 1.0;
   sink.keep = keep;
   RunReport rep;
@@ -158,10 +159,11 @@ std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
     for (double v : last.psi) p.psi.push_back(wrapToTwoPi(v));
     p.r = std::isnan(last.r) ? orderParameter(last.A, last.psi) : last.r;
     p.tau = last.tau;
-    if (sp.law == FrictionLaw::Coulomb) {  // |Z| = r sum_j A_j
+    if (sp.friction.is(coulombLaw())) {  // |Z| = r sum_j A_j
       double sum = 0.0;
       for (double a : last.A) sum += a;
-      p.s = sp.mu > 0 ? p.r * sum / sp.mu : std::numeric_limits<double>::infinity();
+      const double mu = sp.friction.valueOr("mu", 0.0);
+      p.s = mu > 0 ? p.r * sum / mu : std::numeric_limits<double>::infinity();
     }
   } else {
     p.A.assign(n, std::nan(""));

@@ -9,9 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "sim/analysis/fit/model_samples.h"
 #include "sim/record/atomic_file.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/continue.h"
+#include "tools/cli/fit.h"
 #include "tools/cli/sweep.h"
 #include "tools/report/outputs.h"
 #include "yaml/rig_loader.h"
@@ -105,7 +107,7 @@ int sweepCommand(const std::string& rig_path, const std::vector<std::string>& se
 int continueCommand(const std::string& rig_path, const std::vector<std::string>& sets,
                     const std::string& param, double to, const std::string& out,
                     std::optional<double> from, const std::string& start, double step,
-                    int max_points, bool all, const std::string& fold, double to2) {
+                    int max_points, bool all, const std::string& fold, double to2, bool no_cycles) {
   cli::ContinueOptions o;
   o.rig_path = rig_path;
   o.sets = sets;
@@ -118,9 +120,39 @@ int continueCommand(const std::string& rig_path, const std::vector<std::string>&
   o.all = all;
   o.fold_key = fold;
   o.to2 = to2;
+  o.no_cycles = no_cycles;
   o.out = out;
   o.quiet = true;
   return released([&] { return cli::continueCommand(o); });
+}
+
+// `metrosync fit` without its files: fit.json's text (tools/report/fit_files.h), the CLI's
+// answer to the last bit. A bad rig, data file or key raises RigError; a model that fails at the
+// starting values raises RuntimeError with the CLI's message.
+std::string fitJsonText(const std::string& rig_path, const std::string& data_path,
+                        const std::vector<std::string>& free, const std::vector<std::string>& sets,
+                        const std::string& model, std::optional<double> noise, int starts,
+                        bool local, bool profile) {
+  cli::FitOptions o;
+  o.rig_path = rig_path;
+  o.data_path = data_path;
+  o.free = free;
+  o.sets = sets;
+  o.model = model.empty() ? "full" : model;
+  o.noise = noise;
+  o.starts = starts;
+  o.local = local;
+  o.profile = profile;
+  std::string text;
+  released([&] {
+    try {
+      text = metrosync::fitJson(cli::runFit(o)).dump();
+    } catch (const metrosync::ModelFailure& e) {
+      throw std::runtime_error(std::string("the model fails at the starting values: ") + e.what());
+    }
+    return 0;
+  });
+  return text;
 }
 
 }  // namespace
@@ -145,7 +177,11 @@ PYBIND11_MODULE(_metrosync, m) {
   m.def("continue_command", &continueCommand, py::arg("rig_path"), py::arg("sets"),
         py::arg("param"), py::arg("to"), py::arg("out"), py::arg("from_") = std::nullopt,
         py::arg("start") = "", py::arg("step") = 0.0, py::arg("max_points") = 500,
-        py::arg("all") = false, py::arg("fold") = "", py::arg("to2") = 0.0);
+        py::arg("all") = false, py::arg("fold") = "", py::arg("to2") = 0.0,
+        py::arg("no_cycles") = false);
+  m.def("fit_json", &fitJsonText, py::arg("rig_path"), py::arg("data_path"), py::arg("free"),
+        py::arg("sets"), py::arg("model") = "", py::arg("noise") = std::nullopt,
+        py::arg("starts") = 6, py::arg("local") = false, py::arg("profile") = false);
   m.def(
       "scaled_json",
       [](const std::string& rig_path, const std::vector<std::string>& sets) {

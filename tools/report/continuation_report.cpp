@@ -7,6 +7,7 @@
 
 #include "base/number_text.h"
 #include "sim/record/atomic_file.h"
+#include "tools/report/continuation_diagram.h"
 #include "tools/report/plot.h"
 
 namespace metrosync {
@@ -28,64 +29,6 @@ nlohmann::json numbers(const std::vector<double>& v) {
   nlohmann::json j = nlohmann::json::array();
   for (double x : v) j.push_back(jnum(x));
   return j;
-}
-
-// "KEY A_1..A_N psi_2..psi_N stable" rows, one block per branch; then the special points.
-std::string plotData(const ContinuationResult& r) {
-  std::ostringstream d;
-  int branch = -1;
-  for (const ResultPoint& q : r.points) {
-    if (q.branch != branch && branch >= 0) d << "\n";
-    branch = q.branch;
-    d << numberText(q.value, 12);
-    for (double a : q.A) d << " " << numberText(a, 12);
-    for (double p : q.psi) d << " " << numberText(p, 12);
-    d << " " << (q.stable ? 1 : 0) << "\n";
-  }
-  d << "\n\n";
-  for (const auto& s : r.special) {
-    d << numberText(s.at.value, 12);
-    for (double a : s.at.A) d << " " << numberText(a, 12);
-    for (double p : s.at.psi) d << " " << numberText(p, 12);
-    d << " " << (s.type == "fold" ? 1 : s.type == "hopf" ? 2 : s.type == "branch" ? 3 : 4) << "\n";
-  }
-  if (r.special.empty()) d << "nan" << std::string(2 * r.metronomes, ' ') << "\n";
-  return d.str();
-}
-
-// One panel: columns first..first+count-1 of the data against column 1.
-std::string panel(int first, int count, const std::string& name, int stable_col) {
-  std::ostringstream p;
-  p << "plot ";
-  for (int c = first; c < first + count; ++c) {
-    const std::string label = name + "_" + std::to_string(c - first + (name == "A" ? 1 : 2));
-    p << "data index 0 using 1:($" << stable_col << "==1?$" << c << ":1/0) with lines lc "
-      << c - first + 1 << " lw 2 dt 1 title '" << label << " stable', "
-      << "data index 0 using 1:($" << stable_col << "==0?$" << c << ":1/0) with lines lc "
-      << c - first + 1 << " lw 1.5 dt 2 title '" << label << " unstable', "
-      << "data index 1 using 1:" << c << ":($" << stable_col
-      << ") with points pt 7 ps 1.2 lc rgb 'black' notitle, ";
-  }
-  std::string s = p.str();
-  return s.substr(0, s.size() - 2) + "\n";
-}
-
-std::string diagramScript(const ContinuationResult& r, const std::string& data,
-                          const std::string& png) {
-  const int n = r.metronomes;
-  std::ostringstream g;
-  g << "set terminal pngcairo size 1000," << (n > 1 ? 900 : 500) << " font ',11'\n"
-    << "set output '" << png << "'\n"
-    << "data = '" << data << "'\n"
-    << "set key outside right\nset grid\n"
-    << "set multiplot layout " << (n > 1 ? 2 : 1) << ",1 title 'locked states of the slow flow "
-    << "against " << r.param << " (points: fold, Hopf, branch, border)' noenhanced\n"
-    << "set xlabel '" << r.param << "' noenhanced\nset ylabel 'A_i'\n"
-    << panel(2, n, "A", 2 + 2 * n - 1);
-  if (n > 1)
-    g << "set ylabel 'psi_j = phi_1 - phi_j'\n" << panel(2 + n, n - 1, "psi", 2 + 2 * n - 1);
-  g << "unset multiplot\n";
-  return g.str();
 }
 
 std::string foldPlotScript(const ContinuationResult& r, const std::string& data,
@@ -138,7 +81,10 @@ std::string cyclesCsv(const ContinuationResult& r) {
   c << "cycle," << r.param << ",period";
   for (int i = 1; i <= r.metronomes; ++i) c << ",A_" << i << "_min,A_" << i << "_max";
   for (int j = 2; j <= r.metronomes; ++j) c << ",psi_" << j << "_min,psi_" << j << "_max";
-  c << ",stable,max_multiplier\n";
+  c << ",stable,max_multiplier";
+  for (int i = 1; i <= r.metronomes; ++i) c << ",A_" << i << "_0";
+  for (int j = 2; j <= r.metronomes; ++j) c << ",psi_" << j << "_0";
+  c << "\n";
   for (const auto& cycle : r.cycles)
     for (const auto& q : cycle.points) {
       c << cycle.id << "," << numberText(q.value, 12) << "," << numberText(q.period, 12);
@@ -146,7 +92,10 @@ std::string cyclesCsv(const ContinuationResult& r) {
         c << "," << numberText(q.A_min[i], 12) << "," << numberText(q.A_max[i], 12);
       for (size_t j = 0; j < q.psi_min.size(); ++j)
         c << "," << numberText(q.psi_min[j], 12) << "," << numberText(q.psi_max[j], 12);
-      c << "," << (q.stable ? 1 : 0) << "," << numberText(q.max_multiplier, 12) << "\n";
+      c << "," << (q.stable ? 1 : 0) << "," << numberText(q.max_multiplier, 12);
+      for (double a : q.A0) c << "," << numberText(a, 12);
+      for (double p : q.psi0) c << "," << numberText(p, 12);
+      c << "\n";
     }
   return c.str();
 }
@@ -156,13 +105,13 @@ std::string branchesCsv(const ContinuationResult& r) {
   c << "branch," << r.param;
   for (int i = 1; i <= r.metronomes; ++i) c << ",A_" << i;
   for (int j = 2; j <= r.metronomes; ++j) c << ",psi_" << j;
-  c << ",stable,max_real,ticking,platform,s\n";
+  c << ",stable,max_real,ticking,platform,s,weight\n";
   for (const ResultPoint& q : r.points) {
     c << q.branch << "," << numberText(q.value, 12);
     for (double a : q.A) c << "," << numberText(a, 12);
     for (double p : q.psi) c << "," << numberText(p, 12);
     c << "," << (q.stable ? 1 : 0) << "," << numberText(q.max_real, 12) << "," << q.ticking << ","
-      << q.platform << "," << numberText(q.s, 12) << "\n";
+      << q.platform << "," << numberText(q.s, 12) << "," << numberText(q.weight, 12) << "\n";
   }
   return c.str();
 }
@@ -187,43 +136,106 @@ nlohmann::json bifurcationsJson(const ContinuationResult& r) {
   return list;
 }
 
-nlohmann::json continuationSummaryJson(const ContinuationResult& r, const std::string& rig_name) {
+namespace {
+
+nlohmann::json branchesJson(const ContinuationResult& r) {
   nlohmann::json branches = nlohmann::json::array();
-  for (const auto& b : r.branches)
-    branches.push_back({{"id", b.id},
+  for (const auto& b : r.branches) {
+    nlohmann::json j = {{"id", b.id},
                         {"points", b.points},
                         {"end_backward", b.end_backward},
-                        {"end_forward", b.end_forward}});
+                        {"end_forward", b.end_forward},
+                        {"max_points", b.max_points}};
+    if (b.neutral) j["family"] = b.neutral;
+    branches.push_back(j);
+  }
+  return branches;
+}
+
+nlohmann::json familiesJson(const ContinuationResult& r) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& f : r.families)
+    list.push_back({{"family", f.id},
+                    {"branch", f.branch},
+                    {"neutral", f.neutral},
+                    {"cause", f.cause},
+                    {"points", f.points.size()},
+                    {"ends", f.points.empty() ? "" : f.points.front().ends}});
+  return list;
+}
+
+nlohmann::json cyclesJson(const ContinuationResult& r) {
+  nlohmann::json cycles = nlohmann::json::array();
+  for (const auto& c : r.cycles) {
+    nlohmann::json folds = nlohmann::json::array();
+    for (const auto& f : c.folds)
+      folds.push_back({{"value", f.at.value},
+                       {"period", f.at.period},
+                       {"confirmed", f.confirmed},
+                       {"check", f.check}});
+    cycles.push_back({{"cycle", c.id},
+                      {"hopf_value", c.hopf_value},
+                      {"frequency", jnum(c.frequency)},
+                      {"points", c.points.size()},
+                      {"budget", r.cycle_budget},
+                      {"max_points", c.max_points},
+                      {"end", c.end},
+                      {"folds", folds},
+                      {"stability_changes", c.changes}});
+  }
+  return cycles;
+}
+
+nlohmann::json curvesJson(const ContinuationResult& r, CurveKind kind) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const FoldCurve& curve : r.fold_curves) {
+    if (curve.kind != kind) continue;
+    nlohmann::json j = {{toString(kind), list.size()},
+                        {"points", curve.points.size()},
+                        {"end_backward", curve.end_backward},
+                        {"end_forward", curve.end_forward}};
+    if (!curve.failure.empty()) j["failure"] = curve.failure;
+    list.push_back(j);
+  }
+  return list;
+}
+
+}  // namespace
+
+nlohmann::json continuationSummaryJson(const ContinuationResult& r, const std::string& rig_name) {
   std::map<std::string, int> counts = {{"fold", 0}, {"hopf", 0}, {"branch", 0}, {"border", 0}};
   for (const auto& s : r.special) ++counts[s.type];
   nlohmann::json j = {{"command", "continue"},  {"version", metrosyncVersion()},
                       {"rig", rig_name},        {"param", r.param},
                       {"from", r.from},         {"to", r.to},
-                      {"start", r.start},       {"branches", branches},
+                      {"start", r.start},       {"branches", branchesJson(r)},
                       {"bifurcations", counts}, {"complete", true}};
-  nlohmann::json cycles = nlohmann::json::array();
-  for (const auto& c : r.cycles)
-    cycles.push_back({{"cycle", c.id},
-                      {"hopf_value", c.hopf_value},
-                      {"frequency", jnum(c.frequency)},
-                      {"points", c.points.size()},
-                      {"end", c.end},
-                      {"stability_changes", c.changes}});
-  j["cycles"] = cycles;
+  j["families"] = familiesJson(r);
+  j["cycles"] = cyclesJson(r);
   if (!r.param2.empty()) {
-    nlohmann::json curves[2] = {nlohmann::json::array(), nlohmann::json::array()};
-    for (const FoldCurve& curve : r.fold_curves) {
-      nlohmann::json& list = curves[curve.kind == CurveKind::Fold ? 0 : 1];
-      list.push_back({{toString(curve.kind), list.size()},
-                      {"points", curve.points.size()},
-                      {"end_backward", curve.end_backward},
-                      {"end_forward", curve.end_forward}});
-    }
     j["param2"] = r.param2;
-    j["fold_curves"] = curves[0];
-    j["hopf_curves"] = curves[1];
+    j["fold_curves"] = curvesJson(r, CurveKind::Fold);
+    j["hopf_curves"] = curvesJson(r, CurveKind::Hopf);
   }
   return j;
+}
+
+std::string familiesCsv(const ContinuationResult& r) {
+  std::ostringstream c;
+  c << "family," << r.param;
+  for (int i = 1; i <= r.metronomes; ++i) c << ",A_" << i << "_min,A_" << i << "_max";
+  for (int j = 2; j <= r.metronomes; ++j) c << ",psi_" << j << "_min,psi_" << j << "_max";
+  c << ",closed\n";
+  for (const auto& f : r.families)
+    for (const auto& q : f.points) {
+      c << f.id << "," << numberText(q.value, 12);
+      for (size_t i = 0; i < q.A_min.size(); ++i)
+        c << "," << numberText(q.A_min[i], 12) << "," << numberText(q.A_max[i], 12);
+      for (size_t j = 0; j < q.psi_min.size(); ++j)
+        c << "," << numberText(q.psi_min[j], 12) << "," << numberText(q.psi_max[j], 12);
+      c << "," << (q.closed ? 1 : 0) << "\n";
+    }
+  return c.str();
 }
 
 std::vector<std::string> writeContinuation(const OutputDir& dir, const ContinuationResult& r,
@@ -231,9 +243,13 @@ std::vector<std::string> writeContinuation(const OutputDir& dir, const Continuat
   writeFileAtomically(dir.file("branches.csv"), branchesCsv(r));
   writeFileAtomically(dir.file("bifurcations.json"), bifurcationsJson(r).dump(2) + "\n");
   writeFileAtomically(dir.file("cycles.csv"), cyclesCsv(r));
-  std::vector<std::string> written = {"branches.csv", "bifurcations.json", "cycles.csv"};
-  if (drawPng(dir, "branches.png", plotData(r),
-              [&](const std::string& d, const std::string& p) { return diagramScript(r, d, p); }))
+  writeFileAtomically(dir.file("families.csv"), familiesCsv(r));
+  std::vector<std::string> written = {"branches.csv", "bifurcations.json", "cycles.csv",
+                                      "families.csv"};
+  if (drawPng(dir, "branches.png", continuationDiagramData(r),
+              [&](const std::string& d, const std::string& p) {
+                return continuationDiagramScript(r, d, p);
+              }))
     written.push_back("branches.png");
   if (!r.param2.empty()) {
     writeFileAtomically(dir.file("fold_curve.csv"), foldCurveCsv(r, CurveKind::Fold));

@@ -19,14 +19,14 @@ bool isLength(const std::string& quantity) {
 }
 
 // one block per quantity: t, data, model, residual (x in mm)
-std::string plotData(const FitSetup& s, const FitResult& r) {
+std::string plotData(const FitOutcome& r) {
   std::ostringstream os;
   os.precision(10);
-  for (std::size_t q = 0; q < s.quantity_names.size(); ++q) {
-    const double unit = isLength(s.quantity_names[q]) ? 1e3 : 1.0;
-    os << "# " << s.quantity_names[q] << "\n";
-    for (std::size_t i = 0; i < s.observations.size(); ++i) {
-      const Observation& o = s.observations[i];
+  for (std::size_t q = 0; q < r.quantity_names.size(); ++q) {
+    const double unit = isLength(r.quantity_names[q]) ? 1e3 : 1.0;
+    os << "# " << r.quantity_names[q] << "\n";
+    for (std::size_t i = 0; i < r.observations.size(); ++i) {
+      const Observation& o = r.observations[i];
       if (o.quantity != static_cast<int>(q)) continue;
       os << o.t_s << ' ' << unit * o.value << ' ' << unit * r.predicted[i] << ' '
          << unit * (r.predicted[i] - o.value) << '\n';
@@ -36,7 +36,7 @@ std::string plotData(const FitSetup& s, const FitResult& r) {
   return os.str();
 }
 
-std::string plotScript(const FitSetup& s, const std::string& data, const std::string& png,
+std::string plotScript(const FitOutcome& s, const std::string& data, const std::string& png,
                        const std::string& title) {
   bool any_length = false;
   for (const std::string& q : s.quantity_names) any_length = any_length || isLength(q);
@@ -82,50 +82,100 @@ nlohmann::json numberOrNull(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
-nlohmann::json fitJson(const FitSetup& s, const FitResult& r, const FitContext& ctx) {
-  nlohmann::json values = nlohmann::json::object(), errors = nlohmann::json::object(),
-                 ident = nlohmann::json::object(), starts = nlohmann::json::object(),
-                 start_from = nlohmann::json::object(), rms_by = nlohmann::json::object();
-  nlohmann::json corr = nlohmann::json::array(), keys = nlohmann::json::array();
-  for (std::size_t j = 0; j < s.free.size(); ++j) {
-    const std::string& key = s.free[j].key;
-    keys.push_back(key);
-    values[key] = optionalJson(r.values[j]);
-    errors[key] = optionalJson(r.std_errors[j]);
-    ident[key] = static_cast<bool>(r.identifiable[j]);
-    starts[key] = numberOrNull(ctx.starts.at(j));
-    start_from[key] = ctx.start_from.at(j);
-    nlohmann::json row = nlohmann::json::array();
-    for (const auto& c : r.correlation[j]) row.push_back(optionalJson(c));
-    corr.push_back(row);
+namespace {
+
+nlohmann::json optimaJson(const FitReport& rep) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Optimum& o : rep.outcome.optima) {
+    nlohmann::json values = nlohmann::json::object(), start = nlohmann::json::object();
+    for (std::size_t j = 0; j < rep.free.size(); ++j) {
+      values[rep.free[j].name] = numberOrNull(o.values[j]);
+      start[rep.free[j].name] = numberOrNull(o.start[j]);
+    }
+    out.push_back({{"values", values},
+                   {"rms", numberOrNull(o.rms)},
+                   {"at_noise_level", o.at_noise},
+                   {"start", start}});
   }
-  for (std::size_t q = 0; q < s.quantity_names.size(); ++q)
-    rms_by[s.quantity_names[q]] = numberOrNull(r.rms_by_quantity.at(q));
-  return {{"rig", ctx.rig_path},
-          {"data", ctx.data_path},
-          {"model", ctx.model},
-          {"free", keys},
-          {"values", values},
-          {"std_errors", errors},
-          {"identifiable", ident},
-          {"correlation", corr},
-          {"rms", numberOrNull(r.rms)},
-          {"rms_by_column", rms_by},
-          {"observations", s.observations.size()},
-          {"evaluations", r.evaluations},
-          {"iterations", r.iterations},
-          {"converged", r.converged},
-          {"solver", r.solver_summary},
-          {"start", starts},
-          {"start_from", start_from},
-          {"version", metrosyncVersion()}};
+  return out;
 }
 
-bool plotFit(const OutputDir& dir, const std::string& png_name, const FitSetup& setup,
-             const FitResult& result, const std::string& title) {
-  return drawPng(dir, png_name, plotData(setup, result),
+nlohmann::json profileJson(const std::optional<Profile>& p) {
+  if (!p) return nullptr;
+  return {{"at", {numberOrNull(p->lower_at), numberOrNull(p->upper_at)}},
+          {"rise", {numberOrNull(p->lower_rise), numberOrNull(p->upper_rise)}}};
+}
+
+// fit.json's per-key objects and the correlation matrix, in --free order
+nlohmann::json perKeyJson(const FitReport& rep) {
+  const FitOutcome& r = rep.outcome;
+  nlohmann::json j = {{"values", nlohmann::json::object()},
+                      {"std_errors", nlohmann::json::object()},
+                      {"identifiable", nlohmann::json::object()},
+                      {"not_identifiable_because", nlohmann::json::object()},
+                      {"profile", nlohmann::json::object()},
+                      {"start", nlohmann::json::object()},
+                      {"start_from", nlohmann::json::object()},
+                      {"keys", nlohmann::json::object()},
+                      {"free", nlohmann::json::array()},
+                      {"correlation", nlohmann::json::array()}};
+  for (std::size_t k = 0; k < rep.free.size(); ++k) {
+    const std::string& name = rep.free[k].name;
+    j["free"].push_back(name);
+    j["keys"][name] = rep.free[k].keys;
+    j["values"][name] = optionalJson(r.values[k]);
+    j["std_errors"][name] = optionalJson(r.std_errors[k]);
+    j["identifiable"][name] = static_cast<bool>(r.identifiable[k]);
+    j["not_identifiable_because"][name] =
+        r.identifiable[k] ? nlohmann::json(nullptr) : nlohmann::json(r.not_identifiable_because[k]);
+    j["profile"][name] = profileJson(r.profiles.empty() ? std::nullopt : r.profiles[k]);
+    j["start"][name] = numberOrNull(rep.free[k].start);
+    j["start_from"][name] = rep.start_from.at(k);
+    nlohmann::json row = nlohmann::json::array();
+    for (const auto& c : r.correlation[k]) row.push_back(optionalJson(c));
+    j["correlation"].push_back(row);
+  }
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json fitJson(const FitReport& rep) {
+  const FitOutcome& r = rep.outcome;
+  nlohmann::json rms_by = nlohmann::json::object(), noise = nlohmann::json::object();
+  for (std::size_t q = 0; q < r.quantity_names.size(); ++q) {
+    rms_by[r.quantity_names[q]] = numberOrNull(r.rms_by_quantity.at(q));
+    noise[r.quantity_names[q]] =
+        r.noise_by_quantity.at(q) > 0 ? numberOrNull(r.noise_by_quantity[q]) : nullptr;
+  }
+  nlohmann::json j = {{"rig", rep.rig_path},
+                      {"data", rep.data_path},
+                      {"model", rep.model},
+                      {"rms", numberOrNull(r.rms)},
+                      {"rms_by_column", rms_by},
+                      {"noise", noise},
+                      {"noise_from", r.noise_from},
+                      {"converged", r.converged},
+                      {"note", r.note},
+                      {"solver_converged", r.solver_converged},
+                      {"solver", r.solver_summary},
+                      {"singular_values", r.singular_values},
+                      {"smooth_until_s", numberOrNull(r.smooth_until_s)},
+                      {"optima", optimaJson(rep)},
+                      {"strategy", r.strategy},
+                      {"observations", r.observations.size()},
+                      {"evaluations", r.evaluations},
+                      {"iterations", r.iterations},
+                      {"version", metrosyncVersion()}};
+  j.update(perKeyJson(rep));
+  return j;
+}
+
+bool plotFit(const OutputDir& dir, const std::string& png_name, const FitReport& report,
+             const std::string& title) {
+  return drawPng(dir, png_name, plotData(report.outcome),
                  [&](const std::string& data_path, const std::string& png_path) {
-                   return plotScript(setup, data_path, png_path, title);
+                   return plotScript(report.outcome, data_path, png_path, title);
                  });
 }
 

@@ -4,6 +4,7 @@
 #include <limits>
 #include <sstream>
 
+#include "base/number_text.h"
 #include "models/network_equations.h"
 #include "models/scaling.h"
 #include "sim/analysis/network_regime.h"
@@ -11,6 +12,7 @@
 #include "sim/analysis/order_parameter.h"
 #include "sim/analysis/regime.h"
 #include "sim/record/atomic_file.h"
+#include "sim/record/envelope.h"
 #include "tools/report/plot.h"
 
 namespace metrosync {
@@ -22,10 +24,9 @@ namespace {
 constexpr std::size_t kMaxPlotRows = 2000;
 
 std::string csvLine(const std::vector<double>& v) {
-  std::ostringstream os;
-  os.precision(17);
-  for (std::size_t i = 0; i < v.size(); ++i) os << (i ? "," : "") << v[i];
-  return os.str();
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? "," : "") + numberText(v[i], 17);
+  return s;
 }
 
 }  // namespace
@@ -140,7 +141,27 @@ std::vector<std::string> NetworkFiles::fileNames() const {
   return {"trajectory.csv", "envelope.csv", "order.csv"};
 }
 
-nlohmann::json NetworkFiles::summary(const NetworkRunReport& report) const {
+namespace {
+
+// A platform's final envelope: its metronomes' amplitudes (global numbers in its `metronomes`),
+// their phases relative to its first, psi_k - psi_first of the network's (0 beside a locked one).
+nlohmann::json platformFinal(const Network& net, int p, const EnvelopeRow& last) {
+  const int first = net.firstMetronome(p);
+  const std::vector<MetronomeSpec>& ms = net.platforms[p].rig.metronomes;
+  auto psi = [&](int i) { return i == 0 ? 0.0 : last.psi[i - 1]; };  // psi_1 = 0
+  std::vector<double> a, d;
+  for (std::size_t k = 0; k < ms.size(); ++k) {
+    const int i = first + static_cast<int>(k);
+    a.push_back(last.A[i]);
+    if (k == 0) continue;
+    d.push_back(ms[k].locked || ms[0].locked ? 0.0 : psi(i) - psi(first));
+  }
+  return {{"tau", last.tau}, {"A", a}, {"psi", d}};
+}
+
+}  // namespace
+
+nlohmann::json NetworkFiles::platformsJson(bool complete) const {
   const Impl& m = *impl_;
   const std::vector<std::string> regimes = m.verdict.platformRegimes();
   const std::vector<Order>& groups = m.verdict.groups();
@@ -150,14 +171,43 @@ nlohmann::json NetworkFiles::summary(const NetworkRunReport& report) const {
     std::vector<int> numbers;
     for (std::size_t i = 0; i < np.rig.metronomes.size(); ++i)
       numbers.push_back(m.net.firstMetronome(p) + static_cast<int>(i) + 1);
-    platforms[np.name] = {{"regime", report.complete ? regimes[p] : "unknown"},
+    platforms[np.name] = {{"regime", complete ? regimes[p] : "unknown"},
                           {"metronomes", numbers},
                           {"r", groups.empty() ? 0.0 : groups[p].r}};
+    if (!m.verdict.empty()) platforms[np.name]["final"] = platformFinal(m.net, p, m.verdict.last());
   }
+  return platforms;
+}
+
+// The label's window as a single run's `regime_window` (its start in tau, its rows), with each
+// platform's mean r and the drift of its mean phase against the first platform's.
+nlohmann::json NetworkFiles::regimeWindowJson() const {
+  const Impl& m = *impl_;
+  const NetworkWindow& w = m.verdict.window();
+  const ScaledParams sp = computeScaled(m.net.scalesRig());
+  nlohmann::json platforms = nlohmann::json::object();
+  for (int p = 0; p < w.groups(); ++p)
+    platforms[m.net.platforms[p].name] = {
+        {"r_mean", w.meanR(p)}, {"dphi_range", w.dPhiRange(p)}, {"dphi_final", w.dPhiFinal(p)}};
+  return {{"tau_start", w.tStart() / sp.time_scale_s * sp.epsilon},
+          {"rows", w.rows()},
+          {"platforms", platforms}};
+}
+
+nlohmann::json NetworkFiles::summary(const NetworkRunReport& report) const {
+  const Impl& m = *impl_;
   nlohmann::json j;
-  j["platforms"] = platforms;
-  j["network"] = {{"regime", report.complete ? m.verdict.label() : "unknown"},
-                  {"r", m.verdict.overall().r}};
+  j["command"] = "run";
+  j["version"] = metrosyncVersion();
+  j["platforms"] = platformsJson(report.complete);
+  const std::string label = report.complete ? m.verdict.label() : "unknown";
+  j["network"] = {{"regime", label}, {"r", m.verdict.overall().r}};
+  j["regime"] = label;  // as a single run's: the network's label
+  j["regime_window"] = regimeWindowJson();
+  if (!m.verdict.empty()) {
+    const EnvelopeRow& last = m.verdict.last();
+    j["final"] = {{"tau", last.tau}, {"A", last.A}, {"psi", last.psi}};
+  }
   j["complete"] = report.complete;
   if (!report.complete) j["failure"] = report.failure;
   j["engine"] = report.engine;
@@ -165,14 +215,8 @@ nlohmann::json NetworkFiles::summary(const NetworkRunReport& report) const {
   j["counts"] = {{"steps", report.steps},           {"rhs_evals", report.rhs_evals},
                  {"events", report.events},         {"escapements", report.ticks},
                  {"stick_slip", report.stick_slip}, {"slip_reversals", report.slip_reversals}};
-  const EnergyLedger& e = report.ledger;
-  j["energy"] = {{"initial_J", e.initial_J},
-                 {"final_J", e.final_J},
-                 {"escapement_in_J", e.escapement_in_J},
-                 {"damping_out_J", e.damping_out_J},
-                 {"friction_out_J", e.friction_out_J},
-                 {"residual_J", e.residual_J()},
-                 {"relative_residual", e.relativeResidual()}};
+  j["energy"] = energyJson(report.ledger);
+  addTimings(j, report.wall_seconds, report.engine_seconds);
   return j;
 }
 
@@ -180,9 +224,8 @@ namespace {
 
 std::string rowsText(const std::vector<std::vector<double>>& rows) {
   std::ostringstream os;
-  os.precision(9);
   for (const auto& r : rows) {
-    for (std::size_t k = 0; k < r.size(); ++k) os << (k ? " " : "") << r[k];
+    for (std::size_t k = 0; k < r.size(); ++k) os << (k ? " " : "") << numberText(r[k], 9);
     os << "\n";
   }
   return os.str();
@@ -191,9 +234,9 @@ std::string rowsText(const std::vector<std::vector<double>>& rows) {
 // one "tau metronome phase" line per metronome and kept sample, for a palette raster
 std::string rasterText(const std::vector<std::vector<double>>& rows) {
   std::ostringstream os;
-  os.precision(6);
   for (const auto& r : rows)
-    for (std::size_t k = 1; k < r.size(); ++k) os << r[0] << " " << k << " " << r[k] << "\n";
+    for (std::size_t k = 1; k < r.size(); ++k)
+      os << numberText(r[0]) << " " << k << " " << numberText(r[k]) << "\n";
   return os.str();
 }
 
@@ -205,25 +248,26 @@ std::vector<std::string> plotNetwork(const OutputDir& dir, const NetworkFiles& f
   const int groups = static_cast<int>(net.platforms.size());
   auto order_script = [&](const std::string& data, const std::string& png) {
     std::ostringstream s;
-    s << "set terminal pngcairo size 1000,500\nset output '" << png << "'\n"
-      << "set title '" << title << "' noenhanced\nset xlabel 'tau'\nset ylabel 'r'\n"
+    s << "set terminal pngcairo size 1000,500\nset output " << gnuplotQuote(png) << "\n"
+      << "set title " << gnuplotQuote(title) << " noenhanced\nset xlabel 'tau'\nset ylabel 'r'\n"
       << "set yrange [0:1.05]\nset key outside right\nplot ";
     for (int g = 0; g < groups; ++g)
-      s << "'" << data << "' using 1:" << g + 2 << " with lines title 'r " << net.platforms[g].name
-        << "' noenhanced, ";
-    s << "'" << data << "' using 1:" << groups + 2 << " with lines lw 2 title 'r (all)'\n";
+      s << gnuplotQuote(data) << " using 1:" << g + 2 << " with lines title "
+        << gnuplotQuote("r " + net.platforms[g].name) << " noenhanced, ";
+    s << gnuplotQuote(data) << " using 1:" << groups + 2 << " with lines lw 2 title 'r (all)'\n";
     return s.str();
   };
   if (drawPng(dir, "order.png", rowsText(files.orderRows()), order_script))
     made.push_back("order.png");
   auto raster_script = [&](const std::string& data, const std::string& png) {
     std::ostringstream s;
-    s << "set terminal pngcairo size 1000,600\nset output '" << png << "'\n"
-      << "set title '" << title << " - phase relative to its platform' noenhanced\n"
+    s << "set terminal pngcairo size 1000,600\nset output " << gnuplotQuote(png) << "\n"
+      << "set title " << gnuplotQuote(title + " - phase relative to its platform")
+      << " noenhanced\n"
       << "set xlabel 'tau'\nset ylabel 'metronome'\nset cbrange [-pi:pi]\n"
       << "set palette model HSV functions gray, 1, 0.9\nunset key\n"  // cyclic: -pi = pi
       << "set yrange [0.5:" << net.numMetronomes() + 0.5 << "]\n"
-      << "plot '" << data << "' using 1:2:3 with points pt 5 ps 0.4 palette\n";
+      << "plot " << gnuplotQuote(data) << " using 1:2:3 with points pt 5 ps 0.4 palette\n";
     return s.str();
   };
   if (drawPng(dir, "raster.png", rasterText(files.rasterRows()), raster_script))

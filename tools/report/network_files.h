@@ -27,7 +27,9 @@ class NetworkFiles : public NetworkSink {
               const std::vector<PlatformMode>& modes) override;
   void commit();
   std::vector<std::string> fileNames() const;
-  // summary.json's network part: `platforms`, `network`, the counts and the ledger
+  // summary.json's network part: a single run's keys (`final`, `regime`, `regime_window`, the
+  // counts, the ledger, `wall_seconds`, `engine_seconds`, `version`, `command`) and `platforms`
+  // (each with its regime, metronomes, final r and final envelope), `network` (label, final r)
   nlohmann::json summary(const NetworkRunReport& report) const;
   // the time series for the plots: tau, then r per platform and overall, one row per sample
   const std::vector<std::vector<double>>& orderRows() const { return order_rows_; }
@@ -35,6 +37,8 @@ class NetworkFiles : public NetworkSink {
   const std::vector<std::vector<double>>& rasterRows() const { return raster_rows_; }
 
  private:
+  nlohmann::json platformsJson(bool complete) const;
+  nlohmann::json regimeWindowJson() const;
   void keepForPlots(const std::vector<double>& order, const std::vector<double>& raster);
   struct Impl;
   std::unique_ptr<Impl> impl_;

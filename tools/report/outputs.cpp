@@ -159,7 +159,7 @@ void appendNumbers(const double* v, size_t n, std::string& line) {
 FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt)
     : opt_(opt), window_(opt.tau_end, opt.epsilon), plot_(opt.max_plot_rows) {
   if (opt_.n_metronomes < 1) throw std::invalid_argument("FileSink: no metronome");
-  if (opt_.envelope_platform) window_.setEnvelopePlatform(opt_.law, opt_.mu);
+  if (opt_.envelope_platform) window_.setEnvelopePlatform(opt_.law);
   const size_t n = static_cast<size_t>(opt_.n_metronomes);
   if (opt_.trajectory) {
     trajectory_ = std::make_unique<AtomicFile>(dir.file(opt_.trajectory_name));
@@ -329,23 +329,28 @@ nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict)
       {"steps", report.counts.steps},           {"escapements", report.counts.escapements},
       {"stick_slip", report.counts.stick_slip}, {"slip_reversals", report.counts.slip_reversals},
       {"rhs_evals", report.counts.rhs_evals},   {"events", report.counts.events}};
-  j["wall_seconds"] = report.wall_seconds;
-  j["engine_seconds"] = report.engine_seconds;
+  addTimings(j, report.wall_seconds, report.engine_seconds);
   j["write_seconds"] = report.write_seconds;
   j["complete"] = report.complete;
   if (!report.complete) j["failure"] = report.failure;
-  if (report.has_ledger) {
-    const EnergyLedger& e = report.ledger;
-    j["energy"] = {{"units", "J"},
-                   {"initial", e.initial_J},
-                   {"final", e.final_J},
-                   {"escapement_in", e.escapement_in_J},
-                   {"damping_out", e.damping_out_J},
-                   {"friction_out", e.friction_out_J},
-                   {"residual", e.residual_J()},
-                   {"relative_residual", e.relativeResidual()}};
-  }
+  if (report.has_ledger) j["energy"] = energyJson(report.ledger);
   return j;
+}
+
+nlohmann::json energyJson(const EnergyLedger& e) {
+  return {{"units", "J"},
+          {"initial", e.initial_J},
+          {"final", e.final_J},
+          {"escapement_in", e.escapement_in_J},
+          {"damping_out", e.damping_out_J},
+          {"friction_out", e.friction_out_J},
+          {"residual", e.residual_J()},
+          {"relative_residual", e.relativeResidual()}};
+}
+
+void addTimings(nlohmann::json& summary, double wall_seconds, double engine_seconds) {
+  summary["wall_seconds"] = wall_seconds;
+  summary["engine_seconds"] = engine_seconds;
 }
 
 nlohmann::json runSummaryJson(const Rig& rig, const nlohmann::json& scaled, const RunReport& report,

@@ -89,8 +89,7 @@ struct RunFilesOptions {
   // RegimeWindow::setEnvelopePlatform; unset: only the full model's rows tell
   bool envelope_platform = false;
   double x_unit = 1.0;  // trajectory x per unit of scaled x (physical rigs: x_scale_m)
-  FrictionLaw law = FrictionLaw::Coulomb;
-  double mu = 0.0;
+  FrictionLaw law;      // scaled
 };
 
 // events.csv's header: t,tau,kind,who, then x,xdot,theta_i,thetadot_i,platform with _before
@@ -170,6 +169,11 @@ class FileSink : public RunSink {
 // {tau, A[], psi[]}, counts {steps, escapements[], stick_slip, rhs_evals, events}, wall_seconds,
 // complete, failure (when incomplete), energy {...} (when the report has a ledger).
 nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict);
+
+// summary.json's `energy` (the ledger, in J) and the timings `wall_seconds`, `engine_seconds`:
+// the same keys for a single run and a network's (tools/report/network_files.h).
+nlohmann::json energyJson(const EnergyLedger& ledger);
+void addTimings(nlohmann::json& summary, double wall_seconds, double engine_seconds);
 
 // summary.json of `run`: reportJson plus units, rig, version, command and `scaled` (the object
 // `scale --json` prints).

@@ -9,26 +9,13 @@
 
 namespace metrosync {
 
-namespace {}  // namespace
-
 nlohmann::json scaleJson(const Rig& rig, const ScaledParams& p) {
   nlohmann::json j;
   j["epsilon"] = p.epsilon;
-  j["law"] = toString(p.law);
-  switch (p.law) {
-    case FrictionLaw::Coulomb:
-      j["mu"] = p.mu;
-      break;
-    case FrictionLaw::Viscous:
-      j["c"] = p.c;
-      break;
-    case FrictionLaw::None:
-      j["mu"] = 0.0;
-      break;  // no friction at all
-    case FrictionLaw::Fixed:
-      j["mu"] = nullptr;
-      break;  // held still: mu -> infinity
-  }
+  j.update(p.friction.toJson());  // law and its scaled parameters
+  // a law without parameters as the mu it stands for: none 0, fixed infinite (null)
+  if (const std::optional<double> mu = p.friction.kind().reportedMu())
+    j["mu"] = std::isfinite(*mu) ? nlohmann::json(*mu) : nlohmann::json(nullptr);
   j["nu"] = p.nu;
   j["J"] = p.J;
   j["theta_c"] = p.theta_c;
@@ -51,14 +38,15 @@ std::string scaleText(const Rig& rig, const ScaledParams& p) {
   os << "  epsilon     " << numberText(p.epsilon, 4) << "  (m1^2 L1^2 / (I1 M)";
   if (physical) os << ", M = " << numberText(rig.totalMass(), 4) << " kg";
   os << ")\n";
-  os << "  friction    " << toString(p.law);
-  if (p.law == FrictionLaw::Coulomb) {
-    os << "  mu = " << numberText(p.mu, 4);
-    if (physical) os << "  (mu-bar = " << numberText(rig.platform.mu_bar, 4) << ")";
-  }
-  if (p.law == FrictionLaw::Viscous) {
-    os << "  c = " << numberText(p.c, 4);
-    if (physical) os << "  (c-bar = " << numberText(rig.platform.c_Ns_m, 4) << " N s/m)";
+  os << "  friction    " << p.friction.name();
+  const std::vector<LawParameter>& keys = p.friction.kind().parameters();
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const std::string key = keys[k].key;
+    os << "  " << key << " = " << numberText(p.friction.values()[k], 4);
+    if (!physical) continue;
+    const bool viscous = keys[k].scale == LawScale::Viscous;
+    os << "  (" << key << "-bar = " << numberText(rig.platform.friction.values()[k], 4)
+       << (viscous ? " N s/m)" : ")");
   }
   if (rig.platform.spring_N_m > 0)
     os << "  spring k = " << numberText(rig.platform.spring_N_m, 4) << " N/m";

@@ -33,6 +33,14 @@ const char* const kPalette[] = {"#f0e442", "#6a3d9a", "#8c564b", "#17becf", "#bc
                                 "#c5b0d5", "#c49c94", "#f7b6d2", "#dbdb8d", "#9edae5",
                                 "#393b79", "#637939", "#8c6d31", "#843c39", "#7b4173"};
 
+}  // namespace
+
+// Magenta and lime: in neither the regimes' fixed colours nor their palette.
+const char* const kFoldCurveColour = "#ff00ff";
+const char* const kHopfCurveColour = "#32cd32";
+
+namespace {
+
 // The axes drawn by default: the first two with more than one value (a single point is drawn
 // along axis 0).
 std::vector<size_t> drawnAxes(const SweepGrid& grid) {
@@ -168,6 +176,13 @@ std::string header(const std::string& format, const std::string& png, int width,
 
 }  // namespace
 
+std::vector<std::string> regimeColours() {
+  std::vector<std::string> out;
+  for (const auto& [name, colour] : fixedColours()) out.push_back(colour);
+  for (const char* c : kPalette) out.push_back(c);
+  return out;
+}
+
 bool isSweepSliceMapName(const std::string& name) {
   for (const auto& m : sweepMapNames()) {
     if (m.size() < 4 || m.compare(m.size() - 4, 4, ".png") != 0) continue;
@@ -236,14 +251,17 @@ std::string boundaryBlock(const std::vector<continuation::FoldCurve>& curves) {
   return b.str();
 }
 
+// Each curve over a white halo (visible on any regime's colour), in a colour no regime uses.
 std::string boundaryPlot(const std::vector<continuation::FoldCurve>& curves) {
   std::string plot;
   bool fold_titled = false, hopf_titled = false;
   for (size_t i = 0; i < curves.size(); ++i) {
     const bool fold = curves[i].kind == continuation::CurveKind::Fold;
     bool& titled = fold ? fold_titled : hopf_titled;
-    plot += ", \\\n     $boundaries index " + std::to_string(i) +
-            " using 1:2 with lines lc rgb 'black' lw 2.5 dt " + (fold ? "1" : "2") +
+    const std::string index = "$boundaries index " + std::to_string(i) + " using 1:2 with lines";
+    plot += ", \\\n     " + index + " lc rgb 'white' lw 5 dt 1 notitle";
+    plot += ", \\\n     " + index + " lc rgb '" + (fold ? kFoldCurveColour : kHopfCurveColour) +
+            "' lw 2.5 dt " + (fold ? "1" : "2") +
             (titled ? " notitle"
              : fold ? " title 'fold curve'"
                     : " title 'Hopf curve'");
@@ -267,12 +285,16 @@ std::string boundariesCsv(const std::vector<continuation::FoldCurve>& curves,
 
 nlohmann::json boundariesJson(const std::vector<continuation::FoldCurve>& curves) {
   nlohmann::json list = nlohmann::json::array();
-  for (size_t i = 0; i < curves.size(); ++i)
-    list.push_back({{"curve", i},
-                    {"type", toString(curves[i].kind)},
-                    {"points", curves[i].points.size()},
-                    {"end_backward", curves[i].end_backward},
-                    {"end_forward", curves[i].end_forward}});
+  for (size_t i = 0; i < curves.size(); ++i) {
+    nlohmann::json c = {{"curve", i},
+                        {"type", toString(curves[i].kind)},
+                        {"points", curves[i].points.size()},
+                        {"end_backward", curves[i].end_backward},
+                        {"end_forward", curves[i].end_forward}};
+    if (!curves[i].failure.empty())
+      c["failure"] = curves[i].failure, c["seed"] = {curves[i].seed_p1, curves[i].seed_p2};
+    list.push_back(c);
+  }
   return list;
 }
 

@@ -53,10 +53,18 @@ std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& gr
                                        const std::vector<continuation::FoldCurve>& boundaries = {},
                                        const std::vector<size_t>& map_axes = {});
 
+// The colours of the boundary curves on the maps (sweep --boundaries): fold and Hopf curves,
+// each over a white halo; no regime is drawn in either.
+extern const char* const kFoldCurveColour;
+extern const char* const kHopfCurveColour;
+// The colours of the regimes with fixed colours and the palette of the others.
+std::vector<std::string> regimeColours();
+
 // boundaries.csv: `curve,type,KEY1,KEY2`, one row per point of each curve in order along it.
 std::string boundariesCsv(const std::vector<continuation::FoldCurve>& curves,
                           const std::string& key1, const std::string& key2);
-// sweep.json's `boundaries`: [{curve, type, points, end_backward, end_forward}].
+// sweep.json's `boundaries`: [{curve, type, points, end_backward, end_forward}], with
+// `failure` and `seed` (KEY1, KEY2) for a curve that could not be followed.
 nlohmann::json boundariesJson(const std::vector<continuation::FoldCurve>& curves);
 
 // The colour of a regime name (#rrggbb): fixed for the SPEC names and `failed`, from a palette in

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "base/number_text.h"
 #include "sim/analysis/continuation/arclength.h"
+#include "sim/analysis/continuation/border_states.h"
 #include "sim/analysis/continuation/derivatives.h"
 #include "sim/analysis/continuation/newton.h"
 
@@ -34,40 +34,19 @@ std::optional<BranchPoint> acrossKink(const ContinuationSystem& sys, const Branc
   return after;
 }
 
-// The jump: re-solve with the new formulas at the same parameter.
-std::optional<BranchPoint> acrossJump(const ContinuationSystem& sys, const BranchPoint& at, int k,
-                                      const Region& side, Bifurcation& b) {
-  const double p = at.p();
-  const auto x = solveAt(sys, at.y.head(sys.n), p, side);
-  if (!x || regionAt(sys, *x, p) != side) {
-    b.detail = "jump of the vector field at " + sys.borderName(k) +
-               ": the branch ends here (no fixed point of the other side's formulas nearby: a "
-               "boundary equilibrium)";
-    return std::nullopt;
-  }
-  Vec y(sys.n + 1);
-  y << *x, p;
-  BranchPoint after = makePoint(sys, y, tangentAt(sys, y, at.tangent, side), side);
-  b.stability_changes = at.stable != after.stable;
-  b.detail = "jump of the vector field at " + sys.borderName(k) + ": the fixed point moves by " +
-             numberText((*x - at.y.head(sys.n)).norm(), 4) + " at the same parameter; " +
-             stabilityWords(at, after);
-  return after;
-}
-
 }  // namespace
 
 std::optional<BranchPoint> crossBorder(const ContinuationSystem& sys, const BranchPoint& at, int k,
-                                       std::vector<Bifurcation>& special) {
+                                       const ContinuationSettings& s, int max_points, Walk& w) {
+  if (sys.jumps && sys.jumps(k)) return slideAlong(sys, at, k, s, max_points, w);
   Region side = at.region;
   side[k] = 1 - side[k];
   Bifurcation b;
   b.type = BifurcationType::Border;
   b.point = at;
   b.border = k;
-  const auto after =
-      sys.jumps && sys.jumps(k) ? acrossJump(sys, at, k, side, b) : acrossKink(sys, at, k, side, b);
-  special.push_back(b);
+  const auto after = acrossKink(sys, at, k, side, b);
+  w.special.push_back(b);
   return after;
 }
 

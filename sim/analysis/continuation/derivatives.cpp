@@ -20,6 +20,7 @@ double centralStep(double v) {
 }
 
 Mat jacobianX(const ContinuationSystem& sys, const Vec& x, double p, const Region& region) {
+  if (sys.jacobian) return sys.jacobian(x, p, region);
   Mat J(sys.n, sys.n);
   for (int j = 0; j < sys.n; ++j) {
     const double h = centralStep(x(j));
@@ -33,7 +34,14 @@ Mat jacobianX(const ContinuationSystem& sys, const Vec& x, double p, const Regio
 
 Vec derivativeP(const ContinuationSystem& sys, const Vec& x, double p, const Region& region) {
   const double h = centralStep(p);
-  return (sys.residual(x, p + h, region) - sys.residual(x, p - h, region)) / (2.0 * h);
+  const Vec up = sys.residual(x, p + h, region), down = sys.residual(x, p - h, region);
+  if (up.allFinite() && down.allFinite()) return (up - down) / (2.0 * h);
+  // p at the edge of its domain (mu = 0: F is not defined below): the one-sided second-order
+  // difference from the side where it is
+  const double d = up.allFinite() ? h : -h;
+  const Vec f0 = sys.residual(x, p, region), f1 = up.allFinite() ? up : down;
+  const Vec f2 = sys.residual(x, p + 2 * d, region);
+  return (-3.0 * f0 + 4.0 * f1 - f2) / (2.0 * d);
 }
 
 Mat jacobianOf(const std::function<Vec(const Vec&)>& f, const Vec& y) {

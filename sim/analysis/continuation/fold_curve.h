@@ -36,6 +36,9 @@ struct FoldCurve {
   CurveKind kind = CurveKind::Fold;
   std::vector<FoldCurvePoint> points;  // in order along the curve
   std::string end_backward, end_forward;
+  // a curve that could not be followed: its seed (the point found in the first key) and why
+  double seed_p1 = 0.0, seed_p2 = 0.0;
+  std::string failure;
 };
 
 // p1 held inside [lo, hi]: the curve ends where it leaves (a map's range, sweep --boundaries).

@@ -13,41 +13,33 @@
 #include "sim/analysis/continuation/arclength.h"
 #include "sim/analysis/continuation/derivatives.h"
 #include "sim/analysis/continuation/newton.h"
-#include "sim/ode/rk_stepper.h"
+#include "sim/analysis/continuation/parameter_scale.h"
 
 namespace metrosync::continuation {
 
 namespace {
 
-// Verner 7(6) with 200 fixed steps per period: local errors ~(T/200)^8, below 1e-11 for the slow
-// flow's periods (~5-30 in tau), so the flow map is accurate to far better than the shooting
-// tolerance while staying a smooth function of (y0, T, p).
-constexpr int kStepsPerPeriod = kCycleSteps;
 // The first cycle's amplitude along the Hopf eigenvector, relative to max(1, |y_h|): small
-// enough to be near the Hopf point (p moves by ~l1 a^2), large enough that the shooting system
-// is far from its degenerate limit (every T solves it at a = 0).
+// enough to be near the Hopf point (p moves by ~l1 a^2), then smaller ones when Newton fails.
 constexpr double kStartAmplitude = 1e-2;
 constexpr int kStartTries = 4;  // down to kStartAmplitude / 64
-// The shooting residual comes from a difference Jacobian one level down (~1e-10 noise); 1e-9 is
+// The first cycle's period lies within this fraction of the Hopf period 2 pi / w (it moves by
+// O(a^2)); anything else is another solution of the shooting equations.
+constexpr double kStartPeriodTolerance = 0.2;
+// The shooting residual comes from difference Jacobians one level down (~1e-10 noise); 1e-9 is
 // what the corrector reaches reliably (as for the fold curves, fold_curve.cpp).
 constexpr double kCycleTolerance = 1e-9;
-// The branch stops where the period passes this multiple of the Hopf period: the fixed step
-// count no longer resolves the orbit (a period growing without bound: a homoclinic orbit).
-constexpr double kMaxPeriodFactor = 5.0;
 // Multipliers this close to the unit circle count as on it (the trivial one's accuracy).
 constexpr double kUnitCircle = 1e-6;
-
-struct FieldRhs : ode::OdeRhs {
-  const CycleField& f;
-  double p;
-  Vec y, dy;
-  FieldRhs(const CycleField& field, double param) : f(field), p(param), y(field.n), dy(field.n) {}
-  void eval(const double* in, double* out) override {
-    for (int i = 0; i < f.n; ++i) y(i) = in[i];
-    dy = f.rhs(y, p);
-    for (int i = 0; i < f.n; ++i) out[i] = dy(i);
-  }
-};
+// The continuation's borders (exits): the period's limit, the orbit's margin.
+constexpr int kPeriodBorder = 0, kMarginBorder = 1;
+// The branch ends where the orbit comes this close to a border of its region (in the border
+// functions' units: amplitude or |Z|): nearer, the escapement's amplitude term sqrt(A - theta_c)
+// has derivatives ten times its size and more, and the shooting's Newton crawls.
+constexpr double kMarginStop = 1e-2;
+// The arclength of the shooting's unknowns counts each of the kSegments arc starts: steps this
+// many times longer move the orbit by what a step moves a locked state.
+const double kArcWeight = std::sqrt(static_cast<double>(kSegments));
 
 // The Hopf eigenvector q (f_y q = i w q, w > 0), rotated so that Re q and Im q are orthogonal.
 struct HopfMode {
@@ -72,49 +64,126 @@ HopfMode hopfMode(const CycleField& f, const Vec& y_h, double p_h) {
   return {es.eigenvalues()(k).imag(), q.real(), q.imag()};
 }
 
-// The shooting system in (y0, T) with parameter p.
-ContinuationSystem shootingSystem(const CycleField& f, const Vec& y_h, const Vec& d) {
+// The first cycle at amplitude a along Re q: y_j = y_h + a u_j with the unknowns (u, T, p) and
+// the equations (phi(y_j, T / M; p) - y_{j+1}) / a = 0, u_0 . Im q = 0 (phase), u_0 . Re q = 1
+// (amplitude). In units of a the equations stay well-conditioned as a -> 0, where in y itself
+// the period is undetermined (d phi / dT = f = O(a)) and Newton may run off to another solution.
+// Returns (y_0, .., y_{M-1}, T, p).
+std::optional<Vec> firstCycle(const MultipleShooting& ms, const Vec& y_h, double p_h,
+                              const HopfMode& q, double a) {
+  const int n = static_cast<int>(y_h.size()), N = ms.size() - 1;
+  auto toY = [&](const Vec& v) {
+    Vec u(N + 1);
+    for (int j = 0; j < kSegments; ++j) u.segment(j * n, n) = y_h + a * v.segment(j * n, n);
+    u(N) = v(N);
+    return u;
+  };
+  ContinuationSystem start;
+  start.n = N + 2;
+  start.residual = [&](const Vec& v, double, const Region&) {
+    Vec out(N + 2);
+    out << ms.residual(toY(v), v(N + 1)) / a, v.head(n).dot(q.im), v.head(n).dot(q.re) - 1.0;
+    return out;
+  };
+  start.jacobian = [&](const Vec& v, double, const Region&) {
+    const double p = v(N + 1), h = centralStep(p);
+    Mat J = Mat::Zero(N + 2, N + 2);
+    J.topLeftCorner(N, N + 1) = ms.jacobian(toY(v), p);
+    J.block(0, N, N, 1) /= a;  // d/dT; d/du_j = a d/dy_j / a
+    J.block(0, N + 1, N, 1) =
+        (ms.residual(toY(v), p + h) - ms.residual(toY(v), p - h)) / (2 * h * a);
+    J.block(N, 0, 1, n) = q.im.transpose();
+    J.block(N + 1, 0, 1, n) = q.re.transpose();
+    return J;
+  };
+  start.tolerance = kCycleTolerance;
+  const double T_h = 2 * kPi / q.omega;
+  const double scale = 1.0 / q.re.squaredNorm();
+  Vec v0(N + 2);
+  v0.head(N + 1) = ms.sample(
+      [&](double t) {
+        return Vec(scale * (q.re * std::cos(q.omega * t) - q.im * std::sin(q.omega * t)));
+      },
+      T_h);
+  v0(N + 1) = p_h;
+  const auto v = solveAt(start, v0, 0.0, Region{});
+  // another solution of the shooting equations (the orbit run backwards, or several times over)
+  // is not the cycle born at the Hopf point, whose period starts at T_h
+  if (!v || std::abs((*v)(N)-T_h) > kStartPeriodTolerance * T_h) return std::nullopt;
+  Vec out(N + 2);
+  out << toY(*v), (*v)(N + 1);
+  return out;
+}
+
+// The continuation system in u = (y_0, .., y_{M-1}, T): the arcs join, y_0 on the phase plane;
+// borders (exits) where the period passes kMaxPeriodFactor T_h and where the orbit touches the
+// region's border.
+// y_0 relative to the orbit's centre (the mean of the arcs' starts).
+Vec fromCentre(const Vec& u, int n) {
+  Vec c = Vec::Zero(n);
+  for (int j = 0; j < kSegments; ++j) c += u.segment(j * n, n);
+  return u.head(n) - c / kSegments;
+}
+
+// A step through zero amplitude: the cycle shrank onto a Hopf point and the step came out on the
+// same cycles again (y_0 now on the other side of the centre: the phase condition's other
+// crossing). The branch ends there.
+std::string throughHopf(const Vec& y, const Vec& y_next, int n) {
+  if (fromCentre(y, n).dot(fromCentre(y_next, n)) >= 0) return "";
+  return "the cycle shrinks onto a Hopf point (the next step passed through zero amplitude)";
+}
+
+// The phase condition (y_0 - y_r) . d = 0: the hyperplane through the last cycle's y_0 across
+// the orbit there (d along the chord y_1 - y_{M-1}), moved with every accepted cycle. A fixed
+// hyperplane (through the Hopf point) stops cutting the cycles once they shrink around another
+// equilibrium, and the branch would turn back there on the same cycles.
+struct PhasePlane {
+  Vec y, d;
+  void through(const Vec& u, int n) {
+    y = u.head(n);
+    d = (u.segment(n, n) - u.segment((kSegments - 1) * n, n)).normalized();
+  }
+};
+
+ContinuationSystem shootingSystem(const MultipleShooting& ms, int n, const Vec& u0, double T_h) {
+  const int N = ms.size() - 1;
+  auto plane = std::make_shared<PhasePlane>();
+  plane->through(u0, n);
   ContinuationSystem sys;
-  sys.n = f.n + 1;
-  sys.residual = [&f, y_h, d](const Vec& u, double p, const Region&) {
-    const Vec y0 = u.head(f.n);
-    Vec r(f.n + 1);
-    r.head(f.n) = flowMap(f, y0, u(f.n), p, kStepsPerPeriod) - y0;
-    r(f.n) = (y0 - y_h).dot(d);
+  sys.n = N + 1;
+  sys.residual = [&ms, plane, n, N](const Vec& u, double p, const Region&) {
+    Vec r(N + 1);
+    r << ms.residual(u, p), (u.head(n) - plane->y).dot(plane->d);
     return r;
   };
+  sys.jacobian = [&ms, plane, n, N](const Vec& u, double p, const Region&) {
+    Mat J = Mat::Zero(N + 1, N + 1);
+    J.topRows(N) = ms.jacobian(u, p);
+    J.block(N, 0, 1, n) = plane->d.transpose();
+    return J;
+  };
+  sys.accepted = [plane, n](const Vec& y) { plane->through(y, n); };
+  sys.borders = [&ms, T_h, N](const Vec& u, double p) {
+    Vec b(2);
+    b << kMaxPeriodFactor * T_h - u(N), std::min(ms.margin(u, p), 1.0) - kMarginStop;
+    return b;
+  };
+  sys.stop = [n](const Vec& y, const Vec& y_next) { return throughHopf(y, y_next, n); };
+  sys.exits = [](int) { return true; };
   sys.eigenvalues = [](const Vec&, double, const Region&) { return CVec(); };
   sys.tolerance = kCycleTolerance;
+  sys.branch_points = false;  // branch points of cycles are not reported
   return sys;
 }
 
-// The first cycle: amplitude a along Re q held, p free (Newton on (y0, T, p) via solveAt with the
-// amplitude as its parameter).
-std::optional<Vec> firstCycle(const CycleField& f, const ContinuationSystem& shoot, const Vec& y_h,
-                              double p_h, const HopfMode& q, double a) {
-  ContinuationSystem start;
-  start.n = f.n + 2;
-  start.residual = [&](const Vec& v, double amp, const Region& r) {
-    Vec out(f.n + 2);
-    out.head(f.n + 1) = shoot.residual(v.head(f.n + 1), v(f.n + 1), r);
-    out(f.n + 1) = (v.head(f.n) - y_h).dot(q.re) - amp;
-    return out;
-  };
-  start.tolerance = kCycleTolerance;
-  Vec v0(f.n + 2);
-  v0 << y_h + a * q.re, 2 * kPi / q.omega, p_h;
-  return solveAt(start, v0, a, Region{});
-}
-
-CyclePoint describe(const CycleField& f, const Vec& u, double p) {
+CyclePoint describe(const MultipleShooting& ms, int n, const Vec& u, double p) {
   CyclePoint c;
-  c.p = p, c.period = u(f.n), c.y0 = u.head(f.n);
-  std::vector<Vec> orbit;
-  flowMap(f, c.y0, c.period, p, kStepsPerPeriod, &orbit);
+  c.p = p, c.period = u(u.size() - 1), c.y0 = u.head(n);
   c.y_min = c.y_max = c.y0;
-  for (const Vec& y : orbit) c.y_min = c.y_min.cwiseMin(y), c.y_max = c.y_max.cwiseMax(y);
-  const Mat M =
-      jacobianOf([&](const Vec& y) { return flowMap(f, y, c.period, p, kStepsPerPeriod); }, c.y0);
+  c.orbit = ms.orbit(u, p);
+  for (const Vec& y : c.orbit) c.y_min = c.y_min.cwiseMin(y), c.y_max = c.y_max.cwiseMax(y);
+  Mat M;
+  ms.jacobian(u, p, &M);
   c.multipliers = M.eigenvalues();
   Eigen::Index k = 0;
   (c.multipliers.array() - 1.0).abs().minCoeff(&k);
@@ -123,15 +192,6 @@ CyclePoint describe(const CycleField& f, const Vec& u, double p) {
   for (Eigen::Index i = 0; i < c.multipliers.size(); ++i)
     if (i != k && std::abs(c.multipliers(i)) >= 1 - kUnitCircle) c.stable = false;
   return c;
-}
-
-bool orbitInside(const CycleField& f, const CyclePoint& c) {
-  if (!f.inside) return true;
-  std::vector<Vec> orbit;
-  flowMap(f, c.y0, c.period, c.p, kStepsPerPeriod, &orbit);
-  for (const Vec& y : orbit)
-    if (!f.inside(y, c.p)) return false;
-  return true;
 }
 
 // The kind of the multiplier that left the unit circle between a and b.
@@ -143,69 +203,80 @@ std::string stabilityChange(const CyclePoint& a, const CyclePoint& b) {
   const std::string kind = std::abs(worst.imag()) > kUnitCircle
                                ? "a complex pair crosses the unit circle (Neimark-Sacker: a torus)"
                            : worst.real() < 0 ? "a multiplier crosses -1 (period doubling)"
-                                              : "a multiplier crosses +1 (fold of cycles)";
+                                              : "a multiplier crosses +1";
   return "between p = " + numberText(a.p, 8) + " and " + numberText(b.p, 8) + ": " + kind;
+}
+
+// A multiplier crossing +1 between two points beside a located fold is that fold (in folds):
+// not another change.
+void dropFoldChanges(CycleBranch& c) {
+  std::vector<std::string> kept;
+  size_t k = 0;
+  for (size_t i = 1; i < c.points.size(); ++i) {
+    if (c.points[i - 1].stable == c.points[i].stable) continue;
+    const double lo = std::min(c.points[i - 1].p, c.points[i].p);
+    const double hi = std::max(c.points[i - 1].p, c.points[i].p), w = 2 * (hi - lo) + 1e-12;
+    const bool fold = std::any_of(c.folds.begin(), c.folds.end(), [&](const CyclePoint& f) {
+      return f.p > lo - w && f.p < hi + w;
+    });
+    const std::string& text = c.changes[k++];
+    if (!(fold && text.find("crosses +1") != std::string::npos)) kept.push_back(text);
+  }
+  c.changes = std::move(kept);
+}
+
+// The walk's end in words.
+std::string endOf(const Walk& w, double p_end, double T_h) {
+  if (w.exit == kPeriodBorder)
+    return "the period passes " + numberText(kMaxPeriodFactor, 8) + " times the Hopf period (" +
+           numberText(kMaxPeriodFactor * T_h, 8) +
+           ": a homoclinic orbit?) at p = " + numberText(p_end, 8);
+  if (w.exit == kMarginBorder)
+    return "the orbit comes within " + numberText(kMarginStop, 8) +
+           " of a border of the vector field at p = " + numberText(p_end, 8);
+  return w.end + (std::isnan(w.end_p) ? "" : " at p = " + numberText(p_end, 8));
 }
 
 }  // namespace
 
-Vec flowMap(const CycleField& f, const Vec& y0, double T, double p, int steps,
-            std::vector<Vec>* orbit) {
-  FieldRhs rhs(f, p);
-  ode::RkStepper stepper(ode::rkTableau("verner76"), f.n, rhs);
-  stepper.setTolerances(1.0, std::vector<double>(f.n, 1.0));  // fixed steps: no control
-  stepper.restart(0.0, y0.data());
-  const double h = T / steps;
-  for (int k = 0; k < steps; ++k) {
-    stepper.attempt(h);
-    stepper.advance();
-    if (orbit) orbit->push_back(Eigen::Map<const Vec>(stepper.y(), f.n));
-  }
-  return Eigen::Map<const Vec>(stepper.y(), f.n);
-}
-
 CycleBranch continueCycleFromHopf(const CycleField& f, const Vec& y_h, double p_h,
                                   const ContinuationSettings& s) {
   const HopfMode q = hopfMode(f, y_h, p_h);
-  const ContinuationSystem shoot = shootingSystem(f, y_h, q.im);
-  // the first amplitude, then smaller ones: a strongly nonlinear Hopf point (large l1) moves p by
-  // l1 a^2, out of Newton's reach at the first try
+  const MultipleShooting ms(f);
   double a = kStartAmplitude * std::max(1.0, y_h.norm());
   std::optional<Vec> v;
   for (int tries = 0; !v && tries < kStartTries; ++tries, a *= 0.25)
-    v = firstCycle(f, shoot, y_h, p_h, q, a);
+    v = firstCycle(ms, y_h, p_h, q, a);
   if (!v) throw std::runtime_error("the first cycle near the Hopf point does not converge");
-  ContinuationSettings inner = s;
-  inner.max_branches = 1;
-  const Branch b = continueFrom(shoot, v->head(f.n + 1), (*v)(f.n + 1), inner).at(0);
+  const int N = ms.size();  // unknowns: arcs and T
+  const double T_h = 2 * kPi / q.omega, p0 = (*v)(N);
+  const ParameterScale scale(p0, s);
+  const ContinuationSystem sys = scale.system(shootingSystem(ms, f.n, v->head(N), T_h));
+  Vec y(N + 1), ref = Vec::Zero(N + 1);
+  y << v->head(N), 0.0;
+  ref.head(f.n) = q.re;  // outwards: the amplitude along Re q grows
+  const Region r = regionAt(sys, y.head(N), 0.0);
+  const BranchPoint start = makePoint(sys, y, tangentAt(sys, y, ref, r), r);
+  ContinuationSettings inner = scale.settings(s);
+  inner.step *= kArcWeight, inner.step_max *= kArcWeight;
+  const Walk w = walkFrom(sys, start, inner, s.max_points);
   CycleBranch out;
-  out.hopf_p = p_h, out.hopf_frequency = q.omega;
-  // from the start outwards: the points whose amplitude along Re q grows away from the Hopf point
-  size_t start = 0;
-  for (size_t k = 1; k < b.points.size(); ++k)
-    if ((b.points[k].y - *v).norm() < (b.points[start].y - *v).norm()) start = k;
-  const auto amp = [&](const BranchPoint& bp) { return (bp.y.head(f.n) - y_h).dot(q.re); };
-  const double a_start = amp(b.points[start]);
-  const bool outward_forward = start + 1 < b.points.size() && amp(b.points[start + 1]) > a_start;
-  out.end = outward_forward ? b.end_forward : b.end_backward;
-  const double T_h = 2 * kPi / q.omega;
-  for (size_t k = start; k < b.points.size(); outward_forward ? ++k : --k) {
-    const BranchPoint& bp = b.points[k];
-    if (bp.y(f.n) > kMaxPeriodFactor * T_h) {
-      out.end = "the period passes " + numberText(kMaxPeriodFactor, 8) +
-                " times the Hopf period (a homoclinic orbit?)";
-      break;
-    }
-    CyclePoint c = describe(f, bp.y.head(f.n + 1), bp.p());
-    if (!orbitInside(f, c)) {
-      out.end = "the orbit reaches a border of the vector field at p = " + numberText(c.p, 8);
-      break;
-    }
+  out.hopf_p = p_h, out.hopf_frequency = q.omega, out.max_points = w.max_points;
+  for (BranchPoint bp : w.points) {
+    scale.restore(bp);
+    CyclePoint c = describe(ms, f.n, bp.y.head(N), bp.p());
     if (!out.points.empty() && out.points.back().stable != c.stable)
       out.changes.push_back(stabilityChange(out.points.back(), c));
     out.points.push_back(std::move(c));
-    if (k == 0) break;
   }
+  for (Bifurcation e : w.special) {
+    if (e.type != BifurcationType::Fold) continue;
+    scale.restore(e.point);
+    out.folds.push_back(describe(ms, f.n, e.point.y.head(N), e.point.p()));
+  }
+  dropFoldChanges(out);
+  out.end = endOf(w, out.points.back().p, T_h);
+  out.into_hopf = w.end.rfind("the cycle shrinks onto a Hopf point", 0) == 0;
   return out;
 }
 

@@ -20,6 +20,9 @@ std::optional<Vec> solveAt(const ContinuationSystem& sys, const Vec& x0, double 
 struct Corrected {
   Vec y;
   int iterations = 0;
+  // [F_x F_p] at the last iterate but one (within the last Newton step of y); empty when the
+  // predictor itself was accepted
+  Mat extended;
 };
 
 // Pseudo-arclength corrector: F(y) = 0 and t0 . (y - y0) = h, from the predictor y0 + h t0.
@@ -28,6 +31,9 @@ std::optional<Corrected> correct(const ContinuationSystem& sys, const Vec& y0, c
 
 // Unit tangent of the branch at y, oriented along `ref` (t . ref > 0): the kernel of [F_x F_p].
 Vec tangentAt(const ContinuationSystem& sys, const Vec& y, const Vec& ref, const Region& region);
+
+// The same from [F_x F_p] given.
+Vec tangentOf(const Mat& extended, const Vec& ref);
 
 // [F_x F_p] at y, n x (n + 1).
 Mat extendedJacobian(const ContinuationSystem& sys, const Vec& y, const Region& region);

@@ -24,13 +24,24 @@ struct ResultCyclePoint {
   bool stable = false;
 };
 
+// A fold of cycles (two cycles, one stable, meet and vanish), checked by runs of the slow flow
+// (sim/analysis/continuation/cycle_fold_check.h).
+struct ResultCycleFold {
+  ResultCyclePoint at;
+  bool confirmed = false;  // a run stays on the stable cycle beside it and leaves beyond it
+  std::string check;       // what the runs did, in words
+};
+
 struct ResultCycle {
   int id = 0;
   double hopf_value = 0.0;               // the parameter at the Hopf point the cycle is born at
   double frequency = 0.0;                // w of the Hopf pair: the period there is 2 pi / w
   std::vector<ResultCyclePoint> points;  // from the Hopf point outwards
   std::string end;
-  std::vector<std::string> changes;  // where the cycle's stability changes, in words
+  bool max_points = false;  // stopped by its point budget
+  bool into_hopf = false;   // it ended on a Hopf point (at its last point's parameter)
+  std::vector<ResultCycleFold> folds;
+  std::vector<std::string> changes;  // other changes of the cycle's stability, in words
 };
 
 // The cycle born at `hopf` (a Hopf point of prob's branch) over [s.p_min, s.p_max]; a Hopf point

@@ -2,10 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
 #include "base/constants.h"
+#include "base/number_text.h"
+#include "contact/law_registry.h"
+#include "sim/analysis/continuation/border_stability.h"
+#include "sim/analysis/continuation/branch.h"
 #include "sim/analysis/continuation/derivatives.h"
 #include "sim/analysis/continuation/lyapunov.h"
 
@@ -27,7 +32,11 @@ SlowFlowProblem::SlowFlowProblem(ParamsAt params_at, double p0, int reference)
     if (!sp.locked[i]) unlocked_.push_back(i);
   if (reference < 0 || reference >= n_ || sp.locked[reference])
     throw std::invalid_argument("the reference metronome must be an unlocked one");
-  coulomb_ = sp.law == FrictionLaw::Coulomb && sp.mu > 0;
+  // the s borders exist for every Coulomb platform, also at mu = 0 (there the platform slips:
+  // |Z| > mu), so that a continuation in mu starts from 0 or reaches it; the slow flow refuses
+  // a static coefficient above the kinetic one before this (requireSlowFlow)
+  coulomb_ = sp.friction.is(coulombLaw()) || sp.friction.is(staticCoulombLaw());
+  fixed_ = sp.friction.is(fixedPlatformLaw());
   const int m = static_cast<int>(unlocked_.size());
   sys_.n = 2 * m;
   sys_.residual = [this](const Vec& x, double p, const Region& r) { return residual(x, p, r); };
@@ -37,17 +46,37 @@ SlowFlowProblem::SlowFlowProblem(ParamsAt params_at, double p0, int reference)
     return eigenvalues(x, p, r);
   };
   sys_.lyapunov = [this](const Vec& x, double p, const Region& r) { return lyapunov(x, p, r); };
+  sys_.stableOnBorder = [this](const Vec& x, double p) {
+    return slowFlowReturns(params(p), unpack(x));
+  };
   sys_.borderName = [this, m](int k) {
     if (k < m) return "A_" + std::to_string(unlocked_[k] + 1) + " = theta_c";
     return std::string(k == m ? "s = 1" : "s = sqrt(1 + pi^2/4)");
   };
 }
 
-const ScaledParams& SlowFlowProblem::params(double p) const {
+const SlowFlowProblem::AtParameter& SlowFlowProblem::at(double p) const {
   auto it = cache_.find(p);
   if (it != cache_.end()) return it->second;
   if (cache_.size() > kCacheSize) cache_.clear();
-  return cache_.emplace(p, params_at_(p)).first->second;
+  AtParameter a{params_at_(p), nullptr};
+  try {
+    a.flow = std::make_shared<const SlowFlow>(a.params);
+  } catch (const std::invalid_argument&) {
+    a.flow = nullptr;  // refused: NaN rates (rhs)
+  }
+  return cache_.emplace(p, std::move(a)).first->second;
+}
+
+const ScaledParams& SlowFlowProblem::params(double p) const {
+  return at(p).params;
+}
+
+std::vector<Cd> SlowFlowProblem::rhs(double p, const Region& r, const std::vector<Cd>& z) const {
+  const AtParameter& a = at(p);
+  std::vector<Cd> dz(z.size(), Cd(std::numeric_limits<double>::quiet_NaN()));
+  if (a.flow) a.flow->rhs(modes(r), z.data(), dz.data());
+  return dz;
 }
 
 Vec SlowFlowProblem::pack(std::vector<Cd> z, double omega) const {
@@ -93,7 +122,7 @@ SlowFlowModes SlowFlowProblem::modes(const Region& r) const {
 // G_i = f_i(z) - i Omega z_i (e3.1a-c in the rotating frame), real and imaginary parts.
 Vec SlowFlowProblem::residual(const Vec& x, double p, const Region& r) const {
   const std::vector<Cd> z = unpack(x);
-  const std::vector<Cd> f = slowFlowRhs(params(p), modes(r), z);
+  const std::vector<Cd> f = rhs(p, r, z);
   const double om = omega(x);
   Vec G(sys_.n);
   int k = 0;
@@ -109,7 +138,8 @@ double SlowFlowProblem::s(const Vec& x, double p) const {
   const ScaledParams& sp = params(p);
   Cd Z = 0;
   for (const Cd& zi : unpack(x)) Z += zi;
-  return sp.mu > 0 ? std::abs(Z) / sp.mu : std::numeric_limits<double>::infinity();
+  const double mu = sp.friction.slowResponse().mu;  // 0 for a law without s
+  return mu > 0 ? std::abs(Z) / mu : std::numeric_limits<double>::infinity();
 }
 
 Vec SlowFlowProblem::borders(const Vec& x, double p) const {
@@ -119,9 +149,12 @@ Vec SlowFlowProblem::borders(const Vec& x, double p) const {
   Vec b(m + (coulomb_ ? 2 : 0));
   for (int k = 0; k < m; ++k) b(k) = std::abs(z[unlocked_[k]]) - sp.theta_c[unlocked_[k]];
   if (coulomb_) {
-    const double sv = s(x, p);
-    b(m) = sv - 1.0;
-    b(m + 1) = sv - kCoulombSlipThreshold;
+    // |Z| - mu and |Z| - s_b mu: the signs of s - 1 and s - s_b, smooth through mu = 0
+    Cd Z = 0;
+    for (const Cd& zi : z) Z += zi;
+    const double mu = sp.friction.valueOr("mu", 0.0);  // at this parameter value
+    b(m) = std::abs(Z) - mu;
+    b(m + 1) = std::abs(Z) - kCoulombSlipThreshold * mu;
   }
   return b;
 }
@@ -138,7 +171,7 @@ Mat SlowFlowProblem::reducedJacobian(const Vec& x, double p, const Region& r) co
   auto G = [&](const Vec& u) {
     std::vector<Cd> z = z0;
     for (int k = 0; k < m; ++k) z[unlocked_[k]] = Cd(u(2 * k), u(2 * k + 1));
-    const std::vector<Cd> f = slowFlowRhs(params(p), modes(r), z);
+    const std::vector<Cd> f = rhs(p, r, z);
     Vec g(2 * m);
     for (int k = 0; k < m; ++k) {
       const Cd gk = f[unlocked_[k]] - Cd(0, om) * z[unlocked_[k]];
@@ -191,7 +224,7 @@ Vec SlowFlowProblem::polarRates(const Vec& y, double p, const Region& r) const {
     phase[k] = k == kr ? 0.0 : y(j++);
     z[unlocked_[k]] = std::polar(y(k), phase[k]);
   }
-  const std::vector<Cd> dz = slowFlowRhs(params(p), modes(r), z);
+  const std::vector<Cd> dz = rhs(p, r, z);
   // dA/dtau = Re(e^{-i phi} dz), dphi/dtau = Im(e^{-i phi} dz) / A, relative to the reference's
   std::vector<double> dphi(m);
   Vec out(2 * m - 1);
@@ -213,7 +246,13 @@ double SlowFlowProblem::lyapunov(const Vec& x, double p, const Region& r) const 
 }
 
 double SlowFlowProblem::omegaGuess(double p, const std::vector<Cd>& z) const {
-  const std::vector<Cd> f = slowFlowRhs(params(p), z);
+  const ScaledParams& sp = params(p);
+  std::vector<Cd> f;
+  try {
+    f = slowFlowRhs(sp, z);
+  } catch (const std::invalid_argument&) {
+    return 0.0;
+  }
   return z[ref_] == Cd(0) ? 0.0 : (f[ref_] / z[ref_]).imag();
 }
 
@@ -235,11 +274,31 @@ std::vector<double> SlowFlowProblem::phaseDifferences(const Vec& x) const {
   return psi;
 }
 
-std::string SlowFlowProblem::ticking(const Region& r) const {
+std::string SlowFlowProblem::ticking(const Region& r, double weight) const {
   std::string s;
-  for (size_t k = 0; k < unlocked_.size(); ++k)
-    if (r[k]) s += (s.empty() ? "" : " ") + std::to_string(unlocked_[k] + 1);
+  const std::string w = ":" + numberText(weight, 3);
+  for (size_t k = 0; k < unlocked_.size(); ++k) {
+    if (!r[k]) continue;
+    s += (s.empty() ? "" : " ") + std::to_string(unlocked_[k] + 1);
+    if (r[k] == kOnBorder) s += w;
+  }
   return s.empty() ? "none" : s;
+}
+
+int SlowFlowProblem::metronomeOf(int k) const {
+  return k < static_cast<int>(unlocked_.size()) ? unlocked_[k] : -1;
+}
+
+std::string SlowFlowProblem::familyCause(const Region& r, int neutral) const {
+  const std::string phases = neutral == 1 ? "a phase difference" : "phase differences";
+  if (fixed_)
+    return "the platform is fixed: the metronomes are uncoupled, so " + phases + " is free";
+  if (coulomb_ && !r[unlocked_.size()])
+    return "the platform is stuck (s <= 1): the metronomes are uncoupled, so every " +
+           std::string(neutral == 1 ? "phase difference" : "set of phase differences") +
+           " keeping the platform stuck is a locked state";
+  return "a continuum of locked states (" + std::to_string(neutral) +
+         " zero eigenvalue(s) along it)";
 }
 
 std::string SlowFlowProblem::platform(const Region& r) const {

@@ -16,7 +16,9 @@
 
 #include <complex>
 #include <functional>
+#include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -47,9 +49,15 @@ class SlowFlowProblem {
   // The output of a point: A_i (N x 1), psi_j = phi_1 - phi_j (N-1 x 1) in [-pi/2, 3 pi/2).
   std::vector<double> amplitudes(const Vec& x) const;
   std::vector<double> phaseDifferences(const Vec& x) const;
-  // The region in words: the metronomes that tick (1-based) and the platform's regime.
-  std::string ticking(const Region& r) const;
+  // The region in words: the metronomes that tick (1-based; one on its threshold with the
+  // weight of its escapement's formula, "2:0.47") and the platform's regime.
+  std::string ticking(const Region& r,
+                      double weight = std::numeric_limits<double>::quiet_NaN()) const;
   std::string platform(const Region& r) const;
+  // The metronome (0-based) whose escapement switches at border k; -1 for a platform border.
+  int metronomeOf(int k) const;
+  // Why a neutral family exists in region r, in words.
+  std::string familyCause(const Region& r, int neutral) const;
   double s(const Vec& x, double p) const;  // |Z| / mu (inf when mu = 0)
 
   SlowFlowModes modes(const Region& r) const;
@@ -72,12 +80,26 @@ class SlowFlowProblem {
   double lyapunov(const Vec& x, double p, const Region& r) const;
   int referenceSlot() const;  // the reference's index among the unlocked
 
+  // dz/dtau with region r's formulas; NaN where the parameters are refused (a value outside
+  // the key's domain, e.g. mu < 0), so that the corrector fails there and the step control stays
+  // out, and one-sided differences are taken at the edge.
+  std::vector<std::complex<double>> rhs(double p, const Region& r,
+                                        const std::vector<std::complex<double>>& z) const;
+
+  // The parameters at p and their slow flow (checked once: null when refused).
+  struct AtParameter {
+    ScaledParams params;
+    std::shared_ptr<const SlowFlow> flow;
+  };
+  const AtParameter& at(double p) const;
+
   ParamsAt params_at_;
-  mutable std::map<double, ScaledParams> cache_;
+  mutable std::map<double, AtParameter> cache_;
   int n_ = 0;                  // metronomes
   std::vector<int> unlocked_;  // indices of the unlocked metronomes
   int ref_ = 0;                // the reference metronome
-  bool coulomb_ = false;       // Coulomb platform with mu > 0: the s borders exist
+  bool coulomb_ = false;       // Coulomb platform: the s borders exist
+  bool fixed_ = false;         // a fixed platform: the metronomes are uncoupled
   ContinuationSystem sys_;
 };
 

@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "base/constants.h"
+#include "base/number_text.h"
+#include "sim/analysis/continuation/family.h"
 #include "sim/analysis/continuation/newton.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 
@@ -22,6 +24,11 @@ constexpr double kRestAmplitude = 1e-6;
 constexpr double kSameSolution = 1e-6;
 // Region re-solves before a seed is dropped: each moves the solution across at least one border.
 constexpr int kMaxRegionChanges = 4;
+// Up to this many metronomes every combination of seeds (4^N levels x 2^(N-1) phases: 256 at
+// N = 3); above, symmetric patterns only (patterns()).
+constexpr int kFullGridUpTo = 3;
+// A start this close to a border (in its function: amplitude, |Z|) may belong to either side.
+constexpr double kNearBorder = 1e-2;
 
 double wrapped(double d) {
   return std::remainder(d, 2 * kPi);
@@ -37,10 +44,8 @@ std::string drift(const std::vector<EnvelopeRow>& rows, size_t from) {
       dpsi = std::max(dpsi, std::abs(wrapped(rows[r].psi[j] - last.psi[j])));
   }
   if (dA <= kSettleTolerance && dpsi <= kSettleTolerance) return "";
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "amplitudes still vary by %.3g and phase differences by %.3g", dA,
-                dpsi);
-  return buf;
+  return "amplitudes still vary by " + numberText(dA, 3) + " and phase differences by " +
+         numberText(dpsi, 3);
 }
 
 }  // namespace
@@ -90,45 +95,113 @@ SettledState settleOver(const ScaledParams& sp, double tau_end) {
   return st;
 }
 
+namespace {
+
+// A solution of region's formulas from x0 that lies in region, or a member of a neutral family
+// there moved inside it; nullopt otherwise (`found` then holds what Newton found, if anything).
+std::optional<Vec> solveIn(const SlowFlowProblem& prob, const Vec& x0, double p,
+                           const Region& region, std::optional<Vec>& found) {
+  const ContinuationSystem& sys = prob.system();
+  found = solveAt(sys, x0, p, region);
+  if (!found) return std::nullopt;
+  if (regionAt(sys, *found, p) == region) return found;
+  const auto nd = neutralDirections(sys, *found, p, region);
+  return nd ? memberInside(sys, *nd, *found, p, region) : std::nullopt;
+}
+
+}  // namespace
+
 std::optional<Vec> solveLocked(const SlowFlowProblem& prob, const Vec& x0, double p) {
   const ContinuationSystem& sys = prob.system();
   Region region = regionAt(sys, x0, p);
   Vec x = x0;
   for (int it = 0; it < kMaxRegionChanges; ++it) {
-    const auto sol = solveAt(sys, x, p, region);
-    if (!sol) return std::nullopt;
-    const Region there = regionAt(sys, *sol, p);
-    if (there == region) return prob.pack(prob.unpack(*sol), prob.omega(*sol));
-    region = there;
-    x = *sol;
+    std::optional<Vec> found;
+    std::optional<Vec> sol = solveIn(prob, x, p, region, found);
+    // a start within kNearBorder of a border (a run that stops where the platform sticks): the
+    // other side's formulas too
+    const Vec b = sys.borders(x, p);
+    for (int k = 0; !sol && !found && k < b.size(); ++k) {
+      if (std::abs(b(k)) > kNearBorder) continue;
+      Region other = region;
+      other[k] = 1 - other[k];
+      sol = solveIn(prob, x, p, other, found);
+      if (!sol && found) region = other;
+    }
+    if (sol) return prob.pack(prob.unpack(*sol), prob.omega(*sol));
+    if (!found) return std::nullopt;
+    region = regionAt(sys, *found, p);
+    x = *found;
   }
   return std::nullopt;
 }
 
+namespace {
+
+using Seed = std::pair<std::vector<double>, std::vector<double>>;  // (A, psi)
+
+// Every combination of the levels (each metronome) and phase differences: levels^N phases^(N-1).
+std::vector<Seed> fullGrid(int n, const std::vector<double>& levels,
+                           const std::vector<double>& phases) {
+  long combos = 1;
+  for (int i = 0; i < n; ++i) combos *= static_cast<long>(levels.size());
+  for (int j = 1; j < n; ++j) combos *= static_cast<long>(phases.size());
+  std::vector<Seed> seeds;
+  for (long c = 0; c < combos; ++c) {
+    long r = c;
+    Seed s{std::vector<double>(n), std::vector<double>(n - 1)};
+    for (int i = 0; i < n; ++i, r /= static_cast<long>(levels.size()))
+      s.first[i] = levels[r % levels.size()];
+    for (int j = 1; j < n; ++j, r /= static_cast<long>(phases.size()))
+      s.second[j - 1] = phases[r % phases.size()];
+    seeds.push_back(s);
+  }
+  return seeds;
+}
+
+// For many metronomes (the full grid grows as 8^N): the symmetric patterns only, each at every
+// level -- in phase, two clusters in antiphase, splay, one metronome against the rest -- and each
+// metronome suppressed (the lowest level) with the others at every level in phase.
+std::vector<Seed> patterns(int n, const std::vector<double>& levels) {
+  std::vector<std::vector<double>> phase_sets(4, std::vector<double>(n - 1, 0.0));
+  for (int j = 1; j < n; ++j) {
+    phase_sets[1][j - 1] = j % 2 ? kPi : 0.0;  // alternating clusters
+    phase_sets[2][j - 1] = -2 * kPi * j / n;   // splay
+  }
+  phase_sets[3][n - 2] = kPi;  // the last one against the rest
+  std::vector<Seed> seeds;
+  for (double level : levels)
+    for (const auto& psi : phase_sets) seeds.push_back({std::vector<double>(n, level), psi});
+  for (int i = 0; i < n; ++i)
+    for (double level : levels) {
+      Seed s{std::vector<double>(n, level), std::vector<double>(n - 1, 0.0)};
+      s.first[i] = levels.front();
+      seeds.push_back(s);
+    }
+  return seeds;
+}
+
+}  // namespace
+
 std::vector<Vec> allLockedStates(const SlowFlowProblem& prob, double p) {
   const ScaledParams& sp = prob.params(p);
   const int n = prob.metronomes();
-  std::vector<double> levels;  // amplitude seeds, shared by all metronomes
   double tc = 0, astar = 0;
   for (int i = 0; i < n; ++i) {
     tc = std::max(tc, sp.theta_c[i]);
     if (sp.A_star[i]) astar = std::max(astar, *sp.A_star[i]);
   }
   if (astar == 0) astar = 2 * tc + 1;
-  levels = {0.3 * tc, 1.2 * tc, astar, 1.4 * astar};
+  const std::vector<double> levels = {0.3 * tc, 1.2 * tc, astar, 1.4 * astar};
   const std::vector<double> phases =
       n <= 2 ? std::vector<double>{0, kPi / 2, kPi, 3 * kPi / 2} : std::vector<double>{0, kPi};
-  long combos = 1;
-  for (int i = 0; i < n; ++i) combos *= static_cast<long>(levels.size());
-  for (int j = 1; j < n; ++j) combos *= static_cast<long>(phases.size());
+  const std::vector<Seed> seeds =
+      n <= kFullGridUpTo ? fullGrid(n, levels, phases) : patterns(n, levels);
   std::vector<Vec> found;
-  for (long c = 0; c < combos; ++c) {
-    long r = c;
-    std::vector<double> A(n), psi(n > 1 ? n - 1 : 0);
-    for (int i = 0; i < n; ++i, r /= levels.size())
-      A[i] = sp.locked[i] ? 0 : levels[r % levels.size()];
-    for (int j = 1; j < n; ++j, r /= phases.size()) psi[j - 1] = phases[r % phases.size()];
-    const std::vector<Cd> z = stateFrom(A, psi);
+  for (Seed seed : seeds) {
+    for (int i = 0; i < n; ++i)
+      if (sp.locked[i]) seed.first[i] = 0;
+    const std::vector<Cd> z = stateFrom(seed.first, seed.second);
     if (std::abs(z[prob.reference()]) == 0) continue;
     const auto x = solveLocked(prob, prob.pack(z, prob.omegaGuess(p, z)), p);
     if (!x) continue;

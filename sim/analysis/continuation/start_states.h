@@ -34,7 +34,8 @@ std::vector<std::complex<double>> stateFrom(const std::vector<double>& A,
 std::optional<Vec> solveLocked(const SlowFlowProblem& prob, const Vec& x0, double p);
 
 // Every locked state Newton finds at p from a grid of seeds (amplitudes around theta_c and
-// A_star, phase differences around the circle), duplicates merged, the state at rest excepted.
+// A_star, phase differences around the circle; for more than three metronomes the symmetric
+// patterns of them only), duplicates merged, the state at rest excepted.
 std::vector<Vec> allLockedStates(const SlowFlowProblem& prob, double p);
 
 }  // namespace metrosync::continuation

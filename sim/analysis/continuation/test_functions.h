@@ -13,7 +13,8 @@ namespace metrosync::continuation {
 double foldTest(const BranchPoint& q);
 // Branch point: det [F_x F_p; t^T].
 double branchTest(const ContinuationSystem& sys, const BranchPoint& q);
-// Hopf: Re prod_{i<j} (lambda_i + lambda_j); 1 for fewer than two eigenvalues.
+// Hopf: the sign of Re prod_{i<j} (lambda_i + lambda_j), scaled to stay finite for many
+// eigenvalues (the M-th root of the product's modulus, M factors); 1 for fewer than two.
 double hopfTest(const CVec& eigenvalues);
 
 // The point at arclength h along the step from `from` (predictor along from.tangent, corrector,

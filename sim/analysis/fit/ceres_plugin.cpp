@@ -32,8 +32,8 @@ const CeresPlugin& ceresPlugin() {
   return *table;
 }
 
-FitResult fitLeastSquares(const FitSetup& setup) {
-  return ceresPlugin().fit(setup);
+LocalSolution solveLocal(const LocalProblem& problem) {
+  return ceresPlugin().solve(problem);
 }
 
 }  // namespace metrosync

@@ -1,4 +1,4 @@
-// fitLeastSquares (least_squares.h) is Ceres Solver's, and Ceres brings glog, SuiteSparse,
+// solveLocal (least_squares.h) is Ceres Solver's, and Ceres brings glog, SuiteSparse,
 // METIS, OpenMP and LAPACK in: its implementation (least_squares.cpp) is the plugin
 // metrosync-ceres.so, which `metrosync` loads when fit or measure runs (sim/engines/
 // plugin_loader.h, docs/bench/process.md); the tests and the Python module link it directly.
@@ -9,19 +9,19 @@
 namespace metrosync {
 
 inline constexpr const char* kCeresPluginFile = "metrosync-ceres.so";
-constexpr int kCeresPluginAbi = 1;  // raised whenever the table changes
+constexpr int kCeresPluginAbi = 2;  // raised whenever the table changes
 
 struct CeresPlugin {
   int abi = kCeresPluginAbi;
-  FitResult (*fit)(const FitSetup&) = nullptr;  // least_squares.cpp's Ceres fit
+  LocalSolution (*solve)(const LocalProblem&) = nullptr;  // least_squares.cpp's Ceres solve
 };
 
 // The table, loading the plugin on the first call (thread-safe); throws PluginError when it
 // cannot. The commands call it before writing anything.
 const CeresPlugin& ceresPlugin();
 
-// least_squares.cpp's implementation, which fitLeastSquares calls through the table.
-FitResult fitLeastSquaresWithCeres(const FitSetup& setup);
+// least_squares.cpp's implementation, which solveLocal calls through the table.
+LocalSolution solveLocalWithCeres(const LocalProblem& problem);
 
 }  // namespace metrosync
 

@@ -1,10 +1,11 @@
 // What a model says at measured times (docs/fit.md): runs an engine on a rig and reads the
 // quantities a data file holds -- theta_i (rad) or x (m) -- at arbitrary times.
-//   full model: trajectory rows every `row_dt` and the state after every event; between two of
-//     them a cubic Hermite interpolant (angles and rates), or, on an interval that ends at an
-//     event (an escapement tick makes the rate jump there), the quadratic through the earlier
-//     state, its rate and the later angle
-//   slow flow: the envelope A_i(tau) in rad (A_i sqrt(eps)), interpolated linearly in time
+//   full model (ModelTrajectory): trajectory rows every `row_dt` and the state after every event;
+//     between two of them a cubic Hermite interpolant (angles and rates), or, on an interval that
+//     ends at an event (an escapement tick makes the rate jump there), the quadratic through the
+//     earlier state, its rate and the later angle
+//   slow flow (sampleSlowFlow): the envelope A_i(tau) in rad (A_i sqrt(eps)), interpolated
+//     linearly in time
 #pragma once
 
 #include <stdexcept>
@@ -27,10 +28,27 @@ struct ModelFailure : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Runs `engine` on `rig` (physical units) to the last requested time and returns the requested
-// samples. The full model is sampled every row_dt_s seconds. Throws ModelFailure when the run
-// does not complete, std::invalid_argument for a rig the engine cannot run.
-std::vector<double> sampleModel(const Engine& engine, Rig rig,
-                                const std::vector<SampleRequest>& requests, double row_dt_s);
+// A run of the full model, kept to be read at any time up to its end.
+class ModelTrajectory {
+ public:
+  // Runs `engine` on `rig` (physical units) to t_end_s, rows every row_dt_s. Throws ModelFailure
+  // when the run does not complete, std::invalid_argument for a rig the engine cannot run.
+  ModelTrajectory(const Engine& engine, Rig rig, double t_end_s, double row_dt_s);
+
+  // theta_{i+1} (metronome = i >= 0) or x (metronome = -1) at t_s, interpolated
+  double at(double t_s, int metronome) const;
+
+ private:
+  struct Knot {
+    std::vector<double> row;  // trajectory format: t, x, xdot, theta_1, thetadot_1, ..., platform
+    bool after_event = false;
+  };
+  std::vector<Knot> knots_;
+};
+
+// The slow flow's amplitude of each requested metronome (metronome >= 0), in rad. Throws
+// ModelFailure or std::invalid_argument as above.
+std::vector<double> sampleSlowFlow(const Engine& engine, Rig rig,
+                                   const std::vector<SampleRequest>& requests);
 
 }  // namespace metrosync

@@ -90,10 +90,12 @@ void halfPeriod(const std::vector<double>& c, double& slope, double& error) {
 
 // A sinusoid a cos(s) + b sin(s) (+ c), s = w (t - t0), fitted to the samples in
 // [t0 - hw, t0 + hw] (centre fixed at 0 when !free_centre): its amplitude (NaN with too few
-// samples) and where it crosses its own centre nearest t0 (for a crossing window).
+// samples), where it crosses its own centre nearest t0 (for a crossing window), and the
+// amplitude's standard error for unit noise on the samples.
 struct WindowFit {
   double amplitude = std::nan("");
   double centre_crossing = 0.0;
+  double error_per_noise = 0.0;
 };
 WindowFit windowFit(const std::vector<double>& t, const std::vector<double>& d, double t0,
                     double hw, double w, bool free_centre) {
@@ -114,7 +116,12 @@ WindowFit windowFit(const std::vector<double>& t, const std::vector<double>& d, 
   // the extremum is at s = atan2(b, a); the crossing a quarter period away, within (-pi/2, pi/2]
   double s = std::atan2(p(1), p(0)) + kPi / 2;
   s -= kPi * std::ceil(s / kPi - 0.5);
-  return {std::hypot(p(0), p(1)), t0 + s / w};
+  const double amplitude = std::hypot(p(0), p(1));
+  // the amplitude's gradient in (a, b) is u = (a, b) / amplitude: its variance u^T (A^T A)^-1 u
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(cols);
+  if (amplitude > 0) u.head(2) << p(0) / amplitude, p(1) / amplitude;
+  const double var = u.dot((a.transpose() * a).ldlt().solve(u));
+  return {amplitude, t0 + s / w, std::sqrt(std::max(var, 0.0))};
 }
 
 // One fit per half-cycle: Peak windows halfway between crossings, Crossing windows at the
@@ -128,7 +135,8 @@ std::vector<Swing> fitWindows(const std::vector<double>& t, const std::vector<do
     const double t0 = peak ? 0.5 * (c[k] + c[k + 1]) : c[k];
     if (!peak && (t0 - hw < t.front() || t0 + hw > t.back())) continue;
     const WindowFit f = windowFit(t, v, t0, hw, w, !peak);
-    if (std::isfinite(f.amplitude)) out.push_back({peak ? t0 : f.centre_crossing, f.amplitude});
+    if (std::isfinite(f.amplitude))
+      out.push_back({peak ? t0 : f.centre_crossing, f.amplitude, peak ? f.error_per_noise : 0.0});
   }
   return out;
 }

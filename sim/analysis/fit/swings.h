@@ -16,6 +16,8 @@ namespace metrosync {
 struct Swing {
   double t_s = 0.0;        // the middle of the window: the extremum (Peak) or the crossing
   double amplitude = 0.0;  // half the peak-to-peak swing, in the signal's unit
+  // the amplitude's standard error per unit of the samples' noise (Peak windows; 0 otherwise)
+  double error_per_noise = 0.0;
 };
 
 struct Swings {

@@ -74,7 +74,8 @@ Mat ScaledModel::physicalJacobian(const std::vector<double>& y, PlatformMode mod
     const double meff = eq_.totalMass() - p.S;
     a = (p.G + F) / meff;
     da = (p.dG + a * p.dS) / meff;  // d((G + F) / (M - S))
-    if (eq_.law() == FrictionLaw::Viscous) da(kV) -= eq_.friction().viscous.c / meff;
+    if (eq_.friction().kind == PlatformFriction::Kind::Viscous)
+      da(kV) -= eq_.friction().viscous.c / meff;
     J(kX, kV) = 1.0;
     J.row(kV) = da.transpose();
   }
@@ -115,7 +116,7 @@ Vec ScaledModel::holdingForceGradient(const Vec& z) const {
 }
 
 PlatformMode ScaledModel::modeAtRest(const Vec& z) const {
-  return eq_.coulomb().modeAtRest(holdingForce(z));
+  return eq_.dryFriction().modeAtRest(holdingForce(z));
 }
 
 Vec ScaledModel::tick(const Vec& z, const std::vector<int>& ticked) const {

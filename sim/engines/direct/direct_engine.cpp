@@ -28,6 +28,7 @@
 #include "base/constants.h"
 #include "models/minimal_equations.h"
 #include "models/scaling.h"
+#include "sim/events/crossing.h"
 #include "sim/events/resolver.h"
 #include "sim/events/sample_schedule.h"
 #include "sim/events/storm_guard.h"
@@ -131,11 +132,10 @@ class DirectRun : public EventSystem {
   std::optional<Crossing> detectComponent(int index, int k, double sign, double offset,
                                           bool allow_forced);
   std::optional<Crossing> detectMargin(int index);
-  std::optional<Crossing> detectSlipFromRest(int index, int k, double sign, double g1);
-  // the stuck platform's witness made rising: -stickMargin = |H| - bound, and its rate
+  // the stuck platform's witness made rising: -stickMargin = |H| - static bound, and its rate
   double excessPush(const double* y) const {
     return risingSign(PlatformWitness::kDirection) *
-           PlatformWitness::value(eq_.coulomb(), PlatformMode::Stuck, 0.0, eq_.holdingForce(y));
+           PlatformWitness::value(eq_.dryFriction(), PlatformMode::Stuck, 0.0, eq_.holdingForce(y));
   }
   double excessPushRate(const double* y) const {
     const double h = eq_.holdingForce(y);
@@ -241,7 +241,7 @@ DirectRun<N>::DirectRun(const Rig& rig, RunSink& sink, const DirectOptions& opt)
     witnesses_.push_back({WitnessKind::Tick, j, +1});
     witnesses_.push_back({WitnessKind::Tick, j, -1});
   }
-  if (eq_.law() == FrictionLaw::Coulomb) witnesses_.push_back({WitnessKind::Platform, -1, 0});
+  if (eq_.friction().setValued()) witnesses_.push_back({WitnessKind::Platform, -1, 0});
   ya_.resize(lay_.dim());
   yb_.resize(lay_.dim());
   env_th_.resize(n_rig_, 0.0);
@@ -286,101 +286,31 @@ std::optional<Crossing> DirectRun<N>::detect(int index) {
   return detectComponent(index, StateLayout::kV, -static_cast<int>(mode()), 0.0, true);
 }
 
-// g(th) = sign * y_k(th) - offset on the dense output, rising through zero.
+// g(th) = sign * y_k(th) - offset on the dense output, rising through zero
+// (sim/events/crossing.h).
 template <int N>
 std::optional<Crossing> DirectRun<N>::detectComponent(int index, int k, double sign, double offset,
                                                       bool allow_forced) {
-  const double g0 = sign * stepper_.y()[k] - offset;
-  const double g1 = sign * stepper_.y1()[k] - offset;
-  auto g = [&](double th) { return sign * stepper_.component(k, th) - offset; };
-  auto rate = [&](double th) { return sign * stepper_.componentRate(k, th); };
-  if (g0 < 0) {
-    if (g1 >= 0) return Crossing{index, {0.0, 1.0}};
-    // both ends below: a maximum inside the step may still reach zero (grazing); the rates at
-    // the ends are f(y0), f(y1), inside they are the interpolant's
-    const double d0 = sign * stepper_.f()[k], d1 = sign * stepper_.f1()[k];
-    if (!(d0 > 0 && d1 < 0)) return std::nullopt;
-    auto falling = [&](double th) { return -rate(th); };
-    const Bracket top = illinois(falling, 0.0, -d0, 1.0, -d1);
-    const double ga = g(top.lo), gb = g(top.hi);
-    if (ga >= 0) return Crossing{index, {0.0, top.lo}};
-    if (gb >= 0) return Crossing{index, {0.0, top.hi}};
-    return std::nullopt;
-  }
-  // at or above zero at the start: a rising crossing needs a dip below zero first
-  if (g0 == 0 && g1 == 0) return std::nullopt;
-  if (allow_forced && g0 == 0) return detectSlipFromRest(index, k, sign, g1);
-  const double d0 = sign * stepper_.f()[k], d1 = sign * stepper_.f1()[k];
-  if (d0 < 0 && d1 > 0) {
-    const Bracket bottom = illinois(rate, 0.0, d0, 1.0, d1);
-    const double ga = g(bottom.lo), gb = g(bottom.hi);
-    const double th_min = ga < gb ? bottom.lo : bottom.hi;
-    if (std::min(ga, gb) < 0) {
-      if (g1 >= 0) return Crossing{index, {th_min, 1.0}};
-      return std::nullopt;  // went below and stayed there
-    }
-  }
-  return std::nullopt;
-}
-
-// The first step of a slip that starts from rest (xdot = 0 exactly, so g0 = 0). The slip can start
-// at a tangency of the stick margin, with an acceleration of rounding size at t0: the sign of the
-// rate there says nothing, so the dip of g below zero (the slip under way) is looked for on the
-// interpolant itself, and its end is the stop.
-template <int N>
-std::optional<Crossing> DirectRun<N>::detectSlipFromRest(int index, int k, double sign, double g1) {
-  if (g1 <= 0) return std::nullopt;  // still slipping the right way (or not at all) at the end
-  auto g = [&](double th) { return sign * stepper_.component(k, th); };
-  constexpr int kSamples = 16;
-  double th_prev = 0.0;
-  bool dipped = false;
-  for (int s = 1; s <= kSamples; ++s) {
-    const double th = static_cast<double>(s) / kSamples;
-    const double v = s == kSamples ? g1 : g(th);
-    if (v < 0) dipped = true;
-    if (dipped && v >= 0) return Crossing{index, {th_prev, th}};
-    th_prev = th;
-  }
-  // no sample below zero: the whole dip (if any) lies before the first sample
-  const double th1 = 1.0 / kSamples;
-  double a = 0.0, b = th1;
-  constexpr double kGolden = 0.6180339887498949;
-  double x1 = b - kGolden * (b - a), x2 = a + kGolden * (b - a);
-  double f1 = g(x1), f2 = g(x2);
-  for (int it = 0; it < 60; ++it) {
-    if (f1 < f2) {
-      b = x2, x2 = x1, f2 = f1;
-      x1 = b - kGolden * (b - a), f1 = g(x1);
-    } else {
-      a = x1, x1 = x2, f1 = f2;
-      x2 = a + kGolden * (b - a), f2 = g(x2);
-    }
-  }
-  const double th_min = f1 < f2 ? x1 : x2;
-  if (std::min(f1, f2) < 0) return Crossing{index, {th_min, th1}};
-  // the slip could not get going at all (a start at a tangency that rounding put on the wrong
-  // side): stop it at the first sample, where the margin has opened again
-  return Crossing{index, {th1, th1}, true};
+  return detectLinear(LinearWitness(stepper_, k, sign, offset), index, allow_forced);
 }
 
 // |H| - bound while stuck: H is a function of the whole state, its rate known in closed form.
 template <int N>
 std::optional<Crossing> DirectRun<N>::detectMargin(int index) {
-  const double g0 = excessPush(stepper_.y()), g1 = excessPush(stepper_.y1());
-  if (g0 >= 0) return std::nullopt;  // cannot happen: a platform stays stuck only below the bound
-  if (g1 >= 0) return Crossing{index, {0.0, 1.0}};
-  const double d0 = excessPushRate(stepper_.y()), d1 = excessPushRate(stepper_.y1());
-  if (!(d0 > 0 && d1 < 0)) return std::nullopt;
-  auto falling = [&](double th) {
-    stepper_.interpolate(th, yb_.data());
-    return -excessPushRate(yb_.data());
+  auto end_rates = [&] {
+    return std::optional<std::pair<double, double>>(
+        {excessPushRate(stepper_.y()), excessPushRate(stepper_.y1())});
   };
-  const Bracket top = illinois(falling, 0.0, -d0, 1.0, -d1);
-  for (double th : {top.lo, top.hi}) {
+  auto value_at = [&](double th) {
     stepper_.interpolate(th, yb_.data());
-    if (excessPush(yb_.data()) >= 0) return Crossing{index, {0.0, th}};
-  }
-  return std::nullopt;
+    return excessPush(yb_.data());
+  };
+  auto rate_at = [&](double th) {
+    stepper_.interpolate(th, yb_.data());
+    return excessPushRate(yb_.data());
+  };
+  return metrosync::detectMargin(index, excessPush(stepper_.y()), excessPush(stepper_.y1()),
+                                 end_rates, value_at, rate_at);
 }
 
 // --- recording ------------------------------------------------------------------------------
@@ -407,7 +337,7 @@ const std::vector<double>& DirectRun<N>::makeRow(const double* y, double t) {
     row.push_back(y[lay_.omega(j)] * as / ts);
     ++j;
   }
-  if (eq_.law() == FrictionLaw::Coulomb) {
+  if (eq_.friction().setValued()) {
     row.push_back(static_cast<int>(mode()));
   } else {
     const double v = y[StateLayout::kV];
@@ -481,10 +411,8 @@ std::vector<double> DirectRun<N>::startState() {
     esc.push_back(eq_.escapement(j));
     theta0.push_back(m.start_angle_rad);
   }
-  std::optional<CoulombLaw> coulomb;
-  if (eq_.friction().setValued()) coulomb = eq_.coulomb();
-  resolver_.emplace(esc, coulomb, period_, theta0);
-  if (coulomb) {
+  resolver_.emplace(esc, eq_.friction(), period_, theta0);
+  if (eq_.friction().setValued()) {
     ev_y_ = y.data();
     mobility_ = 0.0;
     ev_t_ = 0.0;

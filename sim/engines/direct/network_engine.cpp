@@ -7,13 +7,18 @@
 #include <optional>
 #include <stdexcept>
 
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "models/network_equations.h"
 #include "sim/engines/direct/direct_engine.h"
+#include "sim/events/crossing.h"
 #include "sim/events/resolver.h"
+#include "sim/events/window.h"
 #include "sim/events/witness.h"
 #include "sim/ode/rk_stepper.h"
 #include "sim/ode/rk_tableau.h"
 #include "sim/ode/root_find.h"
+#include "sim/record/split_timer.h"
 
 namespace metrosync {
 
@@ -21,16 +26,12 @@ namespace {
 
 using network::NetworkEquations;
 
-constexpr double kTwoPi = 6.283185307179586;
 // The longest step, in fast periods: short enough that a witness cannot cross and return within
 // one step for any amplitude the escapement sustains (a tick witness stays above zero for about a
 // tenth of a period), long enough to cost nothing when the accuracy sets the step.
 constexpr double kMaxStepPeriods = 0.05;
 // The shortest step, relative to the run's time: below it the step size has underflowed.
 constexpr double kMinStepRelative = 1e-14;
-// Points of the dense output scanned for the reversal of a slip that started from rest within
-// the step (locate()).
-constexpr int kRestScan = 16;
 // Resolution passes per event window: each pass settles the platforms whose support moved; a
 // stack of P platforms needs at most P passes.
 constexpr int kSettlePassesPerPlatform = 2;
@@ -89,14 +90,18 @@ class NetworkRun {
   NetworkRunReport run();
 
  private:
-  std::vector<double> witnessValues(const double* y);
   bool armed(const Witness& w) const;
   double witnessValue(const Witness& w, const double* y, const std::vector<double>& lambda) const;
-  std::optional<double> locate(const std::vector<double>& g0, const std::vector<double>& g1);
-  void resolveWindow(double t_e);
+  double witnessAt(const Witness& w, double th);
+  std::optional<WindowCrossing> detect(int index);
+  void findCrossings();
+  void resolveWindow(double t_e, double th_e);
   void settleSupports();
   void absorb(const WindowOutcome& out, int p);
   void emitSamples(double t_limit, bool inclusive);
+  void sample(double t, const std::vector<double>& y);
+  bool integrate();
+  void finish();
   void setTolerances(const Rig& rig);
   void fail(double t, const std::string& why);
 
@@ -112,7 +117,9 @@ class NetworkRun {
   std::vector<std::unique_ptr<ContactView>> views_;
   std::vector<EventResolver> resolvers_;
   std::vector<Witness> witnesses_;
+  std::vector<WindowCrossing> found_;  // the crossings of the current step
   NetworkRunReport report_;
+  SplitTimer timer_;  // the engine's time against the recording's
   double period_ = 1.0, sample_dt_ = 1.0, t_end_ = 0.0;
   double last_window_t_ = -1.0;  // time of the last resolved window
   // two windows this close (in ulps of t) are one instant: the localization resolves no finer
@@ -164,12 +171,9 @@ NetworkRun::NetworkRun(const Network& net, NetworkSink& sink)
       if (eq_.escapement(k).active())
         for (int side : {-1, 1}) witnesses_.push_back({true, k, side});
     }
-    std::optional<CoulombLaw> law;
-    if (b.moves && b.friction.setValued()) {
-      law = b.friction.coulomb;
-      witnesses_.push_back({false, p, 0});
-    }
-    resolvers_.emplace_back(esc, law, period_, th0);
+    const bool set_valued = b.moves && b.friction.setValued();
+    if (set_valued) witnesses_.push_back({false, p, 0});
+    resolvers_.emplace_back(esc, set_valued ? b.friction : PlatformFriction{}, period_, th0);
     views_.push_back(std::make_unique<ContactView>(eq_, y_, modes_, p, report_.events));
   }
   setTolerances(scales);
@@ -197,7 +201,7 @@ double NetworkRun::witnessValue(const Witness& w, const double* y,
     return TickWitness{w.index, w.side}.value(eq_.escapement(w.index), y[lay_.theta(w.index)]);
   }
   const network::Block& b = eq_.block(w.index);
-  const double g = PlatformWitness::value(b.friction.coulomb, modes_[w.index],
+  const double g = PlatformWitness::value(b.friction.dry, modes_[w.index],
                                           eq_.slipVelocity(y, w.index), lambda[w.index]);
   return risingSign(PlatformWitness::kDirection) * g;
 }
@@ -208,51 +212,47 @@ bool NetworkRun::armed(const Witness& w) const {
   return resolvers_[p].armed(w.index - eq_.block(p).first, w.side);
 }
 
-std::vector<double> NetworkRun::witnessValues(const double* y) {
-  const std::vector<double> lambda = eq_.holdingForces(y, modes_);
-  std::vector<double> g(witnesses_.size());
-  for (std::size_t i = 0; i < witnesses_.size(); ++i) g[i] = witnessValue(witnesses_[i], y, lambda);
-  return g;
+// A witness on the current step's dense output (rising through zero at its event).
+double NetworkRun::witnessAt(const Witness& w, double th) {
+  if (w.tick)  // one component of the dense output: O(1), whatever the network's size
+    return TickWitness{w.index, w.side}.value(eq_.escapement(w.index),
+                                              stepper_.component(lay_.theta(w.index), th));
+  stepper_.interpolate(th, scratch_.data());
+  return witnessValue(w, scratch_.data(), eq_.holdingForces(scratch_.data(), modes_));
 }
 
-// The earliest crossing in the attempted step, as a fraction of it (the bracket's upper end:
-// every witness evaluated there has crossed); nullopt if none.
-std::optional<double> NetworkRun::locate(const std::vector<double>& g0,
-                                         const std::vector<double>& g1) {
-  std::optional<double> earliest;
-  for (std::size_t i = 0; i < witnesses_.size(); ++i) {
-    const Witness& w = witnesses_[i];
-    if (w.tick && !armed(w)) continue;
-    auto f = [&](double th) {
-      if (w.tick)  // one component of the dense output: O(1), whatever the network's size
-        return TickWitness{w.index, w.side}.value(eq_.escapement(w.index),
-                                                  stepper_.component(lay_.theta(w.index), th));
-      stepper_.interpolate(th, scratch_.data());
-      return witnessValue(w, scratch_.data(), eq_.holdingForces(scratch_.data(), modes_));
-    };
-    double a = 0.0, ga = g0[i], b = 1.0, gb = g1[i];
-    if (!w.tick && g0[i] == 0 && g1[i] > 0) {
-      // a slip that started from rest (its witness exactly 0 at the step's start: no crossing)
-      // and runs against its mode at the step's end reversed inside the step: its crossing is
-      // bracketed on the dense output (within the first 1 / kRestScan of the step: taken there)
-      b = 1.0 / kRestScan;
-      gb = f(b);
-      for (int k = 1; k < kRestScan && !(ga < 0 && gb >= 0); ++k) {
-        a = b, ga = gb;
-        b = (k + 1.0) / kRestScan;
-        gb = k + 1 < kRestScan ? f(b) : g1[i];
-      }
-      if (!(ga < 0)) {
-        if (!earliest || 1.0 / kRestScan < *earliest) earliest = 1.0 / kRestScan;
-        continue;
-      }
-    } else if (!crossed(Direction::Rising, g0[i], g1[i])) {
-      continue;
-    }
-    const ode::Bracket br = ode::illinois(f, a, ga, b, gb);
-    if (!earliest || br.hi < *earliest) earliest = br.hi;
+// The crossing of witness `index` in the accepted step (sim/events/crossing.h, as the
+// single-platform engine's): a tick on its angle, a slipping contact on its slip velocity (a slip
+// that started from rest included), a stuck contact's margin by the sign change of its ends.
+std::optional<WindowCrossing> NetworkRun::detect(int index) {
+  const Witness& w = witnesses_[index];
+  if (w.tick) {
+    if (!armed(w)) return std::nullopt;
+    return detectLinear(
+        LinearWitness(stepper_, lay_.theta(w.index), w.side, eq_.escapement(w.index).theta_c),
+        index, false);
   }
-  return earliest;
+  const int p = w.index;
+  if (modes_[p] != PlatformMode::Stuck) {
+    const int below = eq_.block(p).below;
+    return detectLinear(LinearWitness(stepper_, lay_.v(p), -static_cast<int>(modes_[p]), 0.0,
+                                      below < 0 ? -1 : lay_.v(below)),
+                        index, true);
+  }
+  auto margin = [&](const double* y) { return witnessValue(w, y, eq_.holdingForces(y, modes_)); };
+  auto value_at = [&](double th) {
+    stepper_.interpolate(th, scratch_.data());
+    return margin(scratch_.data());
+  };
+  auto no_rates = [] { return std::optional<std::pair<double, double>>(); };
+  return detectMargin(index, margin(stepper_.y()), margin(stepper_.y1()), no_rates, value_at,
+                      [](double) { return 0.0; });
+}
+
+void NetworkRun::findCrossings() {
+  found_.clear();
+  for (int i = 0; i < static_cast<int>(witnesses_.size()); ++i)
+    if (auto c = detect(i)) found_.push_back(*c);
 }
 
 void NetworkRun::absorb(const WindowOutcome& out, int p) {
@@ -276,7 +276,7 @@ void NetworkRun::settleSupports() {
       const double u = eq_.slipVelocity(y_.data(), p);
       const bool off =
           modes_[p] == PlatformMode::Stuck
-              ? u != 0 || b.friction.coulomb.breaksFree(eq_.holdingForces(y_.data(), modes_)[p])
+              ? u != 0 || b.friction.dry.breaksFree(eq_.holdingForces(y_.data(), modes_)[p])
               : static_cast<int>(modes_[p]) * u <= 0;
       if (!off) continue;
       const WindowOutcome out = resolvers_[p].settleAfterSupportImpulse(*views_[p]);
@@ -287,12 +287,19 @@ void NetworkRun::settleSupports() {
   }
 }
 
-void NetworkRun::resolveWindow(double t_e) {
+// The window's end state in y_: each platform's resolver acts in file order; its contact reports
+// when its witness has crossed (the stick margins judged on the window's state before any
+// impulse, the slip velocities when the platform's turn comes: an earlier platform's tick may
+// have moved the one below it) or when its slip was stopped where it could not get going.
+void NetworkRun::resolveWindow(double t_e, double th_e) {
   const std::vector<double> lambda = eq_.holdingForces(y_.data(), modes_);
+  std::vector<char> forced(lay_.platforms, 0);
+  for (const WindowCrossing& c : found_)
+    if (c.forced && c.th.hi <= th_e) forced[witnesses_[c.witness].index] = 1;
   for (int p = 0; p < lay_.platforms; ++p) {
-    bool reported = false;
+    bool reported = forced[p];
     for (const Witness& w : witnesses_)
-      if (!w.tick && w.index == p) reported = witnessValue(w, y_.data(), lambda) >= 0;
+      if (!w.tick && w.index == p) reported = reported || witnessValue(w, y_.data(), lambda) >= 0;
     absorb(resolvers_[p].resolve(*views_[p], reported), p);
   }
   settleSupports();
@@ -305,78 +312,99 @@ void NetworkRun::resolveWindow(double t_e) {
   last_window_t_ = t_e;
 }
 
+// The samples on the grid (simulation.sample) in the current step before t_limit (or at it, if
+// inclusive), strictly before t_end: the run's last sample is its final state, at t_end exactly.
 void NetworkRun::emitSamples(double t_limit, bool inclusive) {
   const double t0 = stepper_.t(), h = stepper_.h();
   for (;;) {
     const double ts = next_sample_ * sample_dt_;
-    if (ts > t_end_ || ts > t_limit || (!inclusive && ts == t_limit)) return;
+    if (ts >= t_end_ || ts > t_limit || (!inclusive && ts == t_limit)) return;
     stepper_.interpolate(h > 0 ? (ts - t0) / h : 0.0, scratch_.data());
-    sink_.sample(ts, scratch_, modes_);
+    sample(ts, scratch_);
     ++next_sample_;
   }
 }
 
+void NetworkRun::sample(double t, const std::vector<double>& y) {
+  RecordingScope rec(timer_);
+  sink_.sample(t, y, modes_);
+}
+
 void NetworkRun::fail(double t, const std::string& why) {
   report_.complete = false;
-  report_.failure = "at t = " + std::to_string(t) + " s: " + why;
+  report_.failure = "at t = " + numberText(t, 6, Notation::Fixed) + " s: " + why;
 }
 
 NetworkRunReport NetworkRun::run() {
+  timer_ = SplitTimer();
   scratch_.resize(lay_.dim());
   for (int p = 0; p < lay_.platforms; ++p)
     if (eq_.block(p).moves && eq_.block(p).friction.setValued())
       resolvers_[p].settleAtStart(*views_[p]);
   report_.ledger.initial_J = eq_.energy(y_.data());
-  sink_.sample(0.0, y_, modes_);
+  sample(0.0, y_);
   next_sample_ = 1;
   stepper_.restart(0.0, y_.data());
+  integrate();
+  finish();
+  return report_;
+}
+
+// Steps to t_end (y_ is the state at stepper_.t() throughout); false when the run failed.
+bool NetworkRun::integrate() {
   const double h_max = kMaxStepPeriods * period_;
   double h = stepper_.initialStepSize(h_max);
-  std::vector<double> g0 = witnessValues(y_.data());
   while (stepper_.t() < t_end_) {
     const double t = stepper_.t();
     const double step = std::min({h, h_max, t_end_ - t});
     if (!(step > kMinStepRelative * std::max(1.0, t_end_))) {
       fail(t, "step size underflow");
-      return report_;
+      return false;
     }
     const double err = stepper_.attempt(step);
     if (!(err <= 1.0)) {
       if (!std::isfinite(err)) {
         fail(t, "the state is not finite");
-        return report_;
+        return false;
       }
       h = stepper_.nextStepSize(step, err, false);
       continue;
     }
     ++report_.steps;
     h = stepper_.nextStepSize(step, err, true);
-    const std::vector<double> g1 = witnessValues(stepper_.y1());
-    const std::optional<double> th = locate(g0, g1);
-    if (!th) {
+    findCrossings();
+    if (found_.empty()) {
       emitSamples(stepper_.t1(), true);
       stepper_.advance();
       for (int p = 0; p < lay_.platforms; ++p) resolvers_[p].rearm(*views_[p]);
       std::copy(stepper_.y(), stepper_.y() + lay_.dim(), y_.begin());
-      g0 = g1;
       continue;
     }
-    const double t_e = t + *th * step;
+    // the window (sim/events/window.h): every crossing bracketed, the end at the earliest
+    const double th_e =
+        locateWindow(found_, [&](int w, double th) { return witnessAt(witnesses_[w], th); });
+    const double t_e = th_e >= 1.0 ? stepper_.t1() : t + th_e * step;
     emitSamples(t_e, false);
-    stepper_.interpolate(*th, y_.data());
-    resolveWindow(t_e);
+    stepper_.interpolate(th_e, y_.data());
+    resolveWindow(t_e, th_e);
     for (int p = 0; p < lay_.platforms; ++p) resolvers_[p].rearm(*views_[p]);
     stepper_.restart(t_e, y_.data());
-    g0 = witnessValues(y_.data());
   }
-  emitSamples(t_end_, true);
+  return true;
+}
+
+// The run's last sample: its final state, at t_end exactly when complete (the last step ends
+// there: t_end - t is exact for t >= t_end / 2), else where it stopped; the report's totals.
+void NetworkRun::finish() {
+  report_.t_end = report_.complete ? t_end_ : stepper_.t();
+  sample(report_.t_end, y_);
   report_.rhs_evals = stepper_.evaluations();
-  report_.t_end = stepper_.t();
   report_.final_state = y_;
   report_.ledger.final_J = eq_.energy(y_.data());
   report_.ledger.damping_out_J = y_[lay_.dampingWork()] + y_[lay_.damperWork()];
   report_.ledger.friction_out_J += y_[lay_.frictionWork()];
-  return report_;
+  report_.wall_seconds = timer_.wallSeconds();
+  report_.engine_seconds = report_.wall_seconds - timer_.recordingSeconds(report_.wall_seconds);
 }
 
 }  // namespace

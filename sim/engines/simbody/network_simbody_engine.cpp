@@ -30,6 +30,7 @@
 #include "sim/events/resolver.h"
 #include "sim/events/storm_guard.h"
 #include "sim/events/witness.h"
+#include "sim/record/split_timer.h"
 
 namespace metrosync {
 
@@ -206,6 +207,7 @@ class NetworkSimbodyRun {
   network::Layout lay_;
   Pending pending_;
   NetworkRunReport report_;
+  SplitTimer timer_;  // the engine's time against the recording's
   std::vector<std::unique_ptr<ContactView>> views_;
   std::vector<EventResolver> resolvers_;
   std::optional<StormGuard> storm_;
@@ -257,9 +259,7 @@ State NetworkSimbodyRun::startState() {
       esc.push_back(eq_.escapement(j));
       th0.push_back(ns_.theta(s0, j));
     }
-    std::optional<CoulombLaw> law;
-    if (ns_.contact(p)) law = ns_.contact(p)->law();
-    resolvers_.emplace_back(esc, law, period_, th0);
+    resolvers_.emplace_back(esc, ns_.contact(p) ? b.friction : PlatformFriction{}, period_, th0);
   }
   for (int p = 0; p < lay_.platforms; ++p)
     if (ns_.contact(p)) ns_.contact(p)->setMode(s0, PlatformMode::Stuck);
@@ -330,7 +330,7 @@ bool NetworkSimbodyRun::checkNewStep(Integrator& integ, Integrator::SuccessfulSt
   }
   if (against) {
     // the samples inside the step first, from its interpolant (the stop restarts at its end)
-    for (double ts = next_sample_ * sample_dt_; ts <= adv.getTime() && ts <= t_end_;
+    for (double ts = next_sample_ * sample_dt_; ts <= adv.getTime() && ts < t_end_;
          ts = next_sample_ * sample_dt_) {
       if (integ.getTime() < ts) integ.stepTo(ts, t_end_);
       sample(integ.getState());
@@ -438,6 +438,7 @@ void NetworkSimbodyRun::settleSupports(State& s) {
 }
 
 void NetworkSimbodyRun::sample(const State& s) {
+  RecordingScope rec(timer_);
   ns_.layoutState(s, y_);
   std::vector<PlatformMode> modes(lay_.platforms, PlatformMode::Stuck);
   for (int p = 0; p < lay_.platforms; ++p)
@@ -452,6 +453,7 @@ void NetworkSimbodyRun::fail(double t, const std::string& why) {
 }
 
 NetworkRunReport NetworkSimbodyRun::run() {
+  timer_ = SplitTimer();
   storm_.emplace(period_);
   State s0 = startState();
   report_.ledger.initial_J = energy(s0);
@@ -476,7 +478,7 @@ NetworkRunReport NetworkSimbodyRun::run() {
       }
       if (status == Integrator::ReachedEventTrigger) {
         handleTrigger(*integ);
-      } else if (integ->getTime() == next_sample_ * sample_dt_ && integ->getTime() <= t_end_) {
+      } else if (integ->getTime() == next_sample_ * sample_dt_ && integ->getTime() < t_end_) {
         sample(integ->getState());
         ++next_sample_;
       }
@@ -486,6 +488,7 @@ NetworkRunReport NetworkSimbodyRun::run() {
     fail(integ->getAdvancedTime(), e.what());
   }
   const State& fin = integ->getState();
+  sample(fin);  // the last sample: the final state (grid samples stop short of t_end)
   report_.steps = steps_base_ + integ->getNumStepsTaken();
   report_.rhs_evals = evals_base_ + integ->getNumRealizations();
   report_.t_end = fin.getTime();
@@ -493,6 +496,8 @@ NetworkRunReport NetworkSimbodyRun::run() {
   report_.ledger.final_J = energy(fin);
   report_.ledger.damping_out_J = ns_.dampingLoss(fin) + ns_.damperLoss(fin);
   report_.ledger.friction_out_J += ns_.frictionLoss(fin);
+  report_.wall_seconds = timer_.wallSeconds();
+  report_.engine_seconds = report_.wall_seconds - timer_.recordingSeconds(report_.wall_seconds);
   return report_;
 }
 

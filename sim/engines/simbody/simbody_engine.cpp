@@ -325,10 +325,8 @@ State FullModelRun::startState() {
     esc.push_back({m.theta_c_rad, ms_.swings(i) ? m.impulse_Nms : 0.0});
     theta0.push_back(ms_.theta(s0, i));
   }
-  std::optional<CoulombLaw> coulomb;
-  if (ms_.coulomb()) coulomb = ms_.coulomb()->law();
-  resolver_.emplace(esc, coulomb, period_, theta0);
-  if (coulomb) {
+  resolver_.emplace(esc, ms_.friction(), period_, theta0);
+  if (ms_.coulomb()) {
     ev_s_ = &s0;
     resolver_->settleAtStart(*this);
     ev_s_ = nullptr;

@@ -23,7 +23,8 @@ import numpy as np
 from . import _metrosync as _core
 
 __all__ = ["Rig", "Result", "CompareResult", "SweepResult", "ContinuationResult", "RigError",
-           "SimulationError", "load_rig", "run", "compare", "sweep", "continue_", "version"]
+           "SimulationError", "load_rig", "run", "compare", "sweep", "continue_", "fit",
+           "version"]
 
 RigError = _core.RigError  # a bad rig or option: the CLI's message (file:line:col: key: what)
 
@@ -304,8 +305,10 @@ def sweep(rig, vary, model=None, engine=None, jobs=None, out=None, **simulation)
 
 class ContinuationResult:
     """`metrosync continue`: .branches (branches.csv as {column: array}), .bifurcations
-    (bifurcations.json: a list of dicts), .summary (summary.json), .fold_curve (fold_curve.csv,
-    None without fold=)."""
+    (bifurcations.json: a list of dicts), .summary (summary.json), .cycles (cycles.csv: the limit
+    cycles born at Hopf points; None with no_cycles=True), .families (families.csv: each neutral
+    family's extent, None without one), .fold_curve and .hopf_curve (fold_curve.csv and
+    hopf_curve.csv: the two-parameter curves, None without fold=)."""
 
     def __init__(self, folder):
         with open(os.path.join(folder, "summary.json"), encoding="utf-8") as f:
@@ -313,7 +316,10 @@ class ContinuationResult:
         with open(os.path.join(folder, "bifurcations.json"), encoding="utf-8") as f:
             self.bifurcations = json.load(f)
         self.branches = _read_mixed_csv(os.path.join(folder, "branches.csv"))
+        self.cycles = _read_mixed_csv(os.path.join(folder, "cycles.csv"))
+        self.families = _read_mixed_csv(os.path.join(folder, "families.csv"))
         self.fold_curve = _read_mixed_csv(os.path.join(folder, "fold_curve.csv"))
+        self.hopf_curve = _read_mixed_csv(os.path.join(folder, "hopf_curve.csv"))
 
     def __repr__(self):
         return "ContinuationResult(%d points, %d special points)" % (
@@ -322,11 +328,12 @@ class ContinuationResult:
 
 
 def continue_(rig, param, to, from_=None, start=None, step=None, max_points=500, all=False,
-              fold=None, to2=None, out=None):
+              fold=None, to2=None, no_cycles=False, out=None):
     """The slow flow's locked states followed in one rig key (`metrosync continue`, the same
     C++ code): param KEY from the rig's value (or from_) to `to`; start: (A_1..A_N,
     psi_2..psi_N); all: every locked state at the start; fold=KEY2, to2: each fold followed in
-    two keys. Returns a ContinuationResult."""
+    two keys; no_cycles: the limit cycles born at Hopf points not followed. Returns a
+    ContinuationResult."""
     if (fold is None) != (to2 is None):
         raise RigError("continue_: fold and to2 go together")
     folder = tempfile.mkdtemp(prefix="metrosync-")
@@ -336,7 +343,41 @@ def continue_(rig, param, to, from_=None, start=None, step=None, max_points=500,
         _core.continue_command(rig._materialize(folder), rig._sets(), param, float(to), target,
                                None if from_ is None else float(from_), start_text,
                                float(step or 0.0), int(max_points), bool(all), fold or "",
-                               float(to2 or 0.0))
+                               float(to2 or 0.0), bool(no_cycles))
         return ContinuationResult(target)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def _write_data(columns, path):
+    """A mapping of columns (t, theta_1, ..., x: equal-length sequences; NaN = a missing sample)
+    as the CSV file `metrosync fit` reads."""
+    names = list(columns)
+    values = [np.asarray(columns[n], dtype=float) for n in names]
+    with open(path, "w") as f:
+        f.write(",".join(names) + "\n")
+        for row in zip(*values):
+            f.write(",".join("" if np.isnan(v) else repr(float(v)) for v in row) + "\n")
+
+
+def fit(rig, data, free, model=None, noise=None, starts=6, local=False, profile=False):
+    """Rig keys from measured data (`metrosync fit`, the same C++ code; docs/fit.md): `data` is a
+    CSV file's path or a mapping of columns ({"t": ..., "theta_1": ..., "x": ...}, a pandas
+    DataFrame too); `free` one key or a list (metronomes.*.X: one shared value); the rig's
+    overrides give the starting values, as --set does. Returns fit.json's dictionary: values,
+    std_errors, identifiable, rms, noise, converged and its note, optima, ..."""
+    rig = rig if isinstance(rig, Rig) else load_rig(rig)
+    free = [free] if isinstance(free, str) else list(free)
+    folder = tempfile.mkdtemp(prefix="metrosync-")
+    try:
+        if isinstance(data, (str, os.PathLike)):
+            data_path = os.fspath(data)
+        else:
+            data_path = os.path.join(folder, "data.csv")
+            _write_data(data, data_path)
+        text = _core.fit_json(rig._materialize(folder), data_path, free, rig._sets(),
+                              model or "", None if noise is None else float(noise), int(starts),
+                              bool(local), bool(profile))
+        return json.loads(text)
     finally:
         shutil.rmtree(folder, ignore_errors=True)

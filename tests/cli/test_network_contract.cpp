@@ -1,0 +1,127 @@
+// The run contract for networks (SPEC "networks", issue 24): a network's `run` ends at exactly
+// the requested end on both engines, its last row is the state there, and its summary.json has a
+// single run's keys (`final`, `regime`, `regime_window`, `wall_seconds`, `engine_seconds`,
+// `version`, `command`), with `final` per platform too.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "tests/common/run_metrosync.h"
+
+namespace metrosync {
+namespace {
+
+using testing_support::runMetrosync;
+using testing_support::scratchDir;
+using testing_support::shellQuote;
+using testing_support::slurp;
+
+const std::string kRig = std::string(METROSYNC_SOURCE_DIR) + "/yaml/rigs/two-boards-rollers.yaml";
+
+// The numbers of a CSV file's rows, its header left out.
+std::vector<std::vector<double>> numbers(const std::string& path) {
+  const auto cells = testing_support::csvRows(path);
+  std::vector<std::vector<double>> rows;
+  for (std::size_t r = 1; r < cells.size(); ++r) {
+    std::vector<double> row;
+    for (const std::string& c : cells[r]) row.push_back(std::stod(c));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::string runNetwork(const std::string& name, const std::string& args) {
+  const std::string out = scratchDir("netc", name);
+  const auto r = runMetrosync("run " + shellQuote(kRig) + " --quiet --no-plot " + args + " --out " +
+                              shellQuote(out));
+  EXPECT_EQ(r.code, 0) << r.err;
+  return out;
+}
+
+// The last row of every time series is at the requested end, exactly, on both engines; 3.625 s
+// and 2.3 s are on no sample grid (period / 20).
+TEST(NetworkContract, RunEndsAtExactlyTheRequestedEnd) {
+  for (const auto& [engine, duration] :
+       std::vector<std::pair<std::string, std::string>>{{"direct", "3.625"}, {"simbody", "2.3"}}) {
+    const std::string out =
+        runNetwork(engine, "--engine " + engine + " --set simulation.duration=" + duration);
+    const double t_end = std::stod(duration);
+    EXPECT_EQ(numbers(out + "/trajectory.csv").back().front(), t_end) << engine;
+    EXPECT_EQ(numbers(out + "/envelope.csv").back().back(), t_end) << engine;  // t_s last
+    EXPECT_EQ(numbers(out + "/order.csv").back().back(), t_end) << engine;
+  }
+}
+
+// The last row is the state at the end: the same as a longer run's row at that time (a grid
+// point of its samples, 29 x 0.125 s), to the runs' accuracy.
+TEST(NetworkContract, LastRowIsTheStateAtTheEnd) {
+  const std::string a = runNetwork("short", "--set simulation.duration=3.625");
+  const std::string b =
+      runNetwork("long", "--set simulation.duration=4 --set simulation.sample=0.125");
+  const std::vector<double> last = numbers(a + "/trajectory.csv").back();
+  std::vector<double> there;
+  for (const auto& row : numbers(b + "/trajectory.csv"))
+    if (row.front() == 3.625) there = row;
+  ASSERT_EQ(there.size(), last.size());
+  // a row is not compared with its mode columns' neighbours: angles (rad) and rates (rad/s) are
+  // O(0.1-1), positions O(1e-4) m; two step sequences at the default accuracy agree to ~1e-6
+  for (std::size_t k = 1; k < last.size(); ++k)
+    EXPECT_NEAR(last[k], there[k], 1e-5 * (1 + std::abs(there[k]))) << "column " << k;
+  // and it is not the row before: the state moved over the last sample interval
+  const auto rows = numbers(a + "/trajectory.csv");
+  EXPECT_GT(std::abs(rows[rows.size() - 2][7] - last[7]), 1e-4);
+}
+
+TEST(NetworkContract, SummaryHasASingleRunsKeys) {
+  const std::string out = runNetwork("keys", "--set simulation.duration=3.625");
+  const nlohmann::json s = nlohmann::json::parse(slurp(out + "/summary.json"));
+  const std::vector<double> env = numbers(out + "/envelope.csv").back();  // tau,A1..4,psi2..4,r,t_s
+  // final: the last envelope row, in the network's numbering (the CSV holds 12 digits)
+  auto near = [](double a, double b) { return std::abs(a - b) <= 1e-10 * (1 + std::abs(b)); };
+  ASSERT_TRUE(s.contains("final")) << s.dump();
+  EXPECT_TRUE(near(s["final"]["tau"], env[0])) << s["final"]["tau"] << " " << env[0];
+  ASSERT_EQ(s["final"]["A"].size(), 4u);
+  ASSERT_EQ(s["final"]["psi"].size(), 3u);
+  for (int i = 0; i < 4; ++i) EXPECT_TRUE(near(s["final"]["A"][i], env[1 + i])) << i;
+  for (int i = 0; i < 3; ++i) EXPECT_TRUE(near(s["final"]["psi"][i], env[5 + i])) << i;
+  // per platform: its own metronomes' final amplitudes, phases relative to its first
+  const nlohmann::json& a = s["final"]["A"];
+  const nlohmann::json& psi = s["final"]["psi"];  // psi_2, psi_3, psi_4
+  EXPECT_EQ(s["platforms"]["left"]["final"]["A"], nlohmann::json({a[0], a[1]}));
+  EXPECT_EQ(s["platforms"]["right"]["final"]["A"], nlohmann::json({a[2], a[3]}));
+  EXPECT_EQ(s["platforms"]["left"]["final"]["psi"][0], psi[0]);
+  EXPECT_NEAR(s["platforms"]["right"]["final"]["psi"][0].get<double>(),
+              psi[2].get<double>() - psi[1].get<double>(), 1e-12);
+  for (const char* p : {"left", "right"}) {
+    EXPECT_EQ(s["platforms"][p]["final"]["psi"].size(), 1u) << p;
+    EXPECT_EQ(s["platforms"][p]["final"]["tau"], s["final"]["tau"]) << p;
+  }
+  // the network's label at the top, as a single run's regime
+  ASSERT_TRUE(s.contains("regime"));
+  EXPECT_EQ(s["regime"], s["network"]["regime"]);
+  ASSERT_TRUE(s.contains("regime_window"));
+  const double tau_start = s["regime_window"]["tau_start"];
+  EXPECT_GT(tau_start, 0.0);
+  EXPECT_LT(tau_start, env[0]);
+  EXPECT_GT(s["regime_window"]["rows"].get<long>(), 0);
+  for (const char* p : {"left", "right"}) {
+    const double r = s["regime_window"]["platforms"][p]["r_mean"];
+    EXPECT_TRUE(r >= 0 && r <= 1) << p << " " << r;
+  }
+  // timings and provenance as a single run's
+  const double wall = s["wall_seconds"], engine = s["engine_seconds"];
+  EXPECT_GT(engine, 0.0);
+  EXPECT_LE(engine, wall);
+  const auto v = runMetrosync("--version");
+  EXPECT_NE(v.out.find(s["version"].get<std::string>()), std::string::npos) << v.out;
+  EXPECT_EQ(s["command"], "run");
+  // the ledger in a single run's form
+  EXPECT_EQ(s["energy"]["units"], "J");
+  EXPECT_LT(std::abs(s["energy"]["relative_residual"].get<double>()), 1e-6);
+}
+
+}  // namespace
+}  // namespace metrosync

@@ -1,0 +1,128 @@
+// The pieces of fit's verdict against closed forms: the noise level estimated from a record's
+// high-frequency part (sim/analysis/fit/noise_level.h) against the noise put in, and the standard
+// errors and identifiability rule (sim/analysis/fit/fit_statistics.h) on a linear model, where
+// sigma^2 (J^T J)^-1 is exact.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <random>
+#include <sstream>
+
+#include "sim/analysis/fit/data_file.h"
+#include "sim/analysis/fit/fit_statistics.h"
+#include "sim/analysis/fit/noise_level.h"
+#include "tests/fit/fit_data.h"
+
+namespace metrosync {
+namespace {
+
+using namespace fit_testing;
+
+// The pair's angles (6 s of the direct engine) every `stride` x 10 ms with N(0, sigma) noise.
+MeasuredData pairRecord(double sigma, int stride, unsigned seed) {
+  Rig rig = loadRigText(kPairRig, "pair.yaml");
+  rig.sim.sample_s = kSampleS;
+  MemorySink sink;
+  EXPECT_TRUE(findEngine("direct")->run(rig, sink).complete);
+  std::mt19937 gen(seed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  std::ostringstream os;
+  os.precision(15);
+  os << "t,theta_1,theta_2\n";
+  for (std::size_t k = 0; k < sink.trajectory.size(); k += stride) {
+    const std::vector<double>& row = sink.trajectory[k];
+    os << row[0] << "," << row[3] + noise(gen) << "," << row[5] + noise(gen) << "\n";
+  }
+  return parseDataText(os.str(), "pair.csv", 2);
+}
+
+const std::vector<double> kThetaC = {0.244, 0.244};
+
+// At 100 Hz (30 samples a period) the estimate is the noise put in, from 1e-4 to 1e-2 rad,
+// whatever the escapement's ticks do to the signal.
+TEST(NoiseLevel, IsTheNoisePutInAt100Hz) {
+  for (const double sigma : {1e-4, 1e-3, 1e-2}) {
+    SCOPED_TRACE(sigma);
+    const MeasuredData d = pairRecord(sigma, 1, 3);
+    const std::vector<bool> ticks = escapementTicks(d, kThetaC);
+    for (const DataColumn& c : d.columns) {
+      const NoiseEstimate e = estimateNoise(d, c, ticks);
+      EXPECT_NEAR(e.sigma, sigma, 0.1 * sigma) << c.name;
+      EXPECT_TRUE(e.reliable) << c.name;
+    }
+  }
+}
+
+// At 33 Hz (10 samples a period) a swing is no quartic over 7 samples: with 1e-4 rad of noise the
+// estimate is the signal's, and it says so (not reliable: an upper bound).
+TEST(NoiseLevel, SaysWhenTheSignalFillsTheWindows) {
+  const MeasuredData d = pairRecord(1e-4, 3, 4);
+  const std::vector<bool> ticks = escapementTicks(d, kThetaC);
+  const NoiseEstimate e = estimateNoise(d, d.columns[0], ticks);
+  EXPECT_GT(e.sigma, 2e-4);
+  EXPECT_FALSE(e.reliable);
+}
+
+// Without the escapement's ticks skipped, the kinks they leave in theta (a jump of the rate) fill
+// many windows: the estimate skips them, and would be 2.5 times too large at 1e-4 rad otherwise.
+TEST(NoiseLevel, SkipsTheEscapementsTicks) {
+  const MeasuredData d = pairRecord(1e-4, 1, 5);
+  const std::vector<bool> none(d.t_s.size(), false);
+  EXPECT_GT(estimateNoise(d, d.columns[0], none).sigma, 1.5e-4);
+  EXPECT_NEAR(estimateNoise(d, d.columns[0], escapementTicks(d, kThetaC)).sigma, 1e-4, 1e-5);
+}
+
+FreeParameter key(const std::string& name, double scale) {
+  FreeParameter p;
+  p.name = name;
+  p.start = scale;
+  p.scale = scale;
+  p.lower = 0.0;
+  return p;
+}
+
+// r = A v - y for a fixed A (3 keys, 200 observations, N(0, 1) noise): J, the standard errors
+// and the correlations are sigma^2 (A^T A)^-1 exactly; a key whose value is below its standard
+// error is the least determined, and columns that are one the same key twice are collinear.
+TEST(FitStatistics, LinearModelErrorsAndTheIdentifiabilityRule) {
+  const int m = 200;
+  std::mt19937 gen(1);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  Eigen::MatrixXd A(m, 3);
+  Eigen::VectorXd e(m);
+  for (int i = 0; i < m; ++i) {
+    const double t = i / double(m);
+    A.row(i) << 1.0, t, std::sin(7 * t);
+    e(i) = noise(gen);
+  }
+  const std::vector<double> v = {2.0, 3.0, 0.01};  // the third is within its error of 0
+  const std::vector<FreeParameter> free = {key("a", 1.0), key("b", 1.0), key("c", 1.0)};
+  const ResidualFunction f = [&](const std::vector<double>& x, double* r) {
+    Eigen::Map<Eigen::VectorXd>(r, m) =
+        A * Eigen::Vector3d(x[0], x[1], x[2]) - A * Eigen::Vector3d(v[0], v[1], v[2]) - e;
+    return true;
+  };
+  const Linearization lin = linearize(f, m, v, free);
+  EXPECT_EQ(lin.smooth_rows, m);
+  EXPECT_LT((lin.J - A).norm(), 1e-8 * A.norm());
+  const Uncertainty u = uncertainty(lin, v, free, {false, false, false});
+  const Eigen::Matrix3d cov = e.squaredNorm() / (m - 3) * (A.transpose() * A).inverse();
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_NEAR(*u.std_errors[j], std::sqrt(cov(j, j)), 1e-9 * std::sqrt(cov(j, j)));
+    EXPECT_NEAR(*u.correlation[0][j], cov(0, j) / std::sqrt(cov(0, 0) * cov(j, j)), 1e-9);
+  }
+  EXPECT_GT(*u.std_errors[2], v[2]);
+  EXPECT_EQ(u.worst, 2);
+  // held, the other two are determined
+  EXPECT_EQ(uncertainty(lin, v, free, {false, false, true}).worst, -1);
+  // two keys that act alike: collinear
+  Linearization twice = lin;
+  twice.J.col(1) = 2 * twice.J.col(0);
+  const Uncertainty c = uncertainty(twice, v, free, {false, false, true});
+  EXPECT_GE(c.worst, 0);
+  EXPECT_NE(c.why.find("combination"), std::string::npos) << c.why;
+}
+
+}  // namespace
+}  // namespace metrosync
