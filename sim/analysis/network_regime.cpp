@@ -7,8 +7,6 @@
 
 namespace metrosync {
 
-namespace {}
-
 GroupLocking groupLocking(const RegimeWindow& w, const std::vector<int>& alive) {
   std::vector<size_t> idx;
   for (size_t i = 0; i < alive.size(); ++i)

@@ -11,8 +11,6 @@
 
 namespace metrosync {
 
-namespace {}
-
 struct NetworkVerdict::Impl {
   const Network& net;
   network::NetworkEquations eq;
