@@ -4,14 +4,13 @@
 #include <limits>
 #include <stdexcept>
 
+#include "base/constants.h"
 #include "contact/chebyshev_table.h"
 #include "contact/slip_duration.h"
 
 namespace metrosync {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-constexpr double kTwoPi = 6.283185307179586;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Taylor coefficients in powers of u^2 of N1(u) / u^5 and N2(u) / u^4 (see the header),

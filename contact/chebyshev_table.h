@@ -9,6 +9,8 @@
 #include <cmath>
 #include <vector>
 
+#include "base/constants.h"
+
 namespace metrosync {
 
 class ChebyshevTable {
@@ -16,7 +18,6 @@ class ChebyshevTable {
   template <class F>
   ChebyshevTable(F&& f, double end, int pieces, int degree)
       : end_(end), pieces_(pieces), n_(degree + 1), coef_(static_cast<size_t>(pieces) * n_) {
-    constexpr double kPi = 3.141592653589793;
     std::vector<double> v(n_);
     for (int p = 0; p < pieces_; ++p) {
       const double a = end_ * p / pieces_, b = end_ * (p + 1) / pieces_;

@@ -7,13 +7,12 @@
 #include <cmath>
 #include <limits>
 
+#include "base/constants.h"
 #include "contact/chebyshev_table.h"
 
 namespace metrosync {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-constexpr double kTwoPi = 6.283185307179586;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Taylor coefficients of (u - sin u) / u^3 and (u^2/2 - (1 - cos u)) / u^4 in powers of u^2:

@@ -7,13 +7,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/constants.h"
+
 namespace metrosync {
-
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
 
 LawScales lawScales(double epsilon, double M_omega0) {
   return LawScales{epsilon * std::sqrt(epsilon), M_omega0};

@@ -6,12 +6,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/constants.h"
+
 namespace metrosync {
 
 namespace {
 
 using cplx = std::complex<double>;
-constexpr double kPi = 3.141592653589793;
 
 void requireFinite(double v, const char* what) {
   if (!std::isfinite(v))

@@ -1,15 +1,15 @@
 #include "yaml/rig_limits.h"
 
 #include <cmath>
-#include <sstream>
 
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "models/scaling.h"
 
 namespace metrosync {
 
 namespace {
 
-constexpr double kTwoPi = 6.28318530717958647692;
 // The engines' default trajectory interval (direct and Simbody engines: period / 20), and the
 // envelope's one row per fast period (sim/record/envelope_recorder.h; the slow flow's rows are
 // on the same grid).
@@ -46,19 +46,15 @@ std::optional<std::string> overTheTop(const MetronomeSpec& m, double gravity) {
   const double mgl = m.pendulum_mass_kg * gravity * m.length_m;
   const double energy = 0.5 * m.inertia_kgm2 * m.start_rate_rad_s * m.start_rate_rad_s +
                         mgl * (1.0 - std::cos(m.start_angle_rad));
-  const bool beyond = std::fabs(m.start_angle_rad) >= M_PI;
+  const bool beyond = std::fabs(m.start_angle_rad) >= kPi;
   if (!beyond && energy < 2.0 * mgl) return std::nullopt;
-  std::ostringstream os;
-  os.precision(6);
-  os << "the start (angle " << m.start_angle_rad << " rad, rate " << m.start_rate_rad_s
-     << " rad/s) sends the pendulum over the top: ";
-  if (beyond)
-    os << "|angle| must be < pi";
-  else
-    os << "its energy 1/2 I rate^2 + m g L (1 - cos angle) = " << energy
-       << " J reaches 2 m g L = " << 2.0 * mgl
-       << " J (the free pendulum's amplitude would be pi); start it lower or slower";
-  return os.str();
+  const std::string start = "the start (angle " + numberText(m.start_angle_rad) + " rad, rate " +
+                            numberText(m.start_rate_rad_s) +
+                            " rad/s) sends the pendulum over the top: ";
+  if (beyond) return start + "|angle| must be < pi";
+  return start + "its energy 1/2 I rate^2 + m g L (1 - cos angle) = " + numberText(energy) +
+         " J reaches 2 m g L = " + numberText(2.0 * mgl) +
+         " J (the free pendulum's amplitude would be pi); start it lower or slower";
 }
 
 }  // namespace metrosync

@@ -35,13 +35,6 @@ std::string shown(const Node& n) {
   return "?";
 }
 
-std::string numberText(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
-
 std::string joinPath(const std::string& path, const std::string& key) {
   return path.empty() ? key : path + "." + key;
 }

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "base/number_text.h"
 #include "yaml/rig_loader.h"
 #include "yaml/rig_tree.h"
 #include "yaml/utf8.h"
@@ -16,8 +17,6 @@ namespace metrosync::rigfile {
 const char* kindName(const Node& n);
 // How a node is shown after "key = " in a message.
 std::string shown(const Node& n);
-// A number in a message (6 significant digits).
-std::string numberText(double v);
 // "path.key" ("key" at the top)
 std::string joinPath(const std::string& path, const std::string& key);
 // The rig's name from the file's: its stem ("rig" when it has none).

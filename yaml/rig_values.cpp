@@ -6,14 +6,13 @@
 #include <stdexcept>
 #include <vector>
 
+#include "base/constants.h"
 #include "models/scaling.h"
 #include "yaml/rig_limits.h"
 
 namespace metrosync::rigfile {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Slack on inertia >= m L^2: inputs rounded to 4 significant digits (the SPEC's own example,
 // 1.144e-5 against 0.0226 * 0.0225^2 = 1.1441e-5) must pass; a value in the slack is raised to

@@ -8,6 +8,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "base/constants.h"
 #include "contact/simbody/driven_coulomb_harness.h"
 
 namespace metrosync {
@@ -15,8 +16,6 @@ namespace metrosync {
 namespace {
 
 using namespace SimTK;
-
-constexpr double kTwoPi = 6.283185307179586;
 
 // the prescribed drive B sin t on the slider (eq. c1's right-hand side)
 class Drive : public Force::Custom::Implementation {
@@ -81,7 +80,7 @@ using Harness = DrivenCoulombHarness;
 // and misses the slip. A quarter of the window keeps every window resolved.
 double maxStepFor(double B) {
   double h = 0.1;
-  if (B > 1) h = std::min(h, 0.25 * (3.141592653589793 - 2 * std::asin(1 / B)));
+  if (B > 1) h = std::min(h, 0.25 * (kPi - 2 * std::asin(1 / B)));
   return h;
 }
 
@@ -90,7 +89,7 @@ void gaussLegendre(int n, std::vector<double>& x, std::vector<double>& w) {
   x.assign(n, 0.0);
   w.assign(n, 0.0);
   for (int i = 0; i < (n + 1) / 2; ++i) {
-    double z = std::cos(3.141592653589793 * (i + 0.75) / (n + 0.5)), dp = 0.0;
+    double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 0.0;
     for (int it = 0; it < 100; ++it) {
       double p0 = 1.0, p1 = z;
       for (int k = 2; k <= n; ++k) {

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/constants.h"
 #include "sim/analysis/sweep.h"
 
 namespace metrosync {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;
 // Arcs shorter than this (rad) count as a whole circle when TO - FROM is a multiple of 2 pi.
 constexpr double kWholeCircleTolerance = 1e-12;
 

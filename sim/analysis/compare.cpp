@@ -3,13 +3,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "base/constants.h"
 #include "sim/analysis/regime.h"
 
 namespace metrosync {
 
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586;
 
 // Keeps the largest |d| and where it occurred; a NaN, once seen, sticks (it means a broken row).
 void updateMax(double d, double tau, double& max, double& tau_at) {

@@ -2,13 +2,10 @@
 
 #include <cmath>
 
+#include "base/constants.h"
 #include "contact/law_registry.h"
 
 namespace metrosync {
-
-namespace {
-constexpr double kPi = 3.141592653589793;
-}
 
 bool isSection3ARig(const Rig& rig) {
   if (rig.units != Units::Physical || rig.metronomes.empty()) return false;

@@ -3,11 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-namespace metrosync {
+#include "base/constants.h"
 
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
+namespace metrosync {
 
 GroupLocking groupLocking(const RegimeWindow& w, const std::vector<int>& alive) {
   std::vector<size_t> idx;

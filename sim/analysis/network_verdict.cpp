@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "base/constants.h"
 #include "models/network_equations.h"
 #include "models/scaling.h"
 #include "sim/analysis/network_regime.h"
@@ -9,10 +10,6 @@
 #include "sim/analysis/regime.h"
 
 namespace metrosync {
-
-namespace {
-constexpr double kTwoPi = 6.283185307179586;
-}
 
 struct NetworkVerdict::Impl {
   const Network& net;

@@ -6,18 +6,10 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "base/constants.h"
+#include "base/number_text.h"
+
 namespace metrosync {
-
-namespace {
-constexpr double kPi = 3.141592653589793;
-constexpr double kTwoPi = 6.283185307179586;
-
-std::string fmtNumber(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
-}  // namespace
 
 const char* toString(Regime r) {
   switch (r) {
@@ -306,16 +298,16 @@ Regime phaseRegime(const RegimeRules& r, const EnvelopeRow& last, const std::vec
   if (settled && antiphase) return Regime::Antiphase;
   if (settled) return Regime::PhaseLocked;
   reason = "the phase differences still move over the window (range up to " +
-           fmtNumber(*std::max_element(range.begin(), range.end())) + " rad; settled needs < " +
-           fmtNumber(r.settled_rad) + ", drift > " + fmtNumber(r.drift_rad) + ")";
+           numberText(*std::max_element(range.begin(), range.end()), 4) + " rad; settled needs < " +
+           numberText(r.settled_rad, 4) + ", drift > " + numberText(r.drift_rad, 4) + ")";
   return Regime::Unsettled;
 }
 
 std::string tooShortReason(const RegimeWindow& w) {
-  return "the run is shorter than " + fmtNumber(w.rules().min_periods) +
-         " fast periods (tau_end = " + fmtNumber(w.tauEnd()) + " < " +
-         fmtNumber(w.rules().min_periods) + " * 2 pi epsilon = " + fmtNumber(w.minimumTau()) +
-         "): too short to judge";
+  return "the run is shorter than " + numberText(w.rules().min_periods, 4) +
+         " fast periods (tau_end = " + numberText(w.tauEnd(), 4) + " < " +
+         numberText(w.rules().min_periods, 4) +
+         " * 2 pi epsilon = " + numberText(w.minimumTau(), 4) + "): too short to judge";
 }
 }  // namespace
 

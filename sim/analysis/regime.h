@@ -48,6 +48,7 @@
 #include <string>
 #include <vector>
 
+#include "base/constants.h"
 #include "contact/friction_law.h"
 #include "sim/record/envelope.h"
 
@@ -77,10 +78,10 @@ struct RegimeRules {
   // 0.1 rad must show it over several periods, and the full model's period averages need a few
   // rows to vary at all
   double min_periods = 5.0;
-  double drift_rad = 3.141592653589793;  // drift: range of some psi_j > this
-  double settled_rad = 0.1;              // settled: range of every psi_j < this
-  double in_phase_rad = 0.2;             // |final psi_j - 0| (mod 2 pi) <= this
-  double antiphase_rad = 0.5;            // |final psi_j - pi| (mod 2 pi) <= this
+  double drift_rad = kPi;      // drift: range of some psi_j > this
+  double settled_rad = 0.1;    // settled: range of every psi_j < this
+  double in_phase_rad = 0.2;   // |final psi_j - 0| (mod 2 pi) <= this
+  double antiphase_rad = 0.5;  // |final psi_j - pi| (mod 2 pi) <= this
   // splay (N >= 3): every gap between neighbouring phases within this of 2 pi / a (a alive), but
   // never more than a quarter of 2 pi / a
   double splay_rad = 0.2;

@@ -10,14 +10,14 @@
 #include <sstream>
 #include <thread>
 
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "sim/parallel/worker_pool.h"
 
 namespace metrosync {
 
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-constexpr double kTwoPi = 6.283185307179586;
 constexpr long kMaxAxisCount = 1000000;
 
 std::string trim(const std::string& s) {
@@ -122,9 +122,7 @@ std::string sweepValueText(double v) {
   if (v == 0.0) return "0";  // and not "-0"
   // 15 digits: what the user meant (0.3, not 0.30000000000000004); the point's value is then
   // the number this text denotes, the same in the rig and in regimes.csv
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.15g", v);
-  return buf;
+  return numberText(v, 15);
 }
 
 namespace {

@@ -6,9 +6,10 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "base/number_text.h"
 #include "sim/analysis/continuation/arclength.h"
 #include "sim/analysis/continuation/start_states.h"
-#include "sim/analysis/validation.h"
+#include "sim/analysis/validation_measures.h"
 #include "sim/parallel/worker_pool.h"
 
 namespace metrosync {
@@ -23,12 +24,6 @@ using Cd = std::complex<double>;
 constexpr double kCheckTau = 1000.0;
 constexpr double kCheckPerturbation = 1e-3;
 constexpr double kSideOffset = 0.01;
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
 
 EnvelopeRow rowOf(const SlowFlowProblem& prob, const Vec& x) {
   EnvelopeRow r;
@@ -67,7 +62,7 @@ void locate(const BifurcationFamilySpec& spec, const ParamsAt& at, BifurcationFa
   const ScaledParams p0 = at(spec.start);
   const SettledState st = settleFromStart(p0, p0.tau_end > 0 ? p0.tau_end : 300.0);
   if (!st.settled) {
-    out.start = "the rig's start does not settle at " + spec.key + " = " + number(spec.start) +
+    out.start = "the rig's start does not settle at " + spec.key + " = " + numberText(spec.start) +
                 ": " + st.why;
     return;
   }
@@ -80,7 +75,7 @@ void locate(const BifurcationFamilySpec& spec, const ParamsAt& at, BifurcationFa
     out.start = "Newton does not converge on the settled state";
     return;
   }
-  out.start = "the rig's start settled by the slow flow at tau = " + number(st.tau);
+  out.start = "the rig's start settled by the slow flow at tau = " + numberText(st.tau);
   ContinuationSettings s;
   s.p_min = spec.lo, s.p_max = spec.hi, s.max_branches = 1;
   s.step = (spec.hi - spec.lo) / 100, s.step_max = (spec.hi - spec.lo) / 25;

@@ -14,11 +14,10 @@
 #include <vector>
 
 #include "models/scaling.h"
+#include "sim/analysis/validation_catalogue.h"
+#include "sim/analysis/validation_runs.h"
 
 namespace metrosync {
-
-struct Scenario;           // sim/analysis/validation.h
-struct ValidationEngines;  // sim/analysis/validation.h
 
 struct BifurcationFamilySpec {
   std::string name;      // "f4.4 in alpha"
@@ -71,7 +70,7 @@ struct BifurcationFamilyResult {
 // A state persists when a run of kCheckTau from it, perturbed by kCheckPerturbation, ends within
 // this distance of the point's state: the stable state 1% of the range away from a fold is
 // O(sqrt(0.01)) ~ 0.1 from it, while a run that leaves ends on another state or at rest, O(1) away
-// (amplitudes ~1-2). The same bound as kAgreeDistance (validation.h).
+// (amplitudes ~1-2). The same bound as kAgreeDistance (validation_measures.h).
 constexpr double kPersistDistance = 0.25;
 
 // Runs part 6 on the scenarios (which must include the families'). Full-model runs go through

@@ -5,11 +5,11 @@
 #include <cstdio>
 #include <limits>
 
+#include "base/number_text.h"
 #include "sim/analysis/periodic_orbit/full_continuation.h"
-#include "sim/analysis/periodic_orbit/number_text.h"
 #include "sim/analysis/periodic_orbit/orbit_continuation.h"
-#include "sim/analysis/validation.h"
 #include "sim/analysis/validation_bifurcations.h"
+#include "sim/analysis/validation_measures.h"
 #include "sim/parallel/worker_pool.h"
 
 namespace metrosync {
@@ -71,20 +71,20 @@ FamilyRun familyAt(const FullFamilySpec& spec, const ScaledParams& q, double eps
       s.p_min = std::min(spec.lo, start), s.p_max = spec.hi;
       out.family = orbit::continueFamily(prob, st.orbit, start, s);
       if (spec.suppressed && !isSuppressed(out.family, start, q)) {
-        out.note += (out.note.empty() ? "" : "; ") + spec.key + " = " + orbit::numberText(start) +
+        out.note += (out.note.empty() ? "" : "; ") + spec.key + " = " + numberText(start) +
                     ": the rig's start settles onto a state with every metronome ticking";
         continue;
       }
       out.found = true;
       const std::vector<double>& A = pointAt(out.family, start).measures.A;
-      out.note = "from the rig's start settled at " + spec.key + " = " + orbit::numberText(start) +
-                 " (A =";
-      for (double a : A) out.note += " " + orbit::numberText(a);
+      out.note =
+          "from the rig's start settled at " + spec.key + " = " + numberText(start) + " (A =";
+      for (double a : A) out.note += " " + numberText(a);
       out.note += ")";
       return out;
     } catch (const std::exception& e) {
-      out.note += (out.note.empty() ? "" : "; ") + spec.key + " = " + orbit::numberText(start) +
-                  ": " + e.what();
+      out.note +=
+          (out.note.empty() ? "" : "; ") + spec.key + " = " + numberText(start) + ": " + e.what();
     }
   }
   return out;
@@ -146,8 +146,8 @@ std::vector<FullPointSeries> seriesOf(const FullFamilySpec& spec,
               runs[e].found ? nearest(runs[e].family, full_type, s.slow) : nullptr) {
         v.value = b->point.p, v.A = b->point.measures.A, v.psi = b->point.measures.psi;
       } else if (runs[e].found) {
-        v.note += "; no " + full_type + " on " + orbit::numberText(spec.lo) + " .. " +
-                  orbit::numberText(spec.hi) + " (" + runs[e].family.end_backward + "; " +
+        v.note += "; no " + full_type + " on " + numberText(spec.lo) + " .. " +
+                  numberText(spec.hi) + " (" + runs[e].family.end_backward + "; " +
                   runs[e].family.end_forward + ")";
       }
       s.values.push_back(v);
@@ -250,7 +250,7 @@ void asymmetricState(const std::vector<Scenario>& scenarios, bool quick, Asymmet
       a.mu_from = m.points.front().p, a.mu_to = m.points.back().p;
       a.mu_ends = m.end_backward + "; " + m.end_forward;
       for (const OrbitBifurcation& b : m.special)
-        a.mu_specials.push_back(b.type + " at mu = " + orbit::numberText(b.point.p));
+        a.mu_specials.push_back(b.type + " at mu = " + numberText(b.point.p));
     }
   } catch (const std::exception& e) {
     a.start = e.what();

@@ -14,11 +14,10 @@
 #include <vector>
 
 #include "models/scaling.h"
+#include "sim/analysis/validation_catalogue.h"
+#include "sim/analysis/validation_runs.h"
 
 namespace metrosync {
-
-struct Scenario;           // sim/analysis/validation.h
-struct ValidationEngines;  // sim/analysis/validation.h
 
 // One family of one scenario, followed in `key` at each epsilon of the plan.
 struct FullFamilySpec {

@@ -6,6 +6,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/constants.h"
+#include "base/number_text.h"
+
 namespace metrosync {
 
 double orderParameter(const std::vector<double>& A, const std::vector<double>& psi) {
@@ -28,21 +31,11 @@ std::string envelopeHeader(int n) {
 }
 
 std::string formatEnvelopeRow(const EnvelopeRow& row) {
-  char buf[40];
-  std::string s;
-  std::snprintf(buf, sizeof buf, "%.10g", row.tau);
-  s += buf;
-  for (double a : row.A) {
-    std::snprintf(buf, sizeof buf, ",%.12g", a);
-    s += buf;
-  }
-  for (double p : row.psi) {
-    std::snprintf(buf, sizeof buf, ",%.12g", p);
-    s += buf;
-  }
+  std::string s = numberText(row.tau, 10);
+  for (double a : row.A) s += "," + numberText(a, 12);
+  for (double p : row.psi) s += "," + numberText(p, 12);
   const double r = std::isnan(row.r) ? orderParameter(row.A, row.psi) : row.r;
-  std::snprintf(buf, sizeof buf, ",%.12g", r);
-  return s + buf;
+  return s + "," + numberText(r, 12);
 }
 
 EnvelopeLayout parseEnvelopeHeader(const std::string& header, const std::string& path) {
@@ -101,7 +94,6 @@ std::vector<EnvelopeRow> readEnvelopeCsv(const std::string& path) {
 }
 
 double PhaseUnwrapper::operator()(double raw) {
-  constexpr double kTwoPi = 6.283185307179586;
   if (!started_) {
     started_ = true;
     last_ = raw - kTwoPi * std::floor(raw / kTwoPi);

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "base/constants.h"
+
 namespace metrosync {
 
 struct EnvelopeRow {
@@ -62,7 +64,7 @@ class PhaseUnwrapper {
 
 // The fast-period grid shared by both models: tau of row k.
 inline double envelopeTau(double epsilon, long k) {
-  return epsilon * 6.283185307179586 * (static_cast<double>(k) + 0.5);
+  return epsilon * kTwoPi * (static_cast<double>(k) + 0.5);
 }
 
 }  // namespace metrosync

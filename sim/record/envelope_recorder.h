@@ -17,6 +17,7 @@
 
 #include <vector>
 
+#include "base/constants.h"
 #include "sim/record/envelope.h"
 #include "sim/record/run_report.h"
 #include "sim/record/sample_ring.h"
@@ -39,8 +40,6 @@ class EnvelopeRecorder {
   double nextBoundary() const { return kTwoPi * static_cast<double>(period_ + 1); }
   long rowsWritten() const { return period_; }
   const EnvelopeRow& lastRow() const { return last_row_; }
-
-  static constexpr double kTwoPi = 6.283185307179586;
 
  private:
   // A_i and exp(i phi_i) = er_i + i ei_i at one sample, (N x 1) each: split into real arrays so

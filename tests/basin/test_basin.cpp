@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "base/constants.h"
 #include "sim/analysis/basin.h"
 #include "sim/analysis/sweep.h"
 #include "tests/common/run_metrosync.h"
@@ -25,7 +26,6 @@ using Result = testing_support::CommandResult;
 using testing_support::shellQuote;
 using testing_support::slurp;
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kThetaC = 0.9019;  // the rigs' escapement angle (scaled)
 
 std::string scratch(const std::string& name) {

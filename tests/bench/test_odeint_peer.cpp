@@ -14,6 +14,7 @@
 #include <sstream>
 #include <string>
 
+#include "base/constants.h"
 #include "tests/common/run_metrosync.h"
 #include "tools/bench/bench_run.h"
 #include "tools/bench/odeint_peer.h"
@@ -66,7 +67,7 @@ metrosync::Rig wittnerRig(int n, double periods) {
   rig.platform.mass_kg = 0.8;
   rig.platform.friction = metrosync::FrictionLaw::coulomb(1e-4);
   std::mt19937 gen(11);
-  std::uniform_real_distribution<double> phase(0.0, 6.283185307179586);
+  std::uniform_real_distribution<double> phase(0.0, metrosync::kTwoPi);
   const double w0 = std::sqrt(9.81 / 0.0225);
   for (int i = 0; i < n; ++i) {
     metrosync::MetronomeSpec m;
@@ -83,7 +84,7 @@ metrosync::Rig wittnerRig(int n, double periods) {
     m.start_rate_rad_s = 0.785 * w0 * std::cos(phi);
     rig.metronomes.push_back(m);
   }
-  rig.sim.t_end_s = periods * 6.283185307179586 / w0;
+  rig.sim.t_end_s = periods * metrosync::kTwoPi / w0;
   return rig;
 }
 

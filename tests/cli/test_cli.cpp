@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "base/constants.h"
 #include "sim/engines/simbody/simbody_engine.h"
 #include "sim/record/envelope.h"
 #include "tests/common/run_metrosync.h"
@@ -320,7 +321,7 @@ TEST(CliRun, SlowFlowWritesNoTrajectoryAndReplacesAnOlderRun) {
   // 20 s is tau_end = eps t / time_scale; the last row is within one fast period of it
   const json& sc = s["scaled"];
   const double tau_end = sc["epsilon"].get<double>() * 20.0 / sc["time_scale"].get<double>();
-  const double period = 2 * M_PI * sc["epsilon"].get<double>();
+  const double period = metrosync::kTwoPi * sc["epsilon"].get<double>();
   EXPECT_NEAR(s["final"]["tau"].get<double>(), tau_end, period);
   expectNoTemporaryFiles(dir);
 }
@@ -413,10 +414,10 @@ TEST(CliCompare, WritesComparisonAndBothEnvelopes) {
   EXPECT_EQ(full.back().tau, slow.back().tau);
   std::set<long> full_k, common;
   for (size_t k = 1; k + 1 < full.size(); ++k)
-    full_k.insert(std::lround(full[k].tau / (2 * M_PI * 0.073) - 0.5));
+    full_k.insert(std::lround(full[k].tau / (metrosync::kTwoPi * 0.073) - 0.5));
   for (size_t k = 1; k + 1 < slow.size(); ++k)
-    if (full_k.count(std::lround(slow[k].tau / (2 * M_PI * 0.073) - 0.5)))
-      common.insert(std::lround(slow[k].tau / (2 * M_PI * 0.073) - 0.5));
+    if (full_k.count(std::lround(slow[k].tau / (metrosync::kTwoPi * 0.073) - 0.5)))
+      common.insert(std::lround(slow[k].tau / (metrosync::kTwoPi * 0.073) - 0.5));
   EXPECT_GT(common.size(), 10u);
   EXPECT_EQ(cmp.size() - 1, common.size());
   // each line pairs the two models' rows at the same tau

@@ -9,6 +9,7 @@
 #include <limits>
 #include <vector>
 
+#include "base/constants.h"
 #include "contact/averaged_response.h"
 #include "contact/friction_law.h"
 #include "contact/law_registry.h"
@@ -16,7 +17,6 @@
 namespace metrosync {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 const double kSb = std::sqrt(1.0 + kPi * kPi / 4.0);
 
 // Gauss-Legendre nodes and weights on [-1, 1] (Newton on P_n): exact for polynomials of degree

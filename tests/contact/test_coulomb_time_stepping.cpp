@@ -9,12 +9,12 @@
 #include <cmath>
 #include <vector>
 
+#include "base/constants.h"
 #include "contact/averaged_response.h"
 
 namespace metrosync {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 const double kSb = std::sqrt(1.0 + kPi * kPi / 4.0);
 
 // The element's state: slip velocity v, the mode (0 stuck, +-1 slipping forwards / backwards)

@@ -6,13 +6,13 @@
 #include <limits>
 #include <vector>
 
+#include "base/constants.h"
 #include "contact/averaged_response.h"
 #include "contact/slip_duration.h"
 
 namespace metrosync {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 std::vector<double> qGrid() {

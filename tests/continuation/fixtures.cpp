@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/constants.h"
 #include "contact/averaged_response.h"
 #include "yaml/rig_loader.h"
 
@@ -45,7 +46,7 @@ Vec singleTicking(const SlowFlowProblem& prob, double mu) {
   // < 0 for large A, > 0 just above the upper root; bisect from A = 10 down to A_star
   auto rate = [&](double A) {
     return -coulombBeta2(A / *p.friction.value("mu")) * A - p.nu[0] * A / 2 +
-           p.J[0] / M_PI * std::sqrt(1 - p.theta_c[0] * p.theta_c[0] / (A * A));
+           p.J[0] / kPi * std::sqrt(1 - p.theta_c[0] * p.theta_c[0] / (A * A));
   };
   double lo = *p.A_star[0] * 0.999, hi = 10;
   while (rate(lo) < 0) lo = 0.5 * (lo + p.theta_c[0]);
@@ -72,7 +73,7 @@ double worstResidual(const SlowFlowProblem& prob, const std::vector<Branch>& bra
 }
 
 double amplitudeRate(double A, double s, double nu) {
-  return -coulombBeta2(s) * A - nu * A / 2 + kJ / M_PI * std::sqrt(1 - kThetaC * kThetaC / (A * A));
+  return -coulombBeta2(s) * A - nu * A / 2 + kJ / kPi * std::sqrt(1 - kThetaC * kThetaC / (A * A));
 }
 
 namespace {

@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/constants.h"
+
 namespace metrosync::continuation {
 namespace {
 
@@ -34,7 +36,7 @@ void checkBranch(double sigma, const ContinuationSettings& s) {
   for (const CyclePoint& q : c.points) {
     const double r = std::hypot(q.y0(0), q.y0(1));
     EXPECT_NEAR(r * r, -q.p / sigma, 1e-8) << "b = " << q.p;
-    EXPECT_NEAR(q.period, 2 * M_PI, 1e-8) << "b = " << q.p;
+    EXPECT_NEAR(q.period, kTwoPi, 1e-8) << "b = " << q.p;
     EXPECT_NEAR(q.y0(2), 0.0, 1e-9);
     EXPECT_LT(q.trivial_error, 1e-6);
     // the radial multiplier: the one of the other two that is not exp(-T)

@@ -11,6 +11,7 @@
 #include <complex>
 #include <cstdio>
 
+#include "base/constants.h"
 #include "sim/analysis/continuation/slow_flow_cycles.h"
 #include "tests/continuation/fixtures.h"
 #include "yaml/rig_loader.h"
@@ -42,7 +43,7 @@ TEST(SlowFlowCycle, InPhaseSubcriticalHopfCycleClosesUnderIndependentIntegration
   ASSERT_GT(hopf->lyapunov, 0);  // subcritical
   const ResultCycle c = followSlowFlowCycle(prob, hopf->point, s);
   ASSERT_GT(c.points.size(), 5u) << c.end;
-  EXPECT_NEAR(c.points.front().period, 2 * M_PI / c.frequency, 1e-2);
+  EXPECT_NEAR(c.points.front().period, kTwoPi / c.frequency, 1e-2);
   for (const ResultCyclePoint& q : c.points) {
     EXPECT_LT(q.value, hopf->point.p());  // the stable side of the locked state
     EXPECT_FALSE(q.stable);

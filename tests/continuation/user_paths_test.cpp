@@ -15,6 +15,7 @@
 #include <set>
 #include <sstream>
 
+#include "base/constants.h"
 #include "models/scaling.h"
 #include "models/slow_flow.h"
 #include "tests/common/run_metrosync.h"
@@ -154,7 +155,7 @@ TEST(ContinueUserPaths, F42NeutralFamilyWithItsExtent) {
       EXPECT_NEAR(num(q, key), a, 1e-9) << key << " at mu = " << mu;
     const double edge = 2 * std::acos(mu / (2 * a));  // |Z| = mu
     EXPECT_NEAR(num(q, "psi_2_min"), edge, 1e-7) << "mu = " << mu;
-    EXPECT_NEAR(num(q, "psi_2_max"), 2 * M_PI - edge, 1e-7) << "mu = " << mu;
+    EXPECT_NEAR(num(q, "psi_2_max"), kTwoPi - edge, 1e-7) << "mu = " << mu;
   }
   EXPECT_EQ(mu_max, 0.8);
 }

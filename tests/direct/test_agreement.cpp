@@ -29,6 +29,7 @@
 #include <filesystem>
 #include <map>
 
+#include "base/constants.h"
 #include "models/network_equations.h"
 #include "models/scaling.h"
 #include "sim/engines/direct/direct_engine.h"
@@ -86,7 +87,7 @@ void compareNetworkEngines(const std::string& name) {
   const ScaledParams sp = computeScaled(net.unionRig());
   const double omega0 = 1.0 / sp.time_scale_s;
   const double periods = std::clamp(64.0 / net.numMetronomes(), 1.5, 8.0);
-  net.sim.t_end_s = std::min(2.0 / (sp.epsilon * omega0), periods * 2 * M_PI / omega0);
+  net.sim.t_end_s = std::min(2.0 / (sp.epsilon * omega0), periods * kTwoPi / omega0);
   net.sim.integrator.clear();  // Simbody's default
   net.sim.accuracy = 1e-14;
   Network net_direct = net;
@@ -139,7 +140,7 @@ TEST_P(EnginesAgree, OnShippedRig) {
   const double omega0 = 1.0 / sp.time_scale_s;
   const int n = static_cast<int>(rig.metronomes.size());
   const double periods = std::clamp(64.0 / n, 1.5, 8.0);
-  rig.sim.t_end_s = std::min(2.0 / (sp.epsilon * omega0), periods * 2 * M_PI / omega0);
+  rig.sim.t_end_s = std::min(2.0 / (sp.epsilon * omega0), periods * kTwoPi / omega0);
   rig.sim.integrator.clear();  // Simbody's default
   rig.sim.accuracy = 1e-14;
   Rig rig_direct = rig;

@@ -7,12 +7,11 @@
 #include <cstdio>
 #include <string>
 
+#include "base/constants.h"
 #include "models/rig.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::eventtests {
-
-constexpr double kPi = 3.141592653589793;
 
 enum class Start { ByPhase, ByState };
 

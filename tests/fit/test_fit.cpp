@@ -11,6 +11,7 @@
 #include <regex>
 #include <sstream>
 
+#include "base/constants.h"
 #include "sim/engines/engine.h"
 #include "tests/common/run_metrosync.h"
 #include "tests/fit/fit_data.h"
@@ -185,12 +186,12 @@ std::string springBoardData(double M, double k, double mu) {
   double C = 0.03;  // the first minimum, -C at t = 0
   for (int i = 0; i * kSampleS < 12.0; ++i) {
     const double t = i * kSampleS, ph = w * t;
-    const int half = static_cast<int>(ph / M_PI);
+    const int half = static_cast<int>(ph / kPi);
     const double a = C - (2 * half + 1) * d;  // amplitude about this half-cycle's centre
     if (a <= d) break;
     const double centre = (half % 2 == 0) ? -d : d;  // moving right: friction pushes left
-    os << t << ","
-       << centre - a * std::cos(ph - half * M_PI) * (half % 2 == 0 ? 1 : -1) + noise(gen) << "\n";
+    os << t << "," << centre - a * std::cos(ph - half * kPi) * (half % 2 == 0 ? 1 : -1) + noise(gen)
+       << "\n";
   }
   return os.str();
 }
@@ -208,7 +209,7 @@ TEST(Measure, LinearDecayOfTheBoardGivesMuBar) {
   const double m = j["mu_bar"]["value"], sm = j["mu_bar"]["std_error"];
   EXPECT_LT(std::abs(m - mu), 3 * sm) << m << " +- " << sm;
   EXPECT_LT(sm, 0.02 * mu);
-  EXPECT_NEAR(j["period_s"]["value"].get<double>(), 2 * M_PI / w, 1e-3);
+  EXPECT_NEAR(j["period_s"]["value"].get<double>(), kTwoPi / w, 1e-3);
 }
 
 // One metronome ticking on a still table settles at its steady amplitude: eq. J_estimate gives

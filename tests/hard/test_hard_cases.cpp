@@ -16,6 +16,7 @@
 #include <cmath>
 #include <string>
 
+#include "base/constants.h"
 #include "models/scaling.h"
 #include "sim/engines/direct/direct_engine.h"
 #include "yaml/rig_loader.h"
@@ -24,7 +25,6 @@ namespace metrosync {
 namespace {
 
 const std::string kHard = std::string(METROSYNC_SOURCE_DIR) + "/yaml/rigs/hard/";
-constexpr double kPi = 3.141592653589793;
 
 Rig hardRig(const std::string& name, std::vector<std::string> sets = {}) {
   return loadRigFile(kHard + name, sets);

@@ -1,6 +1,6 @@
 // The layout's one rule (CMakeLists.txt, COMMON): every `#include "..."` of the libraries and
 // tools points downwards in
-//   contact < contact/simbody < models < models/simbody, sim/parallel < sim/ode, sim/record
+//   base < contact < contact/simbody < models < models/simbody, sim/parallel < sim/ode, sim/record
 //     < sim/events < sim/engines/{direct,simbody,slow_flow} < sim/engines < sim/analysis < yaml
 //     < tools/report < tools/cli < tools
 // or stays in its own folder. Folders of one level (sim/ode and sim/record, the three engines)
@@ -10,8 +10,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <optional>
 #include <regex>
@@ -26,6 +28,7 @@ namespace fs = std::filesystem;
 constexpr int kAnything = 1000;
 const std::map<std::string, int>& levels() {
   static const std::map<std::string, int> m = {
+      {"base", -1},  // header-only: the constants and number text every library may use
       {"contact", 0},
       {"contact/simbody", 1},
       {"models", 2},
@@ -49,7 +52,7 @@ const std::map<std::string, int>& levels() {
 }
 
 // The scanned top-level folders (the libraries and tools; not tests/, not build/).
-const std::vector<std::string> kScanned = {"contact", "models", "sim", "yaml", "tools"};
+const std::vector<std::string> kScanned = {"base", "contact", "models", "sim", "yaml", "tools"};
 
 std::optional<int> levelOf(const std::string& folder) {
   // a folder below a library folder that the order does not name sits with it (e.g.
@@ -118,6 +121,69 @@ std::vector<std::string> layoutViolations(const fs::path& root) {
   return out;
 }
 
+// A file's unit: its path without the extension (x.h and x.cpp are one unit).
+std::string unitOf(const std::string& rel_path) {
+  return fs::path(rel_path).replace_extension().generic_string();
+}
+
+// The include cycles between units under `root`: each a sorted list of the units of one strongly
+// connected component of "a file of unit A includes a header of unit B" (Tarjan).
+std::vector<std::vector<std::string>> includeCycles(const fs::path& root) {
+  static const std::regex include_re(R"(^\s*#\s*include\s*"([^"]+)\")");
+  std::map<std::string, std::vector<std::string>> edges;
+  for (const auto& top : kScanned) {
+    if (!fs::is_directory(root / top)) continue;
+    for (const auto& e : fs::recursive_directory_iterator(root / top)) {
+      const std::string ext = e.path().extension().string();
+      if (!e.is_regular_file() || (ext != ".h" && ext != ".cpp")) continue;
+      const std::string unit = unitOf(fs::relative(e.path(), root).generic_string());
+      std::ifstream in(e.path());
+      std::string line;
+      while (std::getline(in, line)) {
+        std::smatch m;
+        if (!std::regex_search(line, m, include_re) || !fs::exists(root / m[1].str())) continue;
+        const std::string to = unitOf(m[1]);
+        if (to != unit) edges[unit].push_back(to);
+      }
+    }
+  }
+  std::map<std::string, int> index, low;
+  std::vector<std::string> stack;
+  std::map<std::string, bool> on_stack;
+  std::vector<std::vector<std::string>> cycles;
+  int next = 0;
+  std::function<void(const std::string&)> visit = [&](const std::string& v) {
+    index[v] = low[v] = next++;
+    stack.push_back(v);
+    on_stack[v] = true;
+    for (const std::string& w : edges[v]) {
+      if (!index.count(w)) {
+        visit(w);
+        low[v] = std::min(low[v], low[w]);
+      } else if (on_stack[w]) {
+        low[v] = std::min(low[v], index[w]);
+      }
+    }
+    if (low[v] != index[v]) return;
+    std::vector<std::string> component;
+    for (std::string w; w != v;) {
+      w = stack.back();
+      stack.pop_back();
+      on_stack[w] = false;
+      component.push_back(w);
+    }
+    if (component.size() > 1) {
+      std::sort(component.begin(), component.end());
+      cycles.push_back(component);
+    }
+  };
+  std::vector<std::string> units;
+  for (const auto& [u, to] : edges) units.push_back(u);
+  for (const std::string& u : units)
+    if (!index.count(u)) visit(u);
+  return cycles;
+}
+
 std::string joined(const std::vector<std::string>& v) {
   std::string s;
   for (const auto& x : v) s += "  " + x + "\n";
@@ -127,6 +193,35 @@ std::string joined(const std::vector<std::string>& v) {
 TEST(Layout, EveryIncludePointsDownwards) {
   const std::vector<std::string> v = layoutViolations(METROSYNC_SOURCE_DIR);
   EXPECT_TRUE(v.empty()) << v.size() << " includes against the layout:\n" << joined(v);
+}
+
+// The validation's files (sim/analysis/validation*: catalogue, runs, measures, checks, plan,
+// parts, parts 6 and 7) include each other one way only (issue 24: validation.h and
+// validation_bifurcations included each other).
+TEST(Layout, NoIncludeCycleThroughTheValidation) {
+  for (const auto& cycle : includeCycles(METROSYNC_SOURCE_DIR))
+    for (const std::string& unit : cycle)
+      EXPECT_EQ(unit.rfind("sim/analysis/validation", 0), std::string::npos)
+          << "an include cycle through " << unit << ":\n"
+          << joined(cycle);
+}
+
+TEST(Layout, IncludeCycleFinderFindsACycle) {
+  const fs::path root =
+      fs::path(::testing::TempDir()) / ("metrosync_cycles_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  auto file = [&](const std::string& rel, const std::string& text) {
+    fs::create_directories((root / rel).parent_path());
+    std::ofstream(root / rel) << text;
+  };
+  file("sim/analysis/a.h", "#include \"sim/analysis/b.h\"\n");
+  file("sim/analysis/b.h", "");
+  file("sim/analysis/b.cpp", "#include \"sim/analysis/a.h\"\n");  // a.h -> b.h, b.cpp -> a.h
+  file("sim/analysis/c.cpp", "#include \"sim/analysis/a.h\"\n");  // no cycle through c
+  const auto cycles = includeCycles(root);
+  fs::remove_all(root);
+  ASSERT_EQ(cycles.size(), 1u);
+  EXPECT_EQ(cycles[0], (std::vector<std::string>{"sim/analysis/a", "sim/analysis/b"}));
 }
 
 // The checker itself, on a small tree with one include of each kind: it must be able to fail.

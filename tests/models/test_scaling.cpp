@@ -8,13 +8,12 @@
 #include <random>
 #include <stdexcept>
 
+#include "base/constants.h"
 #include "contact/law_registry.h"
 #include "models/scaling.h"
 
 namespace metrosync {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The physical experiment of the paper's section 3 (Wittner metronomes, high-friction rollers).
 Rig sectionThreeRig() {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "base/constants.h"
 #include "contact/averaged_response.h"
 #include "contact/law_registry.h"
 #include "models/slow_flow.h"
@@ -21,8 +22,6 @@ namespace metrosync {
 namespace {
 
 using cplx = std::complex<double>;
-constexpr double kPi = 3.141592653589793;
-constexpr double kTwoPi = 2 * kPi;
 
 // eq. A_star, written from the paper: the stable steady amplitude on a still platform (J >= J_c).
 double aStar(double nu, double J, double theta_c) {

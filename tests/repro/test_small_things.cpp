@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "base/constants.h"
 #include "tests/common/run_metrosync.h"
 #include "tools/report/plot.h"
 #include "tools/report/progress_log.h"
@@ -18,12 +19,11 @@
 namespace {
 
 namespace fs = std::filesystem;
+using metrosync::kPi;
 using metrosync::testing_support::CommandResult;
 using metrosync::testing_support::runMetrosync;
 using metrosync::testing_support::slurp;
 using nlohmann::json;
-
-constexpr double kPi = 3.141592653589793;
 
 std::string scratch(const std::string& name) {
   return metrosync::testing_support::scratchDir("small", name, true);

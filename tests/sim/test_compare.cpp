@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "base/constants.h"
 #include "sim/analysis/compare.h"
 #include "tools/report/comparison_csv.h"
 #include "tools/report/outputs.h"
@@ -14,7 +15,6 @@ namespace metrosync {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = 3.141592653589793;
 constexpr double kEps = 0.05;
 
 std::string freshDir(const std::string& name) {

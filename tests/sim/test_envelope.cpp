@@ -4,13 +4,12 @@
 #include <cstdio>
 #include <fstream>
 
+#include "base/constants.h"
 #include "sim/record/envelope.h"
 #include "sim/record/envelope_recorder.h"
 
 namespace metrosync {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 // an angle difference moved into (-pi, pi]
 double wrapPsi(double d) {
@@ -86,7 +85,7 @@ Recording record(const Modulated& m1, const Modulated& m2, double eps, double t_
     const double w[2] = {m1.A(t) * std::cos(t + m1.phi(t)), m2.A(t) * std::cos(t + m2.phi(t))};
     rec.sample(t, th, w);
   };
-  const double dt = EnvelopeRecorder::kTwoPi / 64;
+  const double dt = kTwoPi / 64;
   for (long k = 0; k * dt < t_end; ++k) sampleAt(k * dt);
   sampleAt(t_end);
   r.final_row = rec.finish();
@@ -94,11 +93,9 @@ Recording record(const Modulated& m1, const Modulated& m2, double eps, double t_
   return r;
 }
 
-constexpr double kTwoPiRec = EnvelopeRecorder::kTwoPi;
-
 TEST(EnvelopeRecorder, FirstRowIsTheStartsEnvelopeAndLastIsTheFinalPeriodEndingAtTEnd) {
   const Modulated m1{1.9, 0.004, 0.3, 0.01}, m2{1.7, -0.003, 2.9, -0.02};
-  const double eps = 0.05, t_end = kTwoPiRec * 7.37;  // ends inside a period
+  const double eps = 0.05, t_end = kTwoPi * 7.37;  // ends inside a period
   const Recording r = record(m1, m2, eps, t_end);
   const auto& rows = r.sink.envelope;
   ASSERT_EQ(rows.size(), 1u + 7u + 1u);  // start, 7 complete periods, final
@@ -114,7 +111,7 @@ TEST(EnvelopeRecorder, FirstRowIsTheStartsEnvelopeAndLastIsTheFinalPeriodEndingA
   // errors ~ (2 pi / 64)^2 dphi^2 ~ 1e-6 relative at most; 1e-6 absolute.
   EXPECT_EQ(rows.back().tau, eps * t_end);
   EXPECT_EQ(r.final_row.tau, rows.back().tau);
-  EXPECT_EQ(r.span, kTwoPiRec);
+  EXPECT_EQ(r.span, kTwoPi);
   const double mid = t_end - kPi;
   EXPECT_NEAR(r.final_row.A[0], m1.A(mid), 1e-6);
   EXPECT_NEAR(r.final_row.A[1], m2.A(mid), 1e-6);
@@ -136,7 +133,7 @@ TEST(EnvelopeRecorder, ARunShorterThanAPeriodIsAveragedOverWhatThereIs) {
 
 TEST(EnvelopeRecorder, ARunEndingOnABoundaryRepeatsTheLastPeriodAtTauEnd) {
   const Modulated m1{1.9, 0.004, 0.3, 0.01}, m2{1.7, -0.003, 2.9, -0.02};
-  const double eps = 0.05, t_end = kTwoPiRec * 3;
+  const double eps = 0.05, t_end = kTwoPi * 3;
   const Recording r = record(m1, m2, eps, t_end);
   const auto& rows = r.sink.envelope;
   ASSERT_EQ(rows.size(), 1u + 3u + 1u);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "base/constants.h"
 #include "models/scaling.h"
 #include "sim/engines/direct/direct_engine.h"
 #include "sim/engines/simbody/simbody_engine.h"
@@ -19,9 +20,6 @@
 
 namespace metrosync {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
-constexpr double kTwoPi = 2 * kPi;
 
 using Engine = std::function<RunReport(const Rig&, RunSink&)>;
 

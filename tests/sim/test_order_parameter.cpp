@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "base/constants.h"
 #include "sim/analysis/network_regime.h"
 #include "sim/analysis/order_parameter.h"
 #include "sim/analysis/regime.h"
@@ -14,8 +15,6 @@
 
 namespace metrosync {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(OrderParameter, IdenticalPhasesGiveOneAndTheirPhase) {
   const Order o = orderParameter(std::vector<double>(30, 0.7));

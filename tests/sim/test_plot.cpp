@@ -7,13 +7,13 @@
 #include <filesystem>
 #include <fstream>
 
+#include "base/constants.h"
 #include "tools/report/plot.h"
 
 namespace metrosync {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = 3.141592653589793;
 
 std::string freshDir(const std::string& name) {
   const std::string d =

@@ -6,13 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "base/constants.h"
 #include "contact/law_registry.h"
 #include "sim/analysis/regime.h"
 
 namespace metrosync {
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kEps = 0.073;
 constexpr double kTauEnd = 100.0;
 
@@ -103,8 +103,7 @@ TEST(Regime, AnAmplitudeSwingingThroughThetaCIsAliveNotDying) {
   const double t_last = envelope(1, [](int, double) { return 1.0; }, {}).back().tau;
   const double c = t_last - 0.6 * 3;
   auto rows = envelope(
-      2,
-      [c](int i, double t) { return i == 0 ? 1.9 : 1.8 + 1.6 * std::cos(2 * M_PI * (t - c) / 3); },
+      2, [c](int i, double t) { return i == 0 ? 1.9 : 1.8 + 1.6 * std::cos(kTwoPi * (t - c) / 3); },
       [](int, double) { return 0.0; });
   const RegimeVerdict v = classifyRegime(rows, kTauEnd, kEps, {0.9, 0.9});
   ASSERT_LT(rows.back().A[1], 0.9);  // it ends below theta_c

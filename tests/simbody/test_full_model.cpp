@@ -6,13 +6,12 @@
 
 #include <cmath>
 
+#include "base/constants.h"
 #include "rigs.h"
 #include "sim/engines/simbody/simbody_engine.h"
 
 namespace metrosync {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 // Section 3A: platform on a spring, metronomes locked. Between two reversals the platform is a
 // harmonic oscillator about +-mu-bar M g / kappa, so its amplitude drops by 4 mu-bar M g / kappa

@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "base/constants.h"
 #include "models/scaling.h"
 #include "sim/analysis/regime.h"
 #include "sim/analysis/sweep.h"
@@ -25,7 +26,6 @@ namespace metrosync {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = 3.141592653589793;
 
 std::string scratchFile(const std::string& name) {
   return ::testing::TempDir() + "/metrosync_sweep_" + name + "_" + std::to_string(::getpid());

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "base/constants.h"
 #include "fixtures.h"
 
 namespace metrosync {
@@ -27,7 +28,7 @@ Convergence measure(const std::string& name) {
     EXPECT_TRUE(slow.report.complete && full.report.complete) << full.report.failure;
     const EnvelopeError e = envelopeError(full.envelope, slow.envelope, eps, tau);
     // every fast period of [0, 5] compared: tau / (2 pi eps) rows, give or take the last
-    EXPECT_GE(e.rows, static_cast<long>(tau / (2 * 3.141592653589793 * eps)) - 1);
+    EXPECT_GE(e.rows, static_cast<long>(tau / (kTwoPi * eps)) - 1);
     c.eps.push_back(eps);
     c.error.push_back(e.max_distance);
   }

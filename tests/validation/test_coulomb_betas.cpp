@@ -7,13 +7,12 @@
 
 #include <cmath>
 
+#include "base/constants.h"
 #include "contact/averaged_response.h"
 #include "contact/simbody/driven_coulomb.h"
 
 namespace metrosync {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 // The bound. The harness gets the switch instants to ~1e-12 (integrator at 1e-10,
 // witness localized far tighter) and integrates the piecewise-smooth y'' exactly, so it measures

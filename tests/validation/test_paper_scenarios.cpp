@@ -5,12 +5,11 @@
 
 #include <cmath>
 
+#include "base/constants.h"
 #include "fixtures.h"
 
 namespace metrosync {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 struct PaperRun {
   Scenario scenario;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <set>
 
+#include "base/constants.h"
 #include "fixtures.h"
 #include "yaml/network_loader.h"
 
@@ -13,7 +14,6 @@ namespace metrosync {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = 3.141592653589793;
 
 // psi0 = phi_1 - phi_2 of a scaled start (theta = A sin phi, thetadot = A cos phi)
 double startPsi(const ScaledParams& p) {

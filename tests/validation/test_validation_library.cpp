@@ -10,13 +10,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "base/constants.h"
 #include "fixtures.h"
 #include "tools/report/validation_report.h"
 
 namespace metrosync {
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 EnvelopeRow row(double tau, std::vector<double> A, std::vector<double> psi) {
   return {tau, std::move(A), std::move(psi)};

@@ -11,14 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "base/constants.h"
 #include "contact/law_registry.h"
 #include "models/scaling.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // A valid physical rig; line numbers are in the margin comments of the tests below.
 const char* const kPhysical = R"(units: physical

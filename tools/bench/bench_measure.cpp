@@ -9,6 +9,7 @@
 #include <limits>
 #include <thread>
 
+#include "base/number_text.h"
 #include "tools/bench/careful_peer.h"
 #include "tools/report/outputs.h"
 
@@ -20,12 +21,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // The peer is stopped after its repeats' budget and this much more (its start, the scene's
 // conversion): far above either.
 constexpr double kPeerSlackS = 30;
-
-std::string fmt(double v, const char* f = "%.3g") {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 Record baseRecord(const Scene& scene, const Method& m) {
   Record rec;
@@ -50,15 +45,21 @@ void progress(const Record& rec, const BenchOptions& c, bool with_error) {
   const bool peer = rec.method.engine == "peer";
   std::cerr << "  " << rec.scene << " " << rec.method.label() << " " << rec.method.setting() << ": "
             << rec.status
-            << (rec.runs
-                    ? ", CPU " +
-                          fmt(peer || std::isnan(rec.cpu_final_median_s) ? rec.cpu_median_s
-                                                                         : rec.cpu_final_median_s) +
-                          " s"
+            << (rec.runs ? ", CPU " +
+                               numberText(peer || std::isnan(rec.cpu_final_median_s)
+                                              ? rec.cpu_median_s
+                                              : rec.cpu_final_median_s,
+                                          3) +
+                               " s"
+                         : "")
+            << (with_error ? ", final-state error " +
+                                 numberText(rec.error.final_state, 2, Notation::Scientific)
+                           : "")
+            << (with_error && !peer
+                    ? ", envelope error " + numberText(rec.error.envelope, 2, Notation::Scientific)
                     : "")
-            << (with_error ? ", final-state error " + fmt(rec.error.final_state, "%.2e") : "")
-            << (with_error && !peer ? ", envelope error " + fmt(rec.error.envelope, "%.2e") : "")
-            << ", load " << fmt(rec.load_min, "%.2f") << "-" << fmt(rec.load_max, "%.2f") << "\n";
+            << ", load " << numberText(rec.load_min, 2, Notation::Fixed) << "-"
+            << numberText(rec.load_max, 2, Notation::Fixed) << "\n";
 }
 
 void writeEnvelope(const Scene& scene, const Method& m, const RunResult& first,
@@ -158,8 +159,9 @@ Record measure(const Scene& scene, const Method& m, const RunResult* ref, const 
   if (ref) rec.error = compareRuns(first, *ref);
   if (first.over_budget) {
     rec.status = "over budget";
-    rec.note = "stopped after " + fmt(first.wall_s, "%.0f") + " s at row " +
-               std::to_string(first.envelope.size()) + " of ~" + fmt(scene.periods, "%.0f");
+    rec.note = "stopped after " + numberText(first.wall_s, 0, Notation::Fixed) + " s at row " +
+               std::to_string(first.envelope.size()) + " of ~" +
+               numberText(scene.periods, 0, Notation::Fixed);
     rec.wall_median_s = first.wall_s;
   } else if (!first.complete) {
     rec.status = "failed";

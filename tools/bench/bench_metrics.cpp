@@ -7,11 +7,15 @@
 
 namespace metrosync::bench {
 
-std::string benchNumber(double v, const char* f) {
-  if (!std::isfinite(v)) return "";
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
+std::string csvField(const std::string& s) {
+  if (s.find_first_of(",\"") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string benchNumber(double v, int precision, Notation notation) {
+  return std::isfinite(v) ? numberText(v, precision, notation) : std::string();
 }
 
 namespace {

@@ -5,10 +5,15 @@
 #include <string>
 #include <vector>
 
+#include "base/number_text.h"
+
 namespace metrosync::bench {
 
-// v printed with the printf format f; "" for a NaN or an infinity (an empty table cell).
-std::string benchNumber(double v, const char* f = "%.3g");
+// numberText(v, precision, notation) (base/number_text.h); "" for a NaN or an infinity (an empty
+// table cell).
+std::string benchNumber(double v, int precision, Notation notation = Notation::General);
+// A CSV field: quoted (quotes doubled) when it holds a comma or a quote.
+std::string csvField(const std::string& s);
 
 double median(std::vector<double> v);  // NaN for an empty vector
 

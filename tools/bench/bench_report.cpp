@@ -13,31 +13,13 @@
 #include <set>
 #include <sstream>
 
+#include "base/number_text.h"
 #include "tools/bench/bench_metrics.h"
 #include "tools/report/plot.h"
 
 namespace metrosync::bench {
 
 namespace {
-
-std::string num(double v, const char* f = "%.3g") {
-  return benchNumber(v, f);
-}
-
-// CSV field: quoted when it holds a comma or a quote
-std::string field(const std::string& s) {
-  if (s.find_first_of(",\"") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-// a gnuplot single-quoted string
-std::string gq(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
-  return q + "'";
-}
 
 bool runGnuplot(const std::string& png_path, const std::string& data, const std::string& script) {
   const std::string gnuplot = findExecutable("gnuplot");
@@ -51,8 +33,8 @@ bool runGnuplot(const std::string& png_path, const std::string& data, const std:
   {
     std::ofstream(dat) << data;
     std::string s = script;
-    for (auto [key, val] :
-         {std::pair<std::string, std::string>{"@DATA@", gq(dat)}, {"@PNG@", gq(png)}}) {
+    for (auto [key, val] : {std::pair<std::string, std::string>{"@DATA@", gnuplotQuote(dat)},
+                            {"@PNG@", gnuplotQuote(png)}}) {
       for (size_t p; (p = s.find(key)) != std::string::npos;) s.replace(p, key.size(), val);
     }
     std::ofstream(gp) << s;
@@ -86,19 +68,20 @@ std::string csvHeader() {
 
 std::string csvRow(const Record& r) {
   std::ostringstream os;
-  const char* g = "%.6g";
-  os << field(r.scene) << ',' << r.n_metronomes << ',' << num(r.periods, g) << ','
+  os << csvField(r.scene) << ',' << r.n_metronomes << ',' << benchNumber(r.periods, 6) << ','
      << r.method.engine << ',' << r.method.integrator << ',' << r.method.setting() << ','
-     << num(r.method.accuracy > 0 ? r.method.accuracy : NAN, g) << ','
-     << num(r.method.steps_per_period > 0 ? r.method.steps_per_period : NAN, g) << ','
-     << field(r.status) << ',' << field(r.note) << ',' << r.runs << ',' << num(r.wall_median_s, g)
-     << ',' << num(r.wall_min_s, g) << ',' << num(r.wall_max_s, g) << ',' << num(r.cpu_median_s, g)
-     << ',' << num(r.load_min, "%.2f") << ',' << num(r.load_max, "%.2f") << ','
-     << num(r.error.envelope, g) << ',' << num(r.error.max_dA, g) << ',' << num(r.error.max_dpsi, g)
-     << ',' << num(r.error.final_state, g) << ',' << r.error.rows << ',' << r.steps << ','
+     << benchNumber(r.method.accuracy > 0 ? r.method.accuracy : NAN, 6) << ','
+     << benchNumber(r.method.steps_per_period > 0 ? r.method.steps_per_period : NAN, 6) << ','
+     << csvField(r.status) << ',' << csvField(r.note) << ',' << r.runs << ','
+     << benchNumber(r.wall_median_s, 6) << ',' << benchNumber(r.wall_min_s, 6) << ','
+     << benchNumber(r.wall_max_s, 6) << ',' << benchNumber(r.cpu_median_s, 6) << ','
+     << benchNumber(r.load_min, 2, Notation::Fixed) << ','
+     << benchNumber(r.load_max, 2, Notation::Fixed) << ',' << benchNumber(r.error.envelope, 6)
+     << ',' << benchNumber(r.error.max_dA, 6) << ',' << benchNumber(r.error.max_dpsi, 6) << ','
+     << benchNumber(r.error.final_state, 6) << ',' << r.error.rows << ',' << r.steps << ','
      << r.rhs_evals << ',' << r.events << ',' << r.ticks << ',' << r.stick_slip << ','
-     << field(r.regime) << ',' << num(r.wall_final_median_s, g) << ','
-     << num(r.cpu_final_median_s, g) << ',' << num(r.final_sampled_diff, g);
+     << csvField(r.regime) << ',' << benchNumber(r.wall_final_median_s, 6) << ','
+     << benchNumber(r.cpu_final_median_s, 6) << ',' << benchNumber(r.final_sampled_diff, 6);
   return os.str();
 }
 
@@ -116,24 +99,26 @@ std::string precisionTable(const std::vector<Record>& records) {
   os << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   auto err = [&](const Record& r, double v) {
     const bool has = r.status == "ok" || r.status == "cross-check";
-    return r.status == "reference" ? std::string("-") : has ? num(v, "%.1e") : std::string();
+    return r.status == "reference" ? std::string("-")
+           : has                   ? benchNumber(v, 1, Notation::Scientific)
+                                   : std::string();
   };
   auto line = [&](const Record& r) {
     const bool ran = r.status != "skipped (predicted over budget)";
     const bool peer = r.method.engine == "peer";  // one timing: its own medians
     os << "| " << r.method.label() << " | " << r.method.setting() << " | "
        << err(r, r.error.final_state) << " | "
-       << (r.timed() ? num(peer ? r.cpu_median_s : r.cpu_final_median_s) : "") << " | "
-       << (r.timed() ? num(peer ? r.wall_median_s : r.wall_final_median_s) : "") << " | "
+       << (r.timed() ? benchNumber(peer ? r.cpu_median_s : r.cpu_final_median_s, 3) : "") << " | "
+       << (r.timed() ? benchNumber(peer ? r.wall_median_s : r.wall_final_median_s, 3) : "") << " | "
        << err(r, r.error.envelope) << " | " << err(r, r.error.max_dA) << " | "
-       << err(r, r.error.max_dpsi) << " | " << (r.timed() && !peer ? num(r.cpu_median_s) : "")
-       << " | ";
+       << err(r, r.error.max_dpsi) << " | "
+       << (r.timed() && !peer ? benchNumber(r.cpu_median_s, 3) : "") << " | ";
     if (r.timed() && !peer)
-      os << num(r.wall_median_s) << " (" << r.runs << ")";
+      os << benchNumber(r.wall_median_s, 3) << " (" << r.runs << ")";
     else if (r.timed())
       os << "(" << r.runs << " in the peer)";
     else if (r.status == "over budget")
-      os << "> " << num(r.wall_median_s, "%.0f");
+      os << "> " << benchNumber(r.wall_median_s, 0, Notation::Fixed);
     os << " | ";
     if (ran && r.status != "over budget" && r.steps > 0)
       os << r.steps << " | " << r.rhs_evals << " | " << r.events << " | " << r.ticks << " | "
@@ -186,20 +171,26 @@ std::string ratiosMarkdown(const std::vector<Record>& records, std::string& csv_
         if (rs.empty()) {
           // no common error: say where each front lies
           os << "no common error range (" << engines[i] << " reaches "
-             << num(a.front().error, "%.1e") << " ... " << num(a.back().error, "%.1e") << " in "
-             << num(a.front().time_s) << " ... " << num(a.back().time_s) << " s; " << engines[j]
-             << " " << num(b.front().error, "%.1e") << " ... " << num(b.back().error, "%.1e")
-             << " in " << num(b.front().time_s) << " ... " << num(b.back().time_s) << " s)\n";
+             << benchNumber(a.front().error, 1, Notation::Scientific) << " ... "
+             << benchNumber(a.back().error, 1, Notation::Scientific) << " in "
+             << benchNumber(a.front().time_s, 3) << " ... " << benchNumber(a.back().time_s, 3)
+             << " s; " << engines[j] << " " << benchNumber(b.front().error, 1, Notation::Scientific)
+             << " ... " << benchNumber(b.back().error, 1, Notation::Scientific) << " in "
+             << benchNumber(b.front().time_s, 3) << " ... " << benchNumber(b.back().time_s, 3)
+             << " s)\n";
           continue;
         }
-        os << "geometric mean " << num(geometricMeanRatio(rs)) << " over errors "
-           << num(rs.front().error, "%.1e") << " ... " << num(rs.back().error, "%.1e") << "; ";
+        os << "geometric mean " << benchNumber(geometricMeanRatio(rs), 3) << " over errors "
+           << benchNumber(rs.front().error, 1, Notation::Scientific) << " ... "
+           << benchNumber(rs.back().error, 1, Notation::Scientific) << "; ";
         for (size_t k = 0; k < rs.size(); ++k) {
-          os << (k ? ", " : "") << num(rs[k].ratio()) << " at " << num(rs[k].error, "%.1e") << " ("
-             << num(rs[k].time_a_s) << " s / " << num(rs[k].time_b_s) << " s)";
-          csv_rows += measure + "," + field(scene) + "," + engines[i] + "," + engines[j] + "," +
-                      num(rs[k].error, "%.6g") + "," + num(rs[k].time_a_s, "%.6g") + "," +
-                      num(rs[k].time_b_s, "%.6g") + "," + num(rs[k].ratio(), "%.6g") + "\n";
+          os << (k ? ", " : "") << benchNumber(rs[k].ratio(), 3) << " at "
+             << benchNumber(rs[k].error, 1, Notation::Scientific) << " ("
+             << benchNumber(rs[k].time_a_s, 3) << " s / " << benchNumber(rs[k].time_b_s, 3)
+             << " s)";
+          csv_rows += measure + "," + csvField(scene) + "," + engines[i] + "," + engines[j] + "," +
+                      benchNumber(rs[k].error, 6) + "," + benchNumber(rs[k].time_a_s, 6) + "," +
+                      benchNumber(rs[k].time_b_s, 6) + "," + benchNumber(rs[k].ratio(), 6) + "\n";
         }
         os << "\n";
       }
@@ -222,7 +213,7 @@ std::string workPrecisionBlocks(const std::vector<Record>& records, bool final_s
       const double e = final_state ? r.error.final_state : r.error.envelope;
       const double t = final_state ? finalStateCpu(r) : r.cpu_median_s;
       if (!(e > 0) || !(t > 0)) continue;
-      block << e << ' ' << t << ' ' << gq(r.method.setting()) << '\n';
+      block << e << ' ' << t << ' ' << gnuplotQuote(r.method.setting()) << '\n';
       ++n;
     }
     if (n == 0) continue;
@@ -259,10 +250,11 @@ std::string workPrecisionPanel(const std::vector<std::string>& titles, size_t fi
                                const std::vector<std::string>& all, const std::string& xlabel,
                                const std::string& ylabel) {
   std::ostringstream gp;
-  gp << "set xlabel " << gq(xlabel) << "\nset ylabel " << gq(ylabel) << "\nplot ";
+  gp << "set xlabel " << gnuplotQuote(xlabel) << "\nset ylabel " << gnuplotQuote(ylabel)
+     << "\nplot ";
   for (size_t k = 0; k < titles.size(); ++k)
     gp << (k ? ", " : "") << "@DATA@ index " << first + k << " using 1:2 with linespoints lw 2"
-       << curveStyle(titles[k], all) << " title " << gq(titles[k]);
+       << curveStyle(titles[k], all) << " title " << gnuplotQuote(titles[k]);
   gp << "\n";
   return gp.str();
 }
@@ -279,7 +271,7 @@ bool plotWorkPrecision(const std::string& png_path, const std::vector<Record>& r
   std::ostringstream gp;
   gp << "set terminal pngcairo size 1600,700 font 'Sans,11'\nset output @PNG@\n"
      << "set multiplot layout 1," << (env_titles.empty() || final_titles.empty() ? 1 : 2)
-     << " title " << gq(title) << "\nset logscale xy\nset format x '10^{%L}'\n"
+     << " title " << gnuplotQuote(title) << "\nset logscale xy\nset format x '10^{%L}'\n"
      << "set format y '10^{%L}'\nset grid\nset key left top\nset xrange [*:*] reverse\n";
   if (!final_titles.empty())
     gp << workPrecisionPanel(final_titles, 0, all,
@@ -333,19 +325,19 @@ bool plotNScaling(const std::string& png_path, const std::vector<Record>& record
   const size_t k_lin = titles.size(), k_sq = titles.size() + 1;
   std::ostringstream gp;
   gp << "set terminal pngcairo size 1400,600 font 'Sans,11'\nset output @PNG@\n"
-     << "set multiplot layout 1,2 title " << gq(title) << "\nset logscale xy\nset grid\n"
+     << "set multiplot layout 1,2 title " << gnuplotQuote(title) << "\nset logscale xy\nset grid\n"
      << "set xlabel 'N (metronomes)'\nset key left top\n"
      << "set format y '10^{%L}'\nset ylabel 'wall time per fast period, median (s)'\nplot ";
   for (size_t k = 0; k < titles.size(); ++k)
     gp << (k ? ", " : "") << "@DATA@ index " << k << " using 1:2 with linespoints lw 2 title "
-       << gq(titles[k]);
+       << gnuplotQuote(titles[k]);
   gp << ", @DATA@ index " << k_lin << " using 1:2 with lines dt 2 lw 1.5 lc 'gray40' title "
      << "'proportional to N', @DATA@ index " << k_sq
      << " using 1:2 with lines dt 3 lw 1.5 lc 'gray20' title 'proportional to N^2'\n"
      << "set format y '%g'\nset ylabel 'wall time per step and metronome, median (us)'\nplot ";
   for (size_t k = 0; k < titles.size(); ++k)
     gp << (k ? ", " : "") << "@DATA@ index " << k << " using 1:3 with linespoints lw 2 title "
-       << gq(titles[k]);
+       << gnuplotQuote(titles[k]);
   gp << "\nunset multiplot\n";
   return runGnuplot(png_path, data.str(), gp.str());
 }
@@ -367,9 +359,10 @@ std::string nscaleTable(const std::vector<Record>& records) {
       for (const Record& r : records)
         if (r.n_metronomes == n && r.method.label() == l) {
           if (r.timed() && r.steps > 0)
-            cell = num(1e3 * r.wall_median_s / r.periods) + " | " +
-                   num(static_cast<double>(r.steps) / r.periods) + " | " +
-                   num(1e6 * r.wall_median_s / (static_cast<double>(r.steps) * n)) + " |";
+            cell = benchNumber(1e3 * r.wall_median_s / r.periods, 3) + " | " +
+                   benchNumber(static_cast<double>(r.steps) / r.periods, 3) + " | " +
+                   benchNumber(1e6 * r.wall_median_s / (static_cast<double>(r.steps) * n), 3) +
+                   " |";
           else
             cell = r.status + " |  |  |";
         }

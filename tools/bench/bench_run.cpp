@@ -11,6 +11,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "base/constants.h"
 #include "sim/analysis/regime.h"
 #include "sim/engines/engine.h"
 #include "tools/bench/careful_peer.h"
@@ -21,8 +22,6 @@
 namespace metrosync::bench {
 
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586;
 
 // Thrown by the sink to abandon a run that exceeds its budget. Not a std::exception, so that the
 // engines' own handlers (which turn std::exception into complete = false) let it through.

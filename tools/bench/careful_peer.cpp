@@ -9,6 +9,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "base/number_text.h"
 #include "tools/bench/peer_output.h"
 #include "tools/bench/peer_scene.h"
 #include "tools/bench/subprocess.h"
@@ -139,8 +140,7 @@ PeerCall runCarefulPeer(const Scene& scene, const Method& method, int repeat, do
     call.result = failed(method, loc.missing);
     return call;
   }
-  char tol[32];
-  std::snprintf(tol, sizeof tol, "%.17g", method.accuracy);
+  const std::string tol = numberText(method.accuracy, 17);
   std::vector<std::string> argv = {loc.path};
   try {
     for (std::string& a : peerSceneArguments(scene)) argv.push_back(std::move(a));

@@ -28,6 +28,8 @@
 #include <random>
 #include <sstream>
 
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "models/scaling.h"
 #include "sim/engines/engine.h"
 #include "sim/parallel/worker_pool.h"
@@ -52,10 +54,9 @@ struct Truth {
   double amplitude[2], psi;
 };
 
-std::string num(double v, const char* f = "%.6g") {
-  char b[48];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
+// printf's %+.<decimals>f: fixed, with its sign always written (a relative error's table cell)
+std::string signedText(double v, int decimals) {
+  return (std::signbit(v) ? "" : "+") + numberText(v, decimals, Notation::Fixed);
 }
 
 // The experiment's rig (yaml/rigs/experiment.yaml) with the truth's keys; metronome 2 starts
@@ -84,7 +85,7 @@ Truth drawTruth(std::mt19937& gen) {
   t.value[0] = 6.4e-4 * std::pow(4.6e-3 / 6.4e-4, u(gen));
   t.amplitude[0] = 0.5 + 0.35 * u(gen);
   t.amplitude[1] = 0.5 + 0.35 * u(gen);
-  t.psi = 2 * M_PI * u(gen);
+  t.psi = kTwoPi * u(gen);
   const Rig rig = loadRigText(rigYaml({{1e-3, 0.02, 0.02, 1e-5, 1e-5}, {0.7, 0.7}, 0}, 1), "b");
   const ScaledParams sp = computeScaled(rig);
   const MetronomeSpec& m = rig.metronomes[0];
@@ -163,7 +164,7 @@ Outcome fitRecord(const Truth& truth, const Settings& set, int index, std::mt199
   for (int k = 0; k < 5; ++k) {
     o.start[k] = truth.value[k] * (1 + off(gen));
     opt.free.push_back(kKeys[k]);
-    opt.sets.push_back(std::string(kKeys[k]) + "=" + num(o.start[k], "%.17g"));
+    opt.sets.push_back(std::string(kKeys[k]) + "=" + numberText(o.start[k], 17));
   }
   if (data.empty()) return o.error = "the " + set.engine + " run failed", o;
   const auto t0 = std::chrono::steady_clock::now();
@@ -181,7 +182,7 @@ Outcome fitRecord(const Truth& truth, const Settings& set, int index, std::mt199
   opt.starts = 1;
   opt.sets.clear();
   for (int k = 0; k < 5; ++k)
-    opt.sets.push_back(std::string(kKeys[k]) + "=" + num(truth.value[k], "%.17g"));
+    opt.sets.push_back(std::string(kKeys[k]) + "=" + numberText(truth.value[k], 17));
   try {
     o.rms_from_truth = cli::runFit(opt).outcome.rms;
   } catch (const std::exception&) {
@@ -200,18 +201,19 @@ double median(std::vector<double> v) {
 // one table row: the truth, how far off each start was, the fit's error in standard errors
 std::string row(int i, const Outcome& o) {
   std::ostringstream os;
-  os << "| " << i + 1 << " | " << num(o.truth.value[0], "%.2e") << " |";
-  for (int k = 0; k < 5; ++k) os << " " << num(100 * (o.start[k] / o.truth.value[k] - 1), "%+.0f");
+  os << "| " << i + 1 << " | " << numberText(o.truth.value[0], 2, Notation::Scientific) << " |";
+  for (int k = 0; k < 5; ++k) os << " " << signedText(100 * (o.start[k] / o.truth.value[k] - 1), 0);
   os << " |";
   const FitOutcome& r = o.report.outcome;
   for (int k = 0; k < 5 && o.error.empty(); ++k)
     os << " "
-       << (r.values[k] ? num((*r.values[k] - o.truth.value[k]) / *r.std_errors[k], "%+.1f")
+       << (r.values[k] ? signedText((*r.values[k] - o.truth.value[k]) / *r.std_errors[k], 1)
                        : std::string("n/i"));
   if (!o.error.empty()) os << " " << o.error;
-  os << " | " << num(r.rms, "%.4g") << " | " << num(o.rms_from_truth, "%.4g") << " | "
+  os << " | " << numberText(r.rms, 4) << " | " << numberText(o.rms_from_truth, 4) << " | "
      << (r.converged ? "yes" : "no") << " | " << r.optima.size() << " | " << r.evaluations << " | "
-     << num(o.cpu_s, "%.1f") << " | " << (o.recovered ? "yes" : "**no**") << " |\n";
+     << numberText(o.cpu_s, 1, Notation::Fixed) << " | " << (o.recovered ? "yes" : "**no**")
+     << " |\n";
   return os.str();
 }
 
@@ -237,11 +239,11 @@ std::string report(const std::vector<Outcome>& all, unsigned seed, const Setting
      << "started within +-50% of its truth.\n\n"
      << "| | |\n| --- | --- |\n"
      << "| recovered (every key within 3 standard errors and 5%) | " << ok << " of " << all.size()
-     << " (" << num(100.0 * ok / all.size(), "%.0f") << "%) |\n"
+     << " (" << numberText(100.0 * ok / all.size(), 0, Notation::Fixed) << "%) |\n"
      << "| failures reported as not converged | " << honest - ok << " of " << all.size() - ok
      << " |\n"
-     << "| median CPU time per fit | " << num(median(cpu), "%.1f") << " s |\n"
-     << "| median wall time per fit | " << num(median(wall), "%.1f")
+     << "| median CPU time per fit | " << numberText(median(cpu), 1, Notation::Fixed) << " s |\n"
+     << "| median wall time per fit | " << numberText(median(wall), 1, Notation::Fixed)
      << " s (a machine shared with other jobs) |\n\n"
      << "Columns: mu-bar of the truth; each start's offset from the truth in % (mu, damping 1, "
      << "damping 2, impulse 1, impulse 2); each fitted key's error in its standard errors "

@@ -27,6 +27,8 @@
 #include <sstream>
 #include <thread>
 
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "tools/bench/bench_measure.h"
 #include "tools/bench/bench_report.h"
 #include "tools/bench/bench_run.h"
@@ -41,6 +43,8 @@
 #include "tools/report/outputs.h"
 
 namespace mb = metrosync::bench;
+using metrosync::Notation;
+using metrosync::numberText;
 
 namespace {
 
@@ -59,12 +63,6 @@ std::vector<mb::Method> ofEngine(std::vector<mb::Method> methods, const Common& 
   if (methods.empty())
     throw std::invalid_argument("--engine " + c.engine + ": none of --methods is of that engine");
   return methods;
-}
-
-std::string fmt(double v, const char* f = "%.3g") {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
 }
 
 // A comma-separated list of numbers; std::invalid_argument naming the item that is not one.
@@ -97,7 +95,9 @@ std::string loadRange(const std::vector<mb::Record>& recs) {
   double lo = INFINITY, hi = -INFINITY;
   for (const auto& r : recs)
     if (r.runs > 0) lo = std::min(lo, r.load_min), hi = std::max(hi, r.load_max);
-  return std::isfinite(lo) ? fmt(lo, "%.2f") + " ... " + fmt(hi, "%.2f") : "n/a";
+  return std::isfinite(lo)
+             ? numberText(lo, 2, Notation::Fixed) + " ... " + numberText(hi, 2, Notation::Fixed)
+             : "n/a";
 }
 
 // The verdict against the peer over `scenes`: ratios.md, ratios.csv, nslope.csv in c.out, the page
@@ -259,10 +259,11 @@ void writeSceneReport(const mb::Scene& scene, const mb::Method& ref_method,
   md << "### " << scene.name << "\n\n"
      << "`" << (scene.path.empty() ? scene.name : scene.path)
      << "`: N = " << scene.rig.metronomes.size()
-     << ", epsilon = " << fmt(scene.scaled.epsilon, "%.4g")
-     << ", tau_end = " << fmt(scene.scaled.tau_end, "%.4g") << " (" << fmt(scene.periods, "%.0f")
-     << " fast periods, " << fmt(scene.rig.sim.t_end_s, "%.4g") << " s). Reference "
-     << ref_method.label() << " at " << ref_method.setting() << "; 1-minute load during the "
+     << ", epsilon = " << numberText(scene.scaled.epsilon, 4)
+     << ", tau_end = " << numberText(scene.scaled.tau_end, 4) << " ("
+     << numberText(scene.periods, 0, Notation::Fixed) << " fast periods, "
+     << numberText(scene.rig.sim.t_end_s, 4) << " s). Reference " << ref_method.label() << " at "
+     << ref_method.setting() << "; 1-minute load during the "
      << "timed runs " << loadRange(recs) << ".\n\n"
      << mb::precisionTable(recs) << "\nTime ratios at equal error (CPU medians, a / b; < 1: a "
      << "is faster):\n\n"
@@ -271,7 +272,7 @@ void writeSceneReport(const mb::Scene& scene, const mb::Method& ref_method,
   mb::plotWorkPrecision(base + ".png", recs,
                         "work-precision: " + scene.name +
                             " (N = " + std::to_string(scene.rig.metronomes.size()) + ", " +
-                            fmt(scene.periods, "%.0f") + " fast periods)");
+                            numberText(scene.periods, 0, Notation::Fixed) + " fast periods)");
   if (!c.quiet) std::cout << md.str() << "\n";
 }
 
@@ -281,9 +282,9 @@ int precisionScene(const mb::Scene& scene, const PrecisionPlan& plan, const Prec
                    const Common& c, std::vector<mb::Record>& recs) {
   if (!c.quiet)
     std::cerr << scene.name << ": N = " << scene.rig.metronomes.size() << ", "
-              << fmt(scene.periods, "%.0f")
-              << " fast periods, tau_end = " << fmt(scene.scaled.tau_end, "%.4g")
-              << ", epsilon = " << fmt(scene.scaled.epsilon, "%.4g") << "\n";
+              << numberText(scene.periods, 0, Notation::Fixed)
+              << " fast periods, tau_end = " << numberText(scene.scaled.tau_end, 4)
+              << ", epsilon = " << numberText(scene.scaled.epsilon, 4) << "\n";
   const std::string base = c.out + "/wp-" + scene.name;
   const std::function<void()> save = [&]() {
     metrosync::writeFileAtomically(base + ".csv", mb::recordsCsv(recs));
@@ -385,7 +386,7 @@ metrosync::Rig nRig(int n, const NScaleOptions& o) {
   rig.platform.mass_kg = o.board_kg;
   rig.platform.friction = metrosync::FrictionLaw::coulomb(o.mu_bar);
   std::mt19937 gen(o.seed);
-  std::uniform_real_distribution<double> phase(0.0, 6.283185307179586);
+  std::uniform_real_distribution<double> phase(0.0, metrosync::kTwoPi);
   for (int i = 0; i < n; ++i) {
     metrosync::MetronomeSpec m;
     m.name = "M" + std::to_string(i + 1);
@@ -402,7 +403,7 @@ metrosync::Rig nRig(int n, const NScaleOptions& o) {
     rig.metronomes.push_back(m);
   }
   const double omega0 = std::sqrt(9.81 / 0.0225);
-  rig.sim.t_end_s = o.periods * 6.283185307179586 / omega0;
+  rig.sim.t_end_s = o.periods * metrosync::kTwoPi / omega0;
   return rig;
 }
 
@@ -425,14 +426,14 @@ int nscale(const NScaleOptions& o, const Common& c) {
     }
   }
   std::ostringstream md;
-  md << "Cost per fast period (median wall time of the run / " << fmt(o.periods, "%g")
+  md << "Cost per fast period (median wall time of the run / " << numberText(o.periods)
      << " fast periods, milliseconds) against N; board " << o.board_kg << " kg, mu-bar " << o.mu_bar
      << ", phases from seed " << o.seed << "; 1-minute load during the timed runs "
      << loadRange(recs) << ".\n\n"
      << mb::nscaleTable(recs);
   metrosync::writeFileAtomically(c.out + "/nscale.md", md.str());
   mb::plotNScaling(c.out + "/nscale.png", recs,
-                   "cost per fast period against N (" + fmt(o.periods, "%g") + " periods)");
+                   "cost per fast period against N (" + numberText(o.periods) + " periods)");
   if (!c.quiet) std::cout << md.str();
   return 0;
 }

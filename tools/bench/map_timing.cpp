@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/number_text.h"
 #include "tools/bench/bench_metrics.h"
 #include "tools/bench/subprocess.h"
 
@@ -16,10 +17,6 @@ namespace metrosync::bench {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string num(double v, const char* f = "%.3g") {
-  return benchNumber(v, f);
-}
 
 int sideOf(const std::string& map) {
   return map == "full" ? 64 : 100;
@@ -72,8 +69,9 @@ std::vector<MapRow> timeMaps(const MapOptions& o, const BenchOptions& c) {
       row.walls.push_back(pr.wall_s);
       cpus.push_back(pr.cpu_s);
       if (!c.quiet)
-        std::cerr << "  map " << map << ": " << num(pr.wall_s) << " s wall, " << num(pr.cpu_s)
-                  << " s CPU, load " << num(loads.back(), "%.2f") << "\n";
+        std::cerr << "  map " << map << ": " << benchNumber(pr.wall_s, 3) << " s wall, "
+                  << benchNumber(pr.cpu_s, 3) << " s CPU, load "
+                  << benchNumber(loads.back(), 2, Notation::Fixed) << "\n";
     }
     row.runs = static_cast<int>(row.walls.size());
     row.wall_s = median(row.walls);
@@ -92,8 +90,9 @@ std::string mapsCsv(const std::vector<MapRow>& rows) {
     std::string failure = r.failure;
     std::replace(failure.begin(), failure.end(), ',', ';');
     s += r.map + "," + std::to_string(r.points) + "," + std::to_string(r.runs) + "," +
-         num(r.wall_s, "%.6g") + "," + num(r.cpu_s, "%.6g") + "," + num(r.target_s, "%g") + "," +
-         num(r.load_min, "%.2f") + "," + num(r.load_max, "%.2f") + "," + failure + "\n";
+         benchNumber(r.wall_s, 6) + "," + benchNumber(r.cpu_s, 6) + "," +
+         benchNumber(r.target_s, 6) + "," + benchNumber(r.load_min, 2, Notation::Fixed) + "," +
+         benchNumber(r.load_max, 2, Notation::Fixed) + "," + failure + "\n";
   }
   return s;
 }
@@ -113,11 +112,12 @@ std::string mapsMarkdown(const std::vector<MapRow>& rows) {
       continue;
     }
     std::string each;
-    for (double w : r.walls) each += (each.empty() ? "" : ", ") + num(w);
-    os << r.runs << " | " << (r.wall_s <= r.target_s ? "" : "**") << num(r.wall_s) << " s"
-       << (r.wall_s <= r.target_s ? "" : "**") << " | <= " << num(r.target_s, "%g")
-       << " s: " << (r.wall_s <= r.target_s ? "met" : "NOT met") << " | " << num(r.cpu_s) << " s | "
-       << num(r.load_min, "%.2f") << "-" << num(r.load_max, "%.2f") << " | " << each << " s |\n";
+    for (double w : r.walls) each += (each.empty() ? "" : ", ") + benchNumber(w, 3);
+    os << r.runs << " | " << (r.wall_s <= r.target_s ? "" : "**") << benchNumber(r.wall_s, 3)
+       << " s" << (r.wall_s <= r.target_s ? "" : "**") << " | <= " << benchNumber(r.target_s, 6)
+       << " s: " << (r.wall_s <= r.target_s ? "met" : "NOT met") << " | " << benchNumber(r.cpu_s, 3)
+       << " s | " << benchNumber(r.load_min, 2, Notation::Fixed) << "-"
+       << benchNumber(r.load_max, 2, Notation::Fixed) << " | " << each << " s |\n";
   }
   os << "\nMade by (each with `--out DIR`):\n\n";
   for (const MapRow& r : rows) os << "    " << r.command << "\n";

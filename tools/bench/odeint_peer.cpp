@@ -16,6 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/constants.h"
 #include "models/scaling.h"
 #include "sim/record/envelope_recorder.h"
 
@@ -34,7 +35,6 @@ namespace {
 namespace ode = boost::numeric::odeint;
 using State = std::vector<double>;
 
-constexpr double kTwoPi = 6.283185307179586;
 // Envelope samples per fast period: the direct engine's schedule, so the trapezoid sums match.
 constexpr int kSamplesPerPeriod = 64;
 // Ticks whose platform impulses cancel to this fraction of their sum leave the platform at rest

@@ -3,19 +3,15 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "base/number_text.h"
+
 namespace metrosync::bench {
 
 namespace {
 
-std::string exact(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 std::string exactList(const std::vector<double>& v) {
   std::string s;
-  for (double x : v) s += (s.empty() ? "" : ",") + exact(x);
+  for (double x : v) s += (s.empty() ? "" : ",") + numberText(x, 17);
   return s;
 }
 
@@ -50,15 +46,15 @@ std::vector<std::string> peerSceneArguments(const Scene& scene) {
   y0.push_back(sp.xdot0);
   // a law without mu (none) is the peer's free platform, mu = 0
   const double mu = sp.friction.valueOr("mu", 0.0);
-  return {"--eps",   exact(sp.epsilon),
-          "--mu",    exact(mu),
+  return {"--eps",   numberText(sp.epsilon, 17),
+          "--mu",    numberText(mu, 17),
           "--nu",    exactList(sp.nu),
           "--J",     exactList(sp.J),
           "--thc",   exactList(sp.theta_c),
           "--alpha", exactList(sp.alpha),
           "--zeta",  exactList(sp.zeta),
           "--y0",    exactList(y0),
-          "--t_end", exact(scene.rig.sim.t_end_s / sp.time_scale_s)};
+          "--t_end", numberText(scene.rig.sim.t_end_s / sp.time_scale_s, 17)};
 }
 
 std::vector<double> benchFinalState(const std::vector<double>& peer_state) {

@@ -6,6 +6,8 @@
 #include <limits>
 #include <map>
 
+#include "base/number_text.h"
+
 namespace metrosync::bench {
 
 namespace {
@@ -13,12 +15,6 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // timeAtError's own tolerance at a front's ends (rounding of the error as written to CSV)
 constexpr double kEndSlack = 1e-12;
-
-std::string sci(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1e", v);
-  return buf;
-}
 
 double errorOf(const SidePoint& p, ErrorMeasure m) {
   return m == ErrorMeasure::FinalState ? p.err_final : p.err_envelope;
@@ -57,7 +53,7 @@ std::string clockName(Clock c) {
 }
 
 std::string errorLabel(double error) {
-  std::string s = sci(error);
+  std::string s = numberText(error, 1, Notation::Scientific);
   if (s.compare(1, 3, ".0e") == 0) s.erase(1, 2);
   return s;
 }
@@ -75,9 +71,11 @@ bool RatioCell::filled() const {
 std::string coverageGap(const std::vector<WorkPoint>& front, double error, const std::string& who) {
   if (front.empty()) return who + " has no timed run";
   if (error < front.front().error * (1 - kEndSlack))
-    return who + " does not reach it (its most accurate run: " + sci(front.front().error) + ")";
+    return who + " does not reach it (its most accurate run: " +
+           numberText(front.front().error, 1, Notation::Scientific) + ")";
   if (error > front.back().error * (1 + kEndSlack))
-    return who + "'s cheapest run is already at " + sci(front.back().error) +
+    return who + "'s cheapest run is already at " +
+           numberText(front.back().error, 1, Notation::Scientific) +
            " (nothing looser measured: not extrapolated)";
   return "";
 }

@@ -5,29 +5,19 @@
 #include <cstdio>
 #include <sstream>
 
+#include "base/number_text.h"
 #include "tools/bench/bench_metrics.h"
 
 namespace metrosync::bench {
 
 namespace {
 
-std::string num(double v, const char* f = "%.3g") {
-  return benchNumber(v, f);
-}
-
 // "33.2 us", "1.09 ms", "2.5 s"
 std::string duration(double s) {
   if (!std::isfinite(s)) return "";
-  if (s < 1e-3) return num(s * 1e6) + " us";
-  if (s < 1) return num(s * 1e3) + " ms";
-  return num(s) + " s";
-}
-
-std::string field(const std::string& s) {
-  if (s.find_first_of(",\"") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
+  if (s < 1e-3) return benchNumber(s * 1e6, 3) + " us";
+  if (s < 1) return benchNumber(s * 1e3, 3) + " ms";
+  return benchNumber(s, 3) + " s";
 }
 
 std::string joined(const std::vector<std::string>& v, const std::string& sep) {
@@ -72,17 +62,21 @@ std::string loadRange(const std::vector<VerdictScene>& scenes) {
   double lo = NAN, hi = NAN;
   for (const VerdictScene& s : scenes)
     lo = std::fmin(lo, s.load_min), hi = std::fmax(hi, s.load_max);
-  return std::isfinite(lo) ? num(lo, "%.2f") + " ... " + num(hi, "%.2f") : "not recorded";
+  return std::isfinite(lo)
+             ? benchNumber(lo, 2, Notation::Fixed) + " ... " + benchNumber(hi, 2, Notation::Fixed)
+             : "not recorded";
 }
 
 std::string ratiosCsvRows(const RatioTable& t) {
   std::string s;
   for (const RatioRow& row : t.rows)
     for (const RatioCell& c : row.cells)
-      s += measureName(t.measure) + "," + clockName(t.clock) + "," + field(row.scene) + "," +
-           std::to_string(row.n) + "," + num(c.error, "%.6g") + "," + num(c.time_ours_s, "%.6g") +
-           "," + num(c.time_peer_s, "%.6g") + "," + num(c.ratio, "%.6g") + "," +
-           (c.filled() ? (c.ratio < kTargetRatio ? "1" : "0") : "") + "," + field(c.reason) + "\n";
+      s += measureName(t.measure) + "," + clockName(t.clock) + "," + csvField(row.scene) + "," +
+           std::to_string(row.n) + "," + benchNumber(c.error, 6) + "," +
+           benchNumber(c.time_ours_s, 6) + "," + benchNumber(c.time_peer_s, 6) + "," +
+           benchNumber(c.ratio, 6) + "," +
+           (c.filled() ? (c.ratio < kTargetRatio ? "1" : "0") : "") + "," + csvField(c.reason) +
+           "\n";
   return s;
 }
 
@@ -91,11 +85,11 @@ std::string slopeCsvRows(const std::vector<SlopeRow>& rows, ErrorMeasure m, Cloc
   for (const SlopeRow& r : rows)
     for (int side = 0; side < 2; ++side)
       for (size_t k = 0; k < r.ns.size(); ++k)
-        s += measureName(m) + "," + clockName(c) + "," + num(r.error, "%.6g") + "," +
-             (side == 0 ? "metrosync" : "peer") + "," + field(r.scenes[k]) + "," +
+        s += measureName(m) + "," + clockName(c) + "," + benchNumber(r.error, 6) + "," +
+             (side == 0 ? "metrosync" : "peer") + "," + csvField(r.scenes[k]) + "," +
              std::to_string(r.ns[k]) + "," +
-             num((side == 0 ? r.ours_per_period_s : r.peer_per_period_s)[k], "%.6g") + "," +
-             num(side == 0 ? r.slope_ours : r.slope_peer, "%.4g") + "\n";
+             benchNumber((side == 0 ? r.ours_per_period_s : r.peer_per_period_s)[k], 6) + "," +
+             benchNumber(side == 0 ? r.slope_ours : r.slope_peer, 4) + "\n";
   return s;
 }
 
@@ -121,13 +115,17 @@ std::string slopeMarkdown(const std::vector<SlopeRow>& rows, ErrorMeasure m, Clo
                                          : std::string(" (peer: not run)"))
          << " |";
     }
-    os << " " << (std::isfinite(r.slope_ours) ? num(r.slope_ours, "%.2f") : "n/a") << " | "
-       << (std::isfinite(r.slope_peer) ? num(r.slope_peer, "%.2f") : "n/a") << " |\n";
+    os << " "
+       << (std::isfinite(r.slope_ours) ? benchNumber(r.slope_ours, 2, Notation::Fixed) : "n/a")
+       << " | "
+       << (std::isfinite(r.slope_peer) ? benchNumber(r.slope_peer, 2, Notation::Fixed) : "n/a")
+       << " |\n";
   }
   os << "\nA cell reads \"not reached\" where the side's front does not cover that error on that "
         "scene (\"not run\": the peer cannot run the scene); the slope is fitted over the scenes "
         "that do. Target for metrosync (issue 23): slope "
-     << num(kSlopeTargetLow, "%.1f") << " ... " << num(kSlopeTargetHigh, "%.1f") << ".\n";
+     << benchNumber(kSlopeTargetLow, 1, Notation::Fixed) << " ... "
+     << benchNumber(kSlopeTargetHigh, 1, Notation::Fixed) << ".\n";
   return os.str();
 }
 
@@ -136,8 +134,9 @@ std::string agreementMarkdown(const std::vector<Agreement>& ag, const Sides& sid
   const double bound = ag.empty() ? kPeerAgreement : ag.front().bound;
   os << "The peer validated against metrosync at tight tolerance (a `--cross-check` of one side "
         "against the other side's reference). Bound: final-state difference <= "
-     << num(bound, "%.0e") << " (" << num(kPeerAgreement, "%.0e") << ", or "
-     << num(kAgreementMargin, "%.0f")
+     << benchNumber(bound, 0, Notation::Scientific) << " ("
+     << benchNumber(kPeerAgreement, 0, Notation::Scientific) << ", or "
+     << benchNumber(kAgreementMargin, 0, Notation::Fixed)
      << " times below the smallest error of the ratio tables if that is tighter: far below the "
         "errors compared):\n\n"
      << "| scene | reference | cross-check | final-state difference | envelope difference | |\n"
@@ -153,11 +152,11 @@ std::string agreementMarkdown(const std::vector<Agreement>& ag, const Sides& sid
          << sides.ours << " (add `--cross-check " << sides.peer << ":rkf78:1e-13`) |\n";
       continue;
     }
-    os << a.check << " | " << num(a.err_final, "%.1e") << " | " << num(a.err_envelope, "%.1e")
-       << " | "
+    os << a.check << " | " << benchNumber(a.err_final, 1, Notation::Scientific) << " | "
+       << benchNumber(a.err_envelope, 1, Notation::Scientific) << " | "
        << (a.self        ? std::string("the reference's own uncertainty (same engine)")
-           : a.flagged() ? "**FLAG: above " + num(a.bound, "%.0e") + "**"
-                         : "agrees (<= " + num(a.bound, "%.0e") + ")")
+           : a.flagged() ? "**FLAG: above " + benchNumber(a.bound, 0, Notation::Scientific) + "**"
+                         : "agrees (<= " + benchNumber(a.bound, 0, Notation::Scientific) + ")")
        << " |\n";
   }
   return os.str();
@@ -167,7 +166,8 @@ std::string headerMarkdown(const std::vector<VerdictScene>& scenes, const Verdic
   std::ostringstream os;
   os << "# metrosync against the peer at equal error (issues 11 and 23)\n\n"
      << "ratio = peer time / metrosync time to reach the same error (> 1: metrosync is faster; "
-     << "the issue's target is >= " << num(kTargetRatio, "%.1f") << ", **bold**: below it). "
+     << "the issue's target is >= " << benchNumber(kTargetRatio, 1, Notation::Fixed)
+     << ", **bold**: below it). "
      << "Each side's front is its cheapest run at each error over all its integrators "
      << "(metrosync: " << methodsOf(scenes, true) << "; the peer: " << methodsOf(scenes, false)
      << "), interpolated linearly in log(time) against log(error) between measured points and "
@@ -191,15 +191,16 @@ std::string verdictLine(const RatioTable& t, const Verdict& v) {
   const auto compared = std::count_if(t.rows.begin(), t.rows.end(),
                                       [](const RatioRow& r) { return r.skipped.empty(); });
   os << "Verdict at equal " << measureName(t.measure) << " error (" << clockName(t.clock)
-     << " medians, target >= " << num(kTargetRatio, "%.1f") << " from "
+     << " medians, target >= " << benchNumber(kTargetRatio, 1, Notation::Fixed) << " from "
      << (t.errors.empty() ? "" : errorLabel(t.errors.front())) << " to "
      << (t.errors.empty() ? "" : errorLabel(t.errors.back())) << " on " << compared << " scenes): ";
   if (v.met) return os.str() + "MET in all " + std::to_string(v.cells) + " cells.";
   os << "NOT MET";
   if (v.cells == 0) return os.str() + " (no scene has points on both sides).";
-  os << ": below " << num(kTargetRatio, "%.1f") << " in " << v.below << " of " << v.cells
-     << " cells";
-  if (std::isfinite(v.worst)) os << " (worst " << num(v.worst, "%.2f") << ", " << v.worst_at << ")";
+  os << ": below " << benchNumber(kTargetRatio, 1, Notation::Fixed) << " in " << v.below << " of "
+     << v.cells << " cells";
+  if (std::isfinite(v.worst))
+    os << " (worst " << benchNumber(v.worst, 2, Notation::Fixed) << ", " << v.worst_at << ")";
   if (!v.below_where.empty()) os << " at " << joined(v.below_where, "; ");
   if (v.empty > 0)
     os << (v.below ? "; " : ", ") << v.empty << " not measured on both sides at "
@@ -227,7 +228,7 @@ std::string ratioTableMarkdown(const RatioTable& t) {
     std::vector<std::pair<std::string, std::string>> why;
     for (const RatioCell& c : row.cells) {
       if (c.filled()) {
-        const std::string r = num(c.ratio, "%.2f");
+        const std::string r = benchNumber(c.ratio, 2, Notation::Fixed);
         os << " " << (c.ratio < kTargetRatio ? "**" + r + "**" : r) << " |";
         continue;
       }
@@ -255,7 +256,8 @@ std::string sceneVerdictLine(const RatioRow& row) {
   double lo = NAN, hi = NAN;
   for (const RatioCell& c : row.cells)
     if (c.filled()) lo = std::fmin(lo, c.ratio), hi = std::fmax(hi, c.ratio);
-  const std::string a = num(lo, "%.2f"), b = num(hi, "%.2f");
+  const std::string a = benchNumber(lo, 2, Notation::Fixed),
+                    b = benchNumber(hi, 2, Notation::Fixed);
   const std::string range = !std::isfinite(lo) ? "no cell" : (a == b ? a : a + "-" + b) + "x";
   if (v.met) return os.str() + "MET, " + range + " in all " + std::to_string(v.cells) + " cells.";
   os << "NOT MET, " << range;
@@ -263,7 +265,9 @@ std::string sceneVerdictLine(const RatioRow& row) {
   const auto where = [&](const std::vector<std::string>& w) {
     return w.empty() ? std::string() : w.front().substr(row.scene.size() + 2);
   };
-  if (v.below) os << "; below " << num(kTargetRatio, "%.1f") << " at " << where(v.below_where);
+  if (v.below)
+    os << "; below " << benchNumber(kTargetRatio, 1, Notation::Fixed) << " at "
+       << where(v.below_where);
   if (v.empty) os << "; not measured on both sides at " << where(v.empty_where);
   return os.str() + ".";
 }
@@ -283,10 +287,11 @@ std::vector<std::string> slopeLines(const std::vector<SlopeRow>& rows, ErrorMeas
     const bool met = r.slope_ours <= kSlopeTargetHigh;
     int used = 0;
     for (double t : r.ours_per_period_s) used += std::isfinite(t) ? 1 : 0;
-    out.push_back(s + "N^" + num(r.slope_ours, "%.2f") + " over " + std::to_string(used) +
-                  " scenes (N = " + std::to_string(r.ns.front()) + " ... " +
-                  std::to_string(r.ns.back()) + "), target " + num(kSlopeTargetLow, "%.1f") + "-" +
-                  num(kSlopeTargetHigh, "%.1f") + ": " + (met ? "met." : "NOT met."));
+    out.push_back(
+        s + "N^" + benchNumber(r.slope_ours, 2, Notation::Fixed) + " over " + std::to_string(used) +
+        " scenes (N = " + std::to_string(r.ns.front()) + " ... " + std::to_string(r.ns.back()) +
+        "), target " + benchNumber(kSlopeTargetLow, 1, Notation::Fixed) + "-" +
+        benchNumber(kSlopeTargetHigh, 1, Notation::Fixed) + ": " + (met ? "met." : "NOT met."));
   }
   return out;
 }
@@ -309,11 +314,12 @@ std::vector<std::string> guardWarnings(const std::vector<VerdictScene>& scenes,
       continue;
     }
     line += "the peer's cross-check " + a.check + " differs from the reference " + a.reference +
-            " by " + num(a.err_final, "%.1e") + " in final state (> " + num(a.bound, "%.0e") + ")";
+            " by " + benchNumber(a.err_final, 1, Notation::Scientific) + " in final state (> " +
+            benchNumber(a.bound, 0, Notation::Scientific) + ")";
     for (const Agreement& b : ag)
       if (b.self && b.scene == a.scene)
-        line += "; the reference's own engine differs from it by " + num(b.err_final, "%.1e") +
-                " (" + b.check + ")";
+        line += "; the reference's own engine differs from it by " +
+                benchNumber(b.err_final, 1, Notation::Scientific) + " (" + b.check + ")";
     w.push_back(line);
   }
   return w;

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/number_text.h"
 #include "tools/bench/bench_metrics.h"
 #include "tools/bench/subprocess.h"
 
@@ -19,10 +20,6 @@ namespace metrosync::bench {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string num(double v, const char* f = "%.3g") {
-  return benchNumber(v, f);
-}
 
 std::string firstLine(const std::string& s) {
   return s.substr(0, s.find('\n'));
@@ -123,8 +120,9 @@ std::vector<RunCostRow> measureRunCost(const RunCostOptions& o, const BenchOptio
       if (!c.quiet)
         std::cerr << "  run " << r.scene << (variant.empty() ? "" : " --set " + variant) << ": "
                   << (r.failure.empty()
-                          ? "wall_seconds " + num(r.wall_seconds) + " s, engine_seconds " +
-                                num(r.engine_seconds) + " s, ratio " + num(r.ratio, "%.3f")
+                          ? "wall_seconds " + benchNumber(r.wall_seconds, 3) +
+                                " s, engine_seconds " + benchNumber(r.engine_seconds, 3) +
+                                " s, ratio " + benchNumber(r.ratio, 3, Notation::Fixed)
                           : "failed: " + r.failure)
                   << "\n";
     }
@@ -137,13 +135,14 @@ std::string runCostCsv(const std::vector<RunCostRow>& rows) {
   std::string s =
       "scene,variant,runs,wall_seconds,engine_seconds,ratio,process_wall_s,process_cpu_s,"
       "load1_min,load1_max,target,inconsistent_splits,failure\n";
-  const char* g = "%.6g";
   for (const RunCostRow& r : rows)
     s += field(r.scene) + "," + field(r.variant) + "," + std::to_string(r.runs) + "," +
-         num(r.wall_seconds, g) + "," + num(r.engine_seconds, g) + "," + num(r.ratio, g) + "," +
-         num(r.process_wall_s, g) + "," + num(r.process_cpu_s, g) + "," + num(r.load_min, "%.2f") +
-         "," + num(r.load_max, "%.2f") + "," + num(kRunRatioTarget, "%.2f") + "," +
-         std::to_string(r.inconsistent) + "," + field(r.failure) + "\n";
+         benchNumber(r.wall_seconds, 6) + "," + benchNumber(r.engine_seconds, 6) + "," +
+         benchNumber(r.ratio, 6) + "," + benchNumber(r.process_wall_s, 6) + "," +
+         benchNumber(r.process_cpu_s, 6) + "," + benchNumber(r.load_min, 2, Notation::Fixed) + "," +
+         benchNumber(r.load_max, 2, Notation::Fixed) + "," +
+         benchNumber(kRunRatioTarget, 2, Notation::Fixed) + "," + std::to_string(r.inconsistent) +
+         "," + field(r.failure) + "\n";
   return s;
 }
 
@@ -155,7 +154,7 @@ std::string runCostMarkdown(const std::vector<RunCostRow>& rows, const std::stri
   os << "`metrosync run SCENE --quiet --no-plot` (the built binary, files written): medians of "
      << "summary.json's `wall_seconds` (the integration with its recording) and "
      << "`engine_seconds` (the integrator and its events), the median of their ratio in each "
-     << "run (target <= " << num(kRunRatioTarget, "%.2f")
+     << "run (target <= " << benchNumber(kRunRatioTarget, 2, Notation::Fixed)
      << "), and the whole process measured from outside "
      << "(start-up, rig, integration, files, exit; wall and CPU). The first run of each row "
      << "warms the page cache and is not counted. A run whose engine_seconds is <= 0 or above "
@@ -171,11 +170,14 @@ std::string runCostMarkdown(const std::vector<RunCostRow>& rows, const std::stri
       os << "failed: " << r.failure << " |  |  |  |  |  |  |  |\n";
       continue;
     }
-    const std::string ratio = num(r.ratio, "%.2f");
-    os << r.runs << " | " << num(1e3 * r.wall_seconds) << " ms | " << num(1e3 * r.engine_seconds)
-       << " ms | " << (r.ratio <= kRunRatioTarget ? ratio : "**" + ratio + "**") << " | "
-       << num(1e3 * r.process_wall_s) << " ms | " << num(1e3 * r.process_cpu_s) << " ms | "
-       << num(r.load_min, "%.2f") << "-" << num(r.load_max, "%.2f") << " | "
+    const std::string ratio = benchNumber(r.ratio, 2, Notation::Fixed);
+    os << r.runs << " | " << benchNumber(1e3 * r.wall_seconds, 3) << " ms | "
+       << benchNumber(1e3 * r.engine_seconds, 3) << " ms | "
+       << (r.ratio <= kRunRatioTarget ? ratio : "**" + ratio + "**") << " | "
+       << benchNumber(1e3 * r.process_wall_s, 3) << " ms | "
+       << benchNumber(1e3 * r.process_cpu_s, 3) << " ms | "
+       << benchNumber(r.load_min, 2, Notation::Fixed) << "-"
+       << benchNumber(r.load_max, 2, Notation::Fixed) << " | "
        << (r.inconsistent ? "**" + std::to_string(r.inconsistent) + "**" : "0") << " |\n";
   }
   if (!command.empty()) os << "\nMade by:\n\n    " << command << "\n";

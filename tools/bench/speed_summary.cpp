@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/number_text.h"
 #include "tools/bench/bench_metrics.h"
 #include "tools/bench/peer_verdict.h"
 #include "tools/bench/wp_csv.h"
@@ -22,10 +23,6 @@ const char* const kDefaultRig = "yaml/rigs/experiment.yaml";
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::string num(double v, const char* f = "%.3g") {
-  return benchNumber(v, f);
-}
 
 std::string slurp(const std::filesystem::path& p) {
   std::ifstream in(p);
@@ -157,7 +154,8 @@ void mapFacts(const Csv& c, SpeedFacts& f) {
 
 // "1.2-3.4x" (or "1.2x" when both ends agree to the digits printed)
 std::string range(double lo, double hi, const std::string& unit = "x") {
-  const std::string a = num(lo, "%.2f"), b = num(hi, "%.2f");
+  const std::string a = benchNumber(lo, 2, Notation::Fixed),
+                    b = benchNumber(hi, 2, Notation::Fixed);
   return (a == b ? a : a + "-" + b) + unit;
 }
 
@@ -181,9 +179,9 @@ std::string ratioSentence(const SpeedFacts& f) {
        << " the peer's speed with " << g.n << " metronomes";
     cells += g.cells, met += g.met;
   }
-  os << " over " << f.scenes << " scenes: issue 23's target of " << num(kTargetRatio, "%.0f")
-     << "x is " << (met == cells ? "met" : "not met") << " (" << met << " of " << cells
-     << " cells). ";
+  os << " over " << f.scenes << " scenes: issue 23's target of "
+     << benchNumber(kTargetRatio, 0, Notation::Fixed) << "x is "
+     << (met == cells ? "met" : "not met") << " (" << met << " of " << cells << " cells). ";
   return os.str();
 }
 
@@ -192,17 +190,19 @@ std::string otherSentences(const SpeedFacts& f) {
   if (std::isfinite(f.slope_lo))
     os << "Its cost per fast period grows as N^" << range(f.slope_lo, f.slope_hi, "")
        << " from N = " << f.slope_n_lo << " to " << f.slope_n_hi << " (target N^"
-       << num(kSlopeTargetLow, "%.1f") << "-" << num(kSlopeTargetHigh, "%.1f") << "). ";
+       << benchNumber(kSlopeTargetLow, 1, Notation::Fixed) << "-"
+       << benchNumber(kSlopeTargetHigh, 1, Notation::Fixed) << "). ";
   if (std::isfinite(f.default_wall))
     os << "The default rig (`metrosync run " << kDefaultRig << " --quiet --no-plot`) integrates in "
-       << num(1e3 * f.default_wall) << " ms (`wall_seconds`; " << num(1e3 * f.default_engine)
+       << benchNumber(1e3 * f.default_wall, 3) << " ms (`wall_seconds`; "
+       << benchNumber(1e3 * f.default_engine, 3)
        << " ms in the engine, `engine_seconds`), the whole "
-       << "process takes " << num(1e3 * f.default_process) << " ms. ";
+       << "process takes " << benchNumber(1e3 * f.default_process, 3) << " ms. ";
   if (f.run_rows > 0)
     os << "`metrosync run` takes " << range(f.run_ratio_lo, f.run_ratio_hi)
        << " its engine's time (`wall_seconds` / `engine_seconds` in summary.json; target <= "
-       << num(f.run_target, "%.2f") << ", met in " << f.run_met << " of " << f.run_rows
-       << " scenes and variants"
+       << benchNumber(f.run_target, 2, Notation::Fixed) << ", met in " << f.run_met << " of "
+       << f.run_rows << " scenes and variants"
        << (f.run_inconsistent > 0
                ? "; " + std::to_string(f.run_inconsistent) +
                      (f.run_inconsistent == 1 ? " run" : " runs") +
@@ -213,12 +213,12 @@ std::string otherSentences(const SpeedFacts& f) {
   if (std::isfinite(f.full_map_s) || std::isfinite(f.slow_map_s)) {
     os << "On 2 cores ";
     if (std::isfinite(f.full_map_s))
-      os << "the 64 x 64 full-model map takes " << num(f.full_map_s) << " s (target "
-         << num(f.full_target_s, "%g") << " s)";
+      os << "the 64 x 64 full-model map takes " << benchNumber(f.full_map_s, 3) << " s (target "
+         << benchNumber(f.full_target_s, 6) << " s)";
     if (std::isfinite(f.full_map_s) && std::isfinite(f.slow_map_s)) os << " and ";
     if (std::isfinite(f.slow_map_s))
-      os << "the 100 x 100 slow-flow map " << num(f.slow_map_s) << " s (target "
-         << num(f.slow_target_s, "%g") << " s)";
+      os << "the 100 x 100 slow-flow map " << benchNumber(f.slow_map_s, 3) << " s (target "
+         << benchNumber(f.slow_target_s, 6) << " s)";
     os << ".";
   } else {
     os << "The maps were not timed in this run.";
@@ -231,7 +231,8 @@ constexpr double kBusyLoad = 2.0;
 
 std::string loadSentence(const SpeedFacts& f) {
   if (!(f.load_hi > kBusyLoad)) return "";
-  return " The machine was busy (1-minute load up to " + num(f.load_hi, "%.1f") +
+  return " The machine was busy (1-minute load up to " +
+         benchNumber(f.load_hi, 1, Notation::Fixed) +
          " on 2 cores): the wall times of `run` and of the maps carry the other sessions' work; "
          "the ratios at equal error are CPU medians, which carry much less of it.";
 }
@@ -289,7 +290,8 @@ std::string speedParagraph(const SpeedFacts& f, const SpeedInputs& in) {
      << (in.date.empty() ? "" : " on " + in.date)
      << (in.commit.empty() ? "" : ", commit " + in.commit) << ", the project's 2-core machine"
      << (std::isfinite(f.load_lo)
-             ? " at 1-minute load " + num(f.load_lo, "%.1f") + "-" + num(f.load_hi, "%.1f")
+             ? " at 1-minute load " + benchNumber(f.load_lo, 1, Notation::Fixed) + "-" +
+                   benchNumber(f.load_hi, 1, Notation::Fixed)
              : std::string())
      << "). " << ratioSentence(f) << otherSentences(f) << loadSentence(f) << "\n";
   return os.str();

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "base/number_text.h"
 #include "models/scaling.h"
 #include "tools/cli/animate_plugin.h"
 #include "tools/cli/animation_track.h"
@@ -29,12 +30,6 @@ namespace {
 // At most this many frames (an hour of video at 30 fps, 3.3 GB of raw frames per minute through
 // the pipe at 1280x720): a larger request is almost surely a mistake in --speed or --fps.
 constexpr long kMaxFrames = 108000;
-
-std::string fmt(double v, const char* f = "%.6g") {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 struct Output {
   std::string path;
@@ -71,20 +66,21 @@ void parseSize(const AnimateOptions& opt, bool gif, AnimationRequest& req) {
 // --speed, --fps, --from, --to in the rig's time unit, `unit` seconds (or scaled time) each.
 void setTimes(const AnimateOptions& opt, double duration, double unit, AnimationRequest& req) {
   if (!(opt.speed > 0) || !std::isfinite(opt.speed))
-    throw UsageError("--speed " + fmt(opt.speed) + ": must be > 0");
+    throw UsageError("--speed " + numberText(opt.speed) + ": must be > 0");
   const double to = std::isnan(opt.to) ? duration : opt.to;
-  if (!(opt.from >= 0)) throw UsageError("--from " + fmt(opt.from) + ": must be >= 0");
+  if (!(opt.from >= 0)) throw UsageError("--from " + numberText(opt.from) + ": must be >= 0");
   if (!(opt.from < to) || !std::isfinite(to))
-    throw UsageError("--from " + fmt(opt.from) + " --to " + fmt(to) +
+    throw UsageError("--from " + numberText(opt.from) + " --to " + numberText(to) +
                      ": --from must be before --to");
   req.from = opt.from * unit;
   req.to = to * unit;
   req.speed = opt.speed * unit;
   const long frames = req.frameCount();
   if (frames < 1 || frames > kMaxFrames)
-    throw UsageError("--fps " + fmt(req.fps) + " x (" + fmt(to) + " - " + fmt(opt.from) +
-                     ") / --speed " + fmt(opt.speed) + " = " + std::to_string(frames) +
-                     " frames: must be 1 to " + std::to_string(kMaxFrames));
+    throw UsageError("--fps " + numberText(req.fps) + " x (" + numberText(to) + " - " +
+                     numberText(opt.from) + ") / --speed " + numberText(opt.speed) + " = " +
+                     std::to_string(frames) + " frames: must be 1 to " +
+                     std::to_string(kMaxFrames));
 }
 
 LoadOptions loadOptions() {
@@ -100,8 +96,8 @@ std::string displayName(const AnimateOptions& opt) {
 }
 
 std::string speedText(double speed, bool physical) {
-  if (!physical) return "tau " + fmt(speed, "%.3g") + " per second of video";
-  return speed == 1.0 ? "real time" : "x" + fmt(speed, "%.3g") + " speed";
+  if (!physical) return "tau " + numberText(speed, 3) + " per second of video";
+  return speed == 1.0 ? "real time" : "x" + numberText(speed, 3) + " speed";
 }
 
 }  // namespace
@@ -187,7 +183,7 @@ int animateCommand(const AnimateOptions& opt) {
   Output out;
   if (!opt.out.empty()) out = checkOutput(opt, "");
   if (!std::isnan(opt.fps) && !(opt.fps > 0 && std::isfinite(opt.fps)))
-    throw UsageError("--fps " + fmt(opt.fps) + ": must be > 0");
+    throw UsageError("--fps " + numberText(opt.fps) + ": must be > 0");
   AnimationRequest req;
   req.fps = std::isnan(opt.fps) ? (out.gif ? 20.0 : 30.0) : opt.fps;
   parseSize(opt, out.gif, req);
@@ -208,10 +204,10 @@ int animateCommand(const AnimateOptions& opt) {
   const double all_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!opt.rig.quiet)
     std::cout << out.path << ": " << tr.frames.size() << " frames, " << req.width << "x"
-              << req.height << ", " << fmt(req.fps) << " fps, "
-              << fmt(static_cast<double>(tr.frames.size()) / req.fps, "%.2f")
-              << " s of video (simulation " << fmt(sim_s, "%.2f") << " s, total "
-              << fmt(all_s, "%.1f") << " s)\n";
+              << req.height << ", " << numberText(req.fps) << " fps, "
+              << numberText(static_cast<double>(tr.frames.size()) / req.fps, 2, Notation::Fixed)
+              << " s of video (simulation " << numberText(sim_s, 2, Notation::Fixed) << " s, total "
+              << numberText(all_s, 1, Notation::Fixed) << " s)\n";
 #else
   (void)t0;  // not reached: animationAvailable() is false
 #endif

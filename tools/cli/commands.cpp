@@ -11,6 +11,7 @@
 #include <memory>
 #include <sstream>
 
+#include "base/number_text.h"
 #include "models/scaling.h"
 #include "sim/analysis/compare.h"
 #include "sim/analysis/linear_decay.h"
@@ -46,15 +47,11 @@ std::string joined(const std::vector<std::string>& v, const std::string& sep = "
   return s;
 }
 
-std::string fmt(double v, const char* f = "%.4g") {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-std::string fmtList(const std::vector<double>& v, const char* f = "%.4g") {
+// the numbers separated by spaces, numberText(x, precision, notation) each
+std::string fmtList(const std::vector<double>& v, int precision = 4,
+                    Notation notation = Notation::General) {
   std::string s;
-  for (double x : v) s += (s.empty() ? "" : " ") + fmt(x, f);
+  for (double x : v) s += (s.empty() ? "" : " ") + numberText(x, precision, notation);
   return s;
 }
 
@@ -174,8 +171,8 @@ RunReport runModel(const Engine& engine, const LoadedRig& r, FileSink& sink) {
     rep.model = engine.model();
     rep.engine = engine.name();
     rep.complete = false;
-    rep.failure = "stopped at t = " + fmt(t, "%.6g") +
-                  (r.rig.units == Units::Physical ? " s" : "") + ": " + why;
+    rep.failure = "stopped at t = " + numberText(t) + (r.rig.units == Units::Physical ? " s" : "") +
+                  ": " + why;
     rep.wall_seconds = secondsSince(t0);
     return rep;
   };
@@ -208,14 +205,14 @@ std::string modelTitle(const std::string& model) {
 // The final state: each swinging metronome's amplitude against its threshold; a rig whose
 // metronomes are all locked (section 3A) has neither, and its board's linear decay is the result.
 void printFinalState(const LoadedRig& r, const RunReport& rep, const LinearDecay* decay) {
-  std::cout << "  final tau = " << fmt(rep.final_row.tau);
+  std::cout << "  final tau = " << numberText(rep.final_row.tau, 4);
   if (r.rig.numSwinging() == 0) {
     std::cout << ": every metronome locked";
     const auto s3a = decay ? decay->result(r.rig) : std::nullopt;
     if (s3a)
       std::cout << "; the board's extremes decay linearly (section 3A): slope "
-                << fmt(s3a->slope_m_s) << " m/s, mu-bar " << fmt(s3a->mu_bar) << ", period "
-                << fmt(s3a->period_s) << " s, " << s3a->extremes << " extremes";
+                << numberText(s3a->slope_m_s, 4) << " m/s, mu-bar " << numberText(s3a->mu_bar, 4) << ", period "
+                << numberText(s3a->period_s, 4) << " s, " << s3a->extremes << " extremes";
     return;
   }
   std::cout << ": A = " << fmtList(rep.final_row.A) << " (theta_c = " << fmtList(r.scaled.theta_c)
@@ -232,12 +229,12 @@ void printRunSummary(const std::string& model, const LoadedRig& r, const RunRepo
   std::cout << "\n  " << rep.counts.steps << " steps";
   if (!rep.counts.escapements.empty()) {
     std::vector<double> e(rep.counts.escapements.begin(), rep.counts.escapements.end());
-    std::cout << ", escapements " << fmtList(e, "%.0f");
+    std::cout << ", escapements " << fmtList(e, 0, Notation::Fixed);
   }
   if (model == "full")
     std::cout << ", " << rep.counts.stick_slip << " stick-slip switches, "
               << rep.counts.slip_reversals << " slip reversals";
-  std::cout << ", wall time " << fmt(rep.wall_seconds, "%.3g") << " s\n";
+  std::cout << ", wall time " << numberText(rep.wall_seconds, 3) << " s\n";
 }
 
 void printFiles(const std::optional<OutputDir>& dir, const std::vector<std::string>& files) {

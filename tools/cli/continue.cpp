@@ -7,6 +7,8 @@
 #include <iostream>
 #include <sstream>
 
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "models/scaling.h"
 #include "models/slow_flow.h"
 #include "sim/analysis/continuation/merge.h"
@@ -38,29 +40,6 @@ ContinueOptions& options() {
   return opt;
 }
 
-std::string fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-// The rig with --set, then `extra` (the parameter's KEY=VALUE, named --param in messages; keys
-// as in docs/keys.md: metronomes.*.X sets X of every metronome).
-Rig loadWith(const ContinueOptions& opt, std::vector<std::string> extra) {
-  std::vector<std::string> o = opt.sets;
-  o.insert(o.end(), extra.begin(), extra.end());
-  try {
-    return opt.rig_path.empty() ? defaultRig(o) : loadRigFile(opt.rig_path, o);
-  } catch (const RigError& e) {
-    std::string what = e.what();
-    for (const auto& x : extra)
-      for (size_t at = what.find("--set " + x); at != std::string::npos;
-           at = what.find("--set " + x, at))
-        what.replace(at, 5, "--param");
-    throw RigError(what);
-  }
-}
-
 std::string rigDisplay(const ContinueOptions& opt) {
   return opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
 }
@@ -86,11 +65,11 @@ bool sameSlowFlow(const ScaledParams& a, const ScaledParams& b) {
 ScaledParams scaledAt(const ContinueOptions& opt, const std::vector<std::string>& keys,
                       const std::vector<double>& values) {
   std::vector<std::string> o;
-  for (size_t k = 0; k < keys.size(); ++k) o.push_back(keys[k] + "=" + fmt(values[k]));
+  for (size_t k = 0; k < keys.size(); ++k) o.push_back(keys[k] + "=" + roundTripText(values[k]));
   try {
-    return computeScaled(loadWith(opt, o));
+    return computeScaled(loadContinueRig(opt, o));
   } catch (const std::exception&) {
-    ScaledParams bad = computeScaled(loadWith(opt, {}));
+    ScaledParams bad = computeScaled(loadContinueRig(opt, {}));
     for (double& v : bad.nu) v = std::nan("");
     return bad;
   }
@@ -119,7 +98,8 @@ ScaledParams finiteScaledAt(const ContinueOptions& opt, double value, const std:
     for (double x : *v)
       if (!std::isfinite(x)) bad = name;
   if (!bad.empty())
-    throw UsageError(which + ": " + opt.param + " = " + fmt(value) + " makes the scaled " + bad +
+    throw UsageError(which + ": " + opt.param + " = " + roundTripText(value) +
+                     " makes the scaled " + bad +
                      " infinite or undefined; choose a value nearer the rig's");
   return p;
 }
@@ -134,8 +114,9 @@ void checkRangeInside(const ContinueOptions& opt, double from, const std::string
     try {
       SlowFlow flow(scaledAt(opt, {opt.param}, {v}));
     } catch (const std::invalid_argument& e) {
-      throw UsageError(option + " " + opt.param + " from " + fmt(from) + " to " + fmt(opt.to) +
-                       ": " + e.what() + " on the way (the range leaves the range of the " +
+      throw UsageError(option + " " + opt.param + " from " + roundTripText(from) + " to " +
+                       roundTripText(opt.to) + ": " + e.what() +
+                       " on the way (the range leaves the range of the " +
                        "numbers); choose a --to nearer the start");
     }
   }
@@ -143,7 +124,7 @@ void checkRangeInside(const ContinueOptions& opt, double from, const std::string
 
 // The start value of opt.param, typed after `option` (--param, or --fold for KEY2).
 double startValue(const ContinueOptions& opt, const std::string& option = "--param") {
-  const Rig rig = loadWith(opt, {});  // the rig itself must load
+  const Rig rig = loadContinueRig(opt, {});  // the rig itself must load
   const std::string display = rigDisplay(opt);
   const std::string text = rigText(opt);
   const RigKey key = resolveOptionKey({text, display, opt.sets}, option, opt.param, false).key;
@@ -158,13 +139,14 @@ double startValue(const ContinueOptions& opt, const std::string& option = "--par
                      ": the key is not set in the rig (its default applies); give --from VALUE");
   const double from = opt.from ? *opt.from : *in_rig;  // both finite (tools/cli/number_option.h)
   if (opt.to == from)
-    throw UsageError("--to " + fmt(opt.to) + ": must differ from the start value " + opt.param +
-                     " = " + fmt(from));
+    throw UsageError("--to " + roundTripText(opt.to) + ": must differ from the start value " +
+                     opt.param + " = " + roundTripText(from));
   const ScaledParams a = finiteScaledAt(opt, from, opt.from ? "--from" : "the rig's value");
   const ScaledParams b = finiteScaledAt(opt, opt.to, "--to");
   if (sameSlowFlow(a, b))
     throw UsageError(option + " " + opt.param + ": has no effect on the slow flow (its scaled " +
-                     "parameters are the same at " + fmt(from) + " and " + fmt(opt.to) + ")");
+                     "parameters are the same at " + roundTripText(from) + " and " +
+                     roundTripText(opt.to) + ")");
   checkRangeInside(opt, from, option);
   return from;
 }
@@ -204,8 +186,8 @@ std::vector<Cd> startState(const ContinueOptions& opt, const ScaledParams& sp, s
   const SettledState st = settleFromStart(sp, sp.tau_end > 0 ? sp.tau_end : 300.0);
   if (!st.settled)
     throw UsageError("the rig's start does not settle to a locked state (slow flow up to tau = " +
-                     fmt(st.tau) + "): " + st.why + "; give --start A_1,..,psi_N");
-  how = "the rig's start, settled by the slow flow at tau = " + fmt(st.tau);
+                     roundTripText(st.tau) + "): " + st.why + "; give --start A_1,..,psi_N");
+  how = "the rig's start, settled by the slow flow at tau = " + roundTripText(st.tau);
   return st.z;
 }
 
@@ -222,7 +204,7 @@ ContinuationSettings settingsFor(const ContinueOptions& opt, double from) {
   // kMaxStep is the cap for a pair; when every metronome moves alike, the state's arclength grows
   // as the square root of their number, so the cap does too: each amplitude moves as far per
   // step as in a pair (32 metronomes: 4 times the pair's cap, not 500 points along a range)
-  const double metronomes = static_cast<double>(loadWith(opt, {}).metronomes.size());
+  const double metronomes = static_cast<double>(loadContinueRig(opt, {}).metronomes.size());
   const double cap = kMaxStep * std::sqrt(std::max(1.0, metronomes / 2));
   s.step = opt.step > 0 ? opt.step / s.p_scale : kFirstStep;
   s.step_max = std::max(s.step, cap);
@@ -259,7 +241,8 @@ ContinuationSettings curveSettings(double from2, double to2) {
 
 // The continuation's inputs from the options (the rig loaded with KEY = from).
 SlowFlowContinuationSpec slowFlowSpec(const ContinueOptions& opt, double from, std::string& how) {
-  const ScaledParams sp = computeScaled(loadWith(opt, {opt.param + "=" + fmt(from)}));
+  const ScaledParams sp =
+      computeScaled(loadContinueRig(opt, {opt.param + "=" + roundTripText(from)}));
   SlowFlowContinuationSpec spec;
   spec.params = paramsAt(opt);
   spec.from = from, spec.to = opt.to;
@@ -288,11 +271,11 @@ void printBranchEnds(const ContinuationResult& r) {
 void printCycles(const ContinuationResult& r, int budget) {
   for (const auto& c : r.cycles) {
     std::cout << "  cycle " << c.id << " from the Hopf point at " << r.param << " = "
-              << fmt(c.hopf_value) << ": " << c.points.size() << " points (budget " << budget
-              << ", --cycle-points), " << c.end << "\n";
+              << roundTripText(c.hopf_value) << ": " << c.points.size() << " points (budget "
+              << budget << ", --cycle-points), " << c.end << "\n";
     for (const auto& f : c.folds)
-      std::cout << "    fold of cycles at " << r.param << " = " << fmt(f.at.value) << " (period "
-                << fmt(f.at.period) << "): " << f.check << "\n";
+      std::cout << "    fold of cycles at " << r.param << " = " << roundTripText(f.at.value)
+                << " (period " << roundTripText(f.at.period) << "): " << f.check << "\n";
     for (const auto& w : c.changes) std::cout << "    " << w << "\n";
   }
 }
@@ -304,8 +287,8 @@ void printSummary(const ContinuationResult& r, const std::string& dir, int cycle
   for (const auto& f : r.families)
     std::cout << "  family " << f.id << " (branch " << f.branch << "): " << f.cause << "\n";
   for (const auto& s : r.special)
-    std::cout << "  " << s.type << " at " << r.param << " = " << fmt(s.at.value) << " (branch "
-              << s.at.branch << "): " << s.detail << "\n";
+    std::cout << "  " << s.type << " at " << r.param << " = " << roundTripText(s.at.value)
+              << " (branch " << s.at.branch << "): " << s.detail << "\n";
   printCycles(r, cycle_budget);
   std::cout << "files in " << dir << "\n";
 }
@@ -315,7 +298,7 @@ void printSummary(const ContinuationResult& r, const std::string& dir, int cycle
 void curvesFromRow(ContinueOptions o, const std::string& key2, double v2, double lo2, double hi2,
                    const P1Range& range, std::vector<FoldCurve>& curves) {
   ContinueOptions row = o;
-  row.sets.push_back(key2 + "=" + fmt(v2));
+  row.sets.push_back(key2 + "=" + roundTripText(v2));
   SlowFlowContinuationSpec spec;
   spec.params = paramsAt(row);
   spec.from = *o.from, spec.to = o.to;
@@ -420,8 +403,23 @@ int continueCommand() {
   return continueCommand(options());
 }
 
+Rig loadContinueRig(const ContinueOptions& opt, const std::vector<std::string>& extra) {
+  std::vector<std::string> o = opt.sets;
+  o.insert(o.end(), extra.begin(), extra.end());
+  try {
+    return opt.rig_path.empty() ? defaultRig(o) : loadRigFile(opt.rig_path, o);
+  } catch (const RigError& e) {
+    std::string what = e.what();
+    for (const auto& x : extra)
+      for (size_t at = what.find("--set " + x); at != std::string::npos;
+           at = what.find("--set " + x, at))
+        what.replace(at, 5, "--param");
+    throw RigError(what);
+  }
+}
+
 ContinuationResult slowFlowContinuation(const ContinueOptions& opt) {
-  requireSlowFlow(loadWith(opt, {}), rigDisplay(opt));
+  requireSlowFlow(loadContinueRig(opt, {}), rigDisplay(opt));
   const double from = startValue(opt);
   std::string how;
   const SlowFlowContinuationSpec spec = slowFlowSpec(opt, from, how);
@@ -429,11 +427,12 @@ ContinuationResult slowFlowContinuation(const ContinueOptions& opt) {
   try {
     result = continueSlowFlow(spec);
   } catch (const NoLockedState& e) {
-    throw UsageError(std::string(e.what()) + " at " + opt.param + " = " + fmt(from) +
+    throw UsageError(std::string(e.what()) + " at " + opt.param + " = " + roundTripText(from) +
                      (opt.all ? "" : " (" + how + ")"));
   } catch (const std::invalid_argument& e) {  // the slow flow at a value on the way: not finite
-    throw UsageError("--param " + opt.param + " from " + fmt(from) + " to " + fmt(opt.to) + ": " +
-                     e.what() + " on the way (the range leaves the range of the numbers); " +
+    throw UsageError("--param " + opt.param + " from " + roundTripText(from) + " to " +
+                     roundTripText(opt.to) + ": " + e.what() +
+                     " on the way (the range leaves the range of the numbers); " +
                      "choose a --to nearer the start");
   }
   result.param = opt.param;
@@ -445,7 +444,7 @@ ContinuationResult slowFlowContinuation(const ContinueOptions& opt) {
 int continueCommand(const ContinueOptions& opt) {
   if (opt.model == "full") return continueFullCommand(opt);
   const ContinuationResult result = slowFlowContinuation(opt);
-  const Rig rig = loadWith(opt, {opt.param + "=" + fmt(result.from)});
+  const Rig rig = loadContinueRig(opt, {opt.param + "=" + roundTripText(result.from)});
   const OutputDir dir(outDir(opt, rig));
   writeContinuation(dir, result, rig.name);
   if (!opt.quiet) printSummary(result, dir.path(), opt.cycle_points);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "models/rig.h"
 #include "sim/analysis/continuation/fold_curve.h"
 #include "sim/analysis/continuation/result.h"
 
@@ -57,6 +58,9 @@ std::vector<continuation::FoldCurve> boundaryCurves(const std::string& rig_path,
 // The same with the options given.
 int continueCommand(const ContinueOptions& opt);
 
+// The rig with --set, then `extra` (the parameter's KEY=VALUE, named --param in messages; keys
+// as in docs/keys.md: metronomes.*.X sets X of every metronome). Throws RigError.
+Rig loadContinueRig(const ContinueOptions& opt, const std::vector<std::string>& extra);
 // The slow flow's continuation as values, nothing written (the Python module's continue_; one
 // function per model: `--model full` dispatches to its own). Bad input throws RigError or
 // UsageError.

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "base/number_text.h"
 #include "sim/analysis/periodic_orbit/full_continuation.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/option_keys.h"
@@ -15,22 +16,6 @@ namespace metrosync::cli {
 
 namespace {
 
-// The shortest decimal that reads back as v (0.3, not 0.29999999999999999).
-std::string fmt(double v) {
-  char buf[40];
-  for (int digits = 15; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    if (std::strtod(buf, nullptr) == v) break;
-  }
-  return buf;
-}
-
-std::string shortFmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-
 // The options of the slow flow's continuation that mean nothing for the full model.
 void checkOptions(const ContinueOptions& opt) {
   auto refuse = [](const std::string& option, const std::string& why) {
@@ -40,28 +25,13 @@ void checkOptions(const ContinueOptions& opt) {
   if (opt.all) refuse("--all", "the full model follows the orbit the rig's start settles to");
   if (!opt.fold_key.empty()) refuse("--fold", "two-parameter curves are the slow flow's");
   if (opt.no_cycles) refuse("--no-cycles", "the full model's locked states are its cycles");
-  if (opt.step < 0) throw UsageError("--step " + fmt(opt.step) + ": must be > 0");
+  if (opt.step < 0) throw UsageError("--step " + roundTripText(opt.step) + ": must be > 0");
   if (opt.max_points < 2) throw UsageError("--max-points: must be >= 2");
-}
-
-Rig loadRig(const ContinueOptions& opt, const std::vector<std::string>& extra) {
-  std::vector<std::string> o = opt.sets;
-  o.insert(o.end(), extra.begin(), extra.end());
-  try {
-    return opt.rig_path.empty() ? defaultRig(o) : loadRigFile(opt.rig_path, o);
-  } catch (const RigError& e) {
-    std::string what = e.what();
-    for (const std::string& x : extra)
-      for (size_t at = what.find("--set " + x); at != std::string::npos;
-           at = what.find("--set " + x, at))
-        what.replace(at, 5, "--param");
-    throw RigError(what);
-  }
 }
 
 // The rig with KEY = p, the key as --set applies it (a '*' sets every element: docs/keys.md).
 Rig rigAt(const ContinueOptions& opt, double p) {
-  return loadRig(opt, {opt.param + "=" + fmt(p)});
+  return loadContinueRig(opt, {opt.param + "=" + roundTripText(p)});
 }
 
 // Whether two rigs have the same equations (starts and run settings aside).
@@ -82,7 +52,7 @@ bool sameDynamics(const Rig& a, const Rig& b) {
 }
 
 double startValue(const ContinueOptions& opt) {
-  loadRig(opt, {});  // the rig itself must load
+  loadContinueRig(opt, {});  // the rig itself must load
   const std::string display = opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
   const std::string text = opt.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.rig_path);
   // the one key resolver (docs/keys.md); a key with '*': the rig's value at its first element
@@ -95,12 +65,12 @@ double startValue(const ContinueOptions& opt) {
   }
   const double from = opt.from ? *opt.from : *in_rig;
   if (!std::isfinite(opt.to) || !std::isfinite(from) || opt.to == from)
-    throw UsageError("--to " + fmt(opt.to) + ": must differ from the start value " + opt.param +
-                     " = " + fmt(from));
+    throw UsageError("--to " + roundTripText(opt.to) + ": must differ from the start value " +
+                     opt.param + " = " + roundTripText(from));
   if (sameDynamics(rigAt(opt, from), rigAt(opt, opt.to)))
     throw UsageError("--param " + opt.param + ": has no effect on the full model's equations " +
-                     "(the rig's parameters are the same at " + fmt(from) + " and " + fmt(opt.to) +
-                     ")");
+                     "(the rig's parameters are the same at " + roundTripText(from) + " and " +
+                     roundTripText(opt.to) + ")");
   return from;
 }
 
@@ -112,7 +82,7 @@ void printSummary(const orbit::FullContinuation& r, const std::string& dir) {
             << r.section_name << "), " << r.wall_seconds << " s\n";
   for (size_t b = 0; b < r.families.size(); ++b) {
     for (const auto& s : r.families[b].special)
-      std::cout << "  " << s.type << " at " << r.param << " = " << shortFmt(s.point.p)
+      std::cout << "  " << s.type << " at " << r.param << " = " << numberText(s.point.p, 10)
                 << " (branch " << b << "): " << s.detail << "\n";
     std::cout << "  branch " << b << " ends: " << r.families[b].end_backward << "; "
               << r.families[b].end_forward << "\n";

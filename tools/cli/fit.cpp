@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "base/number_text.h"
 #include "sim/analysis/fit/ceres_plugin.h"
 #include "sim/analysis/fit/fit_strategy.h"
 #include "sim/analysis/fit/model_samples.h"
@@ -28,12 +29,6 @@ constexpr int kMaxStarts = 1000;
 const char* kFitExitCodes =
     "Exit codes: 0 fitted; 2 bad command line, rig or data file (nothing written); 3 the model "
     "fails at the starting values; 1 anything else.";
-
-std::string fmt(double v, const char* f = "%.6g") {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 // Is a rig key of `paths` (or a map above one) set by one of the --set overrides?
 bool givenBySet(const FitOptions& opt, const std::string& text, const std::vector<KeyPath>& paths) {
@@ -146,7 +141,7 @@ std::string fittedRig(const FitOptions& opt, const std::string& text, const FitR
       "Fitted by metrosync " + std::string(metrosyncVersion()) + " fit: rig " + opt.rig_path +
           ", data " + opt.data_path + ", " + opt.model + " model",
       "free: " + keys + " (values, standard errors, correlations in fit.json)",
-      "rms residual " + fmt(r.rms, "%.3g") +
+      "rms residual " + numberText(r.rms, 3) +
           (r.converged ? "" : " (NOT CONVERGED: " + r.note + ")"),
       "the original rig's comments are not kept"};
   if (!held.empty())
@@ -200,17 +195,18 @@ void printFit(const FitReport& rep, const OutputDir& dir, const std::vector<std:
   for (std::size_t j = 0; j < rep.free.size(); ++j) {
     std::cout << "  " << rep.free[j].name << " = ";
     if (r.values[j])
-      std::cout << fmt(*r.values[j]) << " +- " << fmt(*r.std_errors[j], "%.2g");
+      std::cout << numberText(*r.values[j]) << " +- " << numberText(*r.std_errors[j], 2);
     else
       std::cout << "not identifiable (" << r.not_identifiable_because[j] << "; kept at "
-                << fmt(r.used[j]) << ")";
-    std::cout << "   (start " << fmt(rep.free[j].start) << ", from " << rep.start_from[j] << ")\n";
+                << numberText(r.used[j]) << ")";
+    std::cout << "   (start " << numberText(rep.free[j].start) << ", from " << rep.start_from[j]
+              << ")\n";
   }
-  std::cout << "  rms residual " << fmt(r.rms, "%.3g") << (metres ? " m" : " rad") << "; " << r.note
-            << "\n";
+  std::cout << "  rms residual " << numberText(r.rms, 3) << (metres ? " m" : " rad") << "; "
+            << r.note << "\n";
   if (r.optima.size() > 1) {
     std::cout << "  " << r.optima.size() << " distinct optima found (rms):";
-    for (const Optimum& o : r.optima) std::cout << " " << fmt(o.rms, "%.3g");
+    for (const Optimum& o : r.optima) std::cout << " " << numberText(o.rms, 3);
     std::cout << " (values in fit.json)\n";
   }
   std::cout << "files: " << dir.path() << "/ (";

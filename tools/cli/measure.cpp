@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "base/number_text.h"
 #include "models/scaling.h"
 #include "sim/analysis/fit/section3.h"
 #include "tools/cli/commands.h"
@@ -15,12 +16,6 @@
 namespace metrosync::cli {
 
 namespace {
-
-std::string fmt(double v, const char* f = "%.6g") {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 nlohmann::json estimateJson(const Estimate& e) {
   return {{"value", numberOrNull(e.value)}, {"std_error", numberOrNull(e.std_error)}};
@@ -113,7 +108,7 @@ void measureDecay(const MeasureOptions& opt, const RigText& rt, const Rig& rig, 
   const bool below = f.largest_amplitude < rig.metronomes[i].theta_c_rad;
   if (!below)
     std::cerr << "metrosync: warning: " << opt.decay << ": the largest swing, "
-              << fmt(f.largest_amplitude, "%.3g")
+              << numberText(f.largest_amplitude, 3)
               << " rad, reaches theta_c: the escapement ticks, the decay is not free\n";
   m.json["free_decay"] = {{"file", opt.decay},
                           {"column", theta},

@@ -6,17 +6,12 @@
 #include <cstdio>
 #include <limits>
 
+#include "base/number_text.h"
 #include "yaml/utf8.h"
 
 namespace metrosync::cli {
 
 namespace {
-
-std::string boundText(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
 
 [[noreturn]] void refuse(const std::string& option, const std::string& text,
                          const std::string& why) {
@@ -27,10 +22,10 @@ std::string boundText(double v) {
 std::string rangeText(NumberRange r) {
   const bool low = r.min > -HUGE_VAL, high = r.max < HUGE_VAL;
   if (low && high)
-    return "a number from " + boundText(r.min) + (r.above_min ? " (excluded)" : "") + " to " +
-           boundText(r.max);
-  if (low) return std::string("a number ") + (r.above_min ? "> " : ">= ") + boundText(r.min);
-  if (high) return "a number <= " + boundText(r.max);
+    return "a number from " + numberText(r.min, 10) + (r.above_min ? " (excluded)" : "") + " to " +
+           numberText(r.max, 10);
+  if (low) return std::string("a number ") + (r.above_min ? "> " : ">= ") + numberText(r.min, 10);
+  if (high) return "a number <= " + numberText(r.max, 10);
   return "a finite number";
 }
 

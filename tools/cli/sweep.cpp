@@ -12,6 +12,7 @@
 #include <optional>
 #include <set>
 
+#include "base/number_text.h"
 #include "sim/analysis/sweep.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/fault_hooks.h"
@@ -154,7 +155,7 @@ void printSweepSummary(const SweepPlan& plan, const SweepRun& run, const OutputD
             << "; " << run.tally.done << " done (" << run.finished_now << " now, " << before
             << " before), " << failed << " failed\n"
             << "  regimes: " << countsText(run.tally) << "\n"
-            << "  wall time " << fmt(wall_s, "%.3g") << " s on "
+            << "  wall time " << numberText(wall_s, 3) << " s on "
             << (plan.ranks > 1 ? std::to_string(plan.ranks) + " MPI ranks x " : "") << run.jobs
             << (run.jobs == 1 ? " thread" : " threads") << "\n"
             << "files: " << dir.path() << "/ (" << joined(files) << ")\n";

@@ -1,7 +1,8 @@
 // sweep's and merge's command lines (tools/cli/sweep.h).
+#include "tools/cli/sweep_options.h"
+
 #include "tools/cli/engines.h"
 #include "tools/cli/number_option.h"
-#include "tools/cli/sweep.h"
 #include "tools/report/plot.h"
 
 namespace metrosync::cli {

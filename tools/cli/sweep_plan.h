@@ -9,7 +9,7 @@
 #include "sim/analysis/basin.h"
 #include "sim/analysis/continuation/fold_curve.h"
 #include "sim/analysis/sweep.h"
-#include "tools/cli/sweep.h"
+#include "tools/cli/sweep_options.h"
 #include "tools/report/sweep_files.h"
 
 namespace metrosync::cli {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "base/number_text.h"
 #include "contact/law_registry.h"
 #include "sim/analysis/regime.h"
 #include "tools/cli/commands.h"
@@ -139,7 +140,7 @@ std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
     return std::nullopt;
   } catch (const SimulationFailure& f) {
     rep.complete = false;
-    rep.failure = "stopped at t = " + fmt(f.t, "%.6g") +
+    rep.failure = "stopped at t = " + numberText(f.t) +
                   (in.rig.units == Units::Physical ? " s" : "") + ": " + f.why;
   } catch (const std::exception& e) {
     rep.complete = false;

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "models/network.h"
@@ -11,7 +12,7 @@
 #include "models/scaling.h"
 #include "sim/analysis/sweep.h"
 #include "sim/engines/engine.h"
-#include "tools/cli/sweep.h"
+#include "tools/cli/sweep_options.h"
 
 namespace metrosync::cli {
 
@@ -41,5 +42,17 @@ PointInput loadPoint(const std::string& text, const SweepOptions& opt, const Swe
 std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep);
 // A point that could not even be loaded: failed, with the loader's message.
 SweepPoint unloadablePoint(long g, int n, const std::string& why);
+
+// The sweep's point runner for other commands (basin): the rig text with opt.sets, then `point`
+// (KEY=VALUE, a wildcard key set at each of the n metronomes), run with opt's model and engine,
+// labelled as a grid point numbered `index`. checkSweepPoint loads it only: throws RigError or
+// UsageError (exit 2) naming `where`, else returns {model, engine} names. runSweepPointAt
+// records a point that cannot be loaded as failed; nullopt: interrupted by a signal.
+std::pair<std::string, std::string> checkSweepPoint(const std::string& rig_text,
+                                                    const SweepOptions& opt,
+                                                    const std::vector<std::string>& point, int n,
+                                                    const std::string& where);
+std::optional<SweepPoint> runSweepPointAt(const std::string& rig_text, const SweepOptions& opt,
+                                          const std::vector<std::string>& point, int n, long index);
 
 }  // namespace metrosync::cli

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "base/number_text.h"
 #include "sim/record/atomic_file.h"
 #include "tools/report/sweep_maps.h"
 
@@ -19,12 +20,6 @@ double threadCpuSeconds() {
   timespec ts{};
   ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-std::string fmt(double v, const char* f) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
 }
 
 std::string joined(const std::vector<std::string>& v, const std::string& sep) {

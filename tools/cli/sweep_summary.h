@@ -18,7 +18,6 @@ using SweepClock = std::chrono::steady_clock;
 double secondsSince(SweepClock::time_point t0);
 // CPU seconds of the calling thread (a point runs on one thread)
 double threadCpuSeconds();
-std::string fmt(double v, const char* f = "%.4g");
 std::string joined(const std::vector<std::string>& v, const std::string& sep = ", ");
 const char* modelTitle(const std::string& model);  // "full model", "slow flow"
 

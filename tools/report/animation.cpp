@@ -5,11 +5,12 @@
 #include <cstdio>
 #include <string>
 
+#include "base/constants.h"
+#include "base/number_text.h"
+
 namespace metrosync::animation {
 
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 struct Rgb {
   double r, g, b;
@@ -37,12 +38,6 @@ void text(cairo_t* cr, double x, double y, double size, const std::string& s, bo
   cairo_move_to(cr, x, y);
   cairo_show_text(cr, s.c_str());
   cairo_new_path(cr);  // no line from the text's end to what is drawn next
-}
-
-std::string fmt(const char* f, double v) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
 }
 
 // A zigzag spring from (x0, y0) to (x1, y1) with `coils` turns and half-width w.
@@ -198,8 +193,11 @@ void drawClock(cairo_t* cr, const Scene& s, const SceneLayout& lay, const FrameS
   const double H = s.height, size = 0.035 * H, tau = st.t * s.tau_per_s;
   setColor(cr, kInk);
   text(cr, 0.02 * H, 0.055 * H, 0.04 * H, s.title, true);
-  std::string clock = "tau = " + fmt("%.3f", tau);
-  if (s.physical) clock = "t = " + fmt("%7.2f", st.t) + " s    " + clock;
+  std::string clock = "tau = " + numberText(tau, 3, Notation::Fixed);
+  const std::string t = numberText(st.t, 2, Notation::Fixed);
+  if (s.physical)
+    clock =
+        "t = " + std::string(t.size() < 7 ? 7 - t.size() : 0, ' ') + t + " s    " + clock;  // %7.2f
   text(cr, 0.02 * H, 0.10 * H, size, clock);
   if (!s.physical) return;
   // a stopwatch dial in the stage's top right corner: the hand turns once a minute
@@ -249,10 +247,10 @@ void drawAxes(cairo_t* cr, const Scene& s, const Rect& r, double a_max) {
   cairo_set_line_width(cr, 1);
   cairo_stroke(cr);
   text(cr, r.x, r.y - 0.6 * size, size, "amplitudes A_i (scaled), dashed: theta_c");
-  text(cr, r.x - 0.3 * size, r.y + r.h + 1.3 * size, size, fmt("%.3g", s.tau_from));
-  text(cr, r.x + r.w - 2.5 * size, r.y + r.h + 1.3 * size, size, fmt("%.3g", s.tau_to));
+  text(cr, r.x - 0.3 * size, r.y + r.h + 1.3 * size, size, numberText(s.tau_from, 3));
+  text(cr, r.x + r.w - 2.5 * size, r.y + r.h + 1.3 * size, size, numberText(s.tau_to, 3));
   text(cr, r.x + 0.45 * r.w, r.y + r.h + 1.3 * size, size, "tau");
-  text(cr, r.x + 0.3 * size, r.y + 1.1 * size, size, fmt("%.3g", a_max));
+  text(cr, r.x + 0.3 * size, r.y + 1.1 * size, size, numberText(a_max, 3));
   static const double dash[] = {4.0, 4.0};
   cairo_set_dash(cr, dash, 2, 0);
   for (double tc : s.theta_c_scaled) {

@@ -4,27 +4,14 @@
 #include <cstdio>
 #include <sstream>
 
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "tools/report/plot.h"
 #include "tools/report/sweep_maps.h"
 
 namespace metrosync {
 
 namespace {
-
-constexpr double kPi = 3.141592653589793;
-
-std::string numberText(double v, const char* format = "%.12g") {
-  if (std::isnan(v)) return "nan";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
-  return q + "'";
-}
 
 // The range a key's axis shows: its FROM:TO, or the circle for an angle.
 std::pair<double, double> shownRange(const RandomKey& k) {
@@ -36,24 +23,25 @@ std::string basinScript(const std::vector<RandomKey>& keys, const std::vector<st
                         const std::string& title, const std::string& data, const std::string& png) {
   std::ostringstream s;
   s << "set terminal pngcairo size 1000,850 enhanced font 'sans,11' linewidth 1.2\n"
-    << "set output " << quote(png) << "\nset tics out\n"
-    << "set title " << quote(title) << " noenhanced font 'sans,13'\n"
+    << "set output " << gnuplotQuote(png) << "\nset tics out\n"
+    << "set title " << gnuplotQuote(title) << " noenhanced font 'sans,13'\n"
     << "set key at screen 0.75, graph 1 left top Left reverse noenhanced title 'regime' "
        "samplen 1.5\nset rmargin at screen 0.72\n";
   const char* axis[] = {"x", "y"};
   for (int a = 0; a < 2; ++a) {
     const auto [lo, hi] = shownRange(keys[a]);
-    s << "set " << axis[a] << "label " << quote(keys[a].key + (keys[a].angle ? " (rad)" : ""))
-      << " noenhanced\nset " << axis[a] << "range [" << numberText(lo) << ":" << numberText(hi)
-      << "]\n";
+    s << "set " << axis[a] << "label "
+      << gnuplotQuote(keys[a].key + (keys[a].angle ? " (rad)" : "")) << " noenhanced\nset "
+      << axis[a] << "range [" << numberText(lo, 12) << ":" << numberText(hi, 12) << "]\n";
     if (keys[a].angle)
       s << "set " << axis[a]
         << "tics (\"0\" 0, \"π/2\" pi/2, \"π\" pi, \"3π/2\" 3*pi/2, \"2π\" 2*pi)\n";
   }
-  s << "plot " << quote(data) << " using 1:2:3 with points pt 7 ps 0.7 lc rgb variable notitle";
+  s << "plot " << gnuplotQuote(data)
+    << " using 1:2:3 with points pt 7 ps 0.7 lc rgb variable notitle";
   for (const auto& name : legend)
     s << ", \\\n     keyentry with points pt 7 ps 1.5 lc rgb '" << regimeColour(name, legend)
-      << "' title " << quote(name);
+      << "' title " << gnuplotQuote(name);
   s << "\nset output\n";
   return s.str();
 }
@@ -73,8 +61,8 @@ std::string basinCsvRow(const BasinSample& s) {
   std::string r = std::to_string(s.point.index);
   for (const auto& d : s.drawn) r += "," + d;
   r += "," + s.point.regime;
-  for (double a : s.point.A) r += "," + numberText(a);
-  for (double p : s.point.psi) r += "," + numberText(p);
+  for (double a : s.point.A) r += "," + numberText(a, 12);
+  for (double p : s.point.psi) r += "," + numberText(p, 12);
   return r + (s.point.complete ? ",1" : ",0");
 }
 

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/number_text.h"
 #include "sim/record/atomic_file.h"
 
 namespace metrosync {
@@ -11,9 +12,7 @@ namespace metrosync {
 namespace {
 
 void appendNumber(std::string& s, double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, ",%.12g", v);
-  s += buf;
+  s += "," + numberText(v, 12);
 }
 
 // joinEnvelopes with every matched pair written to out_csv, committed at the end.
@@ -49,9 +48,7 @@ std::string comparisonCsvHeader(int n) {
 }
 
 std::string comparisonCsvLine(const EnvelopeRow& full, const EnvelopeRow& slow) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", full.tau);
-  std::string line = buf;
+  std::string line = numberText(full.tau, 10);
   for (size_t i = 0; i < full.A.size(); ++i) {
     appendNumber(line, full.A[i]);
     appendNumber(line, slow.A[i]);

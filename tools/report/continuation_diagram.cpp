@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "base/number_text.h"
+
 namespace metrosync {
 
 // Tableau 10: distinct on screen and in print, none of them black (the special points' colour).
@@ -23,10 +25,7 @@ constexpr int kMarkers[] = {6, 8, 4, 12, 10};
 constexpr int kMarkersPerBranch = 12;  // markers along a branch: enough to tell, few enough to read
 
 std::string num(double v) {
-  if (!std::isfinite(v)) return "nan";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
+  return std::isfinite(v) ? numberText(v, 10) : std::string("nan");  // gnuplot: no inf
 }
 
 const char* colour(int k) {

@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "base/number_text.h"
 #include "sim/record/atomic_file.h"
 #include "tools/report/continuation_diagram.h"
 #include "tools/report/plot.h"
@@ -18,13 +19,6 @@ namespace {
 
 using continuation::ContinuationResult;
 using continuation::ResultPoint;
-
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.12g", v);
-  return buf;
-}
 
 // JSON has no NaN or infinity: null there.
 nlohmann::json jnum(double v) {
@@ -71,10 +65,10 @@ std::string foldCurveCsv(const ContinuationResult& r, CurveKind kind) {
   for (const FoldCurve& curve : r.fold_curves) {
     if (curve.kind != kind) continue;
     for (const auto& q : curve.points) {
-      c << id << "," << num(q.p1) << "," << num(q.p2);
-      for (double a : q.A) c << "," << num(a);
-      for (double p : q.psi) c << "," << num(p);
-      if (hopf) c << "," << num(q.frequency);
+      c << id << "," << numberText(q.p1, 12) << "," << numberText(q.p2, 12);
+      for (double a : q.A) c << "," << numberText(a, 12);
+      for (double p : q.psi) c << "," << numberText(p, 12);
+      if (hopf) c << "," << numberText(q.frequency, 12);
       c << "\n";
     }
     ++id;
@@ -93,14 +87,14 @@ std::string cyclesCsv(const ContinuationResult& r) {
   c << "\n";
   for (const auto& cycle : r.cycles)
     for (const auto& q : cycle.points) {
-      c << cycle.id << "," << num(q.value) << "," << num(q.period);
+      c << cycle.id << "," << numberText(q.value, 12) << "," << numberText(q.period, 12);
       for (size_t i = 0; i < q.A_min.size(); ++i)
-        c << "," << num(q.A_min[i]) << "," << num(q.A_max[i]);
+        c << "," << numberText(q.A_min[i], 12) << "," << numberText(q.A_max[i], 12);
       for (size_t j = 0; j < q.psi_min.size(); ++j)
-        c << "," << num(q.psi_min[j]) << "," << num(q.psi_max[j]);
-      c << "," << (q.stable ? 1 : 0) << "," << num(q.max_multiplier);
-      for (double a : q.A0) c << "," << num(a);
-      for (double p : q.psi0) c << "," << num(p);
+        c << "," << numberText(q.psi_min[j], 12) << "," << numberText(q.psi_max[j], 12);
+      c << "," << (q.stable ? 1 : 0) << "," << numberText(q.max_multiplier, 12);
+      for (double a : q.A0) c << "," << numberText(a, 12);
+      for (double p : q.psi0) c << "," << numberText(p, 12);
       c << "\n";
     }
   return c.str();
@@ -113,11 +107,11 @@ std::string branchesCsv(const ContinuationResult& r) {
   for (int j = 2; j <= r.metronomes; ++j) c << ",psi_" << j;
   c << ",stable,max_real,ticking,platform,s,weight\n";
   for (const ResultPoint& q : r.points) {
-    c << q.branch << "," << num(q.value);
-    for (double a : q.A) c << "," << num(a);
-    for (double p : q.psi) c << "," << num(p);
-    c << "," << (q.stable ? 1 : 0) << "," << num(q.max_real) << "," << q.ticking << ","
-      << q.platform << "," << num(q.s) << "," << num(q.weight) << "\n";
+    c << q.branch << "," << numberText(q.value, 12);
+    for (double a : q.A) c << "," << numberText(a, 12);
+    for (double p : q.psi) c << "," << numberText(p, 12);
+    c << "," << (q.stable ? 1 : 0) << "," << numberText(q.max_real, 12) << "," << q.ticking << ","
+      << q.platform << "," << numberText(q.s, 12) << "," << numberText(q.weight, 12) << "\n";
   }
   return c.str();
 }
@@ -234,11 +228,11 @@ std::string familiesCsv(const ContinuationResult& r) {
   c << ",closed\n";
   for (const auto& f : r.families)
     for (const auto& q : f.points) {
-      c << f.id << "," << num(q.value);
+      c << f.id << "," << numberText(q.value, 12);
       for (size_t i = 0; i < q.A_min.size(); ++i)
-        c << "," << num(q.A_min[i]) << "," << num(q.A_max[i]);
+        c << "," << numberText(q.A_min[i], 12) << "," << numberText(q.A_max[i], 12);
       for (size_t j = 0; j < q.psi_min.size(); ++j)
-        c << "," << num(q.psi_min[j]) << "," << num(q.psi_max[j]);
+        c << "," << numberText(q.psi_min[j], 12) << "," << numberText(q.psi_max[j], 12);
       c << "," << (q.closed ? 1 : 0) << "\n";
     }
   return c.str();
@@ -264,7 +258,8 @@ std::vector<std::string> writeContinuation(const OutputDir& dir, const Continuat
     written.push_back("hopf_curve.csv");
     std::ostringstream d;
     for (const auto& curve : r.fold_curves) {
-      for (const auto& q : curve.points) d << num(q.p1) << " " << num(q.p2) << "\n";
+      for (const auto& q : curve.points)
+        d << numberText(q.p1, 12) << " " << numberText(q.p2, 12) << "\n";
       d << "\n\n";
     }
     if (!r.fold_curves.empty() && drawPng(dir, "fold_curve.png", d.str(),

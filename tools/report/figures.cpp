@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "base/constants.h"
 #include "sim/record/atomic_file.h"
 #include "tools/report/plot.h"
 #include "tools/report/sweep_maps.h"
@@ -14,34 +15,11 @@ namespace metrosync {
 
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
-  return q + "'";
-}
-
 // the terminal: the same picture as PNG (cairo) or SVG
 std::string terminal(bool svg, int width, int height) {
   const std::string size = std::to_string(width) + "," + std::to_string(height);
   return svg ? "set terminal svg size " + size + " dynamic enhanced font 'sans,11'\n"
              : "set terminal pngcairo size " + size + " enhanced font 'sans,11' linewidth 1.2\n";
-}
-
-// "0", "π/2", "π", "3π/2", "2π", "-π", ... for k halves of pi
-std::string halfPiLabel(long k) {
-  if (k == 0) return "0";
-  const std::string sign = k < 0 ? "-" : "";
-  const long a = std::labs(k);
-  if (a % 2 == 1) return sign + (a == 1 ? "" : std::to_string(a)) + "π/2";
-  return sign + (a == 2 ? "" : std::to_string(a / 2)) + "π";
 }
 
 // tics at multiples of pi/2 over [lo, hi] (fewer when the range is wide)
@@ -51,8 +29,8 @@ std::string piTics(const char* axis, double lo, double hi) {
   std::string tics;
   for (long k = static_cast<long>(std::ceil(lo / (kPi / 2) / step)) * step;
        k * kPi / 2 <= hi + 1e-12; k += step)
-    tics +=
-        (tics.empty() ? "" : ", ") + std::string("\"") + halfPiLabel(k) + "\" " + num(k * kPi / 2);
+    tics += (tics.empty() ? "" : ", ") + std::string("\"") + halfPiLabel(k) + "\" " +
+            gnuplotNumber(k * kPi / 2);
   return std::string("set ") + axis + "tics (" + tics + ")\n";
 }
 
@@ -99,8 +77,8 @@ std::string figureData(const FigureResult& f) {
         if (std::fabs(psi - last) > kPi) out << '\n';  // no line across the wrap
         last = psi;
       }
-      out << num(r.tau) << ' ' << num(r.A[0]) << ' ' << num(r.A.size() > 1 ? r.A[1] : NAN) << ' '
-          << num(psi) << '\n';
+      out << gnuplotNumber(r.tau) << ' ' << gnuplotNumber(r.A[0]) << ' '
+          << gnuplotNumber(r.A.size() > 1 ? r.A[1] : NAN) << ' ' << gnuplotNumber(psi) << '\n';
     }
   }
   return out.str();
@@ -135,30 +113,31 @@ std::string paperFigureScript(const FigureResult& f, const std::string& data_pat
   psiRange(f, lo, hi, tau_max);
   const double theta_c = f.runs.empty() ? 0.0 : f.runs[0].scaled.theta_c[0];
   std::ostringstream s;
-  s << terminal(svg, 900, 1000) << "set output " << quote(out_path) << "\n"
+  s << terminal(svg, 900, 1000) << "set output " << gnuplotQuote(out_path) << "\n"
     << "set datafile missing 'nan'\nset grid back lt 1 lw 0.8 lc rgb '#e4e4e4'\n"
     << "set key outside right top samplen 3 noenhanced\n"
     << "set lmargin at screen 0.10\nset rmargin at screen 0.74\n"
-    << "set xrange [0:" << num(tau_max > 0 ? tau_max : 1) << "]\n"
-    << "set multiplot layout 3,1 title " << quote(f.spec.title) << " noenhanced font 'sans,13'\n";
+    << "set xrange [0:" << gnuplotNumber(tau_max > 0 ? tau_max : 1) << "]\n"
+    << "set multiplot layout 3,1 title " << gnuplotQuote(f.spec.title)
+    << " noenhanced font 'sans,13'\n";
   auto curves = [&](int column) {
     std::string plot;
     for (size_t k = 0; k < blocks.size(); ++k)
-      plot += (plot.empty() ? "plot " : ", \\\n     ") + quote(data_path) + " index " +
+      plot += (plot.empty() ? "plot " : ", \\\n     ") + gnuplotQuote(data_path) + " index " +
               std::to_string(k) + " using 1:" + std::to_string(column) + " with lines lw " +
               (blocks[k].full ? "2" : "1.6") + " dt " + (blocks[k].full || !both ? "1" : "2") +
               " lc rgb '" + blocks[k].run->curve.colour + "' title " +
-              quote(legendOf(blocks[k], both));
+              gnuplotQuote(legendOf(blocks[k], both));
     return plot;
   };
   for (int i = 1; i <= 2; ++i) {
     s << "unset xlabel\nset ylabel 'A_" << i << "'\nset yrange [0:*]\n"
-      << curves(1 + i) << ", \\\n     " << num(theta_c)
+      << curves(1 + i) << ", \\\n     " << gnuplotNumber(theta_c)
       << " with lines dt 2 lw 1.5 lc rgb '#555555' title 'θ_c' enhanced\n";  // θ, subscript c
   }
   const double pad = 0.04 * (hi - lo);
-  s << "set xlabel 'τ'\nset ylabel 'ψ'\nset yrange [" << num(lo - pad) << ":" << num(hi + pad)
-    << "]\n"
+  s << "set xlabel 'τ'\nset ylabel 'ψ'\nset yrange [" << gnuplotNumber(lo - pad) << ":"
+    << gnuplotNumber(hi + pad) << "]\n"
     << piTics("y", lo - pad, hi + pad) << curves(4)
     << ", \\\n     pi with lines dt 2 lw 1.2 lc rgb '#555555' title 'π, 2π', \\\n"
     << "     2*pi with lines dt 2 lw 1.2 lc rgb '#555555' notitle\n"
@@ -180,8 +159,8 @@ std::string mapData(const RegimeMapResult& m, const std::vector<std::string>& le
           it == m.points.end()
               ? 0xffffff
               : std::stol(regimeColour(it->second.regime, legend).substr(1), nullptr, 16);
-      d << num(axes[0].values[i]) << ' ' << num(axes[1].values[j]) << ' ' << ((rgb >> 16) & 255)
-        << ' ' << ((rgb >> 8) & 255) << ' ' << (rgb & 255) << '\n';
+      d << gnuplotNumber(axes[0].values[i]) << ' ' << gnuplotNumber(axes[1].values[j]) << ' '
+        << ((rgb >> 16) & 255) << ' ' << ((rgb >> 8) & 255) << ' ' << (rgb & 255) << '\n';
     }
     d << '\n';
   }
@@ -199,21 +178,22 @@ std::string mapScript(const RegimeMapResult& m, const FiguresContext& ctx,
   const double cx = cellOf(x), cy = cellOf(y);
   std::string arrows;  // the experiment's two frictions, dotted verticals
   for (double mu : ctx.mu_experiment)
-    arrows += "set arrow from " + num(mu) + ", graph 0 to " + num(mu) +
+    arrows += "set arrow from " + gnuplotNumber(mu) + ", graph 0 to " + gnuplotNumber(mu) +
               ", graph 1 nohead front dt 3 lw 2 lc rgb '#000000'\n";
   std::ostringstream s;
-  s << terminal(svg, 1000, 720) << "set output " << quote(out_path) << "\n"
+  s << terminal(svg, 1000, 720) << "set output " << gnuplotQuote(out_path) << "\n"
     << "set title "
-    << quote(m.spec.title + " (" + (m.model == "full" ? "full model" : "slow flow") + ")")
+    << gnuplotQuote(m.spec.title + " (" + (m.model == "full" ? "full model" : "slow flow") + ")")
     << " noenhanced font 'sans,13'\n"
     << "set xlabel 'platform friction μ (scaled)'\nset ylabel 'initial phase difference ψ_0'\n"
-    << "set xrange [" << num(x.values.front() - cx / 2) << ":" << num(x.values.back() + cx / 2)
-    << "]\nset yrange [" << num(y.values.front() - cy / 2) << ":" << num(y.values.back() + cy / 2)
+    << "set xrange [" << gnuplotNumber(x.values.front() - cx / 2) << ":"
+    << gnuplotNumber(x.values.back() + cx / 2) << "]\nset yrange ["
+    << gnuplotNumber(y.values.front() - cy / 2) << ":" << gnuplotNumber(y.values.back() + cy / 2)
     << "]\n"
     << piTics("y", 0.0, 2 * kPi) << "set rmargin at screen 0.74\n"
     << "set key at screen 0.76, graph 1 left top Left reverse noenhanced title 'regime' samplen "
        "1.5\n"
-    << arrows << "plot " << quote(data_path) << " using 1:2:3:4:5 with rgbimage notitle";
+    << arrows << "plot " << gnuplotQuote(data_path) << " using 1:2:3:4:5 with rgbimage notitle";
   // exp1's two panels: psi0 = 0 (in-phase start) and psi0 = pi (antiphase start)
   s << ", \\\n     0 with lines dt 2 lw 2 lc rgb '#000000' title 'exp1 panels: ψ_0 = 0, π'"
     << ", \\\n     pi with lines dt 2 lw 2 lc rgb '#000000' notitle";
@@ -222,7 +202,7 @@ std::string mapScript(const RegimeMapResult& m, const FiguresContext& ctx,
          "platforms'";
   for (const auto& name : legend)
     s << ", \\\n     keyentry with boxes fill solid 1.0 border lc rgb '#606060' fc rgb '"
-      << regimeColour(name, legend) << "' title " << quote(name);
+      << regimeColour(name, legend) << "' title " << gnuplotQuote(name);
   s << "\nset output\n";
   return s.str();
 }
@@ -302,7 +282,7 @@ std::string figuresMarkdown(const std::vector<FigureResult>& figures,
       md << (k ? ", " : "") << f.runs[k].curve.label << " (`yaml/rigs/paper/"
          << f.runs[k].curve.scenario << ".yaml`)";
     md << ". " << (ctx.models == "both" ? "Full model solid, slow flow dashed, " : "")
-       << "epsilon = " << num(f.runs.empty() ? 0 : f.runs[0].scaled.epsilon) << ".\n\n";
+       << "epsilon = " << gnuplotNumber(f.runs.empty() ? 0 : f.runs[0].scaled.epsilon) << ".\n\n";
     if (!f.spec.erratum.empty()) md << "*Erratum:* " << f.spec.erratum << ".\n\n";
     md << "Files: [" << f.spec.id << ".png](" << f.spec.id << ".png), [" << f.spec.id << ".svg]("
        << f.spec.id << ".svg)\n\n```sh\n"

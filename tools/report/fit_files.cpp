@@ -14,13 +14,6 @@ nlohmann::json optionalJson(const std::optional<double>& v) {
   return v ? numberOrNull(*v) : nlohmann::json(nullptr);
 }
 
-// a gnuplot single-quoted string: a quote inside is written twice
-std::string quoted(const std::string& s) {
-  std::string q = "'";
-  for (char ch : s) q += ch == '\'' ? std::string("''") : std::string(1, ch);
-  return q + "'";
-}
-
 bool isLength(const std::string& quantity) {
   return quantity == "x";
 }
@@ -49,8 +42,8 @@ std::string plotScript(const FitOutcome& s, const std::string& data, const std::
   for (const std::string& q : s.quantity_names) any_length = any_length || isLength(q);
   std::ostringstream os;
   os << "set terminal pngcairo size 1100,800 noenhanced\n"
-     << "set output " << quoted(png) << "\n"
-     << "set multiplot layout 2,1 title " << quoted(title) << "\n"
+     << "set output " << gnuplotQuote(png) << "\n"
+     << "set multiplot layout 2,1 title " << gnuplotQuote(title) << "\n"
      << "set xlabel 't (s)'\nset grid\nset key outside right\n"
      << "set ylabel 'angle (rad)'\n";
   if (any_length) os << "set y2label 'x (mm)'\nset y2tics\nset ytics nomirror\n";
@@ -61,13 +54,16 @@ std::string plotScript(const FitOutcome& s, const std::string& data, const std::
       const std::string axes = isLength(name) ? " axes x1y2" : " axes x1y1";
       if (q) os << ", ";
       if (residuals) {
-        os << quoted(data) << " index " << q << " using 1:4" << axes << " with points pt 7 ps 0.3"
-           << " lc " << q + 1 << " title " << quoted(name + " model - data");
+        os << gnuplotQuote(data) << " index " << q << " using 1:4" << axes
+           << " with points pt 7 ps 0.3"
+           << " lc " << q + 1 << " title " << gnuplotQuote(name + " model - data");
       } else {
-        os << quoted(data) << " index " << q << " using 1:2" << axes << " with points pt 7 ps 0.3"
-           << " lc " << q + 1 << " title " << quoted(name + " data") << ", " << quoted(data)
-           << " index " << q << " using 1:3" << axes << " with lines lw 1.2 lc " << q + 1
-           << " title " << quoted(name + " fitted model");
+        os << gnuplotQuote(data) << " index " << q << " using 1:2" << axes
+           << " with points pt 7 ps 0.3"
+           << " lc " << q + 1 << " title " << gnuplotQuote(name + " data") << ", "
+           << gnuplotQuote(data) << " index " << q << " using 1:3" << axes
+           << " with lines lw 1.2 lc " << q + 1 << " title "
+           << gnuplotQuote(name + " fitted model");
       }
     }
     os << "\n";

@@ -13,23 +13,12 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "base/number_text.h"
 #include "tools/report/build_info.h"
 
 namespace metrosync {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-// %.12g, by std::to_chars (same text, a third of snprintf's time: trajectory rows are the
-// hot spot of a fast run's output)
-std::string formatNumber(double v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 12);
-  return std::string(buf, r.ptr);
-}
-
-}  // namespace
 
 // ---------------------------------------------------------------------------------------------
 // OutputDir
@@ -161,7 +150,7 @@ double eventKindIndex(const char* kind) {
 void appendNumbers(const double* v, size_t n, std::string& line) {
   for (size_t k = 0; k < n; ++k) {
     if (k) line += ',';
-    line += formatNumber(v[k]);
+    line += numberText(v[k], 12);
   }
 }
 
@@ -201,11 +190,11 @@ DeferredRows::Format FileSink::eventFormat() const {
              const double* v, std::string& line) {
     const double t = v[2];
     const int who = static_cast<int>(v[1]);
-    line += formatNumber(t) + "," + formatNumber(eps * t / unit) + "," +
+    line += numberText(t, 12) + "," + numberText(eps * t / unit, 12) + "," +
             kEventKinds[static_cast<size_t>(v[0])] + "," +
             (who < 0 ? std::string("platform") : std::to_string(who + 1)) + ",";
     appendNumbers(v + 3, 2 * width, line);
-    if (seconds) line += "," + formatNumber(t);
+    if (seconds) line += "," + numberText(t, 12);
   };
 }
 
@@ -220,7 +209,7 @@ DeferredRows::Format FileSink::envelopeFormat() const {
     row.psi.assign(v + 1 + n, v + 2 * n);
     row.r = v[2 * n];
     line += formatEnvelopeRow(row);
-    if (seconds) line += "," + formatNumber(row.tau / eps * unit);
+    if (seconds) line += "," + numberText(row.tau / eps * unit, 12);
   };
 }
 

@@ -15,13 +15,14 @@
 #include <iostream>
 #include <sstream>
 
+#include "base/constants.h"
+#include "base/number_text.h"
+
 extern char** environ;
 
 namespace metrosync {
 
 namespace {
-
-constexpr double kPi = 3.141592653589793;
 
 // one colour per metronome (colour-blind friendly order), cycled beyond eight
 const char* const kColours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7",
@@ -29,28 +30,6 @@ const char* const kColours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7",
 
 const char* colour(int i) {
   return kColours[i % 8];
-}
-
-// a gnuplot single-quoted string: a quote inside is written twice
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
-  return q + "'";
-}
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-
-// "0", "π/2", "π", "3π/2", "2π", "-π", ... for k halves of pi
-std::string halfPiLabel(long k) {
-  if (k == 0) return "0";
-  const std::string sign = k < 0 ? "-" : "";
-  const long a = std::labs(k);
-  if (a % 2 == 1) return sign + (a == 1 ? "" : std::to_string(a)) + "π/2";
-  return sign + (a == 2 ? "" : std::to_string(a / 2)) + "π";
 }
 
 // ytics at multiples of pi (or pi/2) so that phase plots read in units of pi
@@ -64,8 +43,8 @@ std::string piTics(double lo, double hi) {
   std::string tics;
   const long k0 = static_cast<long>(std::ceil(lo / (kPi / 2) / step)) * step;
   for (long k = k0; k * (kPi / 2) <= hi + 1e-12 && tics.size() < 4000; k += step)
-    tics +=
-        (tics.empty() ? "" : ", ") + std::string("\"") + halfPiLabel(k) + "\" " + num(k * kPi / 2);
+    tics += (tics.empty() ? "" : ", ") + std::string("\"") + halfPiLabel(k) + "\" " +
+            gnuplotNumber(k * kPi / 2);
   return "set ytics (" + tics + ")\n";
 }
 
@@ -85,7 +64,8 @@ void heatmapData(std::ostringstream& out, const std::vector<EnvelopeRow>& rows) 
     const double lo = k ? (kept[k - 1]->tau + tau) / 2 : tau;
     const double hi = k + 1 < kept.size() ? (tau + kept[k + 1]->tau) / 2 : tau;
     for (size_t i = 0; i < kept[k]->A.size(); ++i)
-      out << num(lo) << ' ' << num(hi) << ' ' << i + 1 << ' ' << num(kept[k]->A[i]) << '\n';
+      out << gnuplotNumber(lo) << ' ' << gnuplotNumber(hi) << ' ' << i + 1 << ' '
+          << gnuplotNumber(kept[k]->A[i]) << '\n';
   }
   if (kept.empty()) out << "nan\n";
 }
@@ -100,9 +80,9 @@ std::string envelopeData(const std::vector<const std::vector<EnvelopeRow>*>& blo
       continue;
     }
     for (const auto& r : *blocks[b]) {
-      out << num(r.tau);
-      for (double a : r.A) out << ' ' << num(a);
-      for (double p : r.psi) out << ' ' << num(p);
+      out << gnuplotNumber(r.tau);
+      for (double a : r.A) out << ' ' << gnuplotNumber(a);
+      for (double p : r.psi) out << ' ' << gnuplotNumber(p);
       out << '\n';
     }
   }
@@ -217,6 +197,24 @@ int runGnuplot(const std::string& gnuplot, const std::string& script, const std:
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+std::string halfPiLabel(long k) {
+  if (k == 0) return "0";
+  const std::string sign = k < 0 ? "-" : "";
+  const long a = std::labs(k);
+  if (a % 2 == 1) return sign + (a == 1 ? "" : std::to_string(a)) + "π/2";
+  return sign + (a == 2 ? "" : std::to_string(a / 2)) + "π";
+}
+
+std::string gnuplotQuote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
+  return q + "'";
+}
+
+std::string gnuplotNumber(double v) {
+  return std::isnan(v) ? std::string("NaN") : numberText(v, 10);
+}
+
 std::string findExecutable(const std::string& name) {
   if (name.find('/') != std::string::npos) return ::access(name.c_str(), X_OK) == 0 ? name : "";
   const char* path = std::getenv("PATH");
@@ -243,8 +241,8 @@ std::string plotTerminal(const std::string& format, int width_px, int height_px)
     s << "set terminal svg size " << width_px << "," << height_px
       << " enhanced font 'sans,11' linewidth 1.2 background rgb 'white'\n";
   else if (format == "pdf")  // 100 pixels an inch: the PNG's proportions and type size
-    s << "set terminal pdfcairo size " << num(width_px / 100.0) << "in," << num(height_px / 100.0)
-      << "in enhanced font 'sans,11' linewidth 1.2\n";
+    s << "set terminal pdfcairo size " << gnuplotNumber(width_px / 100.0) << "in,"
+      << gnuplotNumber(height_px / 100.0) << "in enhanced font 'sans,11' linewidth 1.2\n";
   else
     s << "set terminal pngcairo size " << width_px << "," << height_px
       << " enhanced font 'sans,11' linewidth 1.2\n";
@@ -260,18 +258,19 @@ std::string xAxis(const PlotStyle& style, double tau_max) {
   std::ostringstream s;
   if (k > 0) {
     // both axes start at 0 and span the same run: tau on top at its own round tics
-    s << "set xrange [0:" << num(hi * k) << "]\nset x2range [0:" << num(hi) << "]\n"
+    s << "set xrange [0:" << gnuplotNumber(hi * k) << "]\nset x2range [0:" << gnuplotNumber(hi)
+      << "]\n"
       << "set xtics nomirror\nset x2tics\n"
       << "set xlabel 'time (s); top axis: slow time τ'\n";
   } else {
-    s << "set xrange [0:" << num(hi) << "]\nset xlabel 'slow time τ'\n";
+    s << "set xrange [0:" << gnuplotNumber(hi) << "]\nset xlabel 'slow time τ'\n";
   }
   return s.str();
 }
 
 // gnuplot's x value of a data row whose tau is `expr`
 std::string xOf(const PlotStyle& style, const std::string& expr) {
-  return style.seconds_per_tau > 0 ? "((" + expr + ")*" + num(style.seconds_per_tau) + ")"
+  return style.seconds_per_tau > 0 ? "((" + expr + ")*" + gnuplotNumber(style.seconds_per_tau) + ")"
                                    : "(" + expr + ")";
 }
 
@@ -288,7 +287,7 @@ struct Panel {
     return compare() ? std::string(" ") + names[b] : "";
   }
   std::string lines(int b, int column) const {
-    return quote(data) + " index " + std::to_string(b) + " using " + xOf(style, "$1") + ":" +
+    return gnuplotQuote(data) + " index " + std::to_string(b) + " using " + xOf(style, "$1") + ":" +
            std::to_string(column) + " with lines lw " + (b == 0 ? "2" : "1.5") + " dt " +
            (b == 0 ? "1" : "2");
   }
@@ -301,7 +300,7 @@ std::string heatmapPanel(Panel& p) {
     << "set yrange [0.5:" << p.n + 0.5 << "]\nset cbrange [0:*]\n"
     << "set cblabel 'amplitude A_i (scaled)'\n"
     << "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', 4 '#fde725')\n";
-  p.add(quote(p.data) + " index " + std::to_string(p.blocks) + " using " +
+  p.add(gnuplotQuote(p.data) + " index " + std::to_string(p.blocks) + " using " +
         xOf(p.style, "($1+$2)/2") + ":3:" + xOf(p.style, "$1") + ":" + xOf(p.style, "$2") +
         ":($3-0.5):($3+0.5):4 with boxxyerror fs solid 1.0 noborder lc palette notitle");
   s << p.plot << "\nunset colorbox\nunset cblabel\n";
@@ -322,7 +321,7 @@ std::string amplitudePanel(Panel& p, const std::vector<double>& theta_c) {
                      [&](double l) { return std::fabs(l - tc) < 1e-9; }))
       levels.push_back(tc);
   for (size_t k = 0; k < levels.size(); ++k)
-    p.add(num(levels[k]) + " with lines dt 3 lw 1.5 lc rgb '#555555' " +
+    p.add(gnuplotNumber(levels[k]) + " with lines dt 3 lw 1.5 lc rgb '#555555' " +
           (k == 0 ? "title 'θ_c'" : "notitle"));
   s << p.plot << "\n";
   return s.str();
@@ -334,7 +333,7 @@ std::string phasePanel(Panel& p, double psi_lo, double psi_hi) {
   std::ostringstream s;
   const double pad = 0.04 * (psi_hi - psi_lo);
   s << "set ylabel 'phase difference ψ_j = φ_1 - φ_j (rad)'\n"
-    << "set yrange [" << num(psi_lo - pad) << ":" << num(psi_hi + pad) << "]\n"
+    << "set yrange [" << gnuplotNumber(psi_lo - pad) << ":" << gnuplotNumber(psi_hi + pad) << "]\n"
     << piTics(psi_lo - pad, psi_hi + pad);
   const bool many = p.n > kHeatmapAbove;
   for (int b = 0; b < p.blocks; ++b)
@@ -359,15 +358,15 @@ std::string gnuplotScript(const std::string& data_path, const std::string& png_p
                           const PlotStyle& style) {
   std::ostringstream s;
   const int panels = n > 1 ? 2 : 1;
-  s << plotTerminal(style.format, 1100, panels == 2 ? 850 : 480) << "set output " << quote(png_path)
-    << "\n"
+  s << plotTerminal(style.format, 1100, panels == 2 ? 850 : 480) << "set output "
+    << gnuplotQuote(png_path) << "\n"
     << "set datafile missing 'nan'\n"
     << "set grid back lt 1 lw 0.8 lc rgb '#e4e4e4'\n"
     << "set key outside right top samplen 3\n"
     // fixed margins, so that the panels' tau axes line up whatever their keys
     << "set lmargin at screen 0.09\nset rmargin at screen 0.84\n"
-    << xAxis(style, tau_max) << "set multiplot layout " << panels << ",1 title " << quote(title)
-    << " noenhanced font 'sans,13'\n";
+    << xAxis(style, tau_max) << "set multiplot layout " << panels << ",1 title "
+    << gnuplotQuote(title) << " noenhanced font 'sans,13'\n";
   Panel top{data_path, n, blocks, style, {}};
   s << (n > kHeatmapAbove ? heatmapPanel(top) : amplitudePanel(top, theta_c));
   if (style.seconds_per_tau > 0) s << "unset x2tics\nset xtics mirror\nset xlabel 'time (s)'\n";

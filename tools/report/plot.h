@@ -17,6 +17,13 @@
 
 namespace metrosync {
 
+// Text in a gnuplot script: a string in single quotes (a quote doubled), a number as %.10g with
+// NaN as gnuplot's NaN (a gap in a curve, an empty map cell).
+std::string gnuplotQuote(const std::string& s);
+std::string gnuplotNumber(double v);
+// A tic label for k halves of pi: "0", "π/2", "π", "3π/2", "2π", "-π", ...
+std::string halfPiLabel(long k);
+
 // Full path of `name` found on $PATH (executable), or "" when absent.
 std::string findExecutable(const std::string& name);
 

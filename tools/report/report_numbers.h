@@ -1,21 +1,20 @@
-// Numbers in the report files: text with a given number of significant digits, and JSON numbers
+// Numbers in the report files: table cells with a text for missing values, and JSON numbers
 // (JSON has no NaN or infinity: null there).
 #pragma once
 
 #include <cmath>
-#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "base/number_text.h"
+
 namespace metrosync {
 
-// %.<digits>g; `missing` for NaN and infinities.
+// A cell of a report's table or data file: numberText (base/number_text.h) with `missing` for NaN
+// and infinities.
 inline std::string reportNumber(double v, int digits = 12, const char* missing = "nan") {
-  if (!std::isfinite(v)) return missing;
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
+  return std::isfinite(v) ? numberText(v, digits) : std::string(missing);
 }
 
 inline nlohmann::json jsonNumber(double v) {

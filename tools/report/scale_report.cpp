@@ -4,19 +4,10 @@
 #include <cstdio>
 #include <sstream>
 
+#include "base/constants.h"
+#include "base/number_text.h"
+
 namespace metrosync {
-
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-std::string num(double v, int digits = 4) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
-
-}  // namespace
 
 nlohmann::json scaleJson(const Rig& rig, const ScaledParams& p) {
   nlohmann::json j;
@@ -44,30 +35,32 @@ std::string scaleText(const Rig& rig, const ScaledParams& p) {
      << (n == 1 ? " metronome" : " metronomes") << ")\n";
   // physical values in parentheses only for a physical rig (a scaled one has no real M, mu-bar)
   const bool physical = rig.units == Units::Physical;
-  os << "  epsilon     " << num(p.epsilon) << "  (m1^2 L1^2 / (I1 M)";
-  if (physical) os << ", M = " << num(rig.totalMass()) << " kg";
+  os << "  epsilon     " << numberText(p.epsilon, 4) << "  (m1^2 L1^2 / (I1 M)";
+  if (physical) os << ", M = " << numberText(rig.totalMass(), 4) << " kg";
   os << ")\n";
   os << "  friction    " << p.friction.name();
   const std::vector<LawParameter>& keys = p.friction.kind().parameters();
   for (std::size_t k = 0; k < keys.size(); ++k) {
     const std::string key = keys[k].key;
-    os << "  " << key << " = " << num(p.friction.values()[k]);
+    os << "  " << key << " = " << numberText(p.friction.values()[k], 4);
     if (!physical) continue;
     const bool viscous = keys[k].scale == LawScale::Viscous;
-    os << "  (" << key << "-bar = " << num(rig.platform.friction.values()[k])
+    os << "  (" << key << "-bar = " << numberText(rig.platform.friction.values()[k], 4)
        << (viscous ? " N s/m)" : ")");
   }
-  if (rig.platform.spring_N_m > 0) os << "  spring k = " << num(rig.platform.spring_N_m) << " N/m";
+  if (rig.platform.spring_N_m > 0)
+    os << "  spring k = " << numberText(rig.platform.spring_N_m, 4) << " N/m";
   os << "\n";
   if (physical) {
-    os << "  time scale  " << num(p.time_scale_s) << " s per unit of t  (fast period "
-       << num(2 * kPi * p.time_scale_s) << " s)\n";
-    os << "  run         " << num(rig.sim.t_end_s) << " s = " << num(p.tau_end / p.epsilon)
-       << " units of t, tau = " << num(p.tau_end) << "\n";
+    os << "  time scale  " << numberText(p.time_scale_s, 4) << " s per unit of t  (fast period "
+       << numberText(2 * kPi * p.time_scale_s, 4) << " s)\n";
+    os << "  run         " << numberText(rig.sim.t_end_s, 4)
+       << " s = " << numberText(p.tau_end / p.epsilon, 4)
+       << " units of t, tau = " << numberText(p.tau_end, 4) << "\n";
   } else {
     os << "  time scale  1 (a scaled rig runs in scaled time t; fast period 2 pi)\n";
-    os << "  run         tau = " << num(p.tau_end) << ", t = " << num(p.tau_end / p.epsilon)
-       << "\n";
+    os << "  run         tau = " << numberText(p.tau_end, 4)
+       << ", t = " << numberText(p.tau_end / p.epsilon, 4) << "\n";
   }
   os << "\n";
 
@@ -77,12 +70,13 @@ std::string scaleText(const Rig& rig, const ScaledParams& p) {
   os << line;
   for (std::size_t i = 0; i < n; ++i) {
     const std::string name = rig.metronomes[i].name + (p.locked[i] ? " (locked)" : "");
-    const std::string a_star = p.A_star[i] ? num(*p.A_star[i]) : "-";
+    const std::string a_star = p.A_star[i] ? numberText(*p.A_star[i], 4) : "-";
     const double a0 = std::hypot(p.theta0[i], p.thetadot0[i]);
     std::snprintf(line, sizeof line, "  %-10s %9s %9s %9s %9s %9s %9s %9s %9s\n", name.c_str(),
-                  num(p.nu[i]).c_str(), num(p.J[i]).c_str(),
-                  num(criticalImpulse(p.nu[i], p.theta_c[i])).c_str(), num(p.theta_c[i]).c_str(),
-                  num(p.alpha[i]).c_str(), num(p.zeta[i]).c_str(), a_star.c_str(), num(a0).c_str());
+                  numberText(p.nu[i], 4).c_str(), numberText(p.J[i], 4).c_str(),
+                  numberText(criticalImpulse(p.nu[i], p.theta_c[i]), 4).c_str(),
+                  numberText(p.theta_c[i], 4).c_str(), numberText(p.alpha[i], 4).c_str(),
+                  numberText(p.zeta[i], 4).c_str(), a_star.c_str(), numberText(a0, 4).c_str());
     os << line;
   }
   os << "\n  A_star: steady amplitude alone on a still platform (eq. A_star); '-' where J < J_c"

@@ -18,19 +18,14 @@
 #include <set>
 #include <sstream>
 
+#include "base/number_text.h"
 #include "sim/record/atomic_file.h"
 #include "sim/record/safe_open.h"
+#include "tools/report/progress_log.h"
 
 namespace metrosync {
 
 namespace {
-
-std::string numberText(double v, const char* format) {
-  if (std::isnan(v)) return "nan";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
 
 // A CSV cell: quoted (quotes doubled) when it holds a separator, a quote or a line break; line
 // breaks become spaces so that every row is one line.
@@ -117,13 +112,13 @@ std::string formatRegimesRow(const SweepGrid& grid, const SweepPoint& p) {
   std::string s;
   for (size_t a = 0; a < c.size(); ++a) s += (a ? "," : "") + grid.axes()[a].texts[c[a]];
   s += "," + csvCell(p.regime);
-  for (double v : p.A) s += "," + numberText(v, "%.12g");
-  for (double v : p.psi) s += "," + numberText(v, "%.12g");
-  s += "," + numberText(p.r, "%.12g");
-  s += "," + numberText(p.s, "%.12g");
+  for (double v : p.A) s += "," + numberText(v, 12);
+  for (double v : p.psi) s += "," + numberText(v, 12);
+  s += "," + numberText(p.r, 12);
+  s += "," + numberText(p.s, 12);
   s += "," + csvCell(p.clusters);
-  s += "," + numberText(p.tau, "%.10g");
-  if (grid.basin().samples > 0) s += "," + numberText(p.in_phase_fraction, "%.12g");
+  s += "," + numberText(p.tau, 10);
+  if (grid.basin().samples > 0) s += "," + numberText(p.in_phase_fraction, 12);
   s += p.complete ? ",1" : ",0";
   s += "," + std::to_string(p.index);
   s += "," + csvCell(p.message);
@@ -137,7 +132,7 @@ std::string timingsHeader() {
 }
 
 std::string formatTimingsRow(const SweepPoint& p) {
-  auto cell = [](double v) { return std::isfinite(v) ? numberText(v, "%.6g") : std::string(); };
+  auto cell = [](double v) { return std::isfinite(v) ? numberText(v) : std::string(); };
   return std::to_string(p.index) + "," + cell(p.wall_seconds) + "," + cell(p.cpu_seconds) + "," +
          cell(p.engine_cpu_seconds);
 }
@@ -434,23 +429,12 @@ std::string progressText(long done, long total, long failed, double rate_per_s, 
                          int width) {
   char buf[160];
   std::string eta = "ETA --:--";
-  if (eta_s >= 0 && std::isfinite(eta_s)) {
-    const long s = std::lround(eta_s);
-    if (s >= 3600)
-      std::snprintf(buf, sizeof buf, "ETA %ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
-    else
-      std::snprintf(buf, sizeof buf, "ETA %ld:%02ld", s / 60, s % 60);
-    eta = buf;
-  }
+  if (eta_s >= 0 && std::isfinite(eta_s)) eta = "ETA " + clockText(eta_s);
   const double pct = total > 0 ? 100.0 * static_cast<double>(done) / total : 100.0;
   std::string rate;
-  if (rate_per_s > 0 && std::isfinite(rate_per_s)) {
-    if (rate_per_s >= 1)
-      std::snprintf(buf, sizeof buf, "  %.3g points/s", rate_per_s);
-    else
-      std::snprintf(buf, sizeof buf, "  %.3g s/point", 1.0 / rate_per_s);
-    rate = buf;
-  }
+  if (rate_per_s > 0 && std::isfinite(rate_per_s))
+    rate = rate_per_s >= 1 ? "  " + numberText(rate_per_s, 3) + " points/s"
+                           : "  " + numberText(1.0 / rate_per_s, 3) + " s/point";
   std::snprintf(buf, sizeof buf, "  %ld/%ld  %3.0f%%", done, total, pct);
   std::string tail = buf + rate + "  " + eta;
   if (failed > 0) tail += "  " + std::to_string(failed) + " failed";

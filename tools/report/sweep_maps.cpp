@@ -6,13 +6,13 @@
 #include <iostream>
 #include <sstream>
 
+#include "base/constants.h"
 #include "tools/report/plot.h"
 
 namespace metrosync {
 
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 constexpr int kMaxPanels = 4;  // metronomes shown in amplitudes.png and phases.png
 
 // SPEC names first, in the order of SPEC 4, then the extensions; fixed colours (colour-blind
@@ -40,19 +40,6 @@ const char* const kFoldCurveColour = "#ff00ff";
 const char* const kHopfCurveColour = "#32cd32";
 
 namespace {
-
-std::string num(double v) {
-  if (std::isnan(v)) return "NaN";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
-  return q + "'";
-}
 
 // The axes drawn by default: the first two with more than one value (a single point is drawn
 // along axis 0).
@@ -86,7 +73,8 @@ std::string piTics(const char* axis, double lo, double hi) {
       label = sign + (a == 1 ? "" : std::to_string(a)) + "π/2";
     else
       label = sign + (a == 2 ? "" : std::to_string(a / 2)) + "π";
-    tics += (tics.empty() ? "" : ", ") + std::string("\"") + label + "\" " + num(k * kPi / 2);
+    tics +=
+        (tics.empty() ? "" : ", ") + std::string("\"") + label + "\" " + gnuplotNumber(k * kPi / 2);
   }
   return std::string("set ") + axis + "tics (" + tics + ")\n";
 }
@@ -117,9 +105,10 @@ std::string axisSettings(const SweepGrid& grid, const std::vector<size_t>& axes)
     const SweepAxis& a = grid.axes()[axes[k]];
     const AxisRange r = axisRange(a);
     const std::string label = a.log ? "log10 " + a.key : a.key;
-    s << "set " << names[k] << "label " << quote(label + (isAngleKey(a.key) ? " (rad)" : ""))
+    s << "set " << names[k] << "label " << gnuplotQuote(label + (isAngleKey(a.key) ? " (rad)" : ""))
       << " noenhanced\n"
-      << "set " << names[k] << "range [" << num(r.lo) << ":" << num(r.hi) << "]\n";
+      << "set " << names[k] << "range [" << gnuplotNumber(r.lo) << ":" << gnuplotNumber(r.hi)
+      << "]\n";
     if (isAngleKey(a.key) && r.hi - r.lo > 1.0) s << piTics(names[k], r.lo, r.hi);
   }
   return s.str();
@@ -158,8 +147,8 @@ std::vector<long> scanOrder(const SweepGrid& grid, const std::vector<size_t>& ax
 std::string cellPosition(const SweepGrid& grid, const std::vector<size_t>& axes, long g) {
   const std::vector<long> c = grid.coordinates(g);
   const SweepAxis &x = grid.axes()[axes[0]], &y = grid.axes()[axes.size() > 1 ? axes[1] : 0];
-  std::string s = num(mapCoordinate(x, x.values[c[axes[0]]]));
-  if (axes.size() > 1) s += " " + num(mapCoordinate(y, y.values[c[axes[1]]]));
+  std::string s = gnuplotNumber(mapCoordinate(x, x.values[c[axes[0]]]));
+  if (axes.size() > 1) s += " " + gnuplotNumber(mapCoordinate(y, y.values[c[axes[1]]]));
   return s;
 }
 
@@ -180,7 +169,7 @@ std::string panelLayout(int panels) {
 
 std::string header(const std::string& format, const std::string& png, int width, int height) {
   std::ostringstream s;
-  s << plotTerminal(format, width, height) << "set output " << quote(png) << "\n"
+  s << plotTerminal(format, width, height) << "set output " << gnuplotQuote(png) << "\n"
     << "set tics out\n";
   return s.str();
 }
@@ -255,7 +244,7 @@ std::string boundaryBlock(const std::vector<continuation::FoldCurve>& curves) {
   std::ostringstream b;
   b << "$boundaries << EOD\n";
   for (const auto& c : curves) {
-    for (const auto& q : c.points) b << num(q.p1) << " " << num(q.p2) << "\n";
+    for (const auto& q : c.points) b << gnuplotNumber(q.p1) << " " << gnuplotNumber(q.p2) << "\n";
     b << "\n\n";
   }
   b << "EOD\n";
@@ -289,7 +278,8 @@ std::string boundariesCsv(const std::vector<continuation::FoldCurve>& curves,
   c << "curve,type," << key1 << "," << key2 << "\n";
   for (size_t i = 0; i < curves.size(); ++i)
     for (const auto& q : curves[i].points)
-      c << i << "," << toString(curves[i].kind) << "," << num(q.p1) << "," << num(q.p2) << "\n";
+      c << i << "," << toString(curves[i].kind) << "," << gnuplotNumber(q.p1) << ","
+        << gnuplotNumber(q.p2) << "\n";
   return c.str();
 }
 
@@ -316,7 +306,7 @@ std::string regimeMapScript(const std::string& data_path, const std::string& png
   const std::vector<size_t> axes = map_axes.empty() ? drawnAxes(grid) : map_axes;
   const bool map2d = axes.size() > 1;
   std::ostringstream s;
-  s << header(format, png_path, 1100, map2d ? 850 : 420) << "set title " << quote(title)
+  s << header(format, png_path, 1100, map2d ? 850 : 420) << "set title " << gnuplotQuote(title)
     << " noenhanced font 'sans,13'\n"
     << "set key at screen 0.75, graph 1 left top Left reverse noenhanced title 'regime' "
        "samplen 1.5\n"
@@ -325,17 +315,18 @@ std::string regimeMapScript(const std::string& data_path, const std::string& png
   std::string plot;
   if (map2d) {
     if (!boundaries.empty()) s << boundaryBlock(boundaries);
-    plot = "plot " + quote(data_path) + " using 1:2:3:4:5 with rgbimage notitle";
+    plot = "plot " + gnuplotQuote(data_path) + " using 1:2:3:4:5 with rgbimage notitle";
     plot += boundaryPlot(boundaries);
   } else {
     const AxisRange r = axisRange(grid.axes()[axes[0]]);
     s << "set yrange [0:1]\nunset ytics\n";
-    plot = "plot " + quote(data_path) + " using 1:($2 < 0 ? NaN : 1):(" + num(r.cell) +
+    plot = "plot " + gnuplotQuote(data_path) + " using 1:($2 < 0 ? NaN : 1):(" +
+           gnuplotNumber(r.cell) +
            "):($2 < 0 ? 0 : $2) with boxes fill solid 1.0 noborder lc rgb variable notitle";
   }
   for (const auto& name : legend)
     plot += ", \\\n     keyentry with boxes fill solid 1.0 border lc rgb '#606060' fc rgb '" +
-            regimeColour(name, legend) + "' title " + quote(name);
+            regimeColour(name, legend) + "' title " + gnuplotQuote(name);
   s << plot << "\nset output\n";
   return s.str();
 }
@@ -394,14 +385,17 @@ std::string valuesData(const MapFrame& f, int n, const std::map<long, SweepPoint
     const SweepPoint* p = pointAt(points, g);
     d << cellPosition(f.grid, f.axes, g);
     for (int i = 0; i < n; ++i)
-      d << " " << num(shown(p, p && i < static_cast<int>(p->A.size()) ? p->A[i] : NAN));
+      d << " " << gnuplotNumber(shown(p, p && i < static_cast<int>(p->A.size()) ? p->A[i] : NAN));
     for (int j = 0; j + 1 < n; ++j)
-      d << " " << num(shown(p, p && j < static_cast<int>(p->psi.size()) ? p->psi[j] : NAN));
-    d << " " << num(shown(p, p ? p->r : NAN));
+      d << " "
+        << gnuplotNumber(shown(p, p && j < static_cast<int>(p->psi.size()) ? p->psi[j] : NAN));
+    d << " " << gnuplotNumber(shown(p, p ? p->r : NAN));
     // log10 s, clamped to [-2, 2] (s = inf: a free platform, drawn as slipping)
     const double s = p ? p->s : NAN;
-    d << " " << num(shown(p, std::isnan(s) ? NAN : std::max(-2.0, std::min(2.0, std::log10(s)))));
-    d << " " << num(shown(p, p ? p->in_phase_fraction : NAN)) << "\n";
+    d << " "
+      << gnuplotNumber(
+             shown(p, std::isnan(s) ? NAN : std::max(-2.0, std::min(2.0, std::log10(s)))));
+    d << " " << gnuplotNumber(shown(p, p ? p->in_phase_fraction : NAN)) << "\n";
   }
   return d.str();
 }
@@ -427,25 +421,25 @@ std::string pictureScript(const MapFrame& f, const Picture& pic, const std::stri
   s << header(f.format, png, 1100, f.map2d ? (panels > 2 ? 950 : 520) : 480)
     << axisSettings(f.grid, f.axes);
   if (f.map2d) {
-    s << "set multiplot layout " << panelLayout(panels) << " title " << quote(title)
+    s << "set multiplot layout " << panelLayout(panels) << " title " << gnuplotQuote(title)
       << " noenhanced\n"
       << pic.palette << "set cbrange " << pic.range << "\n";
     if (pic.angle) s << piTics("cb", 0.0, 2 * kPi);
     for (const auto& q : pic.qs)
-      s << "set title " << quote(q.label) << "\nplot " << quote(data) << " using 1:2:" << q.column
-        << " with image notitle\n";
+      s << "set title " << gnuplotQuote(q.label) << "\nplot " << gnuplotQuote(data)
+        << " using 1:2:" << q.column << " with image notitle\n";
     s << "unset multiplot\n";
   } else {
-    s << "set title " << quote(title) << " noenhanced\nset key outside right top\nset grid\n"
+    s << "set title " << gnuplotQuote(title) << " noenhanced\nset key outside right top\nset grid\n"
       << "set yrange " << pic.range << "\n";
     if (pic.angle) s << piTics("y", 0.0, 2 * kPi);
     std::string plot;
     const char* const colours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7"};
     for (size_t k = 0; k < pic.qs.size(); ++k)
-      plot += (plot.empty() ? "plot " : ", \\\n     ") + quote(data) +
+      plot += (plot.empty() ? "plot " : ", \\\n     ") + gnuplotQuote(data) +
               " using 1:" + std::to_string(pic.qs[k].column) +
               (pic.angle ? " with points pt 7 ps 0.6" : " with linespoints pt 7 ps 0.5") +
-              " lc rgb '" + colours[k % 4] + "' title " + quote(pic.qs[k].label);
+              " lc rgb '" + colours[k % 4] + "' title " + gnuplotQuote(pic.qs[k].label);
     s << plot << "\n";
   }
   s << "set output\n";

@@ -4,37 +4,33 @@
 #include <cstdio>
 #include <string>
 
+#include "base/number_text.h"
+
 namespace metrosync {
 
 namespace {
 
-std::string g(double v, const char* f = "%.6g") {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 std::string list(const std::vector<double>& v) {
   std::string s;
-  for (double x : v) s += (s.empty() ? "" : ", ") + g(x, "%.4g");
+  for (double x : v) s += (s.empty() ? "" : ", ") + numberText(x, 4);
   return s;
 }
 
 std::string side(const SideCheck& c) {
-  return std::string(c.persists ? "persists" : "leaves") + " (distance " + g(c.distance, "%.2g") +
-         " at " + g(c.value, "%.5g") + ")";
+  return std::string(c.persists ? "persists" : "leaves") + " (distance " +
+         numberText(c.distance, 2) + " at " + numberText(c.value, 5) + ")";
 }
 
 std::string bracketText(const FullBracket& b) {
-  std::string s = "ε = " + g(b.epsilon, "%g") + ": ";
+  std::string s = "ε = " + numberText(b.epsilon) + ": ";
   if (std::isnan(b.lo)) {
-    s += "no change on " + g(b.values.front(), "%.4g") + " … " + g(b.values.back(), "%.4g") +
-         " (all " + b.regimes.front() + ")";
+    s += "no change on " + numberText(b.values.front(), 4) + " … " +
+         numberText(b.values.back(), 4) + " (all " + b.regimes.front() + ")";
   } else {
     size_t k = 1;
     while (k < b.values.size() && b.values[k] != b.hi) ++k;
-    s += "between " + g(b.lo, "%.4g") + " (" + b.regimes[k - 1] + ") and " + g(b.hi, "%.4g") +
-         " (" + b.regimes[k] + ")";
+    s += "between " + numberText(b.lo, 4) + " (" + b.regimes[k - 1] + ") and " +
+         numberText(b.hi, 4) + " (" + b.regimes[k] + ")";
   }
   return s;
 }
@@ -49,7 +45,7 @@ void mdBifurcations(std::ostream& md, const std::vector<BifurcationFamilyResult>
         "runs (τ = 1000) started on the locked state at the point (perturbed by 1e-3) at 1% of "
         "the range below and above it: where the branch is stable on a side of the point, the "
         "state must persist (end within "
-     << g(kPersistDistance, "%g")
+     << numberText(kPersistDistance)
      << " of the point's state) on exactly one side. The full model, from the rig's start, "
         "brackets the same transition on a grid of the parameter around the point.\n\n";
   for (const BifurcationFamilyResult& f : families) {
@@ -57,7 +53,8 @@ void mdBifurcations(std::ostream& md, const std::vector<BifurcationFamilyResult>
        << ")\n\n"
        << "Start: " << f.start << ".\n\n";
     if (f.points.empty()) {
-      md << "No fold or Hopf point on [" << g(f.spec.lo) << ", " << g(f.spec.hi) << "].\n\n";
+      md << "No fold or Hopf point on [" << numberText(f.spec.lo) << ", " << numberText(f.spec.hi)
+         << "].\n\n";
       continue;
     }
     md << "| point | " << f.spec.key << " | A | ψ | below | above | check | full model |\n"
@@ -67,7 +64,7 @@ void mdBifurcations(std::ostream& md, const std::vector<BifurcationFamilyResult>
       std::string full;
       if (i < f.full.size())
         for (const FullBracket& b : f.full[i]) full += (full.empty() ? "" : "; ") + bracketText(b);
-      md << "| " << p.type << " | " << g(p.value, "%.9g") << " | " << list(p.A) << " | "
+      md << "| " << p.type << " | " << numberText(p.value, 9) << " | " << list(p.A) << " | "
          << list(p.psi) << " | " << side(p.below) << " | " << side(p.above) << " | "
          << (!p.checked ? "not checked (unstable on both sides)"
              : p.pass   ? "pass"

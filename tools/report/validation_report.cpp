@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "contact/averaged_response.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 #include "tools/report/plot.h"
@@ -15,34 +17,23 @@ namespace metrosync {
 
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 // a number for a table: fixed for O(1) values, scientific for tiny or huge ones
 std::string num(double v, int digits = 3) {
   if (!std::isfinite(v)) return "–";
   const double a = std::abs(v);
-  char buf[64];
   if (a != 0 && (a < 1e-3 || a >= 1e5))
-    std::snprintf(buf, sizeof buf, "%.*e", std::max(digits - 1, 0), v);
-  else
-    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
+    return numberText(v, std::max(digits - 1, 0), Notation::Scientific);
+  return numberText(v, digits, Notation::Fixed);
 }
 
 std::string sci(double v, int digits = 1) {
   if (!std::isfinite(v)) return "–";
-  return fmt(("%." + std::to_string(digits) + "e").c_str(), v);
+  return numberText(v, digits, Notation::Scientific);
 }
 
 std::string duration(double seconds) {
-  if (seconds < 120) return fmt("%.0f s", seconds);
-  return fmt("%.1f min", seconds / 60);
+  if (seconds < 120) return numberText(seconds, 0, Notation::Fixed) + " s";
+  return numberText(seconds / 60, 1, Notation::Fixed) + " min";
 }
 
 // a markdown table cell: a '|' would end the cell
@@ -54,9 +45,7 @@ std::string cell(const std::string& text) {
 
 // 1e-07 -> 1e-7
 std::string shortSci(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.0e", v);
-  std::string s = buf;
+  std::string s = numberText(v, 0, Notation::Scientific);
   const size_t e = s.find('e');
   if (e == std::string::npos) return s;
   std::string mant = s.substr(0, e), ex = s.substr(e + 1);
@@ -71,7 +60,7 @@ std::string passText(bool pass) {
 }
 
 std::string epsLabel(double eps) {
-  return fmt("%.4g", eps);
+  return numberText(eps, 4);
 }
 
 // "A = 1.43, 0.67; ψ = 3.32" for a final envelope row
@@ -102,19 +91,12 @@ bool isAliveRegime(Regime r) {
 
 // ---- gnuplot --------------------------------------------------------------------------------
 
-// gnuplot single-quoted string
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
-  return q + "'";
-}
-
 const char* const kColours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9",
                                 "#000000", "#f0e442", "#7f7f7f", "#8c564b", "#1f77b4", "#bcbd22"};
 
 std::string header(const std::string& png, const char* size = "720,430") {
   return std::string("set terminal pngcairo size ") + size +
-         " enhanced font 'sans,10' linewidth 1.1\nset output " + quote(png) +
+         " enhanced font 'sans,10' linewidth 1.1\nset output " + gnuplotQuote(png) +
          "\nset grid back lt 1 lw 0.8 lc rgb '#e4e4e4'\nset datafile missing 'nan'\n";
 }
 
@@ -125,13 +107,13 @@ bool plotBetas(const OutputDir& dir, const ValidationResults& r) {
   const int n = 600;
   for (int k = 0; k <= n; ++k) {
     const double s = 0.5 * std::pow(20.0, static_cast<double>(k) / n);
-    d << fmt("%.10g", s) << ' ' << fmt("%.12g", coulombBeta1(s)) << ' '
-      << fmt("%.12g", coulombBeta2(s)) << '\n';
+    d << numberText(s, 10) << ' ' << numberText(coulombBeta1(s), 12) << ' '
+      << numberText(coulombBeta2(s), 12) << '\n';
   }
   d << "\n\n";
   for (const auto& b : r.betas)
-    d << fmt("%.12g", b.s) << ' ' << fmt("%.12g", b.measured.beta1) << ' '
-      << fmt("%.12g", b.measured.beta2) << '\n';
+    d << numberText(b.s, 12) << ' ' << numberText(b.measured.beta1, 12) << ' '
+      << numberText(b.measured.beta2, 12) << '\n';
   return drawPng(dir, "betas.png", d.str(), [](const std::string& data, const std::string& png) {
     std::ostringstream s;
     s << header(png) << "set logscale x\nset xrange [0.5:10]\nset xtics (0.5,1,2,3,5,10)\n"
@@ -139,10 +121,11 @@ bool plotBetas(const OutputDir& dir, const ValidationResults& r) {
       << "set key left top\nset title 'β_1, β_2: closed forms (eq. d2, lines) and the full "
          "model''s Coulomb element (points)'\n"
       << "set arrow from 1, graph 0 to 1, graph 1 nohead dt 3 lc rgb '#555555'\n"
-      << "set arrow from " << fmt("%.10g", kCoulombSlipThreshold) << ", graph 0 to "
-      << fmt("%.10g", kCoulombSlipThreshold) << ", graph 1 nohead dt 3 lc rgb '#555555'\n"
-      << "plot " << quote(data) << " index 0 using 1:2 with lines lw 2 lc rgb '" << kColours[0]
-      << "' title 'β_1 (d2)', '' index 0 using 1:3 with lines lw 2 lc rgb '" << kColours[1]
+      << "set arrow from " << numberText(kCoulombSlipThreshold, 10) << ", graph 0 to "
+      << numberText(kCoulombSlipThreshold, 10) << ", graph 1 nohead dt 3 lc rgb '#555555'\n"
+      << "plot " << gnuplotQuote(data) << " index 0 using 1:2 with lines lw 2 lc rgb '"
+      << kColours[0] << "' title 'β_1 (d2)', '' index 0 using 1:3 with lines lw 2 lc rgb '"
+      << kColours[1]
       << "' title 'β_2 (d2)', '' index 1 using 1:2 with points pt 6 ps 1.1 lc rgb '#000000'"
       << " title 'β_1 element', '' index 1 using 1:3 with points pt 4 ps 1.1 lc rgb '#000000'"
       << " title 'β_2 element'\nset output\n";
@@ -157,7 +140,7 @@ bool plotConvergence(const OutputDir& dir, const ValidationResults& r) {
     if (c) d << "\n\n";
     const auto& cv = r.convergence[c];
     for (size_t k = 0; k < cv.eps.size(); ++k)
-      d << fmt("%.10g", cv.eps[k]) << ' ' << fmt("%.10g", cv.error[k].max_distance) << '\n';
+      d << numberText(cv.eps[k], 10) << ' ' << numberText(cv.error[k].max_distance, 10) << '\n';
   }
   // a slope-1 guide through the geometric mean of the errors at the middle epsilon
   double log_mid = 0;
@@ -178,21 +161,21 @@ bool plotConvergence(const OutputDir& dir, const ValidationResults& r) {
       dir, "convergence.png", d.str(), [&](const std::string& data, const std::string& png) {
         std::ostringstream s;
         s << header(png, "760,460") << "set logscale xy\nset xlabel 'ε'\n"
-          << "set xrange [" << fmt("%g", eps_lo / 1.3) << ":" << fmt("%g", eps_hi * 1.3) << "]\n"
-          << "set ylabel 'max envelope error over τ ∈ [0, " << fmt("%g", r.plan.convergence_tau)
+          << "set xrange [" << numberText(eps_lo / 1.3) << ":" << numberText(eps_hi * 1.3) << "]\n"
+          << "set ylabel 'max envelope error over τ ∈ [0, " << numberText(r.plan.convergence_tau)
           << "]'\nset rmargin at screen 0.64\nset key at screen 0.66, 0.9 left Left reverse font "
              "',8' spacing 0.9 samplen 2\n"
           << "set format y '10^{%T}'\nset xtics (";
         for (size_t k = 0; k < r.plan.convergence_eps.size(); ++k)
-          s << (k ? ", " : "") << fmt("%g", r.plan.convergence_eps[k]);
+          s << (k ? ", " : "") << numberText(r.plan.convergence_eps[k]);
         s << ")\nset title 'full model against the slow flow'\nplot ";
         // eight colours, then the same colours dashed with open symbols
         for (size_t c = 0; c < names.size(); ++c)
-          s << (c ? ", " : "") << quote(data) << " index " << c
+          s << (c ? ", " : "") << gnuplotQuote(data) << " index " << c
             << " using 1:2 with linespoints lw 1.5" << (c < 8 ? " dt 1 pt 7" : " dt 2 pt 6")
-            << " ps 0.8 lc rgb '" << kColours[c % 8] << "' title " << quote(names[c])
+            << " ps 0.8 lc rgb '" << kColours[c % 8] << "' title " << gnuplotQuote(names[c])
             << " noenhanced";
-        s << ", " << fmt("%.10g", c1)
+        s << ", " << numberText(c1, 10)
           << "*x with lines dt 2 lw 2 lc rgb '#555555' title 'slope 1'\n"
           << "set output\n";
         return s.str();
@@ -208,7 +191,8 @@ bool plotSweep(const OutputDir& dir, const ValidationResults& r) {
       const ModelRun& m = b == 0 ? p.slow : p.full;
       const EnvelopeRow& f = m.final();
       if (f.A.size() < 2) continue;
-      d << fmt("%.10g", p.mu) << ' ' << fmt("%.10g", f.A[0]) << ' ' << fmt("%.10g", f.A[1]) << '\n';
+      d << numberText(p.mu, 10) << ' ' << numberText(f.A[0], 10) << ' ' << numberText(f.A[1], 10)
+        << '\n';
     }
   }
   const double theta_c =
@@ -216,18 +200,19 @@ bool plotSweep(const OutputDir& dir, const ValidationResults& r) {
   return drawPng(dir, "sweep.png", d.str(), [&](const std::string& data, const std::string& png) {
     std::ostringstream s;
     s << header(png) << "set logscale x\nset xlabel 'μ (scaled platform friction)'\n"
-      << "set xrange [" << fmt("%g", r.sweep.front().mu / 1.3) << ":"
-      << fmt("%g", r.sweep.back().mu * 1.3) << "]\n"
+      << "set xrange [" << numberText(r.sweep.front().mu / 1.3) << ":"
+      << numberText(r.sweep.back().mu * 1.3) << "]\n"
       << "set ylabel 'final amplitude'\nset yrange [0:*]\nset key outside right top\n"
-      << "set title 'experiment rig, near in-phase start, ε = " << fmt("%.4g", r.sweep_epsilon)
-      << "'\nplot " << quote(data)
+      << "set title 'experiment rig, near in-phase start, ε = " << numberText(r.sweep_epsilon, 4)
+      << "'\nplot " << gnuplotQuote(data)
       << " index 0 using 1:2 with linespoints dt 2 pt 6 ps 1.2 lc rgb '" << kColours[0]
       << "' title 'A_1 slow', '' index 0 using 1:3 with linespoints dt 2 pt 4 ps 1.2 lc rgb '"
       << kColours[1] << "' title 'A_2 slow', '' index 1 using 1:2 with linespoints pt 7 lc rgb '"
       << kColours[0] << "' title 'A_1 full', '' index 1 using 1:3 with linespoints pt 5 lc rgb '"
       << kColours[1] << "' title 'A_2 full'";
     if (std::isfinite(theta_c))
-      s << ", " << fmt("%.10g", theta_c) << " with lines dt 3 lw 1.5 lc rgb '#555555' title 'θ_c'";
+      s << ", " << numberText(theta_c, 10)
+        << " with lines dt 3 lw 1.5 lc rgb '#555555' title 'θ_c'";
     s << "\nset output\n";
     return s.str();
   });
@@ -286,8 +271,8 @@ namespace {
 std::string sequenceText(const std::vector<RegimeStretch>& seq) {
   std::string s;
   for (const auto& st : seq) {
-    s += (s.empty() ? "" : " → ") + st.label + " (μ = " + fmt("%g", st.mu_from);
-    if (st.mu_to != st.mu_from) s += "–" + fmt("%g", st.mu_to);
+    s += (s.empty() ? "" : " → ") + st.label + " (μ = " + numberText(st.mu_from);
+    if (st.mu_to != st.mu_from) s += "–" + numberText(st.mu_to);
     s += ")";
   }
   return s;
@@ -368,17 +353,18 @@ void mdSummary(std::ostream& md, const ValidationResults& r) {
   }
   md << "## Summary\n\n| part | result |\n| --- | --- |\n";
   md << "| 1. β₁, β₂ against the full model's Coulomb element | max \\|measured − closed form\\| = "
-     << sci(beta_max) << " over " << r.betas.size() << " drive strengths s ∈ [" << fmt("%g", s_lo)
-     << ", " << fmt("%g", s_hi) << "] (bound " << shortSci(plan.beta_tol)
+     << sci(beta_max) << " over " << r.betas.size() << " drive strengths s ∈ [" << numberText(s_lo)
+     << ", " << numberText(s_hi) << "] (bound " << shortSci(plan.beta_tol)
      << "): " << passText(betas_pass) << " |\n";
   md << "| 2. the paper's eight simulations, slow flow | " << paper_pass << " of "
      << r.scenarios.size() << " as the paper describes: "
      << passText(paper_pass == static_cast<int>(r.scenarios.size()) && !r.scenarios.empty())
      << " |\n";
-  md << "| 3. convergence in ε (theory: order 1) | orders " << fmt("%.2f", order_lo) << " to "
-     << fmt("%.2f", order_hi) << " over " << r.convergence.size() << " scenarios (bound "
-     << fmt("%.1f", plan.order_lo) << " to " << fmt("%.1f", plan.order_hi)
-     << "): " << passText(conv_pass) << " |\n";
+  md << "| 3. convergence in ε (theory: order 1) | orders "
+     << numberText(order_lo, 2, Notation::Fixed) << " to "
+     << numberText(order_hi, 2, Notation::Fixed) << " over " << r.convergence.size()
+     << " scenarios (bound " << numberText(plan.order_lo, 1, Notation::Fixed) << " to "
+     << numberText(plan.order_hi, 1, Notation::Fixed) << "): " << passText(conv_pass) << " |\n";
   if (!r.regimes.empty()) {
     md << "| 4. final regime and state, full model against slow flow | ";
     for (size_t k = 0; k < plan.regime_eps.size(); ++k) {
@@ -431,17 +417,18 @@ void mdBetas(std::ostream& md, const ValidationResults& r, const std::vector<std
      << " Gauss-Legendre nodes in each smooth "
         "piece between switches (exact there). Closed forms: eq. d2 "
         "(`contact/averaged_response.h`). s_b = √(1 + π²/4) = "
-     << fmt("%.7f", kCoulombSlipThreshold) << ".\n\n"
+     << numberText(kCoulombSlipThreshold, 7, Notation::Fixed) << ".\n\n"
      << "| s | periods to steady state | switches per period | β₁ closed form | β₁ element | "
         "\\|Δβ₁\\| | β₂ closed form | β₂ element | \\|Δβ₂\\| |\n"
      << "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const auto& b : r.betas) {
-    md << "| " << fmt("%.9g", b.s) << " | "
+    md << "| " << numberText(b.s, 9) << " | "
        << (b.measured.periodic ? std::to_string(b.measured.periods) : "not reached") << " | "
-       << b.measured.switches.size() << " | " << fmt("%.12f", b.beta1_closed) << " | "
-       << fmt("%.12f", b.measured.beta1) << " | " << sci(b.err1) << " | "
-       << fmt("%.12f", b.beta2_closed) << " | " << fmt("%.12f", b.measured.beta2) << " | "
-       << sci(b.err2) << (b.pass ? "" : " **FAIL**") << " |\n";
+       << b.measured.switches.size() << " | " << numberText(b.beta1_closed, 12, Notation::Fixed)
+       << " | " << numberText(b.measured.beta1, 12, Notation::Fixed) << " | " << sci(b.err1)
+       << " | " << numberText(b.beta2_closed, 12, Notation::Fixed) << " | "
+       << numberText(b.measured.beta2, 12, Notation::Fixed) << " | " << sci(b.err2)
+       << (b.pass ? "" : " **FAIL**") << " |\n";
   }
   md << "\n0 switches: the platform stays stuck (s ≤ 1); 4: stick-slip (slip, stick, slip back, "
         "stick); 2: pure slip, reversing twice per period (s > s_b).\n\n";
@@ -452,7 +439,7 @@ void mdBetas(std::ostream& md, const ValidationResults& r, const std::vector<std
 void mdScenarios(std::ostream& md, const ValidationResults& r) {
   md << "## 2. The paper's eight simulations, from the slow flow\n\n"
      << "Each shipped `paper/` rig run with the slow flow to its own τ ("
-     << (r.scenarios.empty() ? std::string("–") : fmt("%g", r.scenarios.front().slow.tau_end))
+     << (r.scenarios.empty() ? std::string("–") : numberText(r.scenarios.front().slow.tau_end))
      << "), regime by the SPEC's "
         "rules on the last 10%, then the paper's statements about it checked (ψ = φ₁ − φ₂; "
         "α > 0 makes metronome 2 the faster one).\n\n"
@@ -479,9 +466,9 @@ void mdConvergence(std::ostream& md, const ValidationResults& r,
   md << "## 3. Convergence in ε\n\n"
      << "Every scenario's scaled parameters and start, the full model at ε = ";
   for (size_t k = 0; k < plan.convergence_eps.size(); ++k)
-    md << (k ? ", " : "") << fmt("%g", plan.convergence_eps[k]);
+    md << (k ? ", " : "") << numberText(plan.convergence_eps[k]);
   md << " against the slow flow, envelopes row by row (one row per fast period) over τ ∈ [0, "
-     << fmt("%g", plan.convergence_tau)
+     << numberText(plan.convergence_tau)
      << "]. Error: the largest distance between the complex amplitudes in metronome 1's frame, "
         "max over τ and j of \\|A_j e^{−iψ_j} (full) − A_j e^{−iψ_j} (slow)\\| (j = 1: \\|ΔA₁\\|); "
         "it weighs a phase error by its amplitude, so a suppressed or dying metronome (whose "
@@ -489,7 +476,7 @@ void mdConvergence(std::ostream& md, const ValidationResults& r,
         "log ε; the two-timescale theory says 1. The last two columns, for information: the "
         "largest \\|ΔA_i\\| and \\|Δψ_j\\| (mod 2π) at the smallest ε.\n\n"
      << "| scenario |";
-  for (double e : plan.convergence_eps) md << " error, ε = " << fmt("%g", e) << " |";
+  for (double e : plan.convergence_eps) md << " error, ε = " << numberText(e) << " |";
   md << " order | max \\|ΔA\\| | max \\|Δψ\\| | |\n| --- |";
   for (size_t k = 0; k < plan.convergence_eps.size(); ++k) md << " --- |";
   md << " --- | --- | --- | --- |\n";
@@ -497,7 +484,7 @@ void mdConvergence(std::ostream& md, const ValidationResults& r,
     md << "| " << c.name << " |";
     for (const auto& e : c.error) md << " " << num(e.max_distance, 4) << " |";
     const EnvelopeError& last = c.error.back();
-    md << " " << fmt("%.3f", c.order) << " | " << num(last.max_dA, 4) << " | "
+    md << " " << numberText(c.order, 3, Notation::Fixed) << " | " << num(last.max_dA, 4) << " | "
        << num(last.max_dpsi, 4) << " | " << passText(c.pass) << " |\n";
   }
   md << "\n";
@@ -521,21 +508,21 @@ void mdRegimeTable(std::ostream& md, const ValidationResults& r) {
     for (size_t k = 0; k < own.size(); ++k) md << (k ? ", " : "") << own[k];
   }
   md << ")";
-  for (size_t k = 1; k < plan.regime_eps.size(); ++k) md << ", " << fmt("%g", plan.regime_eps[k]);
+  for (size_t k = 1; k < plan.regime_eps.size(); ++k) md << ", " << numberText(plan.regime_eps[k]);
   md << ", next to the slow flow's, over the τ window shown (long enough for the slow flow's "
         "final regime). d: the distance between the final states (as in part 3). ✓: same "
         "regime and, for a settled state with a metronome alive, d ≤ "
-     << fmt("%g", kAgreeDistance)
+     << numberText(kAgreeDistance)
      << "; ↔: the same, once the full model's two metronomes (identical but for their start) "
         "are exchanged; ✗: neither.\n\n| scenario | τ | slow flow |";
   for (size_t k = 0; k < plan.regime_eps.size(); ++k)
-    md << " full, ε = " << (plan.regime_eps[k] > 0 ? fmt("%g", plan.regime_eps[k]) : "rig's")
+    md << " full, ε = " << (plan.regime_eps[k] > 0 ? numberText(plan.regime_eps[k]) : "rig's")
        << " |";
   md << "\n| --- | --- | --- |";
   for (size_t k = 0; k < plan.regime_eps.size(); ++k) md << " --- |";
   md << "\n";
   for (const auto& rc : r.regimes) {
-    md << "| " << rc.name << " | " << fmt("%g", rc.tau_end) << " | **" << regimeText(rc.slow)
+    md << "| " << rc.name << " | " << numberText(rc.tau_end) << " | **" << regimeText(rc.slow)
        << "**<br>" << stateText(rc.slow.final()) << " |";
     for (size_t k = 0; k < rc.full.size(); ++k) {
       const ModelRun& f = rc.full[k];
@@ -599,18 +586,21 @@ void mdSweepTable(std::ostream& md, const ValidationResults& r) {
         "synchronization at low μ, then metronome suppression, then oscillator death, then "
         "antiphase synchronization and, at the highest μ, uncoupling (the platform barely "
         "moves). Here both models run the rig `"
-     << r.sweep_scenario << "` (its scaled parameters: ψ₀ = " << fmt("%.4f", r.sweep_psi0)
-     << ", ε = " << fmt("%.4g", r.sweep_epsilon) << ", τ = " << fmt("%.1f", r.sweep_tau)
+     << r.sweep_scenario
+     << "` (its scaled parameters: ψ₀ = " << numberText(r.sweep_psi0, 4, Notation::Fixed)
+     << ", ε = " << numberText(r.sweep_epsilon, 4)
+     << ", τ = " << numberText(r.sweep_tau, 1, Notation::Fixed)
      << ") with its friction μ replaced; μ̄ = μ ε^{3/2} is the physical coefficient";
   std::string exp_mu;
   for (const auto& rc : r.regimes)
     if (rc.name.rfind("experiment-", 0) == 0 && rc.name.find("inphase") != std::string::npos)
-      exp_mu += (exp_mu.empty() ? "" : ", ") + rc.name + ": μ = " + fmt("%.3f", rc.slow.mu);
+      exp_mu += (exp_mu.empty() ? "" : ", ") + rc.name +
+                ": μ = " + numberText(rc.slow.mu, 3, Notation::Fixed);
   if (!exp_mu.empty()) md << " (the experiment's rigs: " << exp_mu << ")";
   md << ". Platform: where it spends the last 10% (full model: the share of time stuck; slow "
         "flow: the Coulomb regime of the final drive s = \\|Z\\|/μ); \"uncoupled\": alive over "
         "a platform at rest.\n\n"
-     << "| μ | μ̄ | slow flow | full model, ε = " << fmt("%.4g", r.sweep_epsilon) << " |\n"
+     << "| μ | μ̄ | slow flow | full model, ε = " << numberText(r.sweep_epsilon, 4) << " |\n"
      << "| --- | --- | --- | --- |\n";
   for (const auto& p : r.sweep) {
     auto cell = [](const ModelRun& m) {
@@ -618,11 +608,11 @@ void mdSweepTable(std::ostream& md, const ValidationResults& r) {
       if (!m.platform.empty()) {
         s += "<br>platform " + m.platform;
         if (std::isfinite(m.platform_stuck_fraction) && m.platform == "stick-slip")
-          s += " (stuck " + fmt("%.1f", 100 * m.platform_stuck_fraction) + "%)";
+          s += " (stuck " + numberText(100 * m.platform_stuck_fraction, 1, Notation::Fixed) + "%)";
       }
       return s;
     };
-    md << "| " << fmt("%g", p.mu) << " | " << sci(p.mu_bar, 2) << " | " << cell(p.slow) << " | "
+    md << "| " << numberText(p.mu) << " | " << sci(p.mu_bar, 2) << " | " << cell(p.slow) << " | "
        << cell(p.full) << " |\n";
   }
 }
@@ -642,14 +632,14 @@ void mdSweepWords(std::ostream& md, const ValidationResults& r,
                f_sup = firstMuWith(r.sweep, true, Regime::Suppression);
   const double s_death = firstMuWith(r.sweep, false, Regime::Death),
                f_death = firstMuWith(r.sweep, true, Regime::Death);
-  auto at = [](double mu) { return std::isfinite(mu) ? "μ = " + fmt("%g", mu) : "never"; };
+  auto at = [](double mu) { return std::isfinite(mu) ? "μ = " + numberText(mu) : "never"; };
   md << "Suppression first appears at " << at(s_sup) << " in the slow flow and " << at(f_sup)
      << " in the full model; death at " << at(s_death) << " and " << at(f_death)
-     << ". At the highest μ tried (" << fmt("%g", r.sweep.back().mu) << ") the slow flow gives "
+     << ". At the highest μ tried (" << numberText(r.sweep.back().mu) << ") the slow flow gives "
      << sweepLabel(r.sweep.back().slow) << " and the full model " << sweepLabel(r.sweep.back().full)
      << " (the paper: antiphase, then uncoupling). ";
   if (const RegimeComparison* hi = findRegimes(r, "experiment-high-friction-inphase")) {
-    md << "The experiment's own high friction (μ = " << fmt("%.3f", hi->slow.mu)
+    md << "The experiment's own high friction (μ = " << numberText(hi->slow.mu, 3, Notation::Fixed)
        << "; fig. exp3: death about 20 s after an in-phase start) gives " << regimeText(hi->slow)
        << " in the slow flow";
     if (!hi->full.empty()) md << " and " << regimeText(hi->full[0]) << " in the full model";
@@ -667,17 +657,18 @@ void mdSweepWords(std::ostream& md, const ValidationResults& r,
   const FrictionSweepPoint& top = r.sweep.back();
   if (top.slow.platform == "stuck" && top.full.report.complete && top.full.platform != "stuck" &&
       std::isfinite(top.full.platform_stuck_fraction) && !top.full.final().psi.empty())
-    md << " At μ = " << fmt("%g", top.mu)
+    md << " At μ = " << numberText(top.mu)
        << " the slow flow's platform never moves (\\|Z\\| < μ: the metronomes are uncoupled), "
           "while the full model's is at rest "
-       << fmt("%.1f", 100 * top.full.platform_stuck_fraction)
+       << numberText(100 * top.full.platform_stuck_fraction, 1, Notation::Fixed)
        << "% of the time: every escapement tick jumps a pendulum's velocity, and e1.1c turns "
           "that into an impulse on the platform, which no finite friction force can hold; the "
           "platform slides briefly at each tick, so the full model's metronomes never decouple "
           "completely (ψ: "
-       << fmt("%.4f", r.sweep_psi0) << " at the start, "
-       << fmt("%.4f", wrapToPi(top.full.final().psi[0])) << " at the end; the slow flow's "
-       << fmt("%.4f", wrapToPi(top.slow.final().psi[0])) << ").";
+       << numberText(r.sweep_psi0, 4, Notation::Fixed) << " at the start, "
+       << numberText(wrapToPi(top.full.final().psi[0]), 4, Notation::Fixed)
+       << " at the end; the slow flow's "
+       << numberText(wrapToPi(top.slow.final().psi[0]), 4, Notation::Fixed) << ").";
   md << "\n\n";
   if (hasPlot(plots, "sweep.png")) md << "![final amplitudes against μ](sweep.png)\n\n";
 }

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/number_text.h"
 #include "sim/record/atomic_file.h"
 
 extern char** environ;
@@ -21,12 +22,6 @@ extern char** environ;
 namespace metrosync {
 
 namespace {
-
-std::string fpsText(double fps) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", fps);
-  return buf;
-}
 
 // Cairo's ARGB32 is a native-endian 32-bit word: B, G, R, A in memory on a little-endian machine.
 const char* rawPixelFormat() {
@@ -39,7 +34,7 @@ std::vector<std::string> rawInput(const VideoSpec& s) {
   return {"-f",       "rawvideo",
           "-pix_fmt", rawPixelFormat(),
           "-s",       std::to_string(s.width) + "x" + std::to_string(s.height),
-          "-r",       fpsText(s.fps),
+          "-r",       numberText(s.fps, 9),
           "-i",       "-"};
 }
 

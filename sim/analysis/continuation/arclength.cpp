@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "base/number_text.h"
 #include "sim/analysis/continuation/borders.h"
 #include "sim/analysis/continuation/family.h"
 #include "sim/analysis/continuation/newton.h"
@@ -40,12 +41,6 @@ constexpr size_t kCreepRetry = 20;  // points before another try after a failed 
 // of spending its point budget.
 constexpr double kCrawlFraction = 1e-3;
 constexpr int kCrawlPoints = 25;
-
-std::string fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
 
 // The earliest event that ends the step early: the parameter leaving its range, or a border.
 struct Truncation {
@@ -208,7 +203,8 @@ std::vector<Branch> continueUnscaled(const ContinuationSystem& sys, const Vec& x
                                      const ContinuationSettings& s) {
   const Region region = regionAt(sys, x0, p0);
   const auto x = solveAt(sys, x0, p0, region);
-  if (!x) throw std::runtime_error("Newton does not converge at the start, p = " + fmt(p0));
+  if (!x)
+    throw std::runtime_error("Newton does not converge at the start, p = " + numberText(p0, 10));
   if (const auto nd = neutralDirections(sys, *x, p0, region))
     return {followFamily(sys, *x, p0, region, *nd, s)};
   Vec y(sys.n + 1);
@@ -277,7 +273,7 @@ Walk walkFrom(const ContinuationSystem& sys, const BranchPoint& start,
     if (!st) {
       h *= 0.5;
       if (h < kMinStepFraction * s.step) {
-        w.end = "the corrector failed (arclength step " + fmt(h) + ")";
+        w.end = "the corrector failed (arclength step " + numberText(h, 10) + ")";
         w.end_p = cur.p();
         return w;
       }
@@ -323,7 +319,7 @@ Walk walkFrom(const ContinuationSystem& sys, const BranchPoint& start,
     if (sys.accepted) sys.accepted(cur.y);
     crawl = h < kCrawlFraction * s.step ? crawl + 1 : 0;
     if (crawl > kCrawlPoints) {
-      w.end = "the steps stay below " + fmt(kCrawlFraction) +
+      w.end = "the steps stay below " + numberText(kCrawlFraction, 10) +
               " of the first (a singular point the continuation cannot pass)";
       w.end_p = cur.p();
       return w;
@@ -347,8 +343,9 @@ std::vector<Branch> continueFrom(const ContinuationSystem& sys, const Vec& x0, d
     for (Branch& b : branches) scale.restore(b);
   }
   for (Branch& b : branches) {  // the parameter where an end stopped, in the caller's p
-    if (!std::isnan(b.end_p_backward)) b.end_backward += " at p = " + fmt(b.end_p_backward);
-    if (!std::isnan(b.end_p_forward)) b.end_forward += " at p = " + fmt(b.end_p_forward);
+    if (!std::isnan(b.end_p_backward))
+      b.end_backward += " at p = " + numberText(b.end_p_backward, 10);
+    if (!std::isnan(b.end_p_forward)) b.end_forward += " at p = " + numberText(b.end_p_forward, 10);
   }
   return branches;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/constants.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 
 namespace metrosync::continuation {
@@ -20,7 +21,7 @@ constexpr double kRunTau = 200.0;
 constexpr double kReturned = 0.5;
 
 double wrapped(double d) {
-  return std::remainder(d, 2 * M_PI);
+  return std::remainder(d, kTwoPi);
 }
 
 // max |A_i - A_i*|, |psi_j - psi_j*| at the end of a run from z0.

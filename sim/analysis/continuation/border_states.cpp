@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "base/number_text.h"
 #include "sim/analysis/continuation/derivatives.h"
 #include "sim/analysis/continuation/newton.h"
 #include "sim/analysis/continuation/test_functions.h"
@@ -92,12 +93,6 @@ BranchPoint onBorder(const BranchPoint& q, int n, int k) {
 // an amplitude), the first depth at which Newton converges there: far above its accuracy, small
 // enough to skip nothing visible.
 constexpr double kLeaveDepths[] = {1e-4, 1e-3, 1e-2};
-
-std::string weightText(double w) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", w);
-  return buf;
-}
 
 // The start of the segment: `at` with w = its side, the tangent along which w moves into (0, 1).
 BranchPoint entry(const ContinuationSystem& border, const BranchPoint& at, int k) {
@@ -202,7 +197,7 @@ std::optional<BranchPoint> slideAlong(const ContinuationSystem& sys, const Branc
       at, k,
       "boundary equilibrium at " + sys.borderName(k) + ": the branch goes on along the border " +
           "(border states: the two sides' formulas combined, weight " +
-          weightText(points.front().weight) + " of the upper side's); " +
+          numberText(points.front().weight, 3) + " of the upper side's); " +
           stabilityWord(sys, at.stable) + " -> " + stabilityWord(sys, points.front().stable),
       at.stable != points.front().stable));
   w.special.insert(w.special.end(), special.begin(), special.end());
@@ -219,7 +214,7 @@ std::optional<BranchPoint> slideAlong(const ContinuationSystem& sys, const Branc
   const int side = seg.exit == K ? 1 : 0;
   const auto left = leave(sys, last, k, side);
   if (!left) {
-    w.end = "the border states reach weight " + weightText(side) + " on " + sys.borderName(k) +
+    w.end = "the border states reach weight " + numberText(side, 3) + " on " + sys.borderName(k) +
             " but no branch of that side's formulas starts there";
     w.end_p = last.p();
     return std::nullopt;
@@ -227,7 +222,7 @@ std::optional<BranchPoint> slideAlong(const ContinuationSystem& sys, const Branc
   const BranchPoint& after = *left;
   w.special.push_back(borderEvent(
       last, k,
-      "the border states leave " + sys.borderName(k) + " at weight " + weightText(side) +
+      "the border states leave " + sys.borderName(k) + " at weight " + numberText(side, 3) +
           ": the branch goes on " + (side ? "above" : "below") + " it; " +
           stabilityWord(sys, last.stable) + " -> " + stabilityWord(sys, after.stable),
       last.stable != after.stable));

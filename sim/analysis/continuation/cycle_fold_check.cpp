@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 
 namespace metrosync::continuation {
@@ -43,7 +45,7 @@ double toOrbit(const EnvelopeRow& row, const std::vector<std::vector<double>>& o
   q.insert(q.end(), row.psi.begin(), row.psi.end());
   auto near = [&](const std::vector<double>& s) {
     std::vector<double> u = s;
-    for (size_t j = n; j < m; ++j) u[j] = q[j] + std::remainder(s[j] - q[j], 2 * M_PI);
+    for (size_t j = n; j < m; ++j) u[j] = q[j] + std::remainder(s[j] - q[j], kTwoPi);
     return u;
   };
   double best = std::numeric_limits<double>::infinity();
@@ -76,12 +78,6 @@ double runDistance(const SlowFlowProblem& prob, double p, const std::vector<Cd>&
   for (const EnvelopeRow& row : sink.envelope)
     if (row.tau >= tail_from) d = std::max(d, toOrbit(row, orbit));
   return d;
-}
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
 }
 
 }  // namespace
@@ -118,10 +114,10 @@ FoldCheck checkCycleFold(const SlowFlowProblem& prob, double p_f,
   FoldCheck c;
   c.confirmed = on < kStays && off > kLeaves;
   c.check = std::string(c.confirmed ? "confirmed" : "not confirmed") +
-            " by the slow flow: a run on the stable cycle at p = " + num(s->p) + " stays within " +
-            num(on) + " of it over " + num(kRunPeriods) + " periods; at p = " + num(p_b) +
-            ", beyond the fold, it drifts " + num(off) + " away within " + num(kBeyondPeriods) +
-            " periods";
+            " by the slow flow: a run on the stable cycle at p = " + numberText(s->p, 3) +
+            " stays within " + numberText(on, 3) + " of it over " + numberText(kRunPeriods, 3) +
+            " periods; at p = " + numberText(p_b, 3) + ", beyond the fold, it drifts " +
+            numberText(off, 3) + " away within " + numberText(kBeyondPeriods, 3) + " periods";
   return c;
 }
 

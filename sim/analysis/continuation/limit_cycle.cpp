@@ -8,6 +8,8 @@
 #include <optional>
 #include <stdexcept>
 
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "sim/analysis/continuation/arclength.h"
 #include "sim/analysis/continuation/derivatives.h"
 #include "sim/analysis/continuation/newton.h"
@@ -95,7 +97,7 @@ std::optional<Vec> firstCycle(const MultipleShooting& ms, const Vec& y_h, double
     return J;
   };
   start.tolerance = kCycleTolerance;
-  const double T_h = 2 * M_PI / q.omega;
+  const double T_h = 2 * kPi / q.omega;
   const double scale = 1.0 / q.re.squaredNorm();
   Vec v0(N + 2);
   v0.head(N + 1) = ms.sample(
@@ -192,12 +194,6 @@ CyclePoint describe(const MultipleShooting& ms, int n, const Vec& u, double p) {
   return c;
 }
 
-std::string fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.8g", v);
-  return buf;
-}
-
 // The kind of the multiplier that left the unit circle between a and b.
 std::string stabilityChange(const CyclePoint& a, const CyclePoint& b) {
   const CyclePoint& unstable = a.stable ? b : a;
@@ -208,7 +204,7 @@ std::string stabilityChange(const CyclePoint& a, const CyclePoint& b) {
                                ? "a complex pair crosses the unit circle (Neimark-Sacker: a torus)"
                            : worst.real() < 0 ? "a multiplier crosses -1 (period doubling)"
                                               : "a multiplier crosses +1";
-  return "between p = " + fmt(a.p) + " and " + fmt(b.p) + ": " + kind;
+  return "between p = " + numberText(a.p, 8) + " and " + numberText(b.p, 8) + ": " + kind;
 }
 
 // A multiplier crossing +1 between two points beside a located fold is that fold (in folds):
@@ -232,12 +228,13 @@ void dropFoldChanges(CycleBranch& c) {
 // The walk's end in words.
 std::string endOf(const Walk& w, double p_end, double T_h) {
   if (w.exit == kPeriodBorder)
-    return "the period passes " + fmt(kMaxPeriodFactor) + " times the Hopf period (" +
-           fmt(kMaxPeriodFactor * T_h) + ": a homoclinic orbit?) at p = " + fmt(p_end);
+    return "the period passes " + numberText(kMaxPeriodFactor, 8) + " times the Hopf period (" +
+           numberText(kMaxPeriodFactor * T_h, 8) +
+           ": a homoclinic orbit?) at p = " + numberText(p_end, 8);
   if (w.exit == kMarginBorder)
-    return "the orbit comes within " + fmt(kMarginStop) +
-           " of a border of the vector field at p = " + fmt(p_end);
-  return w.end + (std::isnan(w.end_p) ? "" : " at p = " + fmt(p_end));
+    return "the orbit comes within " + numberText(kMarginStop, 8) +
+           " of a border of the vector field at p = " + numberText(p_end, 8);
+  return w.end + (std::isnan(w.end_p) ? "" : " at p = " + numberText(p_end, 8));
 }
 
 }  // namespace
@@ -252,7 +249,7 @@ CycleBranch continueCycleFromHopf(const CycleField& f, const Vec& y_h, double p_
     v = firstCycle(ms, y_h, p_h, q, a);
   if (!v) throw std::runtime_error("the first cycle near the Hopf point does not converge");
   const int N = ms.size();  // unknowns: arcs and T
-  const double T_h = 2 * M_PI / q.omega, p0 = (*v)(N);
+  const double T_h = 2 * kPi / q.omega, p0 = (*v)(N);
   const ParameterScale scale(p0, s);
   const ContinuationSystem sys = scale.system(shootingSystem(ms, f.n, v->head(N), T_h));
   Vec y(N + 1), ref = Vec::Zero(N + 1);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <map>
 
+#include "base/constants.h"
+
 namespace metrosync::continuation {
 
 namespace {
@@ -31,7 +33,7 @@ std::vector<double> coords(double p, const std::vector<double>& A, const std::ve
   std::vector<double> u = {p / span};
   u.insert(u.end(), A.begin(), A.end());
   for (size_t j = 0; j < psi.size(); ++j)
-    u.push_back(about ? (*about)[j] + std::remainder(psi[j] - (*about)[j], 2 * M_PI) : psi[j]);
+    u.push_back(about ? (*about)[j] + std::remainder(psi[j] - (*about)[j], kTwoPi) : psi[j]);
   return u;
 }
 
@@ -72,7 +74,7 @@ bool inFamily(const ResultFamily& f, double p, const std::vector<double>& A,
       in = in && A[i] > q.A_min[i] - kSameState && A[i] < q.A_max[i] + kSameState;
     for (size_t j = 0; j < psi.size() && !q.closed; ++j) {
       const double mid = 0.5 * (q.psi_min[j] + q.psi_max[j]);
-      const double d = mid + std::remainder(psi[j] - mid, 2 * M_PI);
+      const double d = mid + std::remainder(psi[j] - mid, kTwoPi);
       in = in && d > q.psi_min[j] - kSameState && d < q.psi_max[j] + kSameState;
     }
     if (in) return true;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/constants.h"
+
 namespace metrosync::continuation {
 
 namespace {
@@ -41,7 +43,7 @@ ResultFamilyPoint familyPoint(const SlowFlowProblem& prob, const BranchPoint& re
     const std::vector<double> A = prob.amplitudes(x);
     std::vector<double> psi = prob.phaseDifferences(x);
     for (size_t j = 0; j < psi.size(); ++j)
-      psi[j] = psi0[j] + std::remainder(psi[j] - psi0[j], 2 * M_PI);
+      psi[j] = psi0[j] + std::remainder(psi[j] - psi0[j], kTwoPi);
     if (f.A_min.empty()) f.A_min = f.A_max = A, f.psi_min = f.psi_max = psi;
     for (size_t i = 0; i < A.size(); ++i)
       f.A_min[i] = std::min(f.A_min[i], A[i]), f.A_max[i] = std::max(f.A_max[i], A[i]);

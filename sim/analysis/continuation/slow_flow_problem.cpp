@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "contact/law_registry.h"
 #include "sim/analysis/continuation/border_stability.h"
 #include "sim/analysis/continuation/branch.h"
@@ -17,7 +19,6 @@ namespace metrosync::continuation {
 namespace {
 
 using Cd = std::complex<double>;
-constexpr double kPi = 3.14159265358979323846;
 // The parameter cache holds a few hundred values: a Newton step and its differences use 3.
 constexpr size_t kCacheSize = 256;
 
@@ -275,8 +276,7 @@ std::vector<double> SlowFlowProblem::phaseDifferences(const Vec& x) const {
 
 std::string SlowFlowProblem::ticking(const Region& r, double weight) const {
   std::string s;
-  char w[32];
-  std::snprintf(w, sizeof w, ":%.3g", weight);
+  const std::string w = ":" + numberText(weight, 3);
   for (size_t k = 0; k < unlocked_.size(); ++k) {
     if (!r[k]) continue;
     s += (s.empty() ? "" : " ") + std::to_string(unlocked_[k] + 1);

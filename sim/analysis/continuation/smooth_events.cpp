@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/number_text.h"
 #include "sim/analysis/continuation/arclength.h"
 #include "sim/analysis/continuation/newton.h"
 #include "sim/analysis/continuation/test_functions.h"
@@ -41,15 +42,13 @@ std::optional<Bifurcation> classifyHopf(const ContinuationSystem& sys, const Bra
   b.point = q;
   b.stability_changes = true;
   if (sys.lyapunov) b.lyapunov = sys.lyapunov(q.y.head(sys.n), q.p(), q.region);
-  char buf[200];
-  std::snprintf(buf, sizeof buf,
-                "eigenvalues +-i %.6g cross the imaginary axis; first Lyapunov coefficient %.4g "
-                "(%s)",
-                q.eigenvalues(i).imag(), b.lyapunov,
-                std::isnan(b.lyapunov) ? "criticality unknown"
-                : b.lyapunov < 0       ? "supercritical: a stable cycle is born"
-                                       : "subcritical: an unstable cycle is born");
-  b.detail = buf;
+  b.detail = "eigenvalues +-i " + numberText(q.eigenvalues(i).imag()) +
+             " cross the imaginary axis; first Lyapunov coefficient " + numberText(b.lyapunov, 4) +
+             " (" +
+             (std::isnan(b.lyapunov) ? "criticality unknown"
+              : b.lyapunov < 0       ? "supercritical: a stable cycle is born"
+                                     : "subcritical: an unstable cycle is born") +
+             ")";
   return b;
 }
 

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "sim/analysis/continuation/family.h"
 #include "sim/analysis/continuation/newton.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
@@ -11,7 +13,6 @@ namespace metrosync::continuation {
 namespace {
 
 using Cd = std::complex<double>;
-constexpr double kPi = 3.14159265358979323846;
 // A run is settled when over its last fifth amplitudes and phase differences stay within this of
 // their final values: a locked state is constant, a slow drift or modulation is far larger.
 constexpr double kSettleTolerance = 1e-4;
@@ -43,10 +44,8 @@ std::string drift(const std::vector<EnvelopeRow>& rows, size_t from) {
       dpsi = std::max(dpsi, std::abs(wrapped(rows[r].psi[j] - last.psi[j])));
   }
   if (dA <= kSettleTolerance && dpsi <= kSettleTolerance) return "";
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "amplitudes still vary by %.3g and phase differences by %.3g", dA,
-                dpsi);
-  return buf;
+  return "amplitudes still vary by " + numberText(dA, 3) + " and phase differences by " +
+         numberText(dpsi, 3);
 }
 
 }  // namespace

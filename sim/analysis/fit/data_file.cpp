@@ -9,6 +9,8 @@
 #include <optional>
 #include <sstream>
 
+#include "base/number_text.h"
+
 namespace metrosync {
 
 namespace {
@@ -31,12 +33,6 @@ constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
 
 [[noreturn]] void fail(const std::string& file, int line, const std::string& what) {
   throw DataError(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + what);
-}
-
-std::string shortNumber(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
 }
 
 std::string trimmed(const std::string& s) {
@@ -210,8 +206,8 @@ MeasuredData parseDataText(const std::string& text, const std::string& display_n
       fail(display_name, 0, "column " + c.name + " has no values (every cell is empty)");
   if (data.t_s.back() - data.t_s.front() > kMaxRecordSeconds)
     fail(display_name, lineno,
-         "the record runs from t = " + shortNumber(data.t_s.front()) + " to " +
-             shortNumber(data.t_s.back()) + " s, longer than " +
+         "the record runs from t = " + numberText(data.t_s.front()) + " to " +
+             numberText(data.t_s.back()) + " s, longer than " +
              std::to_string(static_cast<long>(kMaxRecordSeconds)) +
              " s (docs/rig-limits.md): a stray time?");
   return data;

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "base/number_text.h"
+
 namespace metrosync {
 
 namespace {
@@ -37,12 +39,6 @@ constexpr double kZeroColumn = 1e-10;
 constexpr double kCollinear = 1e-6;
 // A standard error this large against the key's own size determines nothing.
 constexpr double kMaxRelativeError = 1.0;
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2g", v);
-  return buf;
-}
 
 }  // namespace
 
@@ -130,7 +126,7 @@ Uncertainty uncertainty(const Linearization& lin, const std::vector<double>& val
     svd.matrixV().col(n - 1).cwiseAbs().maxCoeff(&lead);
     u.worst = f[lead];
     u.why = "its effect on the model is a combination of the other keys' (singular value " +
-            number(s(n - 1) / s(0)) + ")";
+            numberText(s(n - 1) / s(0), 2) + ")";
     return u;
   }
   u.sigma2 = lin.r.squaredNorm() / std::max(1, static_cast<int>(lin.r.size()) - n);
@@ -147,7 +143,8 @@ Uncertainty uncertainty(const Linearization& lin, const std::vector<double>& val
     if (!(sd < worst_ratio * size)) {
       worst_ratio = size > 0 ? sd / size : HUGE_VAL;
       u.worst = j;
-      u.why = "its standard error " + number(sd) + " is not below its size " + number(size);
+      u.why = "its standard error " + numberText(sd, 2) + " is not below its size " +
+              numberText(size, 2);
     }
   }
   return u;

@@ -6,6 +6,8 @@
 #include <optional>
 #include <stdexcept>
 
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "models/scaling.h"
 #include "sim/analysis/fit/fit_observations.h"
 #include "sim/analysis/fit/fit_statistics.h"
@@ -17,7 +19,6 @@ namespace metrosync {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Model rows per small-angle period of metronome 1: the Hermite interpolant between rows is then
 // ~1e-7 rad off at 45 degrees, four orders below a camera's noise.
 constexpr double kRowsPerPeriod = 100.0;
@@ -44,12 +45,6 @@ constexpr double kSameOptimum = 1e-3;
 // its variance) that still determines the key (a linear model rises by 4).
 constexpr double kProfileSigmas = 2.0;
 constexpr double kProfileMinRise = 1.0;
-
-std::string fmt(double v, const char* f = "%.3g") {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 double medianSpacing(const std::vector<double>& t) {
   std::vector<double> d;
@@ -222,7 +217,7 @@ LocalSolution searchFrom(const FitProblem& p, const ModelFit& mf, std::vector<do
       if (n <= fitted) continue;
       const ResidualFunction f = withPrior(p, mf.samples(n), n, x, kPriorWidth);
       x = solveLocal(localProblem(p, f, n + k, x, held, kWindowIterations, loss)).values;
-      windows += (windows.empty() ? "" : ", ") + fmt(T);
+      windows += (windows.empty() ? "" : ", ") + numberText(T, 3);
     }
     if (!windows.empty()) strategy = "windows of " + windows + " s, then ";
   }
@@ -305,8 +300,9 @@ void determine(const Final& fin, std::vector<double>& x, std::vector<bool>& held
       out.profiles[j] = profileOf(fin, x, held, j, *u.std_errors[j], u.sigma2);
       const double r = std::min(out.profiles[j]->lower_rise, out.profiles[j]->upper_rise);
       if (r < kProfileMinRise)
-        worst = j, why = "its profile is flat: the sum of squares rises by only " + fmt(r) +
-                         " variances at " + fmt(kProfileSigmas) + " standard errors";
+        worst = j, why = "its profile is flat: the sum of squares rises by only " +
+                         numberText(r, 3) + " variances at " + numberText(kProfileSigmas, 3) +
+                         " standard errors";
     }
     if (worst < 0) {
       out.std_errors = u.std_errors;

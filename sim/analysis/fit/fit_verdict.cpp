@@ -3,15 +3,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "base/number_text.h"
+
 namespace metrosync {
 
 namespace {
-
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
 
 // "theta_1 0.0275 against 0.0015" for the quantities above their noise level
 std::string above(const FitOutcome& out) {
@@ -19,7 +15,8 @@ std::string above(const FitOutcome& out) {
   for (std::size_t q = 0; q < out.quantity_names.size(); ++q) {
     const double n = out.noise_by_quantity[q], r = out.rms_by_quantity[q];
     if (n > 0 && !(r <= kNoiseTolerance * n))
-      s += (s.empty() ? "" : ", ") + out.quantity_names[q] + " " + fmt(r) + " against " + fmt(n);
+      s += (s.empty() ? "" : ", ") + out.quantity_names[q] + " " + numberText(r, 3) + " against " +
+           numberText(n, 3);
   }
   return s;
 }
@@ -58,10 +55,11 @@ void judgeFit(FitOutcome& out, bool noise_reliable, bool slow) {
                "): the residual was not checked against it; give --noise";
   }
   if (std::isfinite(out.smooth_until_s))
-    out.note += "; the model is smooth in the keys only up to t = " + fmt(out.smooth_until_s) +
-                " s (an escapement ticking at grazing, or a late phase so sensitive to the keys "
-                "that the fit has local optima close together): the standard errors come from "
-                "the record up to then and are upper bounds";
+    out.note +=
+        "; the model is smooth in the keys only up to t = " + numberText(out.smooth_until_s, 3) +
+        " s (an escapement ticking at grazing, or a late phase so sensitive to the keys "
+        "that the fit has local optima close together): the standard errors come from "
+        "the record up to then and are upper bounds";
 }
 
 }  // namespace metrosync

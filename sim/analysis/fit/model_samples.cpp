@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "base/constants.h"
 #include "models/scaling.h"
 
 namespace metrosync {
@@ -12,7 +13,6 @@ namespace {
 
 // The run goes this many rows past the requested end, so that the end is inside the record.
 constexpr double kEndMarginRows = 2.0;
-constexpr double kTwoPi = 6.28318530717958647692;
 
 int columnOf(int metronome) {
   return metronome < 0 ? 1 : 3 + 2 * metronome;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "base/constants.h"
 #include "models/scaling.h"
 #include "sim/analysis/fit/swings.h"
 
@@ -10,7 +11,6 @@ namespace metrosync {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kMinSwings = 3;
 // Relative step of the finite differences that carry errors through eq. J_estimate.
 constexpr double kPropagationStep = 1e-6;

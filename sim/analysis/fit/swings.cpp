@@ -4,11 +4,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/constants.h"
+
 namespace metrosync {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // A crossing counts once the signal is this fraction of the last half-cycle's peak on the other
 // side: noise of a few percent of the swing never makes two crossings out of one.
 constexpr double kHysteresis = 0.2;

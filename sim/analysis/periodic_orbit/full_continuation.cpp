@@ -4,7 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "sim/analysis/periodic_orbit/number_text.h"
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "sim/analysis/periodic_orbit/orbit_continuation.h"
 #include "sim/engines/direct/direct_engine.h"
 
@@ -22,7 +23,6 @@ constexpr double kSearchPeriods = 3.0;
 // hundreds even at 0.98), a drift moves the section state by O(epsilon A) ~ 0.1 per period.
 // Newton then takes the state the rest of the way, to the orbit the run is settling onto.
 constexpr double kSettled = 1e-3;
-constexpr double kTwoPi = 6.283185307179586;
 
 // The rig run from its start for `factor` times its duration: the final state, scaled.
 Vec runEnd(const Rig& rig, const ScaledModel& model, double factor) {

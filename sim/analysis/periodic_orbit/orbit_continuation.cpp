@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <functional>
 
+#include "base/number_text.h"
 #include "sim/analysis/periodic_orbit/family_map.h"
-#include "sim/analysis/periodic_orbit/number_text.h"
 #include "sim/analysis/periodic_orbit/special_points.h"
 
 namespace metrosync::orbit {

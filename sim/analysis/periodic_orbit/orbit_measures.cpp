@@ -3,6 +3,7 @@
 #include <cmath>
 #include <complex>
 
+#include "base/constants.h"
 #include "sim/analysis/periodic_orbit/piece_flow.h"
 
 namespace metrosync::orbit {
@@ -93,7 +94,7 @@ OrbitMeasures measureOrbit(const ReturnMap& map, const Orbit& orbit) {
   // slow flow's branches.csv)
   for (int j = 1; j < m.n(); ++j) {
     double psi = std::arg(sums.rot[j]);
-    if (psi < -M_PI / 2) psi += 2 * M_PI;
+    if (psi < -kPi / 2) psi += 2 * kPi;
     out.psi[m.rigIndex(j) - 1] = psi;
   }
   out.events = countEvents(map, p);

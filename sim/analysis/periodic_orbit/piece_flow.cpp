@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "base/constants.h"
 #include "sim/ode/root_find.h"
 
 namespace metrosync::orbit {
@@ -15,7 +16,7 @@ namespace {
 constexpr double kMinStep = 1e-13;
 // The largest step: a tenth of the fast period, as the direct engine (at most one extreme of
 // theta_r per step, so that an upward crossing of the section is never hidden inside a step).
-constexpr double kMaxStep = 0.2 * M_PI;
+constexpr double kMaxStep = 0.2 * kPi;
 // Newton refinements of the section time on the re-taken step: each one takes |theta_r| from
 // the dense output's error (~1e-13) to the rounding of the step (~1e-16).
 constexpr int kSectionRefinements = 2;

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "sim/analysis/periodic_orbit/number_text.h"
+#include "base/number_text.h"
 #include "sim/analysis/periodic_orbit/piece_flow.h"
 #include "sim/analysis/periodic_orbit/saltation.h"
 

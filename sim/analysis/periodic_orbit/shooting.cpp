@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "sim/analysis/periodic_orbit/number_text.h"
+#include "base/number_text.h"
 
 namespace metrosync::orbit {
 

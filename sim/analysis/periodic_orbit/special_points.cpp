@@ -5,7 +5,8 @@
 #include <cstdio>
 #include <limits>
 
-#include "sim/analysis/periodic_orbit/number_text.h"
+#include "base/constants.h"
+#include "base/number_text.h"
 
 namespace metrosync::orbit {
 
@@ -125,7 +126,7 @@ std::optional<OrbitBifurcation> classify(TestKind kind, const FamilyPoint& q, co
       out.detail = "Neimark-Sacker (torus): multipliers |mu| = " + numberText(std::abs(mu(i)), 9) +
                    " at angles +-" + numberText(angle, 6) +
                    " rad: the amplitudes start to modulate, period " +
-                   numberText(2 * M_PI / angle, 6) + " orbits";
+                   numberText(2 * kPi / angle, 6) + " orbits";
       return out;
     }
   }

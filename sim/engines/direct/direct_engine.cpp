@@ -25,6 +25,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/constants.h"
 #include "models/minimal_equations.h"
 #include "models/scaling.h"
 #include "sim/events/crossing.h"
@@ -51,8 +52,6 @@ std::string defaultDirectIntegrator(const Rig& rig) {
 
 namespace direct {
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586;
 
 // The right-hand side in the platform's current mode, with N swinging pendulums known to the
 // compiler (or kAnyN): the stepper inlines it into every stage.

@@ -7,6 +7,8 @@
 #include <optional>
 #include <stdexcept>
 
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "models/network_equations.h"
 #include "sim/engines/direct/direct_engine.h"
 #include "sim/events/crossing.h"
@@ -24,7 +26,6 @@ namespace {
 
 using network::NetworkEquations;
 
-constexpr double kTwoPi = 6.283185307179586;
 // The longest step, in fast periods: short enough that a witness cannot cross and return within
 // one step for any amplitude the escapement sustains (a tick witness stays above zero for about a
 // tenth of a period), long enough to cost nothing when the accuracy sets the step.
@@ -331,7 +332,7 @@ void NetworkRun::sample(double t, const std::vector<double>& y) {
 
 void NetworkRun::fail(double t, const std::string& why) {
   report_.complete = false;
-  report_.failure = "at t = " + std::to_string(t) + " s: " + why;
+  report_.failure = "at t = " + numberText(t, 6, Notation::Fixed) + " s: " + why;
 }
 
 NetworkRunReport NetworkRun::run() {

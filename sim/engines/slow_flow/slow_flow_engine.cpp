@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "base/constants.h"
+#include "base/number_text.h"
 #include "sim/events/storm_guard.h"
 #include "sim/events/window.h"
 #include "sim/ode/rk_stepper.h"
@@ -26,17 +28,10 @@ using cplx = std::complex<double>;
 // function that crosses 0 twice within 1/8 of a step is missed, which the step control makes
 // rare (the state moves by ~rtol^(1/5) of itself per step)
 constexpr int kSwitchSamples = 8;
-constexpr double kTwoPi = 6.283185307179586;
 // a step shorter than this (times max(1, tau)) cannot move tau in double precision any more
 constexpr double kMinStepRelative = 1e-14;
 // shrink factor after a step that produced a non-finite state (no error estimate to go by)
 constexpr double kNonFiniteShrink = 10.0;
-
-std::string fmtTau(double tau) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.9g", tau);
-  return buf;
-}
 
 void checkOptions(const ScaledParams& p, const SlowFlowOptions& opt) {
   if (!(p.epsilon > 0.0) || !std::isfinite(p.epsilon))
@@ -236,7 +231,7 @@ RunReport SlowFlowRun::run() {
 std::string SlowFlowRun::step(double& h) {
   if (++attempts_ > opt_.max_steps)
     return "slow flow: more than " + std::to_string(opt_.max_steps) +
-           " steps, stopped at tau = " + fmtTau(tau_);
+           " steps, stopped at tau = " + numberText(tau_, 9);
   const bool to_end = h >= opt_.tau_end - tau_;
   if (to_end) h = opt_.tau_end - tau_;
   const double err = stepper_.attempt(h);
@@ -244,7 +239,7 @@ std::string SlowFlowRun::step(double& h) {
     h = std::isfinite(err) ? stepper_.nextStepSize(h, err, false) : h / kNonFiniteShrink;
     last_rejected_ = true;
     if (h < kMinStepRelative * std::max(1.0, std::fabs(tau_)))
-      return "slow flow: step size underflow at tau = " + fmtTau(tau_);
+      return "slow flow: step size underflow at tau = " + numberText(tau_, 9);
     return "";
   }
   double h_next = stepper_.nextStepSize(h, err, true);
@@ -263,7 +258,7 @@ std::string SlowFlowRun::step(double& h) {
   std::copy(stepper_.y(), stepper_.y() + y_.size(), y_.begin());
   h = h_next;
   for (double v : y_)
-    if (!std::isfinite(v)) return "slow flow: non-finite state at tau = " + fmtTau(tau_);
+    if (!std::isfinite(v)) return "slow flow: non-finite state at tau = " + numberText(tau_, 9);
   return "";
 }
 
@@ -313,7 +308,7 @@ std::string SlowFlowRun::crossSwitches(double th_e, double h) {
     y_ = yd;
   tau_ = tau_e;
   for (double v : y_)
-    if (!std::isfinite(v)) return "slow flow: non-finite state at tau = " + fmtTau(tau_);
+    if (!std::isfinite(v)) return "slow flow: non-finite state at tau = " + numberText(tau_, 9);
   rhs_.unpack(y_.data(), z_);
   long flips = 0;
   for (int e = 0; e < static_cast<int>(switches_.size()); ++e) {
@@ -326,7 +321,8 @@ std::string SlowFlowRun::crossSwitches(double th_e, double h) {
   rhs_.modes = flow_.modesOf(switches_);
   rep_.counts.events += flips;
   for (long k = 0; k < flips; ++k)
-    if (storm_.note(tau_)) return "slow flow: " + storm_.why() + ", at tau = " + fmtTau(tau_);
+    if (storm_.note(tau_))
+      return "slow flow: " + storm_.why() + ", at tau = " + numberText(tau_, 9);
   stepper_.restart(tau_, y_.data());
   return "";
 }

@@ -1,0 +1,43 @@
+// The runners of parts 1-5 of the validation (sim/analysis/validation.h), for runValidation:
+// parts 1 and 2 run at once; the full-model runs of parts 3-5 are queued as tasks for one pool
+// (longest first) and finished once every run is in.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "sim/analysis/validation_catalogue.h"
+#include "sim/analysis/validation_plan.h"
+#include "sim/analysis/validation_progress.h"
+#include "sim/analysis/validation_results.h"
+#include "sim/analysis/validation_runs.h"
+
+namespace metrosync {
+
+// A full-model run of parts 3-5, queued so that one pool runs them longest (tau / epsilon) first.
+struct ValidationTask {
+  double cost;
+  std::function<void()> run;
+};
+
+// Part 1: betas against the Coulomb element.
+void runBetas(const ValidationPlan& plan, const ValidationEngines& engines, ProgressLog& log,
+              int jobs, ValidationResults& res);
+// Part 2: the paper's scenarios from the slow flow, at their shipped epsilon and tau (cheap).
+void runPaperScenarios(const std::vector<Scenario>& scenarios, ProgressLog& log,
+                       ValidationResults& res);
+// Parts 3-5: their full-model runs (and the slow flow's next to them) as tasks.
+void queueConvergence(const ValidationPlan& plan, const std::vector<Scenario>& scenarios,
+                      const ValidationEngines& engines, ProgressLog& log, ValidationResults& res,
+                      std::vector<ValidationTask>& tasks);
+void queueRegimes(const ValidationPlan& plan, const std::vector<Scenario>& scenarios,
+                  const ValidationEngines& engines, ProgressLog& log, ValidationResults& res,
+                  std::vector<ValidationTask>& tasks);
+void queueMuSweep(const ValidationPlan& plan, const std::vector<Scenario>& scenarios,
+                  const ValidationEngines& engines, ProgressLog& log, ValidationResults& res,
+                  std::vector<ValidationTask>& tasks);
+// Parts 3 and 4 once every run is in.
+void finishConvergence(const ValidationPlan& plan, ProgressLog& log, ValidationResults& res);
+void finishRegimes(const std::vector<Scenario>& scenarios, ValidationResults& res);
+
+}  // namespace metrosync
