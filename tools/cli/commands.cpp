@@ -211,8 +211,9 @@ void printFinalState(const LoadedRig& r, const RunReport& rep, const LinearDecay
     const auto s3a = decay ? decay->result(r.rig) : std::nullopt;
     if (s3a)
       std::cout << "; the board's extremes decay linearly (section 3A): slope "
-                << numberText(s3a->slope_m_s, 4) << " m/s, mu-bar " << numberText(s3a->mu_bar, 4) << ", period "
-                << numberText(s3a->period_s, 4) << " s, " << s3a->extremes << " extremes";
+                << numberText(s3a->slope_m_s, 4) << " m/s, mu-bar " << numberText(s3a->mu_bar, 4)
+                << ", period " << numberText(s3a->period_s, 4) << " s, " << s3a->extremes
+                << " extremes";
     return;
   }
   std::cout << ": A = " << fmtList(rep.final_row.A) << " (theta_c = " << fmtList(r.scaled.theta_c)
