@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 
 #include "sim/record/private_dir.h"
@@ -45,39 +46,48 @@ void writeAttacker(const std::string& bin, const std::string& name, const std::s
   fs::permissions(path, fs::perms::owner_all);
 }
 
-TEST(PrivateTemporaries, GnuplotsTemporariesCannotBeReplaced) {
-  if (!fs::exists("/usr/bin/gnuplot")) GTEST_SKIP() << "no /usr/bin/gnuplot";
-  const std::string d = scratchDir("private", "gnuplot", true);
-  const std::string out = d + "/out", victim = d + "/victim.txt", bin = d + "/bin";
-  std::ofstream(victim) << kVictimText;
-  fs::create_directories(out);
-  writeAttacker(bin, "gnuplot", "/usr/bin/gnuplot", out, victim, ".png.[0-9]");
+// metrosync ARGS (its output in OUT) with the stand-in for /usr/bin/PROGRAM first on PATH.
+struct Attacked {
+  CommandResult r;
+  std::string out, victim;
+};
+Attacked runAttacked(const std::string& program, const std::string& pattern,
+                     const std::function<std::string(const std::string&)>& args) {
+  Attacked a;
+  const std::string d = scratchDir("private", program, true);
+  const std::string bin = d + "/bin";
+  a.out = d + "/out";
+  a.victim = d + "/victim.txt";
+  std::ofstream(a.victim) << kVictimText;
+  fs::create_directories(a.out);
+  writeAttacker(bin, program, "/usr/bin/" + program, a.out, a.victim, pattern);
   RunIn in;
   in.env = "PATH=" + shellQuote(bin + ":/usr/bin:/bin");
-  const CommandResult r =
-      runMetrosync("run --set simulation.duration=2 -q --out " + shellQuote(out), in);
-  EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(slurp(victim), kVictimText) << "gnuplot wrote through a planted link";
-  EXPECT_FALSE(fs::is_symlink(fs::symlink_status(out + "/envelope.png")));
-  EXPECT_EQ(slurp(out + "/envelope.png").substr(1, 3), "PNG") << r.err;
+  a.r = runMetrosync(args(a.out), in);
+  return a;
+}
+
+TEST(PrivateTemporaries, GnuplotsTemporariesCannotBeReplaced) {
+  if (!fs::exists("/usr/bin/gnuplot")) GTEST_SKIP() << "no /usr/bin/gnuplot";
+  const Attacked a = runAttacked("gnuplot", ".png.[0-9]", [](const std::string& out) {
+    return "run --set simulation.duration=2 -q --out " + shellQuote(out);
+  });
+  EXPECT_EQ(a.r.code, 0) << a.r.err;
+  EXPECT_EQ(slurp(a.victim), kVictimText) << "gnuplot wrote through a planted link";
+  EXPECT_FALSE(fs::is_symlink(fs::symlink_status(a.out + "/envelope.png")));
+  EXPECT_EQ(slurp(a.out + "/envelope.png").substr(0, 4), "\x89PNG") << a.r.err;
 }
 
 TEST(PrivateTemporaries, FfmpegsTemporariesCannotBeReplaced) {
   if (!fs::exists("/usr/bin/ffmpeg")) GTEST_SKIP() << "no /usr/bin/ffmpeg";
-  const std::string d = scratchDir("private", "ffmpeg", true);
-  const std::string out = d + "/out", victim = d + "/victim.txt", bin = d + "/bin";
-  std::ofstream(victim) << kVictimText;
-  fs::create_directories(out);
-  writeAttacker(bin, "ffmpeg", "/usr/bin/ffmpeg", out, victim, ".mp4.[0-9]");
-  RunIn in;
-  in.env = "PATH=" + shellQuote(bin + ":/usr/bin:/bin");
-  const CommandResult r =
-      runMetrosync("animate --to 0.2 --fps 10 --out " + shellQuote(out + "/v.mp4"), in);
-  if (r.code == 2 && r.err.find("Cairo") != std::string::npos) GTEST_SKIP() << "no Cairo";
-  EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(slurp(victim), kVictimText) << "ffmpeg wrote through a planted link";
-  EXPECT_FALSE(fs::is_symlink(fs::symlink_status(out + "/v.mp4")));
-  EXPECT_GT(fs::file_size(out + "/v.mp4"), 100u) << r.err;
+  const Attacked a = runAttacked("ffmpeg", ".mp4.[0-9]", [](const std::string& out) {
+    return "animate --to 0.2 --fps 10 --out " + shellQuote(out + "/v.mp4");
+  });
+  if (a.r.code == 2 && a.r.err.find("Cairo") != std::string::npos) GTEST_SKIP() << "no Cairo";
+  EXPECT_EQ(a.r.code, 0) << a.r.err;
+  EXPECT_EQ(slurp(a.victim), kVictimText) << "ffmpeg wrote through a planted link";
+  EXPECT_FALSE(fs::is_symlink(fs::symlink_status(a.out + "/v.mp4")));
+  EXPECT_GT(slurp(a.out + "/v.mp4").size(), 100u) << a.r.err;
 }
 
 // The folder is the process's own, 0700, and reached through its descriptor after it was moved.

@@ -11,9 +11,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include "tests/hostile/hostile_support.h"
+#include "tools/report/envelope_store.h"
 #include "tools/report/sweep_files.h"
 
 namespace metrosync::hostile {
@@ -100,13 +102,14 @@ struct SyntheticSweep {
   SweepGrid grid;
 };
 
-SyntheticSweep syntheticSweep(int k) {
+SyntheticSweep syntheticSweep(int k, bool envelopes = false) {
   const std::vector<std::string> vary = {"platform.friction.mu=0.01:0.1:40",
                                          "metronomes.1.alpha=0:0.1:40",
                                          "metronomes.0.start.phi=0:1:" + std::to_string(k)};
   SyntheticSweep s;
-  s.dir = scratchDir("streamed", "sweep" + std::to_string(k));
+  s.dir = scratchDir("streamed", (envelopes ? "kept" : "sweep") + std::to_string(k));
   s.args = "sweep " + mapRig() + " --set simulation.tau=1 --jobs 1 -q";
+  if (envelopes) s.args += " --keep envelope";
   std::vector<SweepAxis> axes;
   for (const auto& v : vary) {
     s.args += " --vary " + v;
@@ -117,6 +120,9 @@ SyntheticSweep syntheticSweep(int k) {
   killed.env = "METROSYNC_SWEEP_STOP_AFTER=1";
   const CommandResult r = runMetrosync(s.args + " --out " + shellQuote(s.dir), killed);
   EXPECT_NE(r.code, 0) << r.err;
+  std::optional<EnvelopeStore> store;  // ten rows a point
+  if (envelopes) store.emplace(s.dir + "/" + kEnvelopeStoreName, 2, true);
+  const std::vector<std::string> rows(10, "1.5,2.25,2.5,3.125,0.75");
   std::ofstream out(s.dir + "/regimes.csv", std::ios::app);
   const char* regimes[] = {"in-phase", "antiphase", "death"};
   for (long g = 0; g < s.grid.size(); ++g) {
@@ -130,6 +136,7 @@ SyntheticSweep syntheticSweep(int k) {
     p.tau = 1.0;
     p.complete = true;
     out << formatRegimesRow(s.grid, p) << "\n";
+    if (store) store->append(g, rows);
   }
   return s;
 }
@@ -140,8 +147,8 @@ struct SweepPeaks {
   Peak resume, merge;
 };
 
-SweepPeaks sweepPeaks(int k) {
-  const SyntheticSweep s = syntheticSweep(k);
+SweepPeaks sweepPeaks(int k, bool envelopes = false) {
+  const SyntheticSweep s = syntheticSweep(k, envelopes);
   const std::string no_gnuplot = withoutGnuplot();
   SweepPeaks p;
   p.resume =
@@ -152,6 +159,15 @@ SweepPeaks sweepPeaks(int k) {
   const std::string rows = slurp(s.dir + "/regimes.csv");
   EXPECT_EQ(std::count(rows.begin(), rows.end(), '\n'), s.grid.size() + 1);
   EXPECT_EQ(slurp(merged + "/regimes.csv"), rows);
+  if (envelopes) {  // every point's rows kept once
+    long points = 0;
+    forEachStoredEnvelope(s.dir + "/" + kEnvelopeStoreName,
+                          [&](long, const std::vector<std::string>& r) {
+                            ++points;
+                            EXPECT_EQ(r.size(), 10u);
+                          });
+    EXPECT_EQ(points, s.grid.size());
+  }
   return p;
 }
 
@@ -167,6 +183,17 @@ TEST(StreamedMemory, ResumeMapsAndMergeDoNotGrowWithThePoints) {
   EXPECT_LT(large.merge.kb - small.merge.kb, kMaxGrowthKb)
       << "merge: peak " << small.merge.kb << " kB at 3200 points, " << large.merge.kb
       << " kB at 19200";
+}
+
+// --keep envelope: the resume reads the store's points and rewrites it one point at a time (before:
+// the whole decompressed store in memory, twice).
+TEST(StreamedMemory, ResumeWithEnvelopesDoesNotGrowWithThePoints) {
+  const SweepPeaks small = sweepPeaks(2, true), large = sweepPeaks(12, true);
+  ASSERT_EQ(small.resume.code, 0);
+  ASSERT_EQ(large.resume.code, 0);
+  EXPECT_LT(large.resume.kb - small.resume.kb, kMaxGrowthKb)
+      << "--resume --keep envelope: peak " << small.resume.kb << " kB at 3200 points, "
+      << large.resume.kb << " kB at 19200";
 }
 
 }  // namespace

@@ -54,12 +54,6 @@ struct Resumed {
   SweepTally tally;
   RegimesScan scan;  // complete_bytes and warnings
   bool isDone(long g) const { return !done.empty() && done[static_cast<std::size_t>(g)]; }
-  std::set<long> doneSet() const {  // for the envelope store (--keep envelope)
-    std::set<long> s;
-    for (std::size_t g = 0; g < done.size(); ++g)
-      if (done[g]) s.insert(static_cast<long>(g));
-    return s;
-  }
 };
 
 // --resume: regimes.csv read row by row (the first row of an index wins; rows of other shards and,
@@ -148,7 +142,8 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
                          run.tally.done);
   std::optional<EnvelopeStore> store;  // --keep envelope
   if (opt.keep == "envelope")          // resumed points keep their rows; the others run again
-    store.emplace(dir.file(kEnvelopeStoreName), plan.n, !resuming, before.doneSet());
+    store.emplace(dir.file(kEnvelopeStoreName), plan.n, !resuming,
+                  [&](long g) { return before.isDone(g); });
   auto wanted = [&](long g) { return plan.shard.contains(g) && !before.isDone(g); };
   run.jobs = schedule(
       plan.grid.size(), wanted, opt.jobs, [&](long g) { return runGridPoint(plan, opt, g); },

@@ -83,7 +83,8 @@ bool checkResumable(const SweepOptions& opt, const SweepPlan& plan) {
 
 std::set<long> storedEnvelopePoints(const std::string& store_path) {
   std::set<long> points;
-  for (const auto& [g, rows] : readEnvelopeStore(store_path)) points.insert(g);
+  forEachStoredEnvelope(store_path,
+                        [&](long g, const std::vector<std::string>&) { points.insert(g); });
   return points;
 }
 

@@ -291,32 +291,47 @@ std::optional<long> regimesRowIndex(const SweepGrid& grid, int n, const std::str
   }
 }
 
+namespace {
+
+// Calls line(text) for each whole line of the regimes.csv at `path` after its header (a last line
+// cut short is skipped); nothing when the file is absent.
+void forEachRowLine(const std::string& path, const std::function<void(std::string)>& line) {
+  const int fd = openRegularForReading(path);  // a link or FIFO at the name: refused
+  if (fd < 0) return;
+  std::FILE* f = ::fdopen(fd, "r");
+  if (!f) {
+    ::close(fd);
+    throw std::runtime_error("cannot read " + path);
+  }
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> closer(f, &std::fclose);
+  char* buf = nullptr;
+  std::size_t cap = 0;
+  bool header = true;
+  for (ssize_t len; (len = ::getline(&buf, &cap, f)) > 0;) {
+    if (header || buf[len - 1] != '\n') {  // the header; a last line cut short
+      header = false;
+      continue;
+    }
+    try {
+      line(std::string(buf, static_cast<std::size_t>(len - 1)));
+    } catch (...) {
+      std::free(buf);
+      throw;
+    }
+  }
+  std::free(buf);
+}
+
+}  // namespace
+
 void sortRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
                     const std::function<bool(long)>& keep, std::size_t chunk_bytes) {
   const std::size_t slash = path.rfind('/');
   ExternalSort sort(slash == std::string::npos ? "." : path.substr(0, slash), chunk_bytes);
-  const int fd = openRegularForReading(path);
-  if (fd >= 0) {
-    std::FILE* f = ::fdopen(fd, "r");
-    if (!f) {
-      ::close(fd);
-      throw std::runtime_error("cannot read " + path);
-    }
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> closer(f, &std::fclose);
-    char* buf = nullptr;
-    std::size_t cap = 0;
-    bool header = true;
-    for (ssize_t len; (len = ::getline(&buf, &cap, f)) > 0;) {
-      if (header || buf[len - 1] != '\n') {  // the header; a last line cut short
-        header = false;
-        continue;
-      }
-      std::string line(buf, static_cast<std::size_t>(len - 1));
-      const std::optional<long> g = regimesRowIndex(grid, n, line);
-      if (g && keep(*g)) sort.add(*g, std::move(line));
-    }
-    std::free(buf);
-  }
+  forEachRowLine(path, [&](std::string line) {
+    const std::optional<long> g = regimesRowIndex(grid, n, line);
+    if (g && keep(*g)) sort.add(*g, std::move(line));
+  });
   AtomicFile out(path);
   out.writeLine(regimesHeader(grid, n));
   sort.forEachIndex(
@@ -327,41 +342,16 @@ void sortRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
 void forEachRegimesRow(const std::string& path, const SweepGrid& grid, int n,
                        const std::function<void(const SweepPoint&)>& visit,
                        const std::function<bool(const std::string&)>& wanted) {
-  const int fd = openRegularForReading(path);
-  if (fd < 0) return;
-  std::FILE* f = ::fdopen(fd, "r");
-  if (!f) {
-    ::close(fd);
-    throw std::runtime_error("cannot read " + path);
-  }
-  char* buf = nullptr;
-  std::size_t cap = 0;
-  bool header = true;
-  for (ssize_t len; (len = ::getline(&buf, &cap, f)) > 0;) {
-    if (header || buf[len - 1] != '\n') {  // the header; a last line cut short
-      header = false;
-      continue;
-    }
-    const std::string line(buf, static_cast<std::size_t>(len - 1));
-    if (wanted && !wanted(line)) continue;
+  forEachRowLine(path, [&](std::string line) {
+    if (wanted && !wanted(line)) return;
     std::optional<SweepPoint> p;
     try {
       p = parseRegimesRow(grid, n, line);
     } catch (const SweepInputError&) {
-      continue;  // malformed: not drawn
+      return;  // malformed: not drawn
     }
     visit(*p);
-  }
-  std::free(buf);
-  std::fclose(f);
-}
-
-void writeSortedRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
-                           const std::map<long, std::string>& lines) {
-  AtomicFile f(path);
-  f.writeLine(regimesHeader(grid, n));
-  for (const auto& [index, line] : lines) f.writeLine(line);
-  f.commit();
+  });
 }
 
 RegimesAppender::RegimesAppender(const std::string& path, const std::string& header, bool fresh,

@@ -72,9 +72,6 @@ void sortRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
                     const std::function<bool(long)>& keep,
                     std::size_t chunk_bytes = kSortChunkBytes);
 
-// Writes header + lines (ascending index) to `path` atomically.
-void writeSortedRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
-                           const std::map<long, std::string>& lines);
 
 // ---- timings.csv --------------------------------------------------------------------------------
 
