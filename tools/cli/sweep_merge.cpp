@@ -61,13 +61,12 @@ void forEachMergedRow(ExternalSort& rows, const std::vector<std::string>& dirs,
   });
 }
 
-int mergeImpl(const SweepOptions& opt) {
-  if (opt.dirs.empty()) throw UsageError("merge: give the sweep output directories to join");
-  // every manifest and every row first: nothing is written unless they all belong together
+// Every source's manifest (all the same sweep: else a UsageError) and rows, added to `rows` as
+// "SOURCE\tLINE"; the warnings of their regimes.csv said. Returns the first manifest.
+SweepManifest readMergeSources(const SweepOptions& opt, ExternalSort& rows) {
   std::optional<SweepManifest> ref;
   std::string ref_dir;
   std::vector<SweepShard> shards;
-  std::optional<ExternalSort> rows;  // every source's rows, "SOURCE\tLINE"
   for (const auto& d : opt.dirs) {
     const SweepManifest m = readSweepManifest(d);
     shards.push_back(m.shard);
@@ -77,25 +76,32 @@ int mergeImpl(const SweepOptions& opt) {
     } else if (const std::string diff = sweepDifference(*ref, m); !diff.empty()) {
       throw UsageError("merge: " + d + " is not the same sweep as " + ref_dir + ": " + diff);
     }
-    if (!rows) rows.emplace(temporaryFolder());
     const std::string source = std::to_string(shards.size() - 1) + "\t";
     const RegimesScan t =
         scanRegimesCsv(d + "/regimes.csv", ref->grid, ref->metronomes, "merge leaves the point out",
                        [&](const SweepPoint& p, const std::string& line) {
-                         rows->add(p.index, source + line);
+                         rows.add(p.index, source + line);
                          return true;
                        });
     for (const auto& w : t.warnings) std::cerr << "metrosync: warning: " << w << "\n";
   }
   checkMergeSources(opt, shards);
-  SweepManifest merged = *ref;
+  return *ref;
+}
+
+int mergeImpl(const SweepOptions& opt) {
+  if (opt.dirs.empty()) throw UsageError("merge: give the sweep output directories to join");
+  // every manifest and every row first: nothing is written unless they all belong together
+  ExternalSort rows(temporaryFolder());
+  const SweepManifest ref = readMergeSources(opt, rows);
+  SweepManifest merged = ref;
   merged.merged = true;
   merged.shard = SweepShard{};
   const SweepGrid& grid = merged.grid;
   const int n = merged.metronomes;
   const std::vector<size_t> map_axes = mapAxes(grid, opt.map);
   SweepTally tally;  // and the sources checked to agree, before anything is written
-  forEachMergedRow(*rows, opt.dirs, [&](long, const std::string& line) {
+  forEachMergedRow(rows, opt.dirs, [&](long, const std::string& line) {
     tally.add(parseRegimesRow(grid, n, line));
   });
 
@@ -119,7 +125,7 @@ int mergeImpl(const SweepOptions& opt) {
   {
     AtomicFile out(dir.file("regimes.csv"));
     out.writeLine(regimesHeader(grid, n));
-    forEachMergedRow(*rows, opt.dirs, [&](long, const std::string& line) { out.writeLine(line); });
+    forEachMergedRow(rows, opt.dirs, [&](long, const std::string& line) { out.writeLine(line); });
     out.commit();
   }
   std::vector<std::string> files = {"regimes.csv"};
