@@ -101,8 +101,13 @@ WilsonInterval wilsonInterval(long k, long n, double z) {
 std::vector<RegimeFraction> regimeFractions(const std::vector<std::string>& regimes) {
   std::map<std::string, long> count;
   for (const auto& r : regimes) ++count[r];
+  return regimeFractions(count);
+}
+
+std::vector<RegimeFraction> regimeFractions(const std::map<std::string, long>& count) {
   std::vector<RegimeFraction> out;
-  const long n = static_cast<long>(regimes.size());
+  long n = 0;
+  for (const auto& [name, k] : count) n += k;
   for (const auto& [name, k] : count)
     out.push_back({name, k, static_cast<double>(k) / static_cast<double>(n), wilsonInterval(k, n)});
   std::stable_sort(out.begin(), out.end(), [](const RegimeFraction& a, const RegimeFraction& b) {

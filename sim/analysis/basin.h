@@ -62,5 +62,7 @@ struct RegimeFraction {
 };
 // `regimes` (one per sample) -> one entry per regime present, most frequent first (ties by name).
 std::vector<RegimeFraction> regimeFractions(const std::vector<std::string>& regimes);
+// ... from each regime's count of samples (a fixed-size tally, whatever the number of samples).
+std::vector<RegimeFraction> regimeFractions(const std::map<std::string, long>& count);
 
 }  // namespace metrosync

@@ -1,19 +1,23 @@
 // Issue 29: a sweep's memory does not grow with its points. Its rows stay in regimes.csv as they
-// finish; the end sorts the file in passes of bounded size (sortRegimesCsv). Checked here with
-// passes of a few rows, against the one-pass sort of the same rows.
+// finish; the end sorts the file through an external sort of bounded memory (sortRegimesCsv,
+// tools/report/external_sort.h). Checked here with runs of a few rows and of one row (more runs
+// than are merged at once: two levels), against the in-memory sort of the same rows.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <random>
 
 #include "tests/common/run_metrosync.h"
+#include "tools/report/external_sort.h"
 #include "tools/report/sweep_files.h"
 
 namespace metrosync {
 namespace {
 
+namespace fs = std::filesystem;
 using testing_support::scratchDir;
 using testing_support::slurp;
 
@@ -32,10 +36,10 @@ SweepPoint pointAt(long g, const std::string& message) {
 }
 
 TEST(SweepMemory, SortingInBoundedPassesEqualsOneSort) {
-  const SweepGrid grid({parseVary("platform.friction.mu=0:1:60")});
+  const SweepGrid grid({parseVary("platform.friction.mu=0:1:200")});
   const std::string d = scratchDir("memory", "sort", true);
-  std::vector<long> order(60);
-  for (long g = 0; g < 60; ++g) order[g] = g;
+  std::vector<long> order(200);
+  for (long g = 0; g < 200; ++g) order[g] = g;
   std::shuffle(order.begin(), order.end(), std::mt19937(29));
   std::map<long, std::string> expected;  // the last row of each index kept, odd shard only
   std::string text = regimesHeader(grid, 2) + "\n";
@@ -56,7 +60,7 @@ TEST(SweepMemory, SortingInBoundedPassesEqualsOneSort) {
   for (std::size_t pass : {std::size_t(1) << 30, std::size_t(400), std::size_t(1)}) {
     const std::string path = d + "/regimes-" + std::to_string(pass) + ".csv";
     std::ofstream(path) << text;
-    sortRegimesCsv(path, grid, 2, keep, pass);  // 400 bytes: a few rows a pass; 1: one row
+    sortRegimesCsv(path, grid, 2, keep, pass);  // 400 bytes: a few rows a run; 1: one row
     const std::string sorted = slurp(path);
     if (sorted_once.empty()) {
       sorted_once = sorted;
@@ -67,6 +71,32 @@ TEST(SweepMemory, SortingInBoundedPassesEqualsOneSort) {
     EXPECT_EQ(sorted, sorted_once) << "pass of " << pass << " bytes";
   }
   EXPECT_NE(sorted_once.find("again"), std::string::npos);
+}
+
+// The sort itself: every line once, ascending, lines of one index in the order added, whatever the
+// size of a run; read twice alike; never more lines held than fit in a run.
+TEST(SweepMemory, ExternalSortIsStableAndBounded) {
+  const std::string d = scratchDir("memory", "external", true);
+  std::vector<std::pair<long, std::string>> lines;
+  std::mt19937 draw(29);
+  for (int k = 0; k < 500; ++k) {
+    const long g = static_cast<long>(draw() % 97);
+    lines.emplace_back(g, "line " + std::to_string(k) + " of " + std::to_string(g));
+  }
+  std::vector<std::pair<long, std::string>> want = lines;
+  std::stable_sort(want.begin(), want.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t chunk : {std::size_t(1) << 30, std::size_t(300), std::size_t(1)}) {
+    ExternalSort sort(d, chunk);
+    for (const auto& [g, text] : lines) sort.add(g, text);
+    for (int pass = 0; pass < 2; ++pass) {
+      std::vector<std::pair<long, std::string>> got;
+      sort.forEach([&](long g, const std::string& text) { got.emplace_back(g, text); });
+      EXPECT_EQ(got, want) << "runs of " << chunk << " bytes, reading " << pass;
+    }
+    if (chunk < 1000) EXPECT_LE(sort.maxLinesHeld(), chunk / 20 + 1) << chunk;
+  }
+  EXPECT_TRUE(fs::is_empty(d)) << "the runs' private folders are removed";
 }
 
 }  // namespace

@@ -124,9 +124,8 @@ std::vector<std::string> sampleAt(const BasinOptions& opt, const BasinPlan& plan
 
 // Every sample, run by `schedule` (threads, or MPI ranks) on up to --jobs threads; plan.jobs
 // becomes the number that ran.
-std::map<long, BasinSample> runSamples(const BasinOptions& opt, BasinPlan& plan,
-                                       const SweepScheduler& schedule) {
-  std::map<long, BasinSample> samples;
+void runSamples(const BasinOptions& opt, BasinPlan& plan, const SweepScheduler& schedule,
+                BasinRows& samples) {
   plan.jobs = schedule(
       opt.samples, [](long) { return true; }, opt.run.jobs,
       [&](long k) -> std::optional<SweepPoint> {
@@ -135,10 +134,9 @@ std::map<long, BasinSample> runSamples(const BasinOptions& opt, BasinPlan& plan,
       [&](const SweepPoint& p) {  // one at a time (the scheduler's contract)
         std::vector<std::string> texts;
         sampleAt(opt, plan, p.index, &texts);
-        samples[p.index] = BasinSample{texts, p};
+        samples.add(BasinSample{texts, p});
       },
       [] { return FileSink::stopRequested(); });
-  return samples;
 }
 
 nlohmann::json basinJson(const BasinOptions& opt, const BasinPlan& plan,
@@ -181,22 +179,19 @@ int basinImpl(const BasinOptions& opt, const SweepScheduler& schedule, int ranks
   std::optional<FolderLock> lock;
   if (fs::is_directory(plan.path)) lock.emplace(plan.path, "metrosync basin");
   installStopHandlers();
-  const std::map<long, BasinSample> samples = runSamples(opt, plan, schedule);
+  BasinRows samples;  // streamed to a private temporary folder as they finish
+  runSamples(opt, plan, schedule, samples);
   if (FileSink::stopRequested()) {
-    std::cerr << "metrosync: error: interrupted by a signal after " << samples.size() << " of "
+    std::cerr << "metrosync: error: interrupted by a signal after " << samples.added() << " of "
               << opt.samples << " samples; nothing written\n";
     return kSimulationFailed;
   }
   const OutputDir dir = openBasinDir(plan.path);
   if (!lock) lock.emplace(plan.path, "metrosync basin");
-  std::vector<std::string> regimes;
-  long failed = 0;
-  for (const auto& [k, s] : samples) {
-    regimes.push_back(s.point.regime);
-    failed += !s.point.complete;
-  }
-  const std::vector<RegimeFraction> fractions = regimeFractions(regimes);
-  writeFileAtomically(dir.file("basin.csv"), basinCsv(plan.keys, plan.n, samples));
+  samples.tally();
+  const long failed = samples.failed();
+  const std::vector<RegimeFraction> fractions = regimeFractions(samples.regimes());
+  samples.writeCsv(dir.file("basin.csv"), plan.keys, plan.n);
   std::vector<std::string> files = {"basin.csv"};
   const std::string title = plan.rig_name + " - " + modelTitle(plan.model) + ", " +
                             std::to_string(opt.samples) + " random starts (seed " +

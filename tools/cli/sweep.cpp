@@ -47,21 +47,45 @@ struct SweepRun {
   int jobs = 1;
 };
 
-// What --resume found: the indices done (sorted), their tally, and where regimes.csv's whole
-// lines end; the rows themselves stay on disk.
+// What --resume found: the points done (a bit per grid point, and one more while reading: the
+// rows themselves stay on disk), their tally, and where regimes.csv's whole lines end.
 struct Resumed {
-  std::vector<long> done;
+  std::vector<bool> done;  // empty: nothing resumed
   SweepTally tally;
-  RegimesTable table;  // complete_bytes and warnings; its rows dropped
+  RegimesScan scan;  // complete_bytes and warnings
+  bool isDone(long g) const { return !done.empty() && done[static_cast<std::size_t>(g)]; }
 };
 
-Resumed resumed(RegimesTable table) {
+// --resume: regimes.csv read row by row (the first row of an index wins; rows of other shards and,
+// with --keep envelope, points without their whole envelope are not done: they run again).
+Resumed resumeSweep(const SweepOptions& opt, const SweepPlan& plan, bool& resuming) {
   Resumed r;
-  r.tally = tallyOf(table.points);
-  for (const auto& [g, line] : table.lines) r.done.push_back(g);  // ascending (a map)
-  table.lines.clear();
-  table.points.clear();
-  r.table = std::move(table);
+  resuming = checkResumable(opt, plan);
+  if (!resuming) return r;
+  const auto size = static_cast<std::size_t>(plan.grid.size());
+  r.done.assign(size, false);
+  std::vector<bool> seen(size, false);
+  std::optional<std::set<long>> stored;
+  if (opt.keep == "envelope") stored = storedEnvelopePoints(plan.path + "/" + kEnvelopeStoreName);
+  long without_envelope = 0;
+  r.scan = scanRegimesCsv(plan.regimes_path, plan.grid, plan.n, "the point runs again",
+                          [&](const SweepPoint& p, const std::string&) {
+                            const auto g = static_cast<std::size_t>(p.index);
+                            if (seen[g]) return false;
+                            seen[g] = true;
+                            if (!plan.shard.contains(p.index)) return true;
+                            if (stored && !stored->count(p.index)) {
+                              ++without_envelope;
+                              return true;
+                            }
+                            r.done[g] = true;
+                            r.tally.add(p);
+                            return true;
+                          });
+  if (without_envelope > 0)
+    r.scan.warnings.push_back(std::to_string(without_envelope) +
+                              " points of regimes.csv have no whole envelope in " + plan.path +
+                              "/" + kEnvelopeStoreName + " (damaged or cut): they run again");
   return r;
 }
 
@@ -106,7 +130,7 @@ std::optional<SweepPoint> runGridPoint(const SweepPlan& plan, const SweepOptions
 
 SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir,
                   const Resumed& before, bool resuming, const SweepScheduler& schedule) {
-  const RegimesTable& table = before.table;
+  const RegimesScan& table = before.scan;
   SweepRun run{before.tally};
   writeSweepJson(dir, statusJson(plan.manifest, plan.mine, run.tally, false));
   const bool fresh = table.complete_bytes == 0;
@@ -119,10 +143,8 @@ SweepRun runSweep(const SweepOptions& opt, SweepPlan& plan, const OutputDir& dir
   std::optional<EnvelopeStore> store;  // --keep envelope
   if (opt.keep == "envelope")          // resumed points keep their rows; the others run again
     store.emplace(dir.file(kEnvelopeStoreName), plan.n, !resuming,
-                  std::set<long>(before.done.begin(), before.done.end()));
-  auto wanted = [&](long g) {
-    return plan.shard.contains(g) && !std::binary_search(before.done.begin(), before.done.end(), g);
-  };
+                  [&](long g) { return before.isDone(g); });
+  auto wanted = [&](long g) { return plan.shard.contains(g) && !before.isDone(g); };
   run.jobs = schedule(
       plan.grid.size(), wanted, opt.jobs, [&](long g) { return runGridPoint(plan, opt, g); },
       [&](const SweepPoint& p) {
@@ -196,9 +218,11 @@ nlohmann::json finishSweep(const SweepOptions& opt, const SweepPlan& plan, const
     files.push_back("boundaries.csv");
   }
   if (!opt.no_plot && plan.grid.size() <= kMaxMapCells) {
-    // the maps' points read back from regimes.csv: at most kMaxMapCells, only while drawing
-    const std::map<long, SweepPoint> points =
-        readRegimesCsv(plan.regimes_path, plan.grid, plan.n).points;
+    // the maps' points read back from the sorted regimes.csv, one at a time
+    const SweepPointSource points = [&](const std::function<void(const SweepPoint&)>& visit,
+                                        const std::function<bool(const std::string&)>& wanted) {
+      forEachRegimesRow(plan.regimes_path, plan.grid, plan.n, visit, wanted);
+    };
     for (const auto& f : plotSweepMaps(dir, plan.grid, plan.n, points, mapTitle(plan.manifest),
                                        opt.plot_format, curves, plan.map_axes))
       files.push_back(f);
@@ -224,10 +248,7 @@ int sweepImpl(const SweepOptions& opt, const SweepScheduler& schedule, int ranks
   std::optional<FolderLock> lock;
   if (fs::is_directory(plan.path)) lock.emplace(plan.path, "metrosync sweep");
   bool resuming = false;
-  RegimesTable table = resumeTable(opt, plan, resuming);
-  if (resuming && opt.keep == "envelope")
-    dropPointsWithoutEnvelopes(table, plan.path + "/" + kEnvelopeStoreName);
-  const Resumed before = resumed(std::move(table));
+  const Resumed before = resumeSweep(opt, plan, resuming);
 
   // from here on files are written
   installStopHandlers();
@@ -236,7 +257,7 @@ int sweepImpl(const SweepOptions& opt, const SweepScheduler& schedule, int ranks
   if (!lock->takenOver().empty())
     std::cerr << "metrosync: note: took over the lock of " << plan.path
               << " from an ended process (" << lock->takenOver() << ")\n";
-  for (const auto& w : before.table.warnings) std::cerr << "metrosync: warning: " << w << "\n";
+  for (const auto& w : before.scan.warnings) std::cerr << "metrosync: warning: " << w << "\n";
   const SweepRun run = runSweep(opt, plan, dir, before, resuming, schedule);
 
   const bool interrupted = FileSink::stopRequested();

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <filesystem>
 #include <iostream>
+#include <set>
 
 #include "tools/cli/commands.h"
 #include "tools/report/envelope_store.h"
@@ -58,55 +59,33 @@ void removeStaleSweepOutputs(const OutputDir& dir) {
   }
 }
 
-RegimesTable resumeTable(const SweepOptions& opt, const SweepPlan& plan, bool& resuming) {
-  RegimesTable table;
-  resuming = false;
-  if (opt.resume) {
-    const std::string& path = plan.path;
-    if (fs::exists(path + "/sweep.json")) {
-      const SweepManifest old = readSweepManifest(path);
-      std::string diff = sweepDifference(old, plan.manifest);
-      if (diff.empty() && (old.shard.k != plan.shard.k || old.shard.n != plan.shard.n))
-        diff = "it is shard " + old.shard.text() + ", not " + plan.shard.text();
-      if (!diff.empty())
-        throw UsageError("--resume: " + path + " holds another sweep: " + diff +
-                         " (resume it with its own command line, or choose another --out)");
-      table = readRegimesCsv(plan.regimes_path, plan.grid, plan.n);
-      resuming = true;
-    } else if (fs::exists(plan.regimes_path)) {
-      throw UsageError("--resume: " + path +
-                       " has a regimes.csv but no sweep.json: cannot check "
-                       "that it is this sweep");
-    } else if (!opt.quiet) {
-      std::cerr << "metrosync: nothing to resume in " << path << "/: starting the sweep\n";
-    }
+bool checkResumable(const SweepOptions& opt, const SweepPlan& plan) {
+  if (!opt.resume) return false;
+  const std::string& path = plan.path;
+  if (fs::exists(path + "/sweep.json")) {
+    const SweepManifest old = readSweepManifest(path);
+    std::string diff = sweepDifference(old, plan.manifest);
+    if (diff.empty() && (old.shard.k != plan.shard.k || old.shard.n != plan.shard.n))
+      diff = "it is shard " + old.shard.text() + ", not " + plan.shard.text();
+    if (!diff.empty())
+      throw UsageError("--resume: " + path + " holds another sweep: " + diff +
+                       " (resume it with its own command line, or choose another --out)");
+    return true;
   }
-  for (auto it = table.lines.begin(); it != table.lines.end();) {  // rows of other shards
-    if (!plan.shard.contains(it->first)) {
-      table.points.erase(it->first);
-      it = table.lines.erase(it);
-    } else {
-      ++it;
-    }
-  }
-  return table;
+  if (fs::exists(plan.regimes_path))
+    throw UsageError("--resume: " + path +
+                     " has a regimes.csv but no sweep.json: cannot check "
+                     "that it is this sweep");
+  if (!opt.quiet)
+    std::cerr << "metrosync: nothing to resume in " << path << "/: starting the sweep\n";
+  return false;
 }
 
-void dropPointsWithoutEnvelopes(RegimesTable& table, const std::string& store_path) {
-  const std::map<long, std::vector<std::string>> stored = readEnvelopeStore(store_path);
-  long dropped = 0;
-  for (auto it = table.lines.begin(); it != table.lines.end();) {
-    if (stored.count(it->first)) {
-      ++it;
-      continue;
-    }
-    table.points.erase(it->first);
-    it = table.lines.erase(it);
-    ++dropped;
-  }
-  if (dropped > 0)
-    table.warnings.push_back(std::to_string(dropped) + " points of regimes.csv have no whole " +
-                             "envelope in " + store_path + " (damaged or cut): they run again");
+std::set<long> storedEnvelopePoints(const std::string& store_path) {
+  std::set<long> points;
+  forEachStoredEnvelope(store_path,
+                        [&](long g, const std::vector<std::string>&) { points.insert(g); });
+  return points;
 }
 
 OutputDir openSweepDir(const std::string& path, bool resuming) {

@@ -2,6 +2,7 @@
 // removed) and what --resume keeps of it.
 #pragma once
 
+#include <set>
 #include <string>
 
 #include "tools/cli/sweep_plan.h"
@@ -14,14 +15,14 @@ namespace metrosync::cli {
 // commands that are no longer running; run's files too.
 void removeStaleSweepOutputs(const OutputDir& dir);
 
-// --resume: the same sweep, and what it already has (this shard's rows only); `resuming` says
-// whether there was one to resume. Throws UsageError for another sweep's folder.
-RegimesTable resumeTable(const SweepOptions& opt, const SweepPlan& plan, bool& resuming);
+// --resume: does plan.path hold this sweep to resume (false: nothing to resume, said unless
+// quiet)? Throws UsageError for another sweep's folder, or a regimes.csv without sweep.json.
+bool checkResumable(const SweepOptions& opt, const SweepPlan& plan);
 
-// --resume --keep envelope: the points of regimes.csv whose envelope rows are not whole in the
-// store (a damaged member, and every member after it, is cut) are dropped from `table`: they run
-// again, so that the store holds every point it claims (issue 29).
-void dropPointsWithoutEnvelopes(RegimesTable& table, const std::string& store_path);
+// --resume --keep envelope: the points whose envelope rows are whole in the store (a damaged
+// member, and every member after it, is cut); the others run again, so that the store holds every
+// point it claims (issue 29).
+std::set<long> storedEnvelopePoints(const std::string& store_path);
 
 // The folder, made if need be, its stale files removed unless resuming (UsageError: --out).
 OutputDir openSweepDir(const std::string& path, bool resuming);

@@ -6,6 +6,7 @@
 
 #include "base/constants.h"
 #include "base/number_text.h"
+#include "sim/record/atomic_file.h"
 #include "tools/report/plot.h"
 #include "tools/report/sweep_maps.h"
 
@@ -66,11 +67,36 @@ std::string basinCsvRow(const BasinSample& s) {
   return r + (s.point.complete ? ",1" : ",0");
 }
 
-std::string basinCsv(const std::vector<RandomKey>& keys, int n,
-                     const std::map<long, BasinSample>& samples) {
-  std::string out = basinCsvHeader(keys, n) + "\n";
-  for (const auto& [k, s] : samples) out += basinCsvRow(s) + "\n";
-  return out;
+BasinRows::BasinRows() : rows_(temporaryFolder()) {}
+
+void BasinRows::add(const BasinSample& s) {
+  rows_.add(s.point.index, s.point.regime + "\t" + basinCsvRow(s));
+  ++added_;
+}
+
+void BasinRows::forEach(const std::function<void(const std::string&, const std::string&)>& visit) {
+  rows_.forEachIndex([&](long, const std::vector<std::string>& lines) {
+    const std::string& line = lines.back();  // a sample given twice: its last row
+    const std::size_t tab = line.find('\t');
+    visit(line.substr(tab + 1), line.substr(0, tab));
+  });
+}
+
+void BasinRows::tally() {
+  regimes_.clear();
+  count_ = failed_ = 0;
+  forEach([&](const std::string& row, const std::string& regime) {
+    ++regimes_[regime];
+    ++count_;
+    failed_ += row.compare(row.size() - 2, 2, ",1") != 0;  // the complete column
+  });
+}
+
+void BasinRows::writeCsv(const std::string& path, const std::vector<RandomKey>& keys, int n) {
+  AtomicFile out(path);
+  out.writeLine(basinCsvHeader(keys, n));
+  forEach([&](const std::string& row, const std::string&) { out.writeLine(row); });
+  out.commit();
 }
 
 nlohmann::json fractionsJson(const std::vector<RegimeFraction>& fractions) {
@@ -108,19 +134,22 @@ std::string fractionsTable(const std::vector<RegimeFraction>& fractions, long sa
   return t.str();
 }
 
-bool plotBasinMap(const OutputDir& dir, const std::vector<RandomKey>& keys,
-                  const std::map<long, BasinSample>& samples, const std::string& title) {
-  if (keys.size() != 2 || samples.empty()) return false;
-  std::map<long, SweepPoint> points;
-  for (const auto& [k, s] : samples) points[k] = s.point;
-  const std::vector<std::string> legend = regimeLegendOrder(points);
-  std::ostringstream d;
-  for (const auto& [k, s] : samples)
-    d << s.drawn[0] << " " << s.drawn[1] << " "
-      << std::stol(regimeColour(s.point.regime, legend).substr(1), nullptr, 16) << "\n";
-  return drawPng(dir, "basin.png", d.str(), [&](const std::string& data, const std::string& png) {
-    return basinScript(keys, legend, title, data, png);
-  });
+bool plotBasinMap(const OutputDir& dir, const std::vector<RandomKey>& keys, BasinRows& samples,
+                  const std::string& title) {
+  if (keys.size() != 2 || samples.count() == 0) return false;
+  const std::vector<std::string> legend = regimeLegendOrder(samples.regimes());
+  const auto data = [&](std::ostream& d) {
+    samples.forEach([&](const std::string& row, const std::string& regime) {
+      // "sample,drawn_1,drawn_2,...": the drawn values are numbers (no comma in them)
+      const std::size_t a = row.find(',') + 1, b = row.find(',', a), c = row.find(',', b + 1);
+      d << row.substr(a, b - a) << " " << row.substr(b + 1, c - b - 1) << " "
+        << std::stol(regimeColour(regime, legend).substr(1), nullptr, 16) << "\n";
+    });
+  };
+  return drawPngFrom(dir, "basin.png", data,
+                     [&](const std::string& data_path, const std::string& png) {
+                       return basinScript(keys, legend, title, data_path, png);
+                     });
 }
 
 }  // namespace metrosync

@@ -9,6 +9,7 @@
 // and the table printed on stdout.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -16,6 +17,7 @@
 
 #include "sim/analysis/basin.h"
 #include "sim/analysis/sweep.h"
+#include "tools/report/external_sort.h"
 #include "tools/report/outputs.h"
 
 namespace metrosync {
@@ -28,9 +30,30 @@ struct BasinSample {
 
 std::string basinCsvHeader(const std::vector<RandomKey>& keys, int n);
 std::string basinCsvRow(const BasinSample& s);
-// header + the rows of `samples` in sample order
-std::string basinCsv(const std::vector<RandomKey>& keys, int n,
-                     const std::map<long, BasinSample>& samples);
+
+// The samples as they finish (in any order): their rows go to an external sort
+// (tools/report/external_sort.h) in the system's temporary folder, and only the count of each
+// regime stays in memory, so that a basin's memory does not grow with its samples (issue 29).
+class BasinRows {
+ public:
+  BasinRows();
+  void add(const BasinSample& s);
+  long added() const { return added_; }
+  // Counts the samples (each index once) for the three below.
+  void tally();
+  long count() const { return count_; }
+  long failed() const { return failed_; }
+  const std::map<std::string, long>& regimes() const { return regimes_; }
+  // header + the rows in sample order, written atomically to `path`
+  void writeCsv(const std::string& path, const std::vector<RandomKey>& keys, int n);
+  // visit(csv row, regime) in sample order
+  void forEach(const std::function<void(const std::string&, const std::string&)>& visit);
+
+ private:
+  ExternalSort rows_;  // "REGIME\tCSV ROW" by sample
+  std::map<std::string, long> regimes_;
+  long added_ = 0, count_ = 0, failed_ = 0;
+};
 
 // The "fractions" array of basin.json: [{regime, count, fraction, ci95: [lo, hi]}].
 nlohmann::json fractionsJson(const std::vector<RegimeFraction>& fractions);
@@ -41,7 +64,7 @@ nlohmann::json randomKeysJson(const std::vector<RandomKey>& keys);
 std::string fractionsTable(const std::vector<RegimeFraction>& fractions, long samples);
 
 // basin.png for two keys (keys[0] across, keys[1] up); returns true when written.
-bool plotBasinMap(const OutputDir& dir, const std::vector<RandomKey>& keys,
-                  const std::map<long, BasinSample>& samples, const std::string& title);
+bool plotBasinMap(const OutputDir& dir, const std::vector<RandomKey>& keys, BasinRows& samples,
+                  const std::string& title);
 
 }  // namespace metrosync

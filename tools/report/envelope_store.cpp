@@ -3,7 +3,9 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <cstring>
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 
 #include "sim/record/envelope.h"
@@ -17,24 +19,33 @@ std::string envelopeStoreHeader(int n) {
 
 namespace {
 
-// The whole decompressed text up to the first damaged byte (a truncated member ends it).
-std::string readGzipText(const std::string& path) {
+// Calls line(text) for each whole decompressed line (without its newline) up to the first damaged
+// byte (a truncated member ends it); false when the file is absent.
+bool forEachGzipLine(const std::string& path, const std::function<void(const std::string&)>& line) {
   const int fd = openRegularForReading(path);  // never a link's target, never a FIFO
-  if (fd < 0) return "";
+  if (fd < 0) return false;
   gzFile f = gzdopen(fd, "rb");
   if (!f) {
     ::close(fd);
-    return "";
+    return false;
   }
-  std::string text;
+  std::string pending;  // the current line's start
   char buf[1 << 16];
   for (;;) {
     const int k = gzread(f, buf, sizeof buf);
     if (k <= 0) break;  // end, or a damaged tail: keep what came before
-    text.append(buf, static_cast<size_t>(k));
+    std::size_t from = 0;
+    for (const char* nl;
+         (nl = static_cast<const char*>(std::memchr(buf + from, '\n', k - from)));) {
+      pending.append(buf + from, static_cast<std::size_t>(nl - (buf + from)));
+      line(pending);
+      pending.clear();
+      from = static_cast<std::size_t>(nl - buf) + 1;
+    }
+    pending.append(buf + from, static_cast<std::size_t>(k) - from);
   }
   gzclose(f);
-  return text;
+  return true;  // a last line without its newline: cut short, dropped
 }
 
 // One gzip member holding `text`, appended to `path`.
@@ -50,46 +61,69 @@ void appendGzipMember(const std::string& path, const std::string& text) {
 
 }  // namespace
 
-std::map<long, std::vector<std::string>> readEnvelopeStore(const std::string& path) {
-  std::map<long, std::vector<std::string>> points;
-  const std::string text = readGzipText(path);
-  if (text.empty()) return points;
-  size_t at = text.find('\n');
-  if (at == std::string::npos || text.compare(0, 10, "point,tau,") != 0)
-    throw std::runtime_error(path + ": not an envelope store (header point,tau,...)");
-  std::map<long, std::vector<std::string>> open;
-  for (size_t start = at + 1; start < text.size(); start = at + 1) {
-    at = text.find('\n', start);
-    if (at == std::string::npos) break;  // a line without its newline: cut short
-    const std::string line = text.substr(start, at - start);
+void forEachStoredEnvelope(
+    const std::string& path,
+    const std::function<void(long, const std::vector<std::string>&)>& visit) {
+  bool header = true;
+  std::map<long, std::vector<std::string>> open;  // the points whose #end is still to come
+  forEachGzipLine(path, [&](const std::string& line) {
+    if (header) {
+      if (line.compare(0, 10, "point,tau,") != 0)
+        throw std::runtime_error(path + ": not an envelope store (header point,tau,...)");
+      header = false;
+      return;
+    }
     const size_t comma = line.find(',');
-    if (comma == std::string::npos || line.compare(0, 6, "point,") == 0) continue;  // headers
+    if (comma == std::string::npos || line.compare(0, 6, "point,") == 0) return;  // headers
     if (line.compare(0, 5, "#end,") == 0) {
       const long g = std::stol(line.substr(5));
       const long rows = std::stol(line.substr(line.find(',', 5) + 1));
-      if (static_cast<long>(open[g].size()) == rows) points[g] = std::move(open[g]);
-      open.erase(g);
-      continue;
+      const auto it = open.find(g);
+      if (it != open.end() && static_cast<long>(it->second.size()) == rows) visit(g, it->second);
+      if (it != open.end()) open.erase(it);
+      return;
     }
     open[std::stol(line.substr(0, comma))].push_back(line.substr(comma + 1));
-  }
+  });
+}
+
+std::map<long, std::vector<std::string>> readEnvelopeStore(const std::string& path) {
+  std::map<long, std::vector<std::string>> points;
+  forEachStoredEnvelope(path,
+                        [&](long g, const std::vector<std::string>& rows) { points[g] = rows; });
   return points;
 }
 
-EnvelopeStore::EnvelopeStore(const std::string& path, int n, bool fresh, const std::set<long>& keep)
+EnvelopeStore::EnvelopeStore(const std::string& path, int n, bool fresh,
+                             const std::function<bool(long)>& keep)
     : path_(path) {
-  std::map<long, std::vector<std::string>> kept;
-  if (!fresh) kept = readEnvelopeStore(path);
-  // a new file (or the old one without its damaged tail), written whole, then appended to
-  std::string text = envelopeStoreHeader(n) + "\n";
-  for (const auto& [g, rows] : kept) {
-    if (!keep.count(g)) continue;
-    for (const auto& row : rows) text += std::to_string(g) + "," + row + "\n";
-    text += "#end," + std::to_string(g) + "," + std::to_string(rows.size()) + "\n";
-  }
+  // a new file (or the old one without its damaged tail and the points not kept), written as one
+  // member point by point (one point's rows in memory at a time), then appended to
   const std::string tmp = path + ".new";
   std::filesystem::remove(tmp);
-  appendGzipMember(tmp, text);
+  const int fd = openOutputFile(tmp, true, false);
+  gzFile f = gzdopen(fd, "wb");
+  if (!f) ::close(fd);
+  if (!f) throw std::runtime_error(tmp + ": cannot open for writing");
+  bool ok = true;
+  const auto put = [&](const std::string& text) {
+    ok = ok && gzwrite(f, text.data(), static_cast<unsigned>(text.size())) ==
+                   static_cast<int>(text.size());
+  };
+  std::set<long> written;
+  try {
+    put(envelopeStoreHeader(n) + "\n");
+    if (!fresh)
+      forEachStoredEnvelope(path, [&](long g, const std::vector<std::string>& rows) {
+        if (!keep || !keep(g) || !written.insert(g).second) return;  // a point stored twice: once
+        for (const auto& row : rows) put(std::to_string(g) + "," + row + "\n");
+        put("#end," + std::to_string(g) + "," + std::to_string(rows.size()) + "\n");
+      });
+  } catch (...) {
+    gzclose(f);
+    throw;
+  }
+  if (gzclose(f) != Z_OK || !ok) throw std::runtime_error(tmp + ": write failed");
   std::filesystem::rename(tmp, path);
 }
 

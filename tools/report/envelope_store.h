@@ -8,6 +8,7 @@
 // --resume); a point written twice has the same rows (the runs are deterministic): the last wins.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <mutex>
 #include <set>
@@ -25,13 +26,18 @@ std::string envelopeStoreHeader(int n);
 // format of envelope.csv's rows). A truncated or damaged tail is ignored; a missing file is empty.
 // Throws std::runtime_error when the header is not a store's.
 std::map<long, std::vector<std::string>> readEnvelopeStore(const std::string& path);
+// ... visited one point at a time, in the order of the file (the rows of one point in memory).
+void forEachStoredEnvelope(const std::string& path,
+                           const std::function<void(long, const std::vector<std::string>&)>& visit);
 
 // Appends points to DIR/envelopes.csv.gz. fresh: a new file with the header; otherwise the
 // complete points already there that are in `keep` (the points regimes.csv has; the others run
-// again) are kept: the file is rewritten without them and without a damaged tail first.
+// again) are kept: the file is rewritten without them and without a damaged tail first, one point
+// at a time.
 class EnvelopeStore {
  public:
-  EnvelopeStore(const std::string& path, int n, bool fresh, const std::set<long>& keep = {});
+  EnvelopeStore(const std::string& path, int n, bool fresh,
+                const std::function<bool(long)>& keep = {});
   // rows: envelope.csv lines (formatEnvelopeRow) of point g; thread-safe
   void append(long g, const std::vector<std::string>& rows);
 

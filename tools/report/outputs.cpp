@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "base/number_text.h"
+#include "sim/record/private_dir.h"
 #include "tools/report/build_info.h"
 
 namespace metrosync {
@@ -79,6 +80,10 @@ void OutputDir::removeStaleOutputs() const {
   // temporary files of earlier interrupted commands (".NAME.<pid>.part" whose process is gone)
   for (const auto& entry : fs::directory_iterator(path_, ec)) {
     const std::string n = entry.path().filename().string();
+    if (isStalePrivateDirName(n)) {  // a plot's private folder (sim/record/private_dir.h)
+      fs::remove_all(entry.path(), ec);
+      continue;
+    }
     if (n.size() < 7 || n[0] != '.' || n.compare(n.size() - 5, 5, ".part") != 0) continue;
     const std::string core = n.substr(1, n.size() - 6);  // NAME.<pid>
     const size_t dot = core.rfind('.');

@@ -11,12 +11,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ext/stdio_filebuf.h>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include "base/constants.h"
 #include "base/number_text.h"
+#include "sim/record/private_dir.h"
 
 extern char** environ;
 
@@ -93,15 +95,16 @@ std::string envelopeData(const std::vector<const std::vector<EnvelopeRow>*>& blo
   return out.str();
 }
 
-std::string firstLines(const std::string& path, int count) {
-  std::ifstream in(path);
-  std::string line, text;
+// The first `count` lines of `text` that say something, joined with " | ".
+std::string firstLines(const std::string& text, int count) {
+  std::istringstream in(text);
+  std::string line, joined;
   for (int k = 0; k < count && std::getline(in, line);) {
     if (line.find_first_not_of(" \t^") == std::string::npos) continue;
-    text += (text.empty() ? "" : " | ") + line;
+    joined += (joined.empty() ? "" : " | ") + line;
     ++k;
   }
-  return text;
+  return joined;
 }
 
 bool drawPlot(const OutputDir& dir, const std::string& png_name,
@@ -135,6 +138,13 @@ bool drawPlot(const OutputDir& dir, const std::string& png_name,
 
 bool drawPng(const OutputDir& dir, const std::string& png_name, const std::string& data,
              const std::function<std::string(const std::string&, const std::string&)>& script) {
+  return drawPngFrom(
+      dir, png_name, [&](std::ostream& out) { out << data; }, script);
+}
+
+bool drawPngFrom(const OutputDir& dir, const std::string& png_name,
+                 const std::function<void(std::ostream&)>& data,
+                 const std::function<std::string(const std::string&, const std::string&)>& script) {
   const std::string gnuplot = findExecutable("gnuplot");
   if (gnuplot.empty()) {
     static bool warned = false;
@@ -142,54 +152,51 @@ bool drawPng(const OutputDir& dir, const std::string& png_name, const std::strin
     warned = true;
     return false;
   }
-  const std::string final_png = dir.file(png_name);
-  // every temporary made metrosync's own new file before gnuplot opens it (never a planted link)
-  std::string png, data_path, script_path, log;
-  auto cleanup = [&] {
-    for (const auto* p : {&data_path, &script_path, &log})
-      if (!p->empty()) std::remove(p->c_str());
-  };
+  // every file gnuplot opens lies in a private folder it reaches through a descriptor
+  // (sim/record/private_dir.h): nothing is reopened by a name someone else could replace
+  int rc = -1;
   try {
-    png = newTemporaryFile(final_png);
-    data_path = newTemporaryFile(final_png + ".dat", data);
-    log = newTemporaryFile(final_png + ".log");
-    script_path = newTemporaryFile(final_png + ".gp", script(data_path, png));
+    PrivateDir tmp(dir.path());
+    {
+      __gnu_cxx::stdio_filebuf<char> buf(tmp.createOpen("data"), std::ios::out);  // closes it
+      std::ostream out(&buf);
+      data(out);
+      if (!out.flush()) throw std::runtime_error("cannot write the data of " + png_name);
+    }
+    tmp.create("log");
+    tmp.create("plot.gp", script(PrivateDir::childPath("data"), PrivateDir::childPath("out")));
+    rc = runGnuplot(gnuplot, PrivateDir::childPath("plot.gp"), tmp);
+    if (rc != 0 || tmp.size("out") <= 0) {
+      const std::string why = firstLines(tmp.read("log"), 3);
+      warn(png_name + " not written: gnuplot failed" + (why.empty() ? "" : ": " + why));
+      return false;
+    }
+    if (!tmp.publish("out", dir.file(png_name))) {
+      warn(png_name + " not written: cannot rename its temporary file");
+      return false;
+    }
   } catch (const std::runtime_error& e) {
-    if (!png.empty()) std::remove(png.c_str());
-    cleanup();
     warn(png_name + " not written: " + e.what());
-    return false;
-  }
-  const int rc = runGnuplot(gnuplot, script_path, log);
-  struct stat st {};
-  if (rc != 0 || ::stat(png.c_str(), &st) != 0 || st.st_size == 0) {
-    const std::string why = firstLines(log, 3);
-    warn(png_name + " not written: gnuplot failed" + (why.empty() ? "" : ": " + why));
-    std::remove(png.c_str());
-    cleanup();
-    return false;
-  }
-  cleanup();
-  if (std::rename(png.c_str(), final_png.c_str()) != 0) {
-    std::remove(png.c_str());
-    warn(png_name + " not written: cannot rename its temporary file");
     return false;
   }
   return true;
 }
 
-int runGnuplot(const std::string& gnuplot, const std::string& script, const std::string& log_path) {
+int runGnuplot(const std::string& gnuplot, const std::string& script, const PrivateDir& tmp) {
+  const int log = tmp.openForWriting("log");
+  if (log < 0) return -1;
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
   posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, log_path.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
+  posix_spawn_file_actions_adddup2(&fa, log, 2);
+  posix_spawn_file_actions_adddup2(&fa, tmp.fd(), kChildDirFd);
   std::vector<char*> argv = {const_cast<char*>(gnuplot.c_str()), const_cast<char*>(script.c_str()),
                              nullptr};
   pid_t pid = 0;
   const int rc = posix_spawn(&pid, gnuplot.c_str(), &fa, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&fa);
+  ::close(log);
   if (rc != 0) return -1;
   int status = 0;
   while (waitpid(pid, &status, 0) < 0)

@@ -3,12 +3,14 @@
 //                    the phase differences psi_j against tau with guides at pi and 2 pi (bottom;
 //                    absent for N = 1), as in the paper's simulation figures
 //   comparison plot: the same panels, full model (solid) over the slow flow (dashed)
-// The data go to a temporary file in the output directory, gnuplot draws into a temporary PNG
-// that is renamed when complete. A missing or failing gnuplot is a warning on stderr, never an
+// The data, the script and gnuplot's log go to a private temporary folder in the output directory
+// (sim/record/private_dir.h), gnuplot draws into a PNG there that is renamed into place when
+// complete. A missing or failing gnuplot is a warning on stderr, never an
 // error: the run's results do not depend on its plots.
 #pragma once
 
 #include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -27,15 +29,20 @@ std::string halfPiLabel(long k);
 // Full path of `name` found on $PATH (executable), or "" when absent.
 std::string findExecutable(const std::string& name);
 
-// Runs `gnuplot script` (stdin and stdout to /dev/null, stderr to `log_path`); returns gnuplot's
-// exit status, or -1 if it could not be run.
-int runGnuplot(const std::string& gnuplot, const std::string& script, const std::string& log_path);
+class PrivateDir;
+// Runs `gnuplot script` (stdin and stdout to /dev/null, stderr to `tmp`'s file "log", `tmp` as
+// the child's descriptor kChildDirFd); returns gnuplot's exit status, or -1 if it could not run.
+int runGnuplot(const std::string& gnuplot, const std::string& script, const PrivateDir& tmp);
 
-// Draws DIR/png_name: writes `data` to a temporary file next to it, runs the gnuplot script that
-// script(data_path, png_path) returns, renames the PNG into place. A missing gnuplot (said once
-// per process) or a failing one is a warning; returns true when the PNG was written.
+// Draws DIR/png_name: writes `data` to a private temporary folder in DIR, runs the gnuplot script
+// that script(data_path, png_path) returns, renames the PNG into place. A missing gnuplot (said
+// once per process) or a failing one is a warning; returns true when the PNG was written.
 bool drawPng(const OutputDir& dir, const std::string& png_name, const std::string& data,
              const std::function<std::string(const std::string&, const std::string&)>& script);
+// ... the data written by `data` as it goes (never held whole in memory).
+bool drawPngFrom(const OutputDir& dir, const std::string& png_name,
+                 const std::function<void(std::ostream&)>& data,
+                 const std::function<std::string(const std::string&, const std::string&)>& script);
 
 // How the envelope and comparison plots are drawn (docs/outputs.md).
 struct PlotStyle {

@@ -15,12 +15,14 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <set>
 #include <sstream>
 
 #include "base/number_text.h"
 #include "sim/record/atomic_file.h"
 #include "sim/record/safe_open.h"
+#include "tools/report/external_sort.h"
 #include "tools/report/progress_log.h"
 
 namespace metrosync {
@@ -201,64 +203,107 @@ SweepPoint parseRegimesRow(const SweepGrid& grid, int n, const std::string& line
   return p;
 }
 
-RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
-                            const std::string& dropped) {
-  RegimesTable t;
-  const std::string text = readRegularFile(path);  // a link or FIFO at the name: refused
-  const size_t last_newline = text.rfind('\n');
-  if (last_newline == std::string::npos) {  // not even a whole header: start afresh
-    if (!text.empty()) t.partial_lines = 1;
+namespace {
+
+// The header of the regimes.csv read by `f` (its first line, without the newline); "" when the
+// file has no whole line.
+std::string readHeader(std::FILE* f, bool& whole) {
+  std::string header;
+  for (int c; (c = std::fgetc(f)) != EOF;) {
+    if (c == '\n') {
+      whole = true;
+      return header;
+    }
+    header += static_cast<char>(c);
+  }
+  whole = false;
+  return header;
+}
+
+}  // namespace
+
+RegimesScan scanRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
+                           const std::string& dropped, const RegimesVisitor& visit) {
+  RegimesScan t;
+  const int fd = openRegularForReading(path);  // a link or FIFO at the name: refused
+  if (fd < 0) return t;
+  std::FILE* f = ::fdopen(fd, "r");
+  if (!f) {
+    ::close(fd);
+    throw std::runtime_error("cannot read " + path);
+  }
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> closer(f, &std::fclose);
+  bool whole = false;
+  const std::string header = readHeader(f, whole);
+  if (!whole) {  // not even a whole header: start afresh
+    if (!header.empty()) t.partial_lines = 1;
     return t;
   }
-  t.complete_bytes = last_newline + 1;
-  if (t.complete_bytes < text.size()) {
-    t.partial_lines = 1;
-    t.warnings.push_back(path + ": the last line was cut short (an interrupted write): dropped");
-  }
-  const size_t header_end = text.find('\n');
-  const std::string header = text.substr(0, header_end);
   const std::string expected = regimesHeader(grid, n);
   if (header != expected)
     throw SweepInputError(path + ": its header is not this sweep's:\n  found    " + header +
                           "\n  expected " + expected);
-  size_t pos = header_end + 1;
+  t.complete_bytes = header.size() + 1;
+  char* buf = nullptr;
+  std::size_t cap = 0;
   long lineno = 1;
-  while (pos < t.complete_bytes) {
-    const size_t end = text.find('\n', pos);
-    const std::string line = text.substr(pos, end - pos);
-    pos = end + 1;
+  for (ssize_t len; (len = ::getline(&buf, &cap, f)) > 0;) {
+    if (buf[len - 1] != '\n') {
+      t.partial_lines = 1;  // said first, as before any row's warning
+      t.warnings.insert(t.warnings.begin(),
+                        path + ": the last line was cut short (an interrupted write): dropped");
+      break;
+    }
+    t.complete_bytes += static_cast<std::size_t>(len);
     ++lineno;
+    const std::string line(buf, static_cast<std::size_t>(len - 1));
     if (line.empty()) continue;
     try {
-      SweepPoint p = parseRegimesRow(grid, n, line);
-      if (t.lines.count(p.index)) {
-        ++t.duplicate_lines;
-        continue;
-      }
-      t.lines[p.index] = line;
-      t.points[p.index] = std::move(p);
+      if (!visit(parseRegimesRow(grid, n, line), line)) ++t.duplicate_lines;
     } catch (const SweepInputError& e) {
       ++t.malformed_lines;
       t.warnings.push_back(path + ":" + std::to_string(lineno) + ": " + e.what() + ": dropped (" +
                            dropped + ")");
     }
   }
+  std::free(buf);
   return t;
+}
+
+RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
+                            const std::string& dropped) {
+  RegimesTable t;
+  RegimesScan& scan = t;
+  scan = scanRegimesCsv(path, grid, n, dropped, [&](SweepPoint p, const std::string& line) {
+    if (t.lines.count(p.index)) return false;  // the first line of an index wins
+    t.lines[p.index] = line;
+    t.points[p.index] = std::move(p);
+    return true;
+  });
+  return t;
+}
+
+std::optional<long> regimesRowIndex(const SweepGrid& grid, int n, const std::string& line) {
+  try {
+    return parseRegimesRow(grid, n, line).index;
+  } catch (const SweepInputError&) {
+    return std::nullopt;  // malformed: dropped (--resume warned when it read the file)
+  }
 }
 
 namespace {
 
-// One pass of sortRegimesCsv: the rows of the smallest indices >= `from` that fit in
-// `pass_bytes` (the last row of an index wins); `whole`: every such row fitted.
-std::map<long, std::string> sortPass(const std::string& path, const SweepGrid& grid, int n,
-                                     const std::function<bool(long)>& keep, long from,
-                                     std::size_t pass_bytes, bool& whole) {
-  std::map<long, std::string> rows;
-  std::size_t bytes = 0;
-  whole = true;
-  const int fd = openRegularForReading(path);
-  if (fd < 0) return rows;
+// Calls line(text) for each whole line of the regimes.csv at `path` after its header (a last line
+// cut short is skipped); nothing when the file is absent.
+void forEachRowLine(const std::string& path, const std::function<void(std::string)>& line) {
+  const int fd = openRegularForReading(path);  // a link or FIFO at the name: refused
+  if (fd < 0) return;
   std::FILE* f = ::fdopen(fd, "r");
+  if (!f) {
+    ::close(fd);
+    throw std::runtime_error("cannot read " + path);
+  }
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> closer(f, &std::fclose);
   char* buf = nullptr;
   std::size_t cap = 0;
   bool header = true;
@@ -267,50 +312,46 @@ std::map<long, std::string> sortPass(const std::string& path, const SweepGrid& g
       header = false;
       continue;
     }
-    const std::string line(buf, static_cast<std::size_t>(len - 1));
-    long g = -1;
     try {
-      g = parseRegimesRow(grid, n, line).index;
-    } catch (const SweepInputError&) {
-      continue;  // malformed: dropped (--resume warned when it read the file)
-    }
-    if (g < from || !keep(g) || (!whole && g > rows.rbegin()->first)) continue;
-    std::string& slot = rows[g];
-    bytes += line.size() - slot.size();
-    slot = line;
-    while (bytes > pass_bytes && rows.size() > 1) {  // the largest indices wait for a later pass
-      bytes -= rows.rbegin()->second.size();
-      rows.erase(std::prev(rows.end()));
-      whole = false;
+      line(std::string(buf, static_cast<std::size_t>(len - 1)));
+    } catch (...) {
+      std::free(buf);
+      throw;
     }
   }
   std::free(buf);
-  std::fclose(f);
-  return rows;
 }
 
 }  // namespace
 
 void sortRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
-                    const std::function<bool(long)>& keep, std::size_t pass_bytes) {
+                    const std::function<bool(long)>& keep, std::size_t chunk_bytes) {
+  const std::size_t slash = path.rfind('/');
+  ExternalSort sort(slash == std::string::npos ? "." : path.substr(0, slash), chunk_bytes);
+  forEachRowLine(path, [&](std::string line) {
+    const std::optional<long> g = regimesRowIndex(grid, n, line);
+    if (g && keep(*g)) sort.add(*g, std::move(line));
+  });
   AtomicFile out(path);
   out.writeLine(regimesHeader(grid, n));
-  for (long from = 0;;) {
-    bool whole = true;
-    const std::map<long, std::string> rows = sortPass(path, grid, n, keep, from, pass_bytes, whole);
-    for (const auto& [g, line] : rows) out.writeLine(line);
-    if (whole || rows.empty()) break;
-    from = rows.rbegin()->first + 1;
-  }
+  sort.forEachIndex(
+      [&](long, const std::vector<std::string>& lines) { out.writeLine(lines.back()); });
   out.commit();
 }
 
-void writeSortedRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
-                           const std::map<long, std::string>& lines) {
-  AtomicFile f(path);
-  f.writeLine(regimesHeader(grid, n));
-  for (const auto& [index, line] : lines) f.writeLine(line);
-  f.commit();
+void forEachRegimesRow(const std::string& path, const SweepGrid& grid, int n,
+                       const std::function<void(const SweepPoint&)>& visit,
+                       const std::function<bool(const std::string&)>& wanted) {
+  forEachRowLine(path, [&](std::string line) {
+    if (wanted && !wanted(line)) return;
+    std::optional<SweepPoint> p;
+    try {
+      p = parseRegimesRow(grid, n, line);
+    } catch (const SweepInputError&) {
+      return;  // malformed: not drawn
+    }
+    visit(*p);
+  });
 }
 
 RegimesAppender::RegimesAppender(const std::string& path, const std::string& header, bool fresh,

@@ -6,10 +6,12 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "sim/analysis/sweep.h"
+#include "tools/report/external_sort.h"
 
 namespace metrosync {
 
@@ -24,37 +26,52 @@ std::string formatRegimesRow(const SweepGrid& grid, const SweepPoint& p);
 // values that are not the point's).
 SweepPoint parseRegimesRow(const SweepGrid& grid, int n, const std::string& line);
 
-// The rows of a regimes.csv: the line of each index (first one wins) and its parsed point.
-struct RegimesTable {
-  std::map<long, std::string> lines;
-  std::map<long, SweepPoint> points;
+// What reading a regimes.csv found besides its rows.
+struct RegimesScan {
   long partial_lines = 0;    // a last line cut short (kill -9 mid-write): dropped
   long malformed_lines = 0;  // complete lines that do not parse: dropped (their points rerun)
   long duplicate_lines = 0;  // an index seen again: dropped
   std::vector<std::string> warnings;
   size_t complete_bytes = 0;  // length of the file up to its last newline
 };
-// Reads `path`; throws SweepInputError when its header is not `regimesHeader(grid, n)`.
-// A missing file gives an empty table. `dropped` says in the warnings what becomes of a point
-// whose line is dropped ("the point runs again" for --resume; merge runs nothing).
+// Called with each well-formed row as it is read (none held); returns false for a row it drops
+// as a duplicate (counted in duplicate_lines).
+using RegimesVisitor = std::function<bool(SweepPoint, const std::string& line)>;
+// Reads `path` line by line; throws SweepInputError when its header is not
+// `regimesHeader(grid, n)`. A missing file visits nothing. `dropped` says in the warnings what
+// becomes of a point whose line is dropped ("the point runs again" for --resume; merge runs
+// nothing).
+RegimesScan scanRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
+                           const std::string& dropped, const RegimesVisitor& visit);
+
+// The rows of a regimes.csv held in memory (small sweeps: `figures`, tests): the line of each
+// index (first one wins) and its parsed point.
+struct RegimesTable : RegimesScan {
+  std::map<long, std::string> lines;
+  std::map<long, SweepPoint> points;
+};
 RegimesTable readRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
                             const std::string& dropped = "the point runs again");
 
-// Writes header + lines (ascending index) to `path` atomically.
-// How many bytes of rows one pass of sortRegimesCsv holds: 64 MiB is ~300 000 rows of two
-// metronomes; a sweep of 10^7 points (~2 GB of rows) sorts in ~30 passes over its file.
-constexpr std::size_t kSortPassBytes = std::size_t(64) << 20;
+// The grid index of a regimes.csv line (nullopt: malformed).
+std::optional<long> regimesRowIndex(const SweepGrid& grid, int n, const std::string& line);
+
+// Visits the points of the regimes.csv at `path` in the order of its lines, one at a time (none
+// held); malformed lines and a last line cut short are skipped, a missing file visits none. Lines
+// `wanted` refuses are skipped unparsed.
+void forEachRegimesRow(const std::string& path, const SweepGrid& grid, int n,
+                       const std::function<void(const SweepPoint&)>& visit,
+                       const std::function<bool(const std::string&)>& wanted = {});
 
 // Rewrites `path` (regimes.csv with its rows in the order they finished: perhaps an earlier run's
 // rows, a row given again by a re-run point, a malformed line) sorted by grid index, each index
-// once (its last row), for the indices `keep` accepts, malformed lines dropped. In passes over the
-// file that each hold at most `pass_bytes` of rows, so that memory does not grow with the sweep
-// (issue 29). Atomic (sim/record/atomic_file.h).
+// once (its last row), for the indices `keep` accepts, malformed lines dropped. Through an
+// external sort holding at most `chunk_bytes` of rows (tools/report/external_sort.h), so that
+// memory does not grow with the sweep (issue 29). Atomic (sim/record/atomic_file.h).
 void sortRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
-                    const std::function<bool(long)>& keep, std::size_t pass_bytes = kSortPassBytes);
+                    const std::function<bool(long)>& keep,
+                    std::size_t chunk_bytes = kSortChunkBytes);
 
-void writeSortedRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
-                           const std::map<long, std::string>& lines);
 
 // ---- timings.csv --------------------------------------------------------------------------------
 

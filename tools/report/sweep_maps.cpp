@@ -114,11 +114,6 @@ std::string axisSettings(const SweepGrid& grid, const std::vector<size_t>& axes)
   return s.str();
 }
 
-const SweepPoint* pointAt(const std::map<long, SweepPoint>& points, long g) {
-  auto it = points.find(g);
-  return it == points.end() ? nullptr : &it->second;
-}
-
 long indexOf(const SweepGrid& grid, const std::vector<long>& c) {
   long g = 0;
   for (size_t a = 0; a < grid.axes().size(); ++a) g = g * grid.axes()[a].count + c[a];
@@ -156,9 +151,18 @@ long rgbOf(const std::string& hex) {
   return std::stol(hex.substr(1), nullptr, 16);
 }
 
+// What the maps show of one grid point: a fixed size whatever the number of metronomes (the first
+// kMaxPanels amplitudes and phases are drawn), so that a slice's cells cost memory bounded by the
+// slice, not by the sweep.
+struct MapCell {
+  bool present = false, complete = false;
+  int regime = -1;  // its position in MapSummary::regimes
+  double A[kMaxPanels], psi[kMaxPanels], r = NAN, s = NAN, fraction = NAN;
+};
+
 // a value shown in the maps: none for failed or missing points
-double shown(const SweepPoint* p, double v) {
-  return p && p->complete ? v : std::nan("");
+double shown(const MapCell& c, double v) {
+  return c.present && c.complete ? v : std::nan("");
 }
 
 std::string panelLayout(int panels) {
@@ -340,6 +344,7 @@ struct MapFrame {
   std::vector<size_t> axes;  // the drawn axes
   bool map2d = false;
   std::vector<long> order;  // scan order, -1 between rows
+  std::vector<long> fixed;  // the slice: the coordinates of the axes not drawn
   std::string title;
   std::string format = "png";  // png, svg or pdf (tools/report/plot.h)
   std::string suffix;          // "" or "--KEY3=V..." (a slice of an N-D sweep)
@@ -349,18 +354,88 @@ struct MapFrame {
   }
 };
 
+// What the maps need of the whole sweep, gathered in one reading of its points.
+struct MapSummary {
+  std::vector<std::string> regimes;  // every regime name, in first-seen order
+  std::vector<std::string> legend;   // regimeLegendOrder of their counts
+  long points = 0;
+  bool any_complete = false, any_drive = false;
+};
+
+MapSummary summarize(const SweepPointSource& points) {
+  MapSummary m;
+  std::map<std::string, long> count;
+  points(
+      [&](const SweepPoint& p) {
+        if (count[p.regime]++ == 0) m.regimes.push_back(p.regime);
+        ++m.points;
+        m.any_complete = m.any_complete || p.complete;
+        m.any_drive = m.any_drive || !std::isnan(p.s);
+      },
+      {});
+  m.legend = regimeLegendOrder(count);
+  return m;
+}
+
+// The cells of one slice, in scan order (f.order without its blank lines), read from `points`.
+std::vector<MapCell> sliceCells(const MapFrame& f, const MapSummary& m,
+                                const SweepPointSource& points) {
+  const long nx = f.grid.axes()[f.axes[0]].count;
+  const long ny = f.map2d ? f.grid.axes()[f.axes[1]].count : 1;
+  std::map<std::string, int> regime;
+  for (std::size_t k = 0; k < m.regimes.size(); ++k) regime[m.regimes[k]] = static_cast<int>(k);
+  std::vector<MapCell> cells(static_cast<std::size_t>(nx * ny));
+  // a line of another slice differs in the text of an axis not drawn (the first columns)
+  std::vector<std::string> keys;
+  for (std::size_t a = 0; a < f.grid.axes().size(); ++a)
+    keys.push_back(a == f.axes[0] || (f.map2d && a == f.axes[1])
+                       ? std::string()
+                       : f.grid.axes()[a].texts[static_cast<std::size_t>(f.fixed[a])] + ",");
+  const auto inSlice = [&](const std::string& line) {
+    std::size_t at = 0;
+    for (const std::string& key : keys) {
+      const std::size_t comma = line.find(',', at);
+      if (comma == std::string::npos) return true;  // malformed: the parser says so
+      if (!key.empty() && line.compare(at, comma + 1 - at, key) != 0) return false;
+      at = comma + 1;
+    }
+    return true;
+  };
+  points(
+      [&](const SweepPoint& p) {
+        const std::vector<long> at = f.grid.coordinates(p.index);
+        for (std::size_t a = 0; a < at.size(); ++a)  // the axes not drawn: this slice's values
+          if (a != f.axes[0] && !(f.map2d && a == f.axes[1]) && at[a] != f.fixed[a]) return;
+        MapCell& c =
+            cells[static_cast<std::size_t>((f.map2d ? at[f.axes[1]] : 0) * nx + at[f.axes[0]])];
+        c.present = true;
+        c.complete = p.complete;
+        c.regime = regime.at(p.regime);
+        for (int i = 0; i < kMaxPanels; ++i) {
+          c.A[i] = i < static_cast<int>(p.A.size()) ? p.A[i] : NAN;
+          c.psi[i] = i < static_cast<int>(p.psi.size()) ? p.psi[i] : NAN;
+        }
+        c.r = p.r;
+        c.s = p.s;
+        c.fraction = p.in_phase_fraction;
+      },
+      inSlice);
+  return cells;
+}
+
 // regimes.png: "x y R G B" cells (2-D; white where not run), or "x rgb" (1-D; -1 not run)
-bool drawRegimeMap(const MapFrame& f, const std::map<long, SweepPoint>& points,
+bool drawRegimeMap(const MapFrame& f, const MapSummary& m, const std::vector<MapCell>& cells,
                    const std::vector<continuation::FoldCurve>& boundaries) {
-  const std::vector<std::string> legend = regimeLegendOrder(points);
   std::ostringstream d;
+  std::size_t k = 0;
   for (long g : f.order) {
     if (g < 0) {
       d << "\n";
       continue;
     }
-    const SweepPoint* p = pointAt(points, g);
-    const long rgb = p ? rgbOf(regimeColour(p->regime, legend)) : (f.map2d ? 0xffffff : -1);
+    const MapCell& c = cells[k++];
+    const long rgb =
+        c.present ? rgbOf(regimeColour(m.regimes[c.regime], m.legend)) : (f.map2d ? 0xffffff : -1);
     d << cellPosition(f.grid, f.axes, g);
     if (f.map2d)
       d << " " << ((rgb >> 16) & 255) << " " << ((rgb >> 8) & 255) << " " << (rgb & 255) << "\n";
@@ -369,33 +444,32 @@ bool drawRegimeMap(const MapFrame& f, const std::map<long, SweepPoint>& points,
   }
   return drawPng(f.dir, f.file("regimes.png"), d.str(),
                  [&](const std::string& data, const std::string& png) {
-                   return regimeMapScript(data, png, f.grid, legend, f.title + " - regimes",
+                   return regimeMapScript(data, png, f.grid, m.legend, f.title + " - regimes",
                                           f.format, boundaries, f.axes);
                  });
 }
 
-// The values: "x [y] A_1..A_N psi_2..psi_N r log10(s)" (NaN where not run or failed).
-std::string valuesData(const MapFrame& f, int n, const std::map<long, SweepPoint>& points) {
+// The values: "x [y] A_1..A_k psi_2..psi_l r log10(s) fraction" (NaN where not run or failed),
+// k = min(N, kMaxPanels) and l - 1 = min(N - 1, kMaxPanels): the columns the pictures draw.
+std::string valuesData(const MapFrame& f, int n, const std::vector<MapCell>& cells) {
   std::ostringstream d;
+  std::size_t k = 0;
   for (long g : f.order) {
     if (g < 0) {
       d << "\n";
       continue;
     }
-    const SweepPoint* p = pointAt(points, g);
+    const MapCell& c = cells[k++];
     d << cellPosition(f.grid, f.axes, g);
-    for (int i = 0; i < n; ++i)
-      d << " " << gnuplotNumber(shown(p, p && i < static_cast<int>(p->A.size()) ? p->A[i] : NAN));
-    for (int j = 0; j + 1 < n; ++j)
-      d << " "
-        << gnuplotNumber(shown(p, p && j < static_cast<int>(p->psi.size()) ? p->psi[j] : NAN));
-    d << " " << gnuplotNumber(shown(p, p ? p->r : NAN));
+    for (int i = 0; i < std::min(n, kMaxPanels); ++i) d << " " << gnuplotNumber(shown(c, c.A[i]));
+    for (int j = 0; j < std::min(n - 1, kMaxPanels); ++j)
+      d << " " << gnuplotNumber(shown(c, c.psi[j]));
+    d << " " << gnuplotNumber(shown(c, c.r));
     // log10 s, clamped to [-2, 2] (s = inf: a free platform, drawn as slipping)
-    const double s = p ? p->s : NAN;
     d << " "
       << gnuplotNumber(
-             shown(p, std::isnan(s) ? NAN : std::max(-2.0, std::min(2.0, std::log10(s)))));
-    d << " " << gnuplotNumber(shown(p, p ? p->in_phase_fraction : NAN)) << "\n";
+             shown(c, std::isnan(c.s) ? NAN : std::max(-2.0, std::min(2.0, std::log10(c.s)))));
+    d << " " << gnuplotNumber(shown(c, c.fraction)) << "\n";
   }
   return d.str();
 }
@@ -449,10 +523,11 @@ std::string pictureScript(const MapFrame& f, const Picture& pic, const std::stri
 // The pictures of the values: amplitudes, phases, order parameter (N >= 3), drive (Coulomb).
 std::vector<Picture> valuePictures(int n, int first_value, bool any_drive, long basin_samples) {
   std::vector<Quantity> amps, phases;
-  for (int i = 0; i < std::min(n, kMaxPanels); ++i)
-    amps.push_back({"A_" + std::to_string(i + 1), first_value + i});
-  for (int j = 0; j < std::min(n - 1, kMaxPanels); ++j)
-    phases.push_back({"ψ_" + std::to_string(j + 2), first_value + n + j});
+  const int shown_a = std::min(n, kMaxPanels), shown_psi = std::min(n - 1, kMaxPanels);
+  for (int i = 0; i < shown_a; ++i) amps.push_back({"A_" + std::to_string(i + 1), first_value + i});
+  for (int j = 0; j < shown_psi; ++j)
+    phases.push_back({"ψ_" + std::to_string(j + 2), first_value + shown_a + j});
+  const int r_column = first_value + shown_a + shown_psi;  // then log10 s, then the fraction
   const std::string viridis =
       "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', 4 '#fde725')\n";
   // hue around the circle: psi = 0 and 2 pi get the same colour
@@ -462,22 +537,19 @@ std::vector<Picture> valuePictures(int n, int first_value, bool any_drive, long 
   std::vector<Picture> pics = {{"amplitudes.png", amps, viridis, "[0:*]", false},
                                {"phases.png", phases, cyclic, "[0:2*pi]", true}};
   if (n >= 3)
-    pics.push_back({"order.png",
-                    {{"r = |Σ A_j e^{iφ_j}| / Σ A_j", first_value + 2 * n - 1}},
-                    viridis,
-                    "[0:1]",
-                    false});
+    pics.push_back(
+        {"order.png", {{"r = |Σ A_j e^{iφ_j}| / Σ A_j", r_column}}, viridis, "[0:1]", false});
   if (any_drive)
-    pics.push_back({"drive.png",
-                    {{"log_{10} s,  s = |Σ A_j e^{iφ_j}| / μ  (s < 1: the platform sticks)",
-                      first_value + 2 * n}},
-                    diverging,
-                    "[-2:2]",
-                    false});
+    pics.push_back(
+        {"drive.png",
+         {{"log_{10} s,  s = |Σ A_j e^{iφ_j}| / μ  (s < 1: the platform sticks)", r_column + 1}},
+         diverging,
+         "[-2:2]",
+         false});
   if (basin_samples > 0)
     pics.push_back({"basin.png",
                     {{"in-phase fraction of " + std::to_string(basin_samples) + " random starts",
-                      first_value + 2 * n + 1}},
+                      r_column + 2}},
                     viridis,
                     "[0:1]",
                     false});
@@ -489,18 +561,16 @@ std::vector<Picture> valuePictures(int n, int first_value, bool any_drive, long 
 namespace {
 
 // The maps of one slice (all of them for a grid of two axes or fewer).
-std::vector<std::string> plotSlice(MapFrame& f, int n, const std::map<long, SweepPoint>& points,
+std::vector<std::string> plotSlice(MapFrame& f, int n, const MapSummary& m,
+                                   const SweepPointSource& points,
                                    const std::vector<continuation::FoldCurve>& boundaries) {
   std::vector<std::string> written;
-  if (drawRegimeMap(f, points, boundaries)) written.push_back(f.file("regimes.png"));
-  const bool any_complete =
-      std::any_of(points.begin(), points.end(), [](const auto& kv) { return kv.second.complete; });
-  if (!any_complete) return written;  // every point failed: no value to draw
-  const bool any_drive = std::any_of(points.begin(), points.end(),
-                                     [](const auto& kv) { return !std::isnan(kv.second.s); });
-  const std::string values = valuesData(f, n, points);
+  const std::vector<MapCell> cells = sliceCells(f, m, points);
+  if (drawRegimeMap(f, m, cells, boundaries)) written.push_back(f.file("regimes.png"));
+  if (!m.any_complete) return written;  // every point failed: no value to draw
+  const std::string values = valuesData(f, n, cells);
   const int first_value = f.map2d ? 3 : 2;  // gnuplot column of A_1
-  for (const Picture& pic : valuePictures(n, first_value, any_drive, f.grid.basin().samples)) {
+  for (const Picture& pic : valuePictures(n, first_value, m.any_drive, f.grid.basin().samples)) {
     if (pic.qs.empty()) continue;
     auto script = [&](const std::string& data, const std::string& png) {
       return pictureScript(f, pic, data, png);
@@ -541,14 +611,16 @@ std::pair<std::string, std::string> sliceNames(const SweepGrid& grid,
 }  // namespace
 
 std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& grid, int n,
-                                       const std::map<long, SweepPoint>& points,
-                                       const std::string& title, const std::string& format,
+                                       const SweepPointSource& points, const std::string& title,
+                                       const std::string& format,
                                        const std::vector<continuation::FoldCurve>& boundaries,
                                        const std::vector<size_t>& map_axes) {
   std::vector<std::string> written;
-  if (grid.size() == 0 || n < 1 || points.empty()) return written;  // nothing to draw
-  if (grid.size() > kMaxMapCells) return written;                   // more cells than pixels
-  MapFrame f{dir,    grid, map_axes.empty() ? drawnAxes(grid) : map_axes, false, {}, title,
+  if (grid.size() == 0 || n < 1) return written;   // nothing to draw
+  if (grid.size() > kMaxMapCells) return written;  // more cells than pixels
+  const MapSummary summary = summarize(points);
+  if (summary.points == 0) return written;
+  MapFrame f{dir,    grid, map_axes.empty() ? drawnAxes(grid) : map_axes, false, {}, {}, title,
              format, ""};
   f.map2d = f.axes.size() > 1;
   // the curves live in the plane of axes 0 and 1
@@ -565,8 +637,9 @@ std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& gr
     f.suffix = file;
     f.title = slice_title.empty() ? title : title + " (" + slice_title + ")";
     f.order = scanOrder(grid, f.axes, c);
-    for (auto& w :
-         plotSlice(f, n, points, curves ? boundaries : std::vector<continuation::FoldCurve>{}))
+    f.fixed = c;
+    for (auto& w : plotSlice(f, n, summary, points,
+                             curves ? boundaries : std::vector<continuation::FoldCurve>{}))
       written.push_back(w);
     for (size_t k = sliced.size(); k-- > 0;) {  // the next combination, the last axis fastest
       if (++c[sliced[k]] < grid.axes()[sliced[k]].count) break;

@@ -16,6 +16,7 @@
 // the regime map only. A missing or failing gnuplot is a warning, never an error.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -38,8 +39,15 @@ constexpr long kMaxMapSlices = 64;
 
 // A grid of more points than this gets no maps: the pictures are ~1000 pixels across, so a finer
 // grid cannot be seen, and its gnuplot data (~60 bytes a cell) would cost more memory than the
-// sweep itself (whose memory grows with the points done, not with the grid).
+// sweep itself.
 constexpr long kMaxMapCells = 1000000;
+
+// The points of a sweep, visited one at a time (each index once; any order): read again for each
+// slice, so that memory is bounded by a slice's cells (a fixed size each), not by the points. The
+// second argument, when set, says from a regimes.csv line whether its point is wanted (a cheap
+// test of its key columns): the others may be skipped unparsed.
+using SweepPointSource = std::function<void(const std::function<void(const SweepPoint&)>&,
+                                            const std::function<bool(const std::string&)>&)>;
 
 // Draws the maps into `dir` (none for a grid over kMaxMapCells); returns the names of the files
 // written.
@@ -47,8 +55,7 @@ constexpr long kMaxMapCells = 1000000;
 // drawn over the regime map (folds solid, Hopf curves dashed). `map_axes`: the axes drawn
 // (mapAxes, sim/analysis/sweep.h); empty: the default.
 std::vector<std::string> plotSweepMaps(const OutputDir& dir, const SweepGrid& grid, int n,
-                                       const std::map<long, SweepPoint>& points,
-                                       const std::string& title,
+                                       const SweepPointSource& points, const std::string& title,
                                        const std::string& format = "png",  // --plot-format
                                        const std::vector<continuation::FoldCurve>& boundaries = {},
                                        const std::vector<size_t>& map_axes = {});

@@ -16,6 +16,7 @@
 
 #include "base/number_text.h"
 #include "sim/record/atomic_file.h"
+#include "sim/record/private_dir.h"
 
 extern char** environ;
 
@@ -42,25 +43,26 @@ std::vector<std::string> rawInput(const VideoSpec& s) {
 
 VideoPipe::VideoPipe(const VideoSpec& spec) : spec_(spec) {
   try {
-    // metrosync's own new files before ffmpeg opens them (never a planted link)
-    temp_ = newTemporaryFile(spec.path);
-    log_ = newTemporaryFile(spec.path + ".log");
+    // every file ffmpeg opens lies in a private folder it reaches through a descriptor
+    // (sim/record/private_dir.h): nothing is reopened by a name someone else could replace
+    const std::size_t slash = spec.path.rfind('/');
+    tmp_ =
+        std::make_unique<PrivateDir>(slash == std::string::npos ? "." : spec.path.substr(0, slash));
+    tmp_->create("log");
     std::vector<std::string> args = rawInput(spec);
     if (spec.gif) {
       // pass 1: a lossless intermediate and the palette of all frames
-      intermediate_ = newTemporaryFile(spec.path + ".mkv");
-      palette_ = newTemporaryFile(spec.path + ".palette.png");
       for (const char* a : {"-c:v", "ffv1", "-f", "matroska"}) args.push_back(a);
-      args.push_back(intermediate_);
+      args.push_back(PrivateDir::childPath("frames.mkv"));
       for (const char* a :
            {"-vf", "palettegen=stats_mode=full", "-frames:v", "1", "-update", "1", "-f", "image2"})
         args.push_back(a);
-      args.push_back(palette_);
+      args.push_back(PrivateDir::childPath("palette.png"));
     } else {
       for (const char* a : {"-c:v", "libx264", "-preset", "ultrafast", "-crf", "23", "-pix_fmt",
                             "yuv420p", "-movflags", "+faststart", "-f", "mp4"})
         args.push_back(a);
-      args.push_back(temp_);
+      args.push_back(PrivateDir::childPath("out"));
     }
     start(args);
   } catch (...) {
@@ -94,10 +96,17 @@ void VideoPipe::start(const std::vector<std::string>& args) {
     posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
   }
   posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, log_.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_NOFOLLOW,
-                                   0644);
+  const int log = tmp_->openForWriting("log");
+  if (log < 0) {
+    posix_spawn_file_actions_destroy(&fa);
+    if (piped) ::close(fds[0]), ::close(fds[1]);
+    throw std::runtime_error("cannot open ffmpeg's log in " + tmp_->path());
+  }
+  posix_spawn_file_actions_adddup2(&fa, log, 2);
+  posix_spawn_file_actions_adddup2(&fa, tmp_->fd(), kChildDirFd);
   const int rc = posix_spawn(&child_, spec_.ffmpeg.c_str(), &fa, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&fa);
+  ::close(log);
   if (piped) ::close(fds[0]);
   if (rc != 0) {
     if (piped) ::close(fds[1]);
@@ -142,20 +151,19 @@ void VideoPipe::finish() {
     fd_ = -1;
     wait(spec_.gif ? "intermediate and palette" : "encoding");
     if (spec_.gif) {
-      start({"-i", intermediate_, "-i", palette_, "-lavfi", "paletteuse=dither=bayer", "-f", "gif",
-             temp_});
+      start({"-i", PrivateDir::childPath("frames.mkv"), "-i", PrivateDir::childPath("palette.png"),
+             "-lavfi", "paletteuse=dither=bayer", "-f", "gif", PrivateDir::childPath("out")});
       wait("GIF");
     }
-    if (std::rename(temp_.c_str(), spec_.path.c_str()) != 0)
-      throw std::runtime_error("cannot rename " + temp_ + " to " + spec_.path + ": " +
+    if (!tmp_->publish("out", spec_.path))
+      throw std::runtime_error("cannot rename ffmpeg's output to " + spec_.path + ": " +
                                strerror(errno));
   } catch (...) {
     cleanup();
     throw;
   }
   finished_ = true;
-  for (const std::string* p : {&intermediate_, &palette_, &log_})
-    if (!p->empty()) std::remove(p->c_str());
+  tmp_.reset();  // the intermediate, the palette and the log
 }
 
 void VideoPipe::cleanup() {
@@ -168,15 +176,11 @@ void VideoPipe::cleanup() {
     }
     child_ = -1;
   }
-  for (const std::string* p : {&temp_, &intermediate_, &palette_, &log_})
-    if (!p->empty()) std::remove(p->c_str());
+  tmp_.reset();  // every file ffmpeg wrote
 }
 
 std::string VideoPipe::logTail() const {
-  std::ifstream in(log_);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string s = ss.str();
+  std::string s = tmp_ ? tmp_->read("log") : "";
   if (s.size() > 2000) s = "..." + s.substr(s.size() - 2000);
   while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
   return s.empty() ? "" : ": " + s;

@@ -1,16 +1,20 @@
 // Encoding frames through an `ffmpeg` child process (docs/animate.md): raw BGRA frames are piped
 // to its stdin; MP4 is H.264 (libx264, yuv420p), GIF goes through ffmpeg's palettegen and
 // paletteuse (a lossless FFV1 intermediate and the palette are made in one pass, the GIF in a
-// second, so no frame is held in memory). ffmpeg writes to hidden temporary names next to the
-// output; finish() renames the result into place, so an interrupted or failed encoding leaves
-// nothing that looks complete. ffmpeg's own messages go to a log that finish() quotes on failure.
+// second, so no frame is held in memory). ffmpeg writes into a private temporary folder next to
+// the output (sim/record/private_dir.h), reached through a descriptor; finish() renames the result
+// into place, so an interrupted or failed encoding leaves nothing that looks complete. ffmpeg's own
+// messages go to a log that finish() quotes on failure.
 #pragma once
 
 #include <sys/types.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "sim/record/private_dir.h"
 
 namespace metrosync {
 
@@ -45,7 +49,7 @@ class VideoPipe {
   std::string logTail() const;
 
   VideoSpec spec_;
-  std::string temp_, intermediate_, palette_, log_;
+  std::unique_ptr<PrivateDir> tmp_;  // out, frames.mkv, palette.png, log
   pid_t child_ = -1;
   int fd_ = -1;
   bool finished_ = false;
