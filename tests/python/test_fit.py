@@ -81,6 +81,14 @@ def test_fit_options_are_the_clis(tmp_path):
     assert all(py["profile"][key] is not None for key in STARTS)
 
 
+def test_bad_options_raise_value_error():
+    data = {"t": [0.0, 0.01, 0.02, 0.03], "theta_1": [0.78, 0.77, 0.76, 0.75]}
+    with pytest.raises(ValueError, match="noise must be > 0"):
+        metrosync.fit(RIG, data, "platform.friction.mu", noise=0)
+    with pytest.raises(ValueError, match="starts must be at least 1"):
+        metrosync.fit(RIG, data, "platform.friction.mu", starts=0)
+
+
 def test_bad_key_raises_rig_error():
     with pytest.raises(metrosync.RigError, match="platform.friction.law"):
         metrosync.fit(RIG, {"t": [0.0, 0.01, 0.02, 0.03], "theta_1": [0.78, 0.77, 0.76, 0.75]},

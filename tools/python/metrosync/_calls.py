@@ -252,6 +252,10 @@ def fit(rig, data, free, model="full", out=None, noise=None, starts=6, local=Fal
     ...                   free=["platform.friction.mu", "metronomes.0.pendulum.decay_rate"])
     >>> f.values, f.std_errors, f.rms
     """
+    if noise is not None and not float(noise) > 0:
+        raise ValueError("noise must be > 0 (the angles' noise in rad), not %r" % (noise,))
+    if int(starts) < 1:
+        raise ValueError("starts must be at least 1, not %r" % (starts,))
     rig = as_rig(rig)
     free = [free] if isinstance(free, str) else list(free)
     with _rig_file(rig) as (path, folder):
