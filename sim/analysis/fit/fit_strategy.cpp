@@ -168,14 +168,15 @@ double firstGroupRms(const FitData& d, const std::vector<double>& predicted) {
   return count > 0 ? std::sqrt(sum / count) : 0.0;
 }
 
-// The further starts spread over [start / kStartSpread, kStartSpread start] of each key that
-// cannot be negative: a start 70% below its truth is 3.3 times below it (a spread of 2 did not
-// reach it: docs/fit.md), and 4 still puts a third of the Halton points above 1.6 start.
-constexpr double kStartSpread = 4.0;
+// The further starts of a key that cannot be negative alternate between [start / kNearSpread,
+// kNearSpread start] (odd ones: a key the phase is very sensitive to, a pendulum's length 33%
+// off, is found from there, rarely from farther) and [start / kFarSpread, kFarSpread start] (even
+// ones: a start 70% below its truth is 3.3 times below it, which the near spread never reaches).
+constexpr double kNearSpread = 2.0;
+constexpr double kFarSpread = 4.0;
 
-// The starting points: the given one, then a Halton sequence (bases 2, 3, 5, ...) over
-// [start / kStartSpread, kStartSpread start] of each key that cannot be negative, start -+ 2
-// scale of the others.
+// The starting points: the given one, then a Halton sequence (bases 2, 3, 5, ...) over the
+// spreads above of each key that cannot be negative, start -+ 2 scale of the others.
 std::vector<double> startingPoint(const FitProblem& p, int index) {
   static const int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53};
   std::vector<double> x;
@@ -189,7 +190,8 @@ std::vector<double> startingPoint(const FitProblem& p, int index) {
     double h = 0.0, w = 1.0;  // radical inverse of index + seed in `base`
     for (unsigned n = index + p.settings.seed * 7; n > 0; n /= base) h += (w /= base) * (n % base);
     const double u = 2 * h - 1;  // in [-1, 1)
-    x.push_back(f.lower >= 0 ? (f.start > 0 ? f.start : f.scale) * std::pow(kStartSpread, u)
+    const double spread = index % 2 ? kNearSpread : kFarSpread;
+    x.push_back(f.lower >= 0 ? (f.start > 0 ? f.start : f.scale) * std::pow(spread, u)
                              : f.start + 2 * u * f.scale);
   }
   return x;
