@@ -9,7 +9,7 @@
 // its truth. Writes the table and the summary (success rate, median time per fit) as markdown.
 //
 //   metrosync_fit_bench [--records N] [--seed S] [--duration SECONDS] [--data-engine
-//   simbody|direct] [--only I] [--jobs N] [--out FILE.md]
+//   simbody|direct] [--only I] [--jobs N] [--out FILE.md] [--keep DIR]
 //
 // Records run on --jobs threads (each its own scratch files and random stream: the table does not
 // depend on N); the CPU seconds are each fit's own thread's.
@@ -264,7 +264,7 @@ int main(int argc, char** argv) {
   int records = 50, only = 0, jobs = 1;
   unsigned seed = 1;
   Settings set;
-  std::string out = "docs/bench/fit.md";
+  std::string out = "docs/bench/fit.md", keep;
   app.add_option("--records", records, "synthetic records (default 50)");
   app.add_option("--seed", seed, "random seed (default 1)");
   app.add_option("--duration", set.duration_s, "seconds per record (default 60)");
@@ -274,10 +274,13 @@ int main(int argc, char** argv) {
   app.add_option("--jobs", jobs, "records fitted at once, each on its own thread (default 1)")
       ->check(CLI::Range(1, 64));
   app.add_option("--out", out, "markdown file to write (default docs/bench/fit.md)");
+  app.add_option("--keep", keep, "keep each record's rig and data (recordI.yaml, .csv) in DIR");
   CLI11_PARSE(app, argc, argv);
-  set.dir = (std::filesystem::temp_directory_path() /
-             ("metrosync-fit-bench-" + std::to_string(seed) + "-" + std::to_string(::getpid())))
-                .string();
+  set.dir = !keep.empty() ? keep
+                          : (std::filesystem::temp_directory_path() /
+                             ("metrosync-fit-bench-" + std::to_string(seed) + "-" +
+                              std::to_string(::getpid())))
+                                .string();
   std::filesystem::create_directories(set.dir);
   const int first = only > 0 ? only - 1 : 0, count = only > 0 ? 1 : records;
   std::vector<Outcome> all(count);
@@ -292,6 +295,6 @@ int main(int argc, char** argv) {
   std::string command = "metrosync_fit_bench";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
   std::ofstream(out) << report(all, seed, set, command);
-  std::filesystem::remove_all(set.dir);
+  if (keep.empty()) std::filesystem::remove_all(set.dir);
   return 0;
 }

@@ -57,8 +57,10 @@ void boundsOf(FreeParameter& p, const KeyPath& key) {
 
 // Where a key's start comes from: a --set (used as given), else a section-3 shortcut where one
 // applies, else the rig (0 for an absent start key). Checks that the key can be set to a number.
+// A --set start keeps its value and the shortcut goes to `shortcut` (a further starting point).
 double startOfKey(const KeyPath& key, const std::string& text, const FitOptions& opt,
-                  const Rig& rig, const MeasuredData& data, std::string& from) {
+                  const Rig& rig, const MeasuredData& data, std::string& from,
+                  std::optional<double>& shortcut) {
   const std::string& path = key.text();  // names and indices only
   std::optional<double> v = rigNumber(text, opt.rig_path, opt.sets, path);
   from = givenBySet(opt, text, {key}) ? "--set" : "rig";
@@ -70,11 +72,14 @@ double startOfKey(const KeyPath& key, const std::string& text, const FitOptions&
     v = 0.0;
     from = "default";
   }
-  if (from != "--set")
-    if (const std::optional<StartGuess> g = section3Guess(path, rig, data)) {
+  if (const std::optional<StartGuess> g = section3Guess(path, rig, data)) {
+    if (from == "--set") {
+      shortcut = g->value;
+    } else {
       v = g->value;
       from = g->from;
     }
+  }
   std::vector<std::string> sets = opt.sets;
   sets.push_back(path + "=" + exactNumberText(*v));
   loadRigText(text, opt.rig_path, sets);  // the key takes this value
@@ -87,17 +92,21 @@ FreeParameter freeParameter(const OptionKey& k, const std::string& text, const F
                             const Rig& rig, const MeasuredData& data, std::string& from) {
   FreeParameter p;
   p.name = k.key.key.text();
-  double sum = 0.0;
-  bool differ = false;
+  double sum = 0.0, shortcuts = 0.0;  // shortcuts: the shortcut's value, else the start
+  bool differ = false, any_shortcut = false;
   for (std::size_t i = 0; i < k.key.paths.size(); ++i) {
     std::string f;
-    const double v = startOfKey(k.key.paths[i], text, opt, rig, data, f);
+    std::optional<double> g;
+    const double v = startOfKey(k.key.paths[i], text, opt, rig, data, f, g);
     differ = differ || (i > 0 && v != sum / i);
     from = i == 0 || f == from ? f : "mixed";
     sum += v;
+    shortcuts += g.value_or(v);
+    any_shortcut = any_shortcut || g.has_value();
     p.keys.push_back(k.key.paths[i].text());
   }
   p.start = sum / p.keys.size();
+  if (any_shortcut) p.shortcut = shortcuts / p.keys.size();
   if (differ) from = "mean of " + from + " values";
   boundsOf(p, k.key.paths.front());
   return p;

@@ -59,13 +59,18 @@ int continueCommand(const std::string& rig_path, const std::vector<std::string>&
 // `metrosync fit` into `out`.
 int fitCommand(const std::string& rig_path, const std::string& data_path,
                const std::vector<std::string>& free, const std::vector<std::string>& sets,
-               const std::string& model, const std::string& out, bool plot) {
+               const std::string& model, const std::string& out, bool plot,
+               std::optional<double> noise, int starts, bool local, bool profile) {
   cli::FitOptions o;
   o.rig_path = rig_path;
   o.data_path = data_path;
   o.free = free;
   o.sets = sets;
   o.model = model;
+  o.noise = noise;
+  o.starts = starts;
+  o.local = local;
+  o.profile = profile;
   o.out = out;
   o.quiet = true;
   o.no_plot = !plot;
@@ -85,7 +90,9 @@ void bindFiles(py::module_& m) {
         py::arg("max_points") = 500, py::arg("all") = false, py::arg("no_cycles") = false,
         py::arg("fold") = "", py::arg("to2") = 0.0);
   m.def("fit_command", &fitCommand, py::arg("rig_path"), py::arg("data_path"), py::arg("free"),
-        py::arg("sets"), py::arg("model"), py::arg("out"), py::arg("plot"));
+        py::arg("sets"), py::arg("model"), py::arg("out"), py::arg("plot"),
+        py::arg("noise") = std::nullopt, py::arg("starts") = 6, py::arg("local") = false,
+        py::arg("profile") = false);
 }
 
 }  // namespace metrosync::python

@@ -27,6 +27,9 @@ struct FreeParameter {
   // cannot be negative (its own size is the measure), a typical size for a signed one (a start
   // angle near 0 can be well determined)
   double size_floor = 0.0;
+  // The section-3 shortcut's value (start_guess.h) where one applies and the start is given with
+  // --set (used as given, so the shortcut is only a further starting point: fit_strategy.h)
+  std::optional<double> shortcut;
 };
 
 // One measured value: `quantity` indexes FitOutcome::quantity_names; `group` collects quantities

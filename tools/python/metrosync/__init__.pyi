@@ -153,4 +153,8 @@ def fit(
     free: Union[str, Sequence[str]],
     model: str = "full",
     out: Optional[Union[str, os.PathLike]] = None,
+    noise: Optional[float] = None,
+    starts: int = 6,
+    local: bool = False,
+    profile: bool = False,
 ) -> FitResult: ...

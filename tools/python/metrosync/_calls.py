@@ -236,24 +236,34 @@ def _data_file(data, folder):
     return path
 
 
-def fit(rig, data, free, model="full", out=None):
+def fit(rig, data, free, model="full", out=None, noise=None, starts=6, local=False,
+        profile=False):
     """Rig keys estimated from measured data by least squares (``metrosync fit``, docs/fit.md).
 
     data: a CSV file's path, or columns {"t": seconds, "theta_1": rad, ..., "x": m} (a dict or a
     DataFrame; NaN for a missing sample). free: the keys to estimate (the rig holds their
-    starting values). model: "full" (every sample) or "slow" (the swings' amplitudes). Returns a
-    :class:`FitResult`; ``.rig`` is the fitted rig.
+    starting values, used as given). model: "full" (every sample) or "slow" (the swings'
+    amplitudes). The options of ``metrosync fit``: noise (``--noise``: the angles' noise in rad;
+    None: estimated from the data), starts (``--starts``: at most this many starting points),
+    local (``--local``: no growing windows), profile (``--profile``: profile every key). Returns a
+    :class:`FitResult`, whose ``.summary`` is the CLI's fit.json; ``.rig`` is the fitted rig.
 
     >>> f = metrosync.fit("rig.yaml", {"t": t, "theta_1": th1, "theta_2": th2},
     ...                   free=["platform.friction.mu", "metronomes.0.pendulum.decay_rate"])
     >>> f.values, f.std_errors, f.rms
     """
+    if noise is not None and not float(noise) > 0:
+        raise ValueError("noise must be > 0 (the angles' noise in rad), not %r" % (noise,))
+    if int(starts) < 1:
+        raise ValueError("starts must be at least 1, not %r" % (starts,))
     rig = as_rig(rig)
     free = [free] if isinstance(free, str) else list(free)
     with _rig_file(rig) as (path, folder):
         target = _folder(out) or os.path.join(folder, "out")
         code = _core.fit_command(path, _data_file(data, folder), free,
-                                 [o.text for o in rig._origins()], model, target, out is not None)
+                                 [o.text for o in rig._origins()], model, target, out is not None,
+                                 None if noise is None else float(noise), int(starts), bool(local),
+                                 bool(profile))
         if code != 0:
             raise SimulationError("the model fails at the starting values", None)
         summary = _read_json(os.path.join(target, "fit.json"))
