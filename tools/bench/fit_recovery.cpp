@@ -276,11 +276,12 @@ int main(int argc, char** argv) {
   app.add_option("--out", out, "markdown file to write (default docs/bench/fit.md)");
   app.add_option("--keep", keep, "keep each record's rig and data (recordI.yaml, .csv) in DIR");
   CLI11_PARSE(app, argc, argv);
-  set.dir = !keep.empty() ? keep
-                          : (std::filesystem::temp_directory_path() /
-                             ("metrosync-fit-bench-" + std::to_string(seed) + "-" +
-                              std::to_string(::getpid())))
-                                .string();
+  set.dir =
+      !keep.empty()
+          ? keep
+          : (std::filesystem::temp_directory_path() /
+             ("metrosync-fit-bench-" + std::to_string(seed) + "-" + std::to_string(::getpid())))
+                .string();
   std::filesystem::create_directories(set.dir);
   const int first = only > 0 ? only - 1 : 0, count = only > 0 ? 1 : records;
   std::vector<Outcome> all(count);

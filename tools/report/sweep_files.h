@@ -72,7 +72,6 @@ void sortRegimesCsv(const std::string& path, const SweepGrid& grid, int n,
                     const std::function<bool(long)>& keep,
                     std::size_t chunk_bytes = kSortChunkBytes);
 
-
 // ---- timings.csv --------------------------------------------------------------------------------
 
 // How long each point took, a line per point as it finishes (docs/bench/sweep-throughput.md):

@@ -8,10 +8,10 @@
 //   2. the whole record in plain least squares.
 // Further starting points (the section-3 shortcuts' values where a --set start hides one, then a
 // Halton sequence over [start / 2, 2 start] and [start / 4, 4 start] in turn of each key that
-// cannot be negative, start -+ 2 scale of the others), at most settings.starts, while no optimum is at the noise level and new optima
-// still turn up; every distinct optimum is kept. At the best: keys the
-// data do not determine (fit_statistics.h) are held at their starts and the others fitted again;
-// standard errors, correlations, profiles; the verdict (fit_verdict.h).
+// cannot be negative, start -+ 2 scale of the others), at most settings.starts, while no optimum is
+// at the noise level and new optima still turn up; every distinct optimum is kept. At the best:
+// keys the data do not determine (fit_statistics.h) are held at their starts and the others fitted
+// again; standard errors, correlations, profiles; the verdict (fit_verdict.h).
 // --model slow: step 2 alone, on the swings' amplitudes (the slow flow is itself an envelope).
 #pragma once
 
