@@ -54,27 +54,19 @@ void MetronomeEquations::angleTrig(const double* th) const {
 
 namespace {
 
-// One platform's arrow (physical constants per pendulum, n x 1 each).
-struct ArrowConstants {
-  const double* __restrict mL;     // m_j L_j
-  const double* __restrict mgL;    // m_j g L_j
-  const double* __restrict inv_I;  // 1 / I_j
-  const double* __restrict damp;   // nu-bar_j L_j^2
-};
-
 // Pass 1 of the right-hand side: c_j, r_j and the platform's sums on scratch arrays of n values
 // each, the terms in vectorizable loops, then the sums in order:
 //   G = -k x + sum_j (m_j L_j sin theta_j thetadot_j^2 - c_j r_j / I_j),
 //   schur = sum_j c_j^2 / I_j.
-inline __attribute__((always_inline)) void schurSums(
-    int n, const ArrowConstants& k, double spring, const double* __restrict w, double x,
-    const double* __restrict sn, const double* __restrict cs, double* __restrict c,
-    double* __restrict r, double* __restrict g_term, double* __restrict s_term, double& G_out,
-    double& schur_out) {
-  const double* __restrict mL = k.mL;
-  const double* __restrict mgL = k.mgL;
-  const double* __restrict inv_I = k.inv_I;
-  const double* __restrict damp = k.damp;
+// Plain pointers: inlined into rhsBody() they keep its __restrict promises (and its code).
+struct SchurSums {
+  double G, schur;
+};
+
+inline __attribute__((always_inline)) SchurSums schurSums(
+    int n, const double* mL, const double* mgL, const double* inv_I, const double* damp,
+    double spring, const double* w, const double* x, const double* sn, const double* cs, double* c,
+    double* r, double* g_term, double* s_term) {
   for (int j = 0; j < n; ++j) {
     c[j] = mL[j] * cs[j];
     r[j] = -mgL[j] * sn[j] - damp[j] * w[j];
@@ -82,13 +74,12 @@ inline __attribute__((always_inline)) void schurSums(
     g_term[j] = mL[j] * sn[j] * w[j] * w[j] - c_over_I * r[j];
     s_term[j] = c_over_I * c[j];
   }
-  double G = -spring * x, schur = 0.0;
+  double G = -spring * *x, schur = 0.0;  // x read here, as rhs() always has
   for (int j = 0; j < n; ++j) {
     G += g_term[j];
     schur += s_term[j];
   }
-  G_out = G;
-  schur_out = schur;
+  return {G, schur};
 }
 
 }  // namespace
@@ -119,9 +110,8 @@ inline __attribute__((always_inline)) void MetronomeEquations::rhsBody(
       has_platform_ && !(friction_.setValued() && mode == PlatformMode::Stuck);
   if (platform_moves) {
     // pass 1: c_j, r_j and the platform's Schur-reduced equation Meff xddot = G + F
-    double G = 0.0, schur = 0.0;
-    schurSums(n, {mL, mgL, inv_I, damp}, spring_, w, y[StateLayout::kX], sn, cs, c, r, g_term,
-              s_term, G, schur);
+    const auto [G, schur] = schurSums(n, mL, mgL, inv_I, damp, spring_, w, y + StateLayout::kX, sn,
+                                      cs, c, r, g_term, s_term);
     const double F = friction_.force(v, mode);  // the law's force (contact/platform_friction.h)
     friction_power = friction_.power(v, mode);
     a = (G + F) / (mass_ - schur);
@@ -248,11 +238,11 @@ double MetronomeEquations::energyAt(double x, double v_in, const double* th,
 void MetronomeEquations::schurPass(const double* th, const double* w, double x, double& meff,
                                    double& G) const {
   angleTrig(th);
-  double schur = 0.0;
-  schurSums(layout_.n, {mL_.data(), mgL_.data(), inv_inertia_.data(), damping_.data()}, spring_, w,
-            x, sin_.data(), cos_.data(), c_.data(), r_.data(), g_term_.data(), s_term_.data(), G,
-            schur);
-  meff = mass_ - schur;
+  const SchurSums sums = schurSums(layout_.n, mL_.data(), mgL_.data(), inv_inertia_.data(),
+                                   damping_.data(), spring_, w, &x, sin_.data(), cos_.data(),
+                                   c_.data(), r_.data(), g_term_.data(), s_term_.data());
+  G = sums.G;
+  meff = mass_ - sums.schur;
 }
 
 void MetronomeEquations::pendulumAccelerations(double a, double* dw) const {
