@@ -6,7 +6,6 @@
 #include "tools/cli/continue.h"
 #include "tools/cli/network_sweep.h"
 #include "tools/cli/option_keys.h"
-#include "tools/cli/sweep.h"
 #include "tools/cli/sweep_point_run.h"
 #include "tools/report/outputs.h"
 #include "yaml/network_loader.h"
