@@ -279,6 +279,7 @@ class PlatformRun {
   double guard_until_ = -1;  // while redoing a grazing step: time until which hmax is reduced
   int guard_depth_ = 0;
   long steps_base_ = 0, evals_base_ = 0, rewinds_ = 0;
+  int moving_platforms_ = 0;
   bool debug_ = std::getenv("METROSYNC_DEBUG") != nullptr;
 };
 
@@ -301,6 +302,7 @@ PlatformRun::PlatformRun(PlatformSystem& ps, const std::string& integrator, doub
   result_.counts.escapements.assign(ps.network().numMetronomes(), 0);
   const int np = ps.numPlatforms();
   pending_.contacts.assign(np, 0);
+  for (int p = 0; p < np; ++p) moving_platforms_ += ps.moves(p);
   // witnesses: only what the scene needs
   for (int j = 0; j < ps.numPendulums(); ++j)
     if (eq_.escapement(j).impulse > 0)
@@ -526,7 +528,7 @@ Stage PlatformRun::resolveWindow(State& s) {
     absorb(out, p);
     changed = changed || out.changed();
   }
-  if (settleSupports(s)) changed = true;
+  if (settleSupports(s)) changed = true;  // (only where a platform can move another's support)
   stickAtRest(s);
   ev_s_ = nullptr;
   pending_.clear();
@@ -551,6 +553,9 @@ void PlatformRun::stickAtRest(State& s) {
 // slipping against their mode. Returns whether any was settled.
 bool PlatformRun::settleSupports(State& s) {
   bool any = false;
+  // with one moving platform no later turn changes a contact after its own: its resolver has left
+  // it consistent (a slip from rest may carry its stop's rounding against its mode: not a switch)
+  if (moving_platforms_ < 2) return any;
   for (int pass = 0; pass < kSettlePassesPerPlatform * ps_.numPlatforms(); ++pass) {
     bool changed = false;
     for (int p = 0; p < ps_.numPlatforms(); ++p) {
