@@ -66,16 +66,18 @@ class NetworkSprings : public Force::Custom::Implementation {
   const PlatformSystem& ns_;
 };
 
-// Integrates, as three continuous state variables z, the power taken out by the pivot dampers,
-// by the contacts' friction, and by the ground and coupling dampers (joules).
+// Integrates, as continuous state variables z, the power taken out by the pivot dampers, by the
+// contacts' friction, and (a third z, only when the network has any) by the ground and coupling
+// dampers (joules): no z that stays 0, so that a single rig integrates the state it always did.
 class NetworkMeter : public Force::Custom::Implementation {
  public:
-  NetworkMeter(const GeneralForceSubsystem& forces, const PlatformSystem& ns, ZIndex& z)
-      : forces_(forces), ns_(ns), z_(z) {}
+  NetworkMeter(const GeneralForceSubsystem& forces, const PlatformSystem& ns, ZIndex& z,
+               bool dampers)
+      : forces_(forces), ns_(ns), z_(z), dampers_(dampers) {}
   void calcForce(const State&, Vector_<SpatialVec>&, Vector_<Vec3>&, Vector&) const override {}
   Real calcPotentialEnergy(const State&) const override { return 0; }
   void realizeTopology(State& s) const override {
-    z_ = s.allocateZ(forces_.getMySubsystemIndex(), Vector(3, 0.0));
+    z_ = s.allocateZ(forces_.getMySubsystemIndex(), Vector(dampers_ ? 3 : 2, 0.0));
   }
   void realizeAcceleration(const State& s) const override {
     const network::NetworkEquations& eq = ns_.equations();
@@ -99,13 +101,14 @@ class NetworkMeter : public Force::Custom::Implementation {
     Vector& zdot = s.updZDot(forces_.getMySubsystemIndex());
     zdot[z_] = damping;
     zdot[z_ + 1] = friction;
-    zdot[z_ + 2] = dampers;
+    if (dampers_) zdot[z_ + 2] = dampers;
   }
 
  private:
   const GeneralForceSubsystem& forces_;
   const PlatformSystem& ns_;
   ZIndex& z_;
+  bool dampers_;
 };
 
 }  // namespace
@@ -123,7 +126,9 @@ PlatformSystem::PlatformSystem(const Network& net)
   for (int p = 0; p < np; ++p) addPlatform(p, made);
   for (int p = 0; p < np; ++p) addPendulums(p);
   if (needsSprings()) Force::Custom(forces_, new NetworkSprings(*this));
-  Force::Custom(forces_, new NetworkMeter(forces_, *this, z_));
+  for (int p = 0; p < np; ++p) has_dampers_ = has_dampers_ || (moves(p) && eq_.block(p).c != 0);
+  for (const Coupling& k : net_.couplings) has_dampers_ = has_dampers_ || k.c_Ns_m != 0;
+  Force::Custom(forces_, new NetworkMeter(forces_, *this, z_, has_dampers_));
   system_.realizeTopology();
 }
 
@@ -222,7 +227,7 @@ double PlatformSystem::frictionLoss(const State& s) const {
   return s.getZ(forces_.getMySubsystemIndex())[z_ + 1];
 }
 double PlatformSystem::damperLoss(const State& s) const {
-  return s.getZ(forces_.getMySubsystemIndex())[z_ + 2];
+  return has_dampers_ ? s.getZ(forces_.getMySubsystemIndex())[z_ + 2] : 0.0;
 }
 
 void PlatformSystem::layoutState(const State& s, std::vector<double>& y) const {

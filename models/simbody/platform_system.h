@@ -89,9 +89,10 @@ class PlatformSystem {
   std::vector<SimTK::MobilizedBody::Slider> sliders_;  // (platforms)
   std::vector<const CoulombContact*> contacts_;        // (platforms)
   std::vector<SimTK::MobilizedBody::Pin> pins_;        // (swinging pendulums)
-  std::vector<int> owner_;   // (swinging pendulums) the platform carrying each
-  std::vector<int> parent_;  // (platforms) the moving platform whose slider carries p's, or -1
-  SimTK::ZIndex z_;          // the meter's three quadratures
+  std::vector<int> owner_;    // (swinging pendulums) the platform carrying each
+  std::vector<int> parent_;   // (platforms) the moving platform whose slider carries p's, or -1
+  bool has_dampers_ = false;  // a ground or coupling damper: the meter's third quadrature
+  SimTK::ZIndex z_;           // the meter's quadratures
 };
 
 }  // namespace metrosync

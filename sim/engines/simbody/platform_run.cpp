@@ -475,6 +475,9 @@ void PlatformRun::handleTrigger(Integrator& integ) {
     return;
   }
   ++result_.counts.events;
+  if (debug_)
+    std::fprintf(stderr, "event at %.9g mode %d\n", adv.getTime(),
+                 ps_.contact(0) ? static_cast<int>(ps_.contact(0)->mode(adv)) : 9);
   {
     RecordingScope rec(timer_);
     rec_.aroundEvent(integ.getState(), integ.getTime());  // the last state before the event
