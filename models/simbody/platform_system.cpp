@@ -22,10 +22,10 @@ Network networkOfOne(const Rig& rig) {
 
 namespace {
 
-// The ground springs and dampers of stacked platforms (-k_p x_p - c_p xdot_p) and the couplings (-k
-// (x_a - x_b) - c (xdot_a - xdot_b) on a, the opposite on b), on the platforms' absolute
+// The ground springs and dampers of stacked platforms (-k_p x_p - c_p xdot_p) and the couplings
+// (-k (x_a - x_b) - c (xdot_a - xdot_b) on a, the opposite on b), on the platforms' absolute
 // coordinates, applied as forces along x on the platforms' bodies; the springs' potential energy
-// for the ledger.
+// for the ledger. (A table platform's ground spring and damper are mobility forces on its slider.)
 class NetworkSprings : public Force::Custom::Implementation {
  public:
   explicit NetworkSprings(const PlatformSystem& ns) : ns_(ns) {}
