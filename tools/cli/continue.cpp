@@ -87,7 +87,8 @@ ParamsAt2 paramsAt2(const ContinueOptions& opt) {
 // --to 1e308) is refused naming `which` option gave it. A value the loader refuses (mu < 0) is said
 // in the loader's words (--param KEY=VALUE: ...).
 ScaledParams finiteScaledAt(const ContinueOptions& opt, double value, const std::string& which) {
-  const ScaledParams p = computeScaled(loadWith(opt, {opt.param + "=" + fmt(value)}));
+  const ScaledParams p =
+      computeScaled(loadContinueRig(opt, {opt.param + "=" + roundTripText(value)}));
   const std::pair<const char*, const std::vector<double>*> lists[] = {
       {"nu", &p.nu}, {"J", &p.J}, {"theta_c", &p.theta_c}, {"alpha", &p.alpha}, {"zeta", &p.zeta}};
   std::string bad;

@@ -16,10 +16,6 @@
 
 namespace metrosync::cli {
 
-// The rig text a sweep (or basin) runs: rig_text, else the file's (checked as every command
-// checks it, yaml/rig_loader.h), else the built-in rig's.
-std::string sweepRigText(const SweepOptions& opt);
-
 // Each returns the exit code (SPEC 5); a bad rig or command line throws RigError or UsageError
 // (exit 2) before anything is written.
 int sweepCommand(const SweepOptions& opt);
