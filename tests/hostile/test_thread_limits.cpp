@@ -5,10 +5,12 @@
 #include <sys/stat.h>
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "sim/parallel/worker_pool.h"
 #include "tests/hostile/hostile_support.h"
@@ -107,10 +109,20 @@ TEST(WorkerPool, EveryTaskOnceAndTheFirstErrorBack) {
   EXPECT_GE(threads, 1);
   EXPECT_LE(threads, 4);
   for (const auto& s : seen) EXPECT_EQ(s.load(), 1);
+  // The failing task is reached before any task past 500 can run: every other task waits for it
+  // to start and then takes 1 ms, so reaching 500 would take the other two workers ~0.25 s (a
+  // loaded machine may deschedule a worker for a while; it cannot make 490 tasks run in the
+  // microseconds between the throw and the pool seeing it).
   std::atomic<long> after{0};
+  std::atomic<bool> failing{false};
   EXPECT_THROW(parallelFor(1000, 3,
                            [&](long k) {
-                             if (k == 10) throw std::runtime_error("boom");
+                             if (k == 10) {
+                               failing = true;
+                               throw std::runtime_error("boom");
+                             }
+                             while (k > 10 && !failing) std::this_thread::yield();
+                             std::this_thread::sleep_for(std::chrono::milliseconds(1));
                              if (k > 500) ++after;
                            }),
                std::runtime_error);

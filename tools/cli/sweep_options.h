@@ -35,6 +35,10 @@ struct SweepOptions {
   std::optional<std::string> rig_text;
 };
 
+// The rig text a sweep (or basin) runs: rig_text, else the file's (checked as every command
+// checks it, yaml/rig_loader.h), else the built-in rig's.
+std::string sweepRigText(const SweepOptions& opt);
+
 struct SweepCommands {
   CLI::App* sweep = nullptr;
   CLI::App* merge = nullptr;
