@@ -16,11 +16,8 @@
 
 namespace metrosync::cli {
 
-// How messages name the rig (its text: sweepRigText).
+// How messages name the rig (its text: sweepRigText, tools/cli/sweep_options.h).
 std::string displayName(const SweepOptions& opt);
-// The rig text a sweep (or basin) runs: rig_text, else the file's (checked as every command
-// checks it, yaml/rig_loader.h), else the built-in rig's.
-std::string sweepRigText(const SweepOptions& opt);
 
 // One grid point, ready to run.
 struct PointInput {
