@@ -48,9 +48,41 @@ MetronomeEquations::MetronomeEquations(const Rig& rig)
   for (auto* v : {&sin_, &cos_, &c_, &r_, &g_term_, &s_term_}) v->resize(layout_.n);
 }
 
-void MetronomeEquations::angleTrig(const double* y) const {
-  sinCos(y + 2, sin_.data(), cos_.data(), layout_.n);
+void MetronomeEquations::angleTrig(const double* th) const {
+  sinCos(th, sin_.data(), cos_.data(), layout_.n);
 }
+
+namespace {
+
+// Pass 1 of the right-hand side: c_j, r_j and the platform's sums on scratch arrays of n values
+// each, the terms in vectorizable loops, then the sums in order:
+//   G = -k x + sum_j (m_j L_j sin theta_j thetadot_j^2 - c_j r_j / I_j),
+//   schur = sum_j c_j^2 / I_j.
+// Plain pointers: inlined into rhsBody() they keep its __restrict promises (and its code).
+struct SchurSums {
+  double G, schur;
+};
+
+inline __attribute__((always_inline)) SchurSums schurSums(
+    int n, const double* mL, const double* mgL, const double* inv_I, const double* damp,
+    double spring, const double* w, const double* x, const double* sn, const double* cs, double* c,
+    double* r, double* g_term, double* s_term) {
+  for (int j = 0; j < n; ++j) {
+    c[j] = mL[j] * cs[j];
+    r[j] = -mgL[j] * sn[j] - damp[j] * w[j];
+    const double c_over_I = c[j] * inv_I[j];
+    g_term[j] = mL[j] * sn[j] * w[j] * w[j] - c_over_I * r[j];
+    s_term[j] = c_over_I * c[j];
+  }
+  double G = -spring * *x, schur = 0.0;  // x read here, as rhs() always has
+  for (int j = 0; j < n; ++j) {
+    G += g_term[j];
+    schur += s_term[j];
+  }
+  return {G, schur};
+}
+
+}  // namespace
 
 // The right-hand side on scratch arrays of n values each (sn, cs: the angles' sin and cos; c, r,
 // g_term, s_term: see below): the stack's for a known N, the members' otherwise.
@@ -78,19 +110,8 @@ inline __attribute__((always_inline)) void MetronomeEquations::rhsBody(
       has_platform_ && !(friction_.setValued() && mode == PlatformMode::Stuck);
   if (platform_moves) {
     // pass 1: c_j, r_j and the platform's Schur-reduced equation Meff xddot = G + F
-    // the terms in vectorizable loops, then the sums in order
-    for (int j = 0; j < n; ++j) {
-      c[j] = mL[j] * cs[j];
-      r[j] = -mgL[j] * sn[j] - damp[j] * w[j];
-      const double c_over_I = c[j] * inv_I[j];
-      g_term[j] = mL[j] * sn[j] * w[j] * w[j] - c_over_I * r[j];
-      s_term[j] = c_over_I * c[j];
-    }
-    double G = -spring_ * y[StateLayout::kX], schur = 0.0;
-    for (int j = 0; j < n; ++j) {
-      G += g_term[j];
-      schur += s_term[j];
-    }
+    const auto [G, schur] = schurSums(n, mL, mgL, inv_I, damp, spring_, w, y + StateLayout::kX, sn,
+                                      cs, c, r, g_term, s_term);
     const double F = friction_.force(v, mode);  // the law's force (contact/platform_friction.h)
     friction_power = friction_.power(v, mode);
     a = (G + F) / (mass_ - schur);
@@ -132,7 +153,7 @@ template void MetronomeEquations::rhsN<8>(const double*, PlatformMode, double*) 
 double MetronomeEquations::holdingForce(const double* y) const {
   const int n = layout_.n;
   const double* w = y + 2 + n;
-  angleTrig(y);
+  angleTrig(y + 2);
   double G = -spring_ * y[StateLayout::kX];
   for (int j = 0; j < n; ++j) {
     const PendulumConstants& p = pend_[j];
@@ -148,7 +169,7 @@ double MetronomeEquations::holdingForceRate(const double* y) const {
   // w' = r / I, r' = -mgL co w - b w'
   const int n = layout_.n;
   const double* w = y + 2 + n;
-  angleTrig(y);
+  angleTrig(y + 2);
   double dG = 0.0;
   for (int j = 0; j < n; ++j) {
     const PendulumConstants& p = pend_[j];
@@ -162,8 +183,9 @@ double MetronomeEquations::holdingForceRate(const double* y) const {
   return -dG;
 }
 
-double MetronomeEquations::applyImpulse(double* y, const double* pin_impulse,
-                                        double platform_impulse) const {
+double MetronomeEquations::applyImpulseAt(const double* th, double* v, double* w,
+                                          const double* pin_impulse,
+                                          double platform_impulse) const {
   const int n = layout_.n;
   // the kinetic energy jumps by p . (u + du / 2), p the generalized impulse
   double dT = 0.0;
@@ -171,29 +193,29 @@ double MetronomeEquations::applyImpulse(double* y, const double* pin_impulse,
   if (has_platform_) {
     // [[M, c^T], [c, diag(I)]] [dv; dw] = [p_x; p]: platform first (Schur complement)
     double schur = 0.0, rhs = platform_impulse;
-    angleTrig(y);
+    angleTrig(th);
     for (int j = 0; j < n; ++j) {
       c_[j] = pend_[j].mL * cos_[j];
       schur += c_[j] * c_[j] * pend_[j].inv_inertia;
       rhs -= c_[j] * pend_[j].inv_inertia * pin_impulse[j];
     }
     dv = rhs / (mass_ - schur);
-    dT += platform_impulse * (y[StateLayout::kV] + 0.5 * dv);
-    y[StateLayout::kV] += dv;
+    dT += platform_impulse * (*v + 0.5 * dv);
+    *v += dv;
   }
   for (int j = 0; j < n; ++j) {
     const double coupling = has_platform_ ? c_[j] * dv : 0.0;
     const double dw = (pin_impulse[j] - coupling) * pend_[j].inv_inertia;
-    dT += pin_impulse[j] * (y[layout_.omega(j)] + 0.5 * dw);
-    y[layout_.omega(j)] += dw;
+    dT += pin_impulse[j] * (w[j] + 0.5 * dw);
+    w[j] += dw;
   }
   return dT;
 }
 
-double MetronomeEquations::platformMobility(const double* y) const {
+double MetronomeEquations::platformMobilityAt(const double* th) const {
   if (!has_platform_) return 0.0;
   double schur = 0.0;
-  angleTrig(y);
+  angleTrig(th);
   for (int j = 0; j < layout_.n; ++j) {
     const double c = pend_[j].mL * cos_[j];
     schur += c * c * pend_[j].inv_inertia;
@@ -201,15 +223,36 @@ double MetronomeEquations::platformMobility(const double* y) const {
   return 1.0 / (mass_ - schur);
 }
 
-double MetronomeEquations::energy(const double* y) const {
-  const double v = has_platform_ ? y[StateLayout::kV] : 0.0;
-  double e = 0.5 * mass_ * v * v + 0.5 * spring_ * y[StateLayout::kX] * y[StateLayout::kX];
+double MetronomeEquations::energyAt(double x, double v_in, const double* th,
+                                    const double* w) const {
+  const double v = has_platform_ ? v_in : 0.0;
+  double e = 0.5 * mass_ * v * v + 0.5 * spring_ * x * x;
   for (int j = 0; j < layout_.n; ++j) {
     const PendulumConstants& p = pend_[j];
-    const double co = std::cos(y[layout_.theta(j)]), w = y[layout_.omega(j)];
-    e += p.mL * co * v * w + 0.5 * p.inertia * w * w - p.mgL * co;
+    const double co = std::cos(th[j]);
+    e += p.mL * co * v * w[j] + 0.5 * p.inertia * w[j] * w[j] - p.mgL * co;
   }
   return e;
+}
+
+void MetronomeEquations::schurPass(const double* th, const double* w, double x, double& meff,
+                                   double& G) const {
+  angleTrig(th);
+  const SchurSums sums = schurSums(layout_.n, mL_.data(), mgL_.data(), inv_inertia_.data(),
+                                   damping_.data(), spring_, w, &x, sin_.data(), cos_.data(),
+                                   c_.data(), r_.data(), g_term_.data(), s_term_.data());
+  G = sums.G;
+  meff = mass_ - sums.schur;
+}
+
+void MetronomeEquations::pendulumAccelerations(double a, double* dw) const {
+  for (int j = 0; j < layout_.n; ++j) dw[j] = (r_[j] - c_[j] * a) * inv_inertia_[j];
+}
+
+double MetronomeEquations::dampingPower(const double* w) const {
+  double power = 0.0;
+  for (int j = 0; j < layout_.n; ++j) power += damping_[j] * w[j] * w[j];
+  return power;
 }
 
 }  // namespace metrosync::direct

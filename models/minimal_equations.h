@@ -91,13 +91,34 @@ class MetronomeEquations {
   // platform_impulse on x (N s), through the full mass matrix [[M, c^T], [c, diag(I)]] with the
   // platform free to move (dry friction, bounded, gives no impulse). A fixed platform takes none
   // of it. Returns the jump of the kinetic energy (J): the work of the impulse.
-  double applyImpulse(double* y, const double* pin_impulse, double platform_impulse) const;
+  double applyImpulse(double* y, const double* pin_impulse, double platform_impulse) const {
+    return applyImpulseAt(y + 2, y + 1, y + 2 + layout_.n, pin_impulse, platform_impulse);
+  }
   // (M^-1)_xx = 1 / Meff: the platform's velocity change per unit impulse on x (1/kg).
-  double platformMobility(const double* y) const;
+  double platformMobility(const double* y) const { return platformMobilityAt(y + 2); }
 
   // Kinetic + potential energy (J), with Simbody's zero: gravity m g y of each pendulum's centre
   // of mass, y = -L cos theta below its pivot; the platform spring 1/2 k x^2.
-  double energy(const double* y) const;
+  double energy(const double* y) const { return energyAt(y[0], y[1], y + 2, y + 2 + layout_.n); }
+
+  // --- the same arithmetic on one platform of a network (models/network_equations.h) --------
+  // Its state is the platform's x, xdot and its pendulums' angles th and rates w (n x 1 each)
+  // wherever they sit in the network's state vector.
+  // The arrow's Schur pass: Meff = M - sum_j c_j^2 / I_j and G, every force on x but friction
+  // (pendulums and ground spring), as rhs() forms them; keeps c_j and r_j for
+  // pendulumAccelerations() (a fixed platform too: its G and Meff are not used).
+  void schurPass(const double* th, const double* w, double x, double& meff, double& G) const;
+  // thetaddot_j = (r_j - c_j a) / I_j with the platform's acceleration a, after schurPass() on
+  // the same state (a = 0 for a platform that does not move).
+  void pendulumAccelerations(double a, double* dw) const;
+  // sum_j nu-bar_j L_j^2 thetadot_j^2: the pivot dampers' power (W)
+  double dampingPower(const double* w) const;
+  // applyImpulse() on the platform's parts: v (its xdot; unused when it does not move) and w
+  double applyImpulseAt(const double* th, double* v, double* w, const double* pin_impulse,
+                        double platform_impulse) const;
+  // platformMobility() and energy() on the platform's parts
+  double platformMobilityAt(const double* th) const;
+  double energyAt(double x, double v, const double* th, const double* w) const;
 
  private:
   StateLayout layout_;

@@ -1,6 +1,7 @@
 #include "models/network_equations.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -10,8 +11,9 @@ NetworkEquations::NetworkEquations(const Network& net) : couplings_(net.coupling
   lay_.platforms = static_cast<int>(net.platforms.size());
   for (int p = 0; p < lay_.platforms; ++p) {
     const NetworkPlatform& np = net.platforms[p];
-    // the pendulums' constants exactly as the single-platform equations make them
-    const direct::MetronomeEquations one(np.rig);
+    // the platform's arrow: the single-platform equations of its rig
+    arrows_.emplace_back(np.rig);
+    const direct::MetronomeEquations& one = arrows_.back();
     Block b;
     b.moves = np.rig.platform.friction.platformMoves();
     b.below = np.on;
@@ -30,8 +32,6 @@ NetworkEquations::NetworkEquations(const Network& net) : couplings_(net.coupling
     blocks_.push_back(b);
   }
   lay_.n = static_cast<int>(pend_.size());
-  c_.resize(lay_.n);
-  r_.resize(lay_.n);
   meff_.resize(lay_.platforms);
 }
 
@@ -46,18 +46,8 @@ double NetworkEquations::slipVelocity(const double* y, int p) const {
 
 void NetworkEquations::schur(const double* y, int p, double& meff, double& g) const {
   const Block& b = blocks_[p];
-  meff = b.mass;
-  g = -b.k * y[lay_.x(p)] - b.c * y[lay_.v(p)];
-  for (int j = b.first; j < b.first + b.count; ++j) {
-    const direct::PendulumConstants& q = pend_[j];
-    const double th = y[lay_.theta(j)], w = y[lay_.omega(j)];
-    const double s = std::sin(th), co = std::cos(th);
-    c_[j] = q.mL * co;
-    r_[j] = -q.mgL * s - q.damping * w;  // e1.1a without the platform's push
-    const double c_over_I = c_[j] * q.inv_inertia;
-    g += q.mL * s * w * w - c_over_I * r_[j];  // e1.1c after eliminating thetaddot_j
-    meff -= c_over_I * c_[j];
-  }
+  arrows_[p].schurPass(y + lay_.theta(b.first), y + lay_.omega(b.first), y[lay_.x(p)], meff, g);
+  g -= b.c * y[lay_.v(p)];  // the ground damper
 }
 
 void NetworkEquations::accelerations(const double* y, const std::vector<PlatformMode>& modes,
@@ -65,10 +55,8 @@ void NetworkEquations::accelerations(const double* y, const std::vector<Platform
   const int np = lay_.platforms;
   std::vector<double> f(np, 0.0);
   std::vector<int> held;  // stuck contacts
-  for (int p = 0; p < np; ++p) {
-    if (!blocks_[p].moves) continue;
-    schur(y, p, meff_[p], f[p]);
-  }
+  // every platform's arrow (a fixed one's too: its pendulums' c_j and r_j for rhs())
+  for (int p = 0; p < np; ++p) schur(y, p, meff_[p], f[p]);
   for (const Coupling& k : couplings_) {
     const double F =
         -k.k_N_m * (y[lay_.x(k.a)] - y[lay_.x(k.b)]) - k.c_Ns_m * (y[lay_.v(k.a)] - y[lay_.v(k.b)]);
@@ -117,21 +105,16 @@ void NetworkEquations::accelerations(const double* y, const std::vector<Platform
 void NetworkEquations::rhs(const double* y, const std::vector<PlatformMode>& modes,
                            double* dy) const {
   std::vector<double> a;
-  accelerations(y, modes, a, nullptr);
+  accelerations(y, modes, a, nullptr);  // leaves each arrow's c_j and r_j at y
   double damping = 0.0, friction = 0.0, dampers = 0.0;
   for (int p = 0; p < lay_.platforms; ++p) {
     const Block& b = blocks_[p];
     dy[lay_.x(p)] = b.moves ? y[lay_.v(p)] : 0.0;
     dy[lay_.v(p)] = a[p];
-    for (int j = b.first; j < b.first + b.count; ++j) {
-      const direct::PendulumConstants& q = pend_[j];
-      const double w = y[lay_.omega(j)];
-      const double r = -q.mgL * std::sin(y[lay_.theta(j)]) - q.damping * w;
-      const double c = b.moves ? q.mL * std::cos(y[lay_.theta(j)]) : 0.0;
-      dy[lay_.theta(j)] = w;
-      dy[lay_.omega(j)] = (r - c * a[p]) * q.inv_inertia;  // e1.1a, b
-      damping += q.damping * w * w;
-    }
+    const double* w = y + lay_.omega(b.first);
+    std::copy(w, w + b.count, dy + lay_.theta(b.first));
+    arrows_[p].pendulumAccelerations(a[p], dy + lay_.omega(b.first));  // e1.1a, b
+    damping += arrows_[p].dampingPower(w);
     if (!b.moves) continue;
     const double v = y[lay_.v(p)];
     dampers += b.c * v * v;
@@ -155,9 +138,7 @@ std::vector<double> NetworkEquations::holdingForces(const double* y,
 
 double NetworkEquations::inverseMass(const double* y, int p) const {
   if (p < 0 || !blocks_[p].moves) return 0.0;
-  double meff = 0.0, g = 0.0;
-  schur(y, p, meff, g);
-  return 1.0 / meff;
+  return arrows_[p].platformMobilityAt(y + lay_.theta(blocks_[p].first));
 }
 
 double NetworkEquations::applyImpulse(double* y, const std::vector<double>& pin,
@@ -165,26 +146,12 @@ double NetworkEquations::applyImpulse(double* y, const std::vector<double>& pin,
   double dT = 0.0;  // sum of impulse . (u + du / 2)
   for (int p = 0; p < lay_.platforms; ++p) {
     const Block& b = blocks_[p];
-    double dv = 0.0;
-    if (b.moves) {
-      double P = contact.empty() ? 0.0 : contact[p];
-      for (int q = 0; q < lay_.platforms; ++q)
-        if (blocks_[q].below == p && !contact.empty()) P -= contact[q];
-      // the arrow [[M, c^T], [c, diag(I)]] [dv; dw] = [P; pin], platform first (Schur)
-      double meff = 0.0, g = 0.0, rhs = P;
-      schur(y, p, meff, g);
-      for (int j = b.first; j < b.first + b.count; ++j)
-        rhs -= c_[j] * pend_[j].inv_inertia * pin[j];
-      dv = rhs / meff;
-      dT += P * (y[lay_.v(p)] + 0.5 * dv);
-      y[lay_.v(p)] += dv;
-    }
-    for (int j = b.first; j < b.first + b.count; ++j) {
-      const double c = b.moves ? c_[j] : 0.0;
-      const double dw = (pin[j] - c * dv) * pend_[j].inv_inertia;
-      dT += pin[j] * (y[lay_.omega(j)] + 0.5 * dw);
-      y[lay_.omega(j)] += dw;
-    }
+    // the impulse on platform p's x: its own contact's, less those of the platforms on it
+    double P = contact.empty() ? 0.0 : contact[p];
+    for (int q = 0; q < lay_.platforms; ++q)
+      if (blocks_[q].below == p && !contact.empty()) P -= contact[q];
+    dT += arrows_[p].applyImpulseAt(y + lay_.theta(b.first), y + lay_.v(p), y + lay_.omega(b.first),
+                                    pin.data() + b.first, P);
   }
   return dT;
 }
@@ -209,13 +176,8 @@ double NetworkEquations::energy(const double* y) const {
   double e = 0.0;
   for (int p = 0; p < lay_.platforms; ++p) {
     const Block& b = blocks_[p];
-    const double v = b.moves ? y[lay_.v(p)] : 0.0, x = y[lay_.x(p)];
-    e += 0.5 * b.mass * v * v + 0.5 * b.k * x * x;
-    for (int j = b.first; j < b.first + b.count; ++j) {
-      const direct::PendulumConstants& q = pend_[j];
-      const double co = std::cos(y[lay_.theta(j)]), w = y[lay_.omega(j)];
-      e += q.mL * co * v * w + 0.5 * q.inertia * w * w - q.mgL * co;
-    }
+    e += arrows_[p].energyAt(y[lay_.x(p)], y[lay_.v(p)], y + lay_.theta(b.first),
+                             y + lay_.omega(b.first));
   }
   for (const Coupling& k : couplings_) {
     const double d = y[lay_.x(k.a)] - y[lay_.x(k.b)];

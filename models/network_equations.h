@@ -92,9 +92,12 @@ class NetworkEquations {
 
   Layout lay_;
   std::vector<Block> blocks_;
+  // each platform's arrow: the single-platform equations of its rig, whose arithmetic (Schur
+  // pass, pendulum accelerations, impulses, energy) this class composes
+  std::vector<direct::MetronomeEquations> arrows_;
   std::vector<direct::PendulumConstants> pend_;
   std::vector<Coupling> couplings_;
-  mutable std::vector<double> c_, r_, meff_;
+  mutable std::vector<double> meff_;
 };
 
 }  // namespace metrosync::network

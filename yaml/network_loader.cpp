@@ -241,4 +241,14 @@ Network loadNetworkFile(const std::string& path, const std::vector<std::string>&
   return loadNetworkText(readRigFile(path), path, overrides, options);
 }
 
+std::optional<Network> loadPlatformsNetwork(const std::string& yaml_text,
+                                            const std::string& display_name,
+                                            const std::vector<std::string>& overrides,
+                                            const LoadOptions& options) {
+  if (!isNetworkText(yaml_text)) return std::nullopt;
+  Network net = loadNetworkText(yaml_text, display_name, overrides, options);
+  if (net.isSingleRig()) return std::nullopt;
+  return net;
+}
+
 }  // namespace metrosync

@@ -4,6 +4,7 @@
 // network of one platform named "platform".
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,5 +26,13 @@ Network loadNetworkText(const std::string& yaml_text, const std::string& display
                         const LoadOptions& options = {});
 Network loadNetworkFile(const std::string& path, const std::vector<std::string>& overrides = {},
                         const LoadOptions& options = {});
+
+// The rig text as a network that is not a single rig (Network::isSingleRig: one platform on the
+// table, uncoupled, runs as today's rig); nullopt for a single-platform rig or a network of one.
+// Every command that runs a rig asks this first. Throws RigError as loadNetworkText.
+std::optional<Network> loadPlatformsNetwork(const std::string& yaml_text,
+                                            const std::string& display_name,
+                                            const std::vector<std::string>& overrides = {},
+                                            const LoadOptions& options = {});
 
 }  // namespace metrosync

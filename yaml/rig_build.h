@@ -9,7 +9,8 @@
 
 #include "models/network.h"
 #include "models/rig.h"
-#include "yaml/rig_loader.h"
+#include "yaml/load_options.h"
+#include "yaml/rig_error.h"
 #include "yaml/rig_tree.h"
 
 namespace metrosync {

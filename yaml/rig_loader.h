@@ -11,30 +11,11 @@
 
 #include "models/rig.h"
 #include "yaml/key_path.h"
+#include "yaml/load_options.h"
+#include "yaml/rig_error.h"
 #include "yaml/rig_limits.h"
 
 namespace metrosync {
-
-// A rig that cannot be loaded: unreadable file, YAML syntax, unknown key, wrong type, missing key,
-// value out of range, bad --set. what() is ready to print as is, e.g.
-//   rig.yaml:12:15: metronomes.1.pendulum.mass = -0.02: must be > 0
-//   rig.yaml: --set platform.friction.mu=-1: platform.friction.mu = -1: must be >= 0
-// (line and column 1-based; list indices 0-based, as in --set).
-struct RigError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-// What the caller adds to the rig's own checks (docs/rig-limits.md).
-struct LoadOptions {
-  // A run of the rig may write at most this many bytes (estimateOutput). No limit unless the
-  // caller sets one: `run` and `compare` do (kDefaultMaxOutputBytes, --max-output); a sweep point
-  // writes no trajectory.
-  double max_output_bytes = HUGE_VAL;
-  // The integrator names simulation.integrator may take, and how to list them in a message;
-  // empty: the name is not checked here (the engine checks it).
-  std::vector<std::string> integrators;
-  std::string integrator_help;
-};
 
 // Reads a rig file, applies the overrides in order ("key.path=value", the value parsed as YAML),
 // validates everything and converts it to a Rig (a scaled rig becomes its equivalent physical

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "models/rig.h"
+#include "yaml/load_options.h"
 #include "yaml/rig_source.h"
 
 namespace metrosync::rigfile {

@@ -2,6 +2,7 @@
 // was written.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "base/number_text.h"
-#include "yaml/rig_loader.h"
+#include "yaml/rig_error.h"
 #include "yaml/rig_tree.h"
 #include "yaml/utf8.h"
 

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "yaml/rig_build.h"
+#include "yaml/rig_loader.h"
 
 namespace metrosync {
 

@@ -17,6 +17,8 @@
 
 #include <vector>
 
+#include "contact/simbody/driven_coulomb_switch.h"
+
 namespace metrosync {
 
 struct DrivenCoulombOptions {
@@ -28,11 +30,6 @@ struct DrivenCoulombOptions {
   // periodic values by about as much (the slip regime forgets its start geometrically)
   double periodic_tol = 1e-9;
   int gauss_nodes = 16;  // per smooth piece; 16 nodes integrate B sin t sin t exactly to rounding
-};
-
-struct DrivenCoulombSwitch {
-  double t = 0.0;  // instant (drive time), in the measured period
-  int mode = 0;    // platform mode after it: 1 slipping +, -1 slipping -, 0 stuck
 };
 
 struct DrivenCoulombMeasurement {

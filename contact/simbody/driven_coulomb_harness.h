@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "contact/simbody/coulomb_element.h"
-#include "contact/simbody/driven_coulomb.h"
+#include "contact/simbody/driven_coulomb_switch.h"
 
 namespace metrosync {
 

@@ -70,4 +70,20 @@ std::string classifyNetwork(const NetworkWindow& w, const std::vector<GroupLocki
   return all_pairs ? "coherent-groups" : "disordered";
 }
 
+PlatformsVerdict classifyPlatforms(const NetworkWindow& w, const std::vector<RegimeWindow>& windows,
+                                   const std::vector<std::vector<double>>& theta_c) {
+  PlatformsVerdict v;
+  std::vector<GroupLocking> locking;
+  for (std::size_t p = 0; p < windows.size(); ++p) {
+    v.platforms.push_back(theta_c[p].empty() ? RegimeVerdict{}
+                                             : classifyRegime(windows[p], theta_c[p]));
+    locking.push_back(groupLocking(windows[p], v.platforms.back().alive));
+  }
+  if (v.platforms.size() == 1)  // a single rig: SPEC 4's name (unknown when never judged)
+    v.label = w.rows() == 0 ? "unknown" : regimeName(v.platforms[0]);
+  else
+    v.label = classifyNetwork(w, locking);
+  return v;
+}
+
 }  // namespace metrosync

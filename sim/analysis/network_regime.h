@@ -22,7 +22,7 @@
 //   coherent-groups   every group coherent with at least two alive metronomes, not as above (one
 //                     board in phase and one in antiphase; coherent boards drifting apart)
 //   disordered        none of these
-// A network of one group follows the same rules (chimera excepted).
+// A network of one group is a single rig: classifyPlatforms names it by its platform's verdict.
 #pragma once
 
 #include <string>
@@ -87,5 +87,18 @@ class NetworkWindow {
 // "synchronized", "antiphase-groups", "chimera", "coherent-groups" or "disordered" ("unknown":
 // no row in the window). locking: one per group, in the window's group order.
 std::string classifyNetwork(const NetworkWindow& w, const std::vector<GroupLocking>& locking);
+
+// The regime of a run of platforms: each platform's verdict (classifyRegime on its own swinging
+// metronomes, scaled theta_c in `theta_c`; a platform without any: Regime::Unknown) and the label.
+// The single-platform rules are the one-platform case: a single rig, or a network of one
+// platform, is labelled by its platform's verdict (regimeName: in-phase, death, clusters:2+1,
+// ...; SPEC 4, docs/regimes.md); two or more platforms by classifyNetwork ("unknown" when the
+// window has no row).
+struct PlatformsVerdict {
+  std::vector<RegimeVerdict> platforms;  // file order
+  std::string label;
+};
+PlatformsVerdict classifyPlatforms(const NetworkWindow& w, const std::vector<RegimeWindow>& windows,
+                                   const std::vector<std::vector<double>>& theta_c);
 
 }  // namespace metrosync

@@ -47,7 +47,7 @@ struct NetworkVerdict::Impl {
     const double tau_end = n.sim.t_end_s * omega0 * sp.epsilon;
     for (std::size_t p = 0; p < n.platforms.size(); ++p) regimes.emplace_back(tau_end, sp.epsilon);
   }
-  std::vector<RegimeVerdict> verdicts() const;
+  PlatformsVerdict verdicts() const;
   double amplitude(const std::vector<double>& y, int j) const {
     return std::hypot(y[lay.theta(j)], y[lay.omega(j)] / omega[j]) / sp.angle_scale;
   }
@@ -100,30 +100,22 @@ bool NetworkVerdict::empty() const {
   return !impl_->seen;
 }
 
-// Each platform's single-platform verdict on its own swinging metronomes (none: Regime::Unknown).
-std::vector<RegimeVerdict> NetworkVerdict::Impl::verdicts() const {
-  std::vector<RegimeVerdict> v;
-  for (std::size_t p = 0; p < net.platforms.size(); ++p) {
-    std::vector<double> theta_c;
+// The platforms' verdicts and the label: classifyPlatforms on each platform's own window.
+PlatformsVerdict NetworkVerdict::Impl::verdicts() const {
+  std::vector<std::vector<double>> theta_c(net.platforms.size());
+  for (std::size_t p = 0; p < net.platforms.size(); ++p)
     for (const MetronomeSpec& ms : net.platforms[p].rig.metronomes)
-      if (!ms.locked) theta_c.push_back(ms.theta_c_rad / sp.angle_scale);
-    v.push_back(theta_c.empty() ? RegimeVerdict{} : classifyRegime(regimes[p], theta_c));
-  }
-  return v;
+      if (!ms.locked) theta_c[p].push_back(ms.theta_c_rad / sp.angle_scale);
+  return classifyPlatforms(window, regimes, theta_c);
 }
 
 std::string NetworkVerdict::label() const {
-  const Impl& m = *impl_;
-  const std::vector<RegimeVerdict> v = m.verdicts();
-  std::vector<GroupLocking> locking;
-  for (std::size_t p = 0; p < v.size(); ++p)
-    locking.push_back(groupLocking(m.regimes[p], v[p].alive));
-  return classifyNetwork(m.window, locking);
+  return impl_->verdicts().label;
 }
 
 std::vector<std::string> NetworkVerdict::platformRegimes() const {
   std::vector<std::string> names;
-  for (const RegimeVerdict& v : impl_->verdicts()) names.push_back(regimeName(v));
+  for (const RegimeVerdict& v : impl_->verdicts().platforms) names.push_back(regimeName(v));
   return names;
 }
 

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -121,6 +123,45 @@ TEST(NetworkContract, SummaryHasASingleRunsKeys) {
   // the ledger in a single run's form
   EXPECT_EQ(s["energy"]["units"], "J");
   EXPECT_LT(std::abs(s["energy"]["relative_residual"].get<double>()), 1e-6);
+}
+
+// `run` is one path for a single rig and a network: its options mean the same. --no-plot writes
+// no plot (main drew order.png and raster.png anyway); without it the network's plots are there.
+TEST(NetworkContract, NoPlotMeansNoPlot) {
+  const std::string out = runNetwork("noplot", "--set simulation.duration=3.625");
+  const nlohmann::json s = nlohmann::json::parse(slurp(out + "/summary.json"));
+  for (const std::string f : s["files"]) EXPECT_EQ(f.find(".png"), std::string::npos) << f;
+  for (const auto& e : std::filesystem::directory_iterator(out))
+    EXPECT_NE(e.path().extension(), ".png") << e.path();
+  const std::string plotted = scratchDir("netc", "plotted");
+  const auto r =
+      runMetrosync("run " + shellQuote(kRig) + " --quiet --set simulation.duration=3.625 --out " +
+                   shellQuote(plotted));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(plotted + "/order.png"));
+}
+
+// A network of one platform (its board on a damped spring: not today's rig) is labelled by the
+// single-platform rules: two identical metronomes started together stay `in-phase` (main called
+// the network `synchronized`).
+TEST(NetworkContract, OnePlatformIsLabelledAsASingleRig) {
+  const std::string dir = scratchDir("netc", "one", true);
+  const std::string metronome =
+      "{box_mass: 0.0602, pendulum: {mass: 0.0226, length: 0.0225, decay_rate: 0.5}, "
+      "escapement: {angle: 0.244, steady_amplitude: 0.785}, start: {angle: 0.785, rate: 0.0}}";
+  std::ofstream(dir + "/one.yaml")
+      << "units: physical\nname: one-board\ngravity: 9.81\n"
+      << "platforms:\n  - name: board\n    mass: 0.1432\n"
+      << "    friction: {law: coulomb, mu: 6.5e-4}\n"
+      << "    spring: {k: 2.0, c: 0.01}\n    metronomes:\n"
+      << "      - " << metronome << "\n      - " << metronome << "\nsimulation:\n  duration: 20\n";
+  const auto r = runMetrosync("run " + shellQuote(dir + "/one.yaml") + " --quiet --no-plot --out " +
+                              shellQuote(dir + "/out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json s = nlohmann::json::parse(slurp(dir + "/out/summary.json"));
+  EXPECT_EQ(s["platforms"]["board"]["regime"], "in-phase");
+  EXPECT_EQ(s["network"]["regime"], "in-phase");
+  EXPECT_EQ(s["regime"], "in-phase");
 }
 
 }  // namespace

@@ -206,6 +206,20 @@ TEST(Layout, NoIncludeCycleThroughTheValidation) {
           << joined(cycle);
 }
 
+// No include cycle anywhere (issue 24: continue <-> continue_full, commands <-> engines <->
+// network_run, ceres_plugin <-> least_squares, rig_build <-> rig_loader <-> rig_source, the
+// sweep's files, the bench's run and peers, the driven Coulomb harness), except the continuation's
+// walk: the arclength walk meets a border and follows it as border states, which walk again
+// (walkFrom <-> border_states, borders, family, smooth events, test functions), one recursion
+// spread over its files.
+TEST(Layout, NoIncludeCycleOutsideTheContinuationsWalk) {
+  for (const auto& cycle : includeCycles(METROSYNC_SOURCE_DIR))
+    for (const std::string& unit : cycle)
+      EXPECT_EQ(unit.rfind("sim/analysis/continuation/", 0), 0u)
+          << "an include cycle through " << unit << ":\n"
+          << joined(cycle);
+}
+
 TEST(Layout, IncludeCycleFinderFindsACycle) {
   const fs::path root =
       fs::path(::testing::TempDir()) / ("metrosync_cycles_" + std::to_string(::getpid()));

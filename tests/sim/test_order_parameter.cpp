@@ -53,7 +53,7 @@ TEST(OrderParameter, PendulumPhaseInvertsTheEnvelope) {
 // Groups of metronomes over 50 fast periods (the window: the last 5), every metronome alive
 // (A = 1 > theta_c = 0.5) unless `dead(g, i)`: the phases come from `phase(g, i, t)` (unwrapped),
 // the groups' order parameters feed the network window and each group's phases its own regime
-// window, as NetworkVerdict does.
+// window, as NetworkVerdict does; the label is classifyPlatforms'.
 template <class F, class D>
 std::string label(F phase, D dead, const std::vector<int>& sizes = {15, 15}) {
   const double period = 1.0, t_end = 50.0, epsilon = 1.0 / (2 * kPi);  // tau = t
@@ -77,11 +77,9 @@ std::string label(F phase, D dead, const std::vector<int>& sizes = {15, 15}) {
     }
     w.add(t, orders);
   }
-  std::vector<GroupLocking> locking;
-  for (int g = 0; g < groups; ++g)
-    locking.push_back(
-        groupLocking(own[g], classifyRegime(own[g], std::vector<double>(sizes[g], 0.5)).alive));
-  return classifyNetwork(w, locking);
+  std::vector<std::vector<double>> theta_c;
+  for (int g = 0; g < groups; ++g) theta_c.emplace_back(sizes[g], 0.5);
+  return classifyPlatforms(w, own, theta_c).label;
 }
 
 template <class F>
@@ -104,6 +102,22 @@ TEST(NetworkLabel, EachRuleOnGroupsBuiltForIt) {
   EXPECT_EQ(label([&](int g, int i, double t) { return g == 0 ? w0 * t : drifting(i, t); }),
             "chimera");
   EXPECT_EQ(label([&](int, int i, double t) { return drifting(i, t); }), "disordered");
+}
+
+// A single rig is the one-platform case: a network of one platform is named by the
+// single-platform rules (SPEC 4), never by the network's (main said synchronized and
+// coherent-groups here).
+TEST(NetworkLabel, OnePlatformIsNamedAsASingleRig) {
+  EXPECT_EQ(label([&](int, int i, double t) { return w0 * t + 0.01 * i; }, {3}), "in-phase");
+  EXPECT_EQ(label([&](int, int i, double t) { return w0 * t + i * kPi; }, {2}), "antiphase");
+  EXPECT_EQ(label([&](int, int i, double t) { return w0 * t + (i % 2) * kPi; }, {4}),
+            "clusters:2+2");
+  EXPECT_EQ(label([&](int, int i, double t) { return w0 * t + 0.01 * i; },
+                  [](int, int i) { return i == 2; }, {3}),
+            "suppressed:1;in-phase");
+  EXPECT_EQ(label([&](int, int i, double t) { return drifting(i, t); }, {3}), "drift");
+  // two platforms: the network's rules still (the same boards side by side)
+  EXPECT_EQ(label([&](int, int i, double t) { return w0 * t + 0.01 * i; }, {3, 3}), "synchronized");
 }
 
 // The example: one board's pair in phase, the other's in antiphase, both locked (the

@@ -95,6 +95,43 @@ TEST(NetworkSimbody, ZeroCouplingDecouplesIntoSinglePlatformRuns) {
   EXPECT_GT(rep.stick_slip, 0);  // the Coulomb board did stick and slip
 }
 
+// The limiting case: a network of one platform on the table is the single rig. Both go through the
+// one Simbody system builder and run loop, so they agree bit for bit: every sample (time, board,
+// pendulums, mode), the counts and the ledger.
+TEST(NetworkSimbody, OnePlatformNetworkIsTheSingleRig) {
+  const std::string board =
+      platform("board", "{law: coulomb, mu: 0.004}", "    spring: {k: 2.0}\n",
+               metronome(0.785, 0.0) + metronome(-0.6, 0.25) + metronome(0.3, 0.1, 0.03));
+  const Network net = loadNetworkText(network(board, "", 3.0, 1e-10), "one.yaml");
+  ASSERT_EQ(net.platforms.size(), 1u);
+  Samples sink;
+  const NetworkRunReport rep = runNetworkSimbody(net, sink);
+  MemorySink one;
+  const RunReport single = runFullModel(net.platforms[0].rig, one);
+  ASSERT_TRUE(rep.complete) << rep.failure;
+  ASSERT_TRUE(single.complete) << single.failure;
+  EXPECT_GT(rep.stick_slip, 2);  // the board did stick and slip
+  EXPECT_EQ(rep.stick_slip, single.counts.stick_slip);
+  EXPECT_EQ(rep.slip_reversals, single.counts.slip_reversals);
+  EXPECT_EQ(rep.ticks, single.counts.escapements);
+  EXPECT_EQ(rep.steps, single.counts.steps);
+  EXPECT_EQ(rep.ledger.escapement_in_J, single.ledger.escapement_in_J);
+  EXPECT_EQ(rep.ledger.friction_out_J, single.ledger.friction_out_J);
+  const network::Layout lay = network::NetworkEquations(net).layout();
+  ASSERT_EQ(sink.t.size(), one.trajectory.size());
+  for (std::size_t r = 0; r < sink.t.size(); ++r) {
+    const std::vector<double>& row = one.trajectory[r];  // t, x, xdot, theta, thetadot.., mode
+    ASSERT_EQ(sink.t[r], row[0]) << r;
+    EXPECT_EQ(sink.y[r][lay.x(0)], row[1]) << "t = " << row[0];
+    EXPECT_EQ(sink.y[r][lay.v(0)], row[2]) << "t = " << row[0];
+    for (int j = 0; j < lay.n; ++j) {
+      EXPECT_EQ(sink.y[r][lay.theta(j)], row[3 + 2 * j]) << "t = " << row[0] << " " << j;
+      EXPECT_EQ(sink.y[r][lay.omega(j)], row[4 + 2 * j]) << "t = " << row[0] << " " << j;
+    }
+    EXPECT_EQ(static_cast<int>(sink.modes[r][0]), static_cast<int>(row.back())) << row[0];
+  }
+}
+
 // Momentum P = sum_p (M_p xdot_p + sum_j m_j L_j cos theta_j thetadot_j) of every sample.
 void expectMomentumConserved(const Network& net, const Samples& sink) {
   const network::NetworkEquations eq(net);

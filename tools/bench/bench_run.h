@@ -17,33 +17,12 @@
 #include <vector>
 
 #include "models/rig.h"
-#include "models/scaling.h"
-#include "sim/record/envelope.h"
-#include "sim/record/run_report.h"
+#include "tools/bench/bench_scene.h"
 
 namespace metrosync::bench {
 
-// A scene: a rig and what the error measures need from it.
-struct Scene {
-  std::string name;  // short name for tables and file names (the rig file's stem)
-  std::string path;  // the rig file ("" for a rig built in code)
-  Rig rig;
-  ScaledParams scaled;
-  double periods = 0.0;  // fast periods (2 pi / omega0) in the run
-};
-
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides = {});
 Scene sceneFromRig(const std::string& name, const Rig& rig);
-
-// What runs: an engine, one of its integrators and its accuracy knob.
-struct Method {
-  std::string engine;             // simbody | direct | siconos | odeint | peer
-  std::string integrator;         // the engine's integrator name (siconos: moreau-jean)
-  double accuracy = 0.0;          // relative local error target (simbody, direct)
-  double steps_per_period = 0.0;  // siconos: h = fast period / steps_per_period
-  std::string label() const { return engine + ":" + integrator; }
-  std::string setting() const;  // "1e-08" or "h=T/256"
-};
 
 // "engine:integrator" or "engine:integrator:setting" (setting: the accuracy, or for siconos the
 // steps per fast period). Throws std::invalid_argument for an unknown engine or integrator.
@@ -51,20 +30,6 @@ Method parseMethod(const std::string& spec);
 // Every integrator of an engine that this binary can run, in its own order.
 std::vector<std::string> integratorsOf(const std::string& engine);
 bool engineAvailable(const std::string& engine);
-
-struct RunResult {
-  Method method;
-  bool complete = true;
-  std::string failure;
-  bool over_budget = false;  // stopped by the benchmark's time budget
-  double wall_s = 0.0;       // the whole call: building the system and running it
-  double cpu_s = 0.0;        // process CPU time over the same interval
-  RunCounts counts;
-  long ticks = 0;  // sum of counts.escapements
-  std::vector<EnvelopeRow> envelope;
-  std::vector<double> final_state;  // scaled: xdot, theta_1, thetadot_1, ..., theta_N, thetadot_N
-  std::string regime;
-};
 
 // What a run records: the envelope (64 samples per fast period), or nothing but its final state.
 enum class Sampling { Envelope, FinalState };

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/bench/bench_run.h"
+#include "tools/bench/bench_scene.h"
 
 namespace metrosync::bench {
 

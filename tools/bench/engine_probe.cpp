@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sim/engines/direct/direct_engine.h"
+#include "tools/bench/bench_run.h"
 #include "tools/bench/peer_scene.h"
 #include "yaml/rig_loader.h"
 

@@ -15,7 +15,6 @@
 #include "tools/cli/animate_plugin.h"
 #include "tools/cli/animation_track.h"
 #include "tools/cli/engines.h"
-#include "tools/cli/network_run.h"
 #include "tools/cli/number_option.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
@@ -83,14 +82,6 @@ void setTimes(const AnimateOptions& opt, double duration, double unit, Animation
                      std::to_string(kMaxFrames));
 }
 
-LoadOptions loadOptions() {
-  LoadOptions lo;  // animate writes no trajectory: no output limit
-  for (const Engine* e : engines())
-    for (const std::string& n : e->integrators()) lo.integrators.push_back(n);
-  lo.integrator_help = "one of: " + integratorHelp();
-  return lo;
-}
-
 std::string displayName(const AnimateOptions& opt) {
   return opt.rig.rig_path.empty() ? "<default rig>" : opt.rig.rig_path;
 }
@@ -142,20 +133,19 @@ namespace {
 
 // The run and its frames: one platform on the chosen full-model engine, or a network.
 AnimationTrack simulate(const AnimateOptions& opt, AnimationRequest& req, std::string& rig_name) {
-  Options o = opt.rig;
-  o.max_output = HUGE_VAL;
-  if (isNetworkRun(o)) {
-    const Network net = loadNetworkFile(o.rig_path, o.sets, loadOptions());
+  const Options& o = opt.rig;
+  const LoadOptions lo = engineLoadOptions(HUGE_VAL);  // animate writes no trajectory
+  const std::string text = o.rig_path.empty() ? defaultRigYaml() : readRigFile(o.rig_path);
+  if (const std::optional<Network> net = loadPlatformsNetwork(text, displayName(opt), o.sets, lo)) {
     if (!o.engine.empty() && o.engine != "direct")
       throw UsageError("--engine " + o.engine + ": a network runs on the direct engine only");
-    rig_name = net.name;
-    setTimes(opt, net.sim.t_end_s, 1.0, req);
-    req.title = net.name + " - network of " + std::to_string(net.platforms.size()) +
+    rig_name = net->name;
+    setTimes(opt, net->sim.t_end_s, 1.0, req);
+    req.title = net->name + " - network of " + std::to_string(net->platforms.size()) +
                 " platforms - " + speedText(opt.speed, true);
-    return trackNetwork(net, req);
+    return trackNetwork(*net, req);
   }
-  const Rig rig = o.rig_path.empty() ? defaultRig(o.sets, loadOptions())
-                                     : loadRigFile(o.rig_path, o.sets, loadOptions());
+  const Rig rig = loadRigText(text, displayName(opt), o.sets, lo);
   const Engine& engine = chooseEngine(o.engine, "full", rig, displayName(opt));
   rig_name = rig.name;
   const ScaledParams sp = computeScaled(rig);

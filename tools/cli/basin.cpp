@@ -15,6 +15,7 @@
 #include "sim/analysis/sweep.h"
 #include "sim/record/atomic_file.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/engines.h"
 #include "tools/cli/network_sweep.h"
 #include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
@@ -23,6 +24,7 @@
 #include "tools/report/basin_files.h"
 #include "tools/report/folder_lock.h"
 #include "tools/report/outputs.h"
+#include "yaml/network_loader.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
@@ -100,7 +102,8 @@ BasinPlan planBasin(const BasinOptions& opt) {
   BasinPlan plan;
   plan.text = sweepRigText(opt.run);
   const std::string name = displayName(opt.run);
-  const std::optional<Network> net = loadSweepNetwork(plan.text, name, opt.run.sets);
+  const std::optional<Network> net =
+      loadPlatformsNetwork(plan.text, name, opt.run.sets, engineLoadOptions(HUGE_VAL));
   const Rig base = net ? networkSweepRig(*net) : loadRigText(plan.text, name, opt.run.sets);
   // the keys resolved against the rig (docs/keys.md), no two setting one rig key
   std::vector<OptionKey> keys;

@@ -1,8 +1,5 @@
 #include "tools/cli/commands.h"
 
-#include <signal.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,13 +15,14 @@
 #include "sim/analysis/regime.h"
 #include "sim/record/atomic_file.h"
 #include "tools/cli/engines.h"
-#include "tools/cli/network_run.h"
 #include "tools/report/comparison_csv.h"
+#include "tools/report/network_files.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
 #include "tools/report/progress_log.h"
 #include "tools/report/run_columns.h"
 #include "tools/report/scale_report.h"
+#include "yaml/network_loader.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
@@ -65,17 +63,19 @@ struct LoadedRig {
 };
 
 // `model`: run's --model ("" = the engine's own), "full" for compare, "" for scale.
+// The rig's text: the Python module's, else the file's, else the built-in rig's.
+std::string rigText(const Options& opt) {
+  return opt.rig_text           ? *opt.rig_text
+         : opt.rig_path.empty() ? defaultRigYaml()
+                                : readRigFile(opt.rig_path);
+}
+
 LoadedRig loadAndCheck(const Options& opt, const std::string& model) {
   LoadedRig r;
-  LoadOptions lo;  // issue 17: the output limit and the integrator's name, located in the rig
-  lo.max_output_bytes = opt.max_output;
-  for (const Engine* e : engines())
-    for (const std::string& n : e->integrators()) lo.integrators.push_back(n);
-  lo.integrator_help = "one of: " + integratorHelp();
-  r.text = opt.rig_text           ? *opt.rig_text
-           : opt.rig_path.empty() ? defaultRigYaml()
-                                  : readRigFile(opt.rig_path);
-  r.rig = loadRigText(r.text, opt.rig_path.empty() ? "<default rig>" : opt.rig_path, opt.sets, lo);
+  // issue 17: the output limit and the integrator's name, located in the rig
+  const LoadOptions lo = engineLoadOptions(opt.max_output);
+  r.text = rigText(opt);
+  r.rig = loadRigText(r.text, rigDisplayName(opt), opt.sets, lo);
 
   // the integrator is the engine's business, so the loader leaves its name to us
   r.engine = &chooseEngine(opt.engine, model, r.rig, rigDisplayName(opt));
@@ -91,11 +91,11 @@ LoadedRig loadAndCheck(const Options& opt, const std::string& model) {
 
 // The output directory, created only now that the rig is valid; stale outputs of an earlier
 // command there are removed so that every file in it belongs to this run. None with no_files.
-std::optional<OutputDir> openOutputDir(const Options& opt, const Rig& rig,
+std::optional<OutputDir> openOutputDir(const Options& opt, const std::string& rig_name,
                                        const std::string& command) {
   if (opt.no_files) return std::nullopt;
   const std::string path =
-      opt.out.empty() ? defaultOutputDir(rig.name, command, opt.sets) : opt.out;
+      opt.out.empty() ? defaultOutputDir(rig_name, command, opt.sets) : opt.out;
   try {
     OutputDir dir(path);
     dir.removeStaleOutputs();
@@ -143,11 +143,9 @@ std::unique_ptr<FileSink> makeSink(const std::optional<OutputDir>& dir, const Ru
 }
 
 // summary.json's resolved_rig, command_line and build (docs/outputs.md)
-void addRunProvenance(nlohmann::json& summary, const Options& opt, const LoadedRig& r) {
-  addProvenance(summary,
-                // r is the rig loadAndCheck loaded from this text and these overrides
-                resolvedRigJson(r.text, opt.rig_path.empty() ? "<default rig>" : opt.rig_path,
-                                opt.sets, true));
+// (`text` loaded with opt.sets before: a single rig by loadAndCheck, a network by its loader)
+void addRunProvenance(nlohmann::json& summary, const Options& opt, const std::string& text) {
+  addProvenance(summary, resolvedRigJson(text, rigDisplayName(opt), opt.sets, true));
 }
 
 // A line every 10% of a long run on stderr when it is not a terminal (logs, CI).
@@ -243,10 +241,10 @@ void printFiles(const std::optional<OutputDir>& dir, const std::vector<std::stri
 }
 
 // Said on stderr with a folder (the CLI's); without one the caller raises it (Python).
-void reportFailure(const std::string& model, const RunReport& rep,
+void reportFailure(const std::string& model, const std::string& failure,
                    const std::optional<OutputDir>& dir) {
   if (!dir) return;
-  std::cerr << "metrosync: error: " << modelTitle(model) << ": " << rep.failure
+  std::cerr << "metrosync: error: " << modelTitle(model) << ": " << failure
             << "\nmetrosync: the files written so far are in " << dir->path()
             << "/ (summary.json says complete: false)\n";
 }
@@ -263,27 +261,6 @@ void finishSummary(nlohmann::json& summary, const std::optional<OutputDir>& dir,
   summary["files"] = files;
   writeSummary(*dir, summary);
 }
-
-extern "C" void onStopSignal(int) {
-  FileSink::requestStop();
-  static const char msg[] =
-      "\nmetrosync: stopping, keeping the files written so far (again to kill)\n";
-  ssize_t ignored = ::write(2, msg, sizeof msg - 1);
-  (void)ignored;
-}
-
-}  // namespace
-
-void installStopHandlers() {
-  struct sigaction sa {};
-  sa.sa_handler = onStopSignal;
-  sigemptyset(&sa.sa_mask);
-  sa.sa_flags = SA_RESETHAND;  // a second signal takes the default action
-  ::sigaction(SIGINT, &sa, nullptr);
-  ::sigaction(SIGTERM, &sa, nullptr);
-}
-
-namespace {
 
 // section 3A (locked metronomes, board on springs): the extremes are the platform's stops
 void observeSection3A(const LoadedRig& r, bool full, FileSink& sink, LinearDecay& decay) {
@@ -302,13 +279,55 @@ void addSection3A(nlohmann::json& summary, const LinearDecay& decay, const Rig& 
                             {"extremes", s3a->extremes}};
 }
 
-// `run`, its rows also kept when `keep`.
+// `run` on a network of platforms (docs/networks.md): the network's engine and files
+// (tools/report/network_files.h) in a single rig's steps; its rows are in files only.
+RunOutcome runNetwork(const Options& opt, const Network& net, const std::string& text) {
+  const Engine& engine =
+      chooseNetworkEngine(opt.engine, opt.model, net, rigDisplayName(opt), "runs");
+  if (opt.no_files)
+    throw UsageError(rigDisplayName(opt) + ": a network of " +
+                     std::to_string(net.platforms.size()) +
+                     " platforms keeps its rows in files only: give it a folder");
+  installStopHandlers();  // before any file exists
+  const std::optional<OutputDir> dir = openOutputDir(opt, net.name, "run");
+  NetworkFiles files(*dir, net);
+  const NetworkRunReport report = engine.runNetwork(net, files);
+  files.commit();
+  RunOutcome out;
+  out.summary = files.summary(report);
+  out.summary["model"] = "full";
+  out.summary["rig"] = net.name;
+  out.summary["units"] = "physical";
+  const std::string label = out.summary["network"]["regime"].get<std::string>();
+  std::vector<std::string> names = files.fileNames();
+  if (!opt.no_plot)
+    for (const std::string& png : plotNetwork(*dir, files, net, net.name + " - " + label))
+      names.push_back(png);
+  addRunProvenance(out.summary, opt, text);
+  finishSummary(out.summary, dir, names);
+  if (!opt.quiet) {
+    std::cout << "network of " << net.platforms.size()
+              << (net.platforms.size() == 1 ? " platform (" : " platforms (") << engine.name()
+              << ", " << report.integrator << "): " << label
+              << ", r = " << out.summary["network"]["r"].get<double>() << "\n";
+    printFiles(dir, names);
+  }
+  out.code = report.complete ? kSuccess : kSimulationFailed;
+  if (!report.complete) reportFailure("full", report.failure, dir);
+  return out;
+}
+
+// `run`, its rows also kept when `keep` (a single rig's).
 RunOutcome runImpl(const Options& opt, bool keep) {
+  const std::string text = rigText(opt);
+  if (const std::optional<Network> net = loadPlatformsNetwork(text, rigDisplayName(opt), opt.sets,
+                                                              engineLoadOptions(opt.max_output)))
+    return runNetwork(opt, *net, text);
   RunOutcome out;
   LoadedRig r = loadAndCheck(opt, opt.model);
   const std::string model = r.engine->model();
   installStopHandlers();  // before any file exists, so that no signal can leave a bare .part
-  const std::optional<OutputDir> dir = openOutputDir(opt, r.rig, "run");
+  const std::optional<OutputDir> dir = openOutputDir(opt, r.rig.name, "run");
   const bool full = model == "full";
 
   // the run's files made durable with one sync (sim/record/atomic_file.h): all of them and
@@ -334,7 +353,7 @@ RunOutcome runImpl(const Options& opt, bool keep) {
     files.push_back(plot);
 
   out.summary = runSummaryJson(r.rig, r.scaled_json, report, verdict);
-  addRunProvenance(out.summary, opt, r);
+  addRunProvenance(out.summary, opt, r.text);
   addSection3A(out.summary, decay, r.rig);
   finishSummary(out.summary, dir, files);
   if (durable.active()) durable.finish();  // --no-plot: renamed in order, summary.json last
@@ -344,14 +363,13 @@ RunOutcome runImpl(const Options& opt, bool keep) {
     printFiles(dir, files);
   }
   out.code = report.complete ? kSuccess : kSimulationFailed;
-  if (!report.complete) reportFailure(model, report, dir);
+  if (!report.complete) reportFailure(model, report.failure, dir);
   return out;
 }
 
 }  // namespace
 
 int runCommand(const Options& opt) {
-  if (!opt.rig_text && isNetworkRun(opt)) return runNetworkCommand(opt);  // docs/networks.md
   return runImpl(opt, false).code;
 }
 
@@ -430,7 +448,7 @@ RunOutcome compareImpl(const Options& opt, bool keep) {
   LoadedRig r = loadAndCheck(opt, "full");
   requireSlowFlow(r.rig, rigDisplayName(opt));  // before anything is written
   installStopHandlers();
-  const std::optional<OutputDir> dir = openOutputDir(opt, r.rig, "compare");
+  const std::optional<OutputDir> dir = openOutputDir(opt, r.rig.name, "compare");
   const Clock::time_point t0 = Clock::now();
 
   const auto full_sink =
@@ -462,7 +480,7 @@ RunOutcome compareImpl(const Options& opt, bool keep) {
 
   out.summary = compareSummary(r, full, slow, v_full, v_slow, cmp);
   out.summary["wall_seconds"] = secondsSince(t0);
-  addRunProvenance(out.summary, opt, r);
+  addRunProvenance(out.summary, opt, r.text);
   finishSummary(out.summary, dir, files);
 
   if (!opt.quiet) {
@@ -470,8 +488,8 @@ RunOutcome compareImpl(const Options& opt, bool keep) {
     printFiles(dir, files);
   }
   out.code = kSuccess;
-  if (!full.complete) reportFailure("full", full, dir), out.code = kSimulationFailed;
-  if (!slow.complete) reportFailure("slow", slow, dir), out.code = kSimulationFailed;
+  if (!full.complete) reportFailure("full", full.failure, dir), out.code = kSimulationFailed;
+  if (!slow.complete) reportFailure("slow", slow.failure, dir), out.code = kSimulationFailed;
   return out;
 }
 

@@ -404,21 +404,6 @@ int continueCommand() {
   return continueCommand(options());
 }
 
-Rig loadContinueRig(const ContinueOptions& opt, const std::vector<std::string>& extra) {
-  std::vector<std::string> o = opt.sets;
-  o.insert(o.end(), extra.begin(), extra.end());
-  try {
-    return opt.rig_path.empty() ? defaultRig(o) : loadRigFile(opt.rig_path, o);
-  } catch (const RigError& e) {
-    std::string what = e.what();
-    for (const auto& x : extra)
-      for (size_t at = what.find("--set " + x); at != std::string::npos;
-           at = what.find("--set " + x, at))
-        what.replace(at, 5, "--param");
-    throw RigError(what);
-  }
-}
-
 ContinuationResult slowFlowContinuation(const ContinueOptions& opt) {
   requireSlowFlow(loadContinueRig(opt, {}), rigDisplay(opt));
   const double from = startValue(opt);

@@ -5,7 +5,7 @@
 // apply (exit 2).
 #pragma once
 
-#include "tools/cli/continue.h"
+#include "tools/cli/continue_options.h"
 
 namespace metrosync::cli {
 

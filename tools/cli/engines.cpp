@@ -1,7 +1,7 @@
 #include "tools/cli/engines.h"
 
 #include "sim/engines/plugin_loader.h"
-#include "tools/cli/commands.h"
+#include "tools/cli/exit_codes.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::cli {
@@ -18,6 +18,28 @@ const Engine& chooseEngine(const std::string& requested, const std::string& mode
   } catch (const PluginError& e) {
     throw UsageError(e.what());  // exit 2, before anything is written
   }
+}
+
+const Engine& chooseNetworkEngine(const std::string& requested, const std::string& model,
+                                  const Network& net, const std::string& rig_name,
+                                  const std::string& verb) {
+  const std::string what = "a network of " + std::to_string(net.platforms.size()) + " platforms";
+  const std::string full_only = " " + verb + " the full model only (--engine direct or simbody)";
+  if (model == "slow")
+    throw UsageError("--model slow: the slow flow is single-platform; " + what + full_only);
+  const Engine& e = chooseEngine(requested, requested.empty() ? "full" : model,
+                                 net.platforms.at(0).rig, rig_name);
+  if (!e.runsNetworks()) throw UsageError("--engine " + e.name() + ": " + what + full_only);
+  return e;
+}
+
+LoadOptions engineLoadOptions(double max_output_bytes) {
+  LoadOptions lo;
+  lo.max_output_bytes = max_output_bytes;
+  for (const Engine* e : engines())
+    for (const std::string& n : e->integrators()) lo.integrators.push_back(n);
+  lo.integrator_help = "one of: " + integratorHelp();
+  return lo;
 }
 
 void requireSlowFlow(const Rig& rig, const std::string& rig_name) {

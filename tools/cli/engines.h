@@ -5,8 +5,10 @@
 
 #include <string>
 
+#include "models/network.h"
 #include "models/rig.h"
 #include "sim/engines/engine.h"
+#include "yaml/load_options.h"
 
 namespace metrosync::cli {
 
@@ -17,6 +19,17 @@ namespace metrosync::cli {
 // response (requireSlowFlow).
 const Engine& chooseEngine(const std::string& requested, const std::string& model, const Rig& rig,
                            const std::string& rig_name);
+
+// The full model's engine of a network of platforms (--engine, else the one
+// simulation.integrator names, else direct): --model slow and an engine that runs no networks are
+// UsageError (exit 2); `verb` ("runs", "sweeps") says what the command does with the network.
+const Engine& chooseNetworkEngine(const std::string& requested, const std::string& model,
+                                  const Network& net, const std::string& rig_name,
+                                  const std::string& verb);
+
+// The loader's options of a command that runs a rig: every engine's integrator names
+// (simulation.integrator is checked where it is written) and the output limit.
+LoadOptions engineLoadOptions(double max_output_bytes);
 
 // The slow flow needs the averaged response of the rig's friction law (contact/law_kind.h):
 // throws RigError (exit 2), prefixed by `rig_name`, for a law that has none (static friction above

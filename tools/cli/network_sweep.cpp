@@ -5,23 +5,8 @@
 #include <stdexcept>
 
 #include "sim/analysis/network_verdict.h"
-#include "tools/cli/commands.h"
-#include "tools/cli/engines.h"
-#include "yaml/network_loader.h"
 
 namespace metrosync::cli {
-
-std::optional<Network> loadSweepNetwork(const std::string& text, const std::string& display_name,
-                                        const std::vector<std::string>& overrides) {
-  if (!isNetworkText(text)) return std::nullopt;
-  LoadOptions lo;  // as `run` on a network: every engine's integrators
-  for (const Engine* e : engines())
-    for (const std::string& n : e->integrators()) lo.integrators.push_back(n);
-  lo.integrator_help = "one of: " + integratorHelp();
-  Network net = loadNetworkText(text, display_name, overrides, lo);
-  if (net.isSingleRig()) return std::nullopt;
-  return net;
-}
 
 Rig networkSweepRig(const Network& net) {
   Rig rig = net.platforms.at(0).rig;
@@ -30,20 +15,6 @@ Rig networkSweepRig(const Network& net) {
   for (const NetworkPlatform& p : net.platforms)
     rig.metronomes.insert(rig.metronomes.end(), p.rig.metronomes.begin(), p.rig.metronomes.end());
   return rig;
-}
-
-const Engine& networkSweepEngine(const std::string& requested, const std::string& model,
-                                 const Network& net, const std::string& display_name) {
-  const std::string what = "a network of " + std::to_string(net.platforms.size()) + " platforms";
-  if (model == "slow")
-    throw UsageError("--model slow: the slow flow is single-platform; " + what +
-                     " sweeps the full model only (--engine direct or simbody)");
-  const Engine& e = chooseEngine(requested, requested.empty() ? "full" : model,
-                                 net.platforms.at(0).rig, display_name);
-  if (!e.runsNetworks())
-    throw UsageError("--engine " + e.name() + ": " + what +
-                     " sweeps the full model only (--engine direct or simbody)");
-  return e;
 }
 
 SweepPoint runNetworkSweepPoint(const Network& net, const Engine& engine, long g,

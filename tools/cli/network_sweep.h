@@ -18,19 +18,9 @@
 
 namespace metrosync::cli {
 
-// The rig text as a network today's single-platform path cannot run, loaded with `overrides`;
-// nullopt for a single-platform rig (or a network of one). Throws RigError for a bad network.
-std::optional<Network> loadSweepNetwork(const std::string& text, const std::string& display_name,
-                                        const std::vector<std::string>& overrides);
-
 // The network as one Rig for the sweep's bookkeeping: its name and simulation settings, and all
 // its metronomes in the network's numbering (the point's metronome count is checked on it).
 Rig networkSweepRig(const Network& net);
-
-// The engine of a network sweep: the full model's (--engine, else the one simulation.integrator
-// names, else direct); --model slow and an engine that runs no networks are UsageError (exit 2).
-const Engine& networkSweepEngine(const std::string& requested, const std::string& model,
-                                 const Network& net, const std::string& display_name);
 
 // Runs one grid point (never throws for a failed simulation: regime "failed" and the reason).
 // `inject_failure`: the point fails for this reason as a simulation failure would (a test's

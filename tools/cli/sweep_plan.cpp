@@ -4,6 +4,7 @@
 
 #include "tools/cli/commands.h"
 #include "tools/cli/continue.h"
+#include "tools/cli/engines.h"
 #include "tools/cli/network_sweep.h"
 #include "tools/cli/option_keys.h"
 #include "tools/cli/sweep_point_run.h"
@@ -136,7 +137,8 @@ SweepPlan planSweep(const SweepOptions& opt) {
   plan.shard = opt.shard.empty() ? SweepShard{} : parseShard(opt.shard);
   // the rig, its keys, and every grid point's rig: a bad key or value stops here, before any file
   plan.text = sweepRigText(opt);
-  const std::optional<Network> net = loadSweepNetwork(plan.text, displayName(opt), opt.sets);
+  const std::optional<Network> net =
+      loadPlatformsNetwork(plan.text, displayName(opt), opt.sets, engineLoadOptions(HUGE_VAL));
   plan.base = net ? networkSweepRig(*net) : loadRigText(plan.text, displayName(opt), opt.sets);
   plan.random = planPointBasin(opt, plan.grid, sweepKeys(opt, plan.text));
   plan.n = static_cast<int>(plan.base.metronomes.size());

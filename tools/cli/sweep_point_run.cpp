@@ -90,7 +90,8 @@ PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
   overrides.insert(overrides.end(), point.begin(), point.end());
   PointInput in;
   try {
-    if (isNetworkRig(text)) in.net = loadSweepNetwork(text, displayName(opt), overrides);
+    if (isNetworkRig(text))
+      in.net = loadPlatformsNetwork(text, displayName(opt), overrides, engineLoadOptions(HUGE_VAL));
     in.rig = in.net ? networkSweepRig(*in.net) : loadRigText(text, displayName(opt), overrides);
   } catch (const RigError& e) {
     // the loader calls every override --set; the point's own ones come from --vary
@@ -102,7 +103,7 @@ PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
     throw RigError(what + "\n  at " + where);
   }
   if (in.net) {  // docs/networks.md
-    in.engine = &networkSweepEngine(opt.engine, opt.model, *in.net, displayName(opt));
+    in.engine = &chooseNetworkEngine(opt.engine, opt.model, *in.net, displayName(opt), "sweeps");
     return in;
   }
   // checks --engine against --model and the point's integrator

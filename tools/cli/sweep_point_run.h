@@ -16,7 +16,7 @@
 
 namespace metrosync::cli {
 
-// How messages name the rig (its text: sweepRigText, tools/cli/sweep.h).
+// How messages name the rig (its text: sweepRigText, tools/cli/sweep_options.h).
 std::string displayName(const SweepOptions& opt);
 
 // One grid point, ready to run.

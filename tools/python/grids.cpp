@@ -10,6 +10,7 @@
 #include "sim/analysis/sweep.h"
 #include "tools/cli/basin.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/engines.h"
 #include "tools/cli/network_sweep.h"
 #include "tools/cli/option_keys.h"
 #include "tools/cli/sweep.h"
@@ -18,6 +19,7 @@
 #include "tools/report/basin_files.h"
 #include "tools/report/outputs.h"
 #include "tools/report/sweep_files.h"
+#include "yaml/network_loader.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync::python {
@@ -52,7 +54,8 @@ struct BaseRig {
 BaseRig baseRig(const cli::SweepOptions& o) {
   BaseRig b;
   b.text = cli::sweepRigText(o);
-  const std::optional<Network> net = cli::loadSweepNetwork(b.text, o.rig_path, o.sets);
+  const std::optional<Network> net =
+      loadPlatformsNetwork(b.text, o.rig_path, o.sets, cli::engineLoadOptions(HUGE_VAL));
   const Rig rig = net ? cli::networkSweepRig(*net) : loadRigText(b.text, o.rig_path, o.sets);
   b.name = rig.name;
   b.n = static_cast<int>(rig.metronomes.size());

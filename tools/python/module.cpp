@@ -43,10 +43,10 @@ cli::Options scaleOptions(const RigSource& rig) {
   return o;
 }
 
-// Is the rig a network of more than one platform (tools/cli/network_run.h's test)?
+// Is the rig a network that is not a single rig (the commands' test, yaml/network_loader.h)?
 bool isNetwork(const RigSource& rig) {
   const std::string text = rig.text ? *rig.text : readRigFile(rig.path);
-  return isNetworkText(text) && !loadNetworkText(text, rig.path, rig.sets).isSingleRig();
+  return loadPlatformsNetwork(text, rig.path, rig.sets).has_value();
 }
 
 std::string resolvedJson(const RigSource& rig) {

@@ -4,7 +4,7 @@
 
 #include "sim/engines/plugin_loader.h"
 
-// Weak: defined when least_squares.cpp is linked into this binary (the tests, the Python module),
+// Weak: defined when ceres_solve.cpp is linked into this binary (the tests, the Python module),
 // null in the `metrosync` executable, which loads it from metrosync-ceres.so instead.
 extern "C" const metrosync::CeresPlugin* metrosync_ceres_plugin() __attribute__((weak));
 
@@ -30,10 +30,6 @@ const CeresPlugin* loadTable() {
 const CeresPlugin& ceresPlugin() {
   static const CeresPlugin* table = loadTable();  // a throw leaves it for the next call
   return *table;
-}
-
-LocalSolution solveLocal(const LocalProblem& problem) {
-  return ceresPlugin().solve(problem);
 }
 
 }  // namespace metrosync

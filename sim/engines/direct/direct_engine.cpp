@@ -28,6 +28,7 @@
 #include "base/constants.h"
 #include "models/minimal_equations.h"
 #include "models/scaling.h"
+#include "sim/engines/direct/step_loop.h"
 #include "sim/events/crossing.h"
 #include "sim/events/resolver.h"
 #include "sim/events/sample_schedule.h"
@@ -125,6 +126,28 @@ class DirectRun : public EventSystem {
     sink_.eventRecord(kind, j < 0 ? -1 : eq_.pendulum(j).rig_index, before_, makeRow(ev_y_, ev_t_));
   }
 
+  // --- the run's stages: the hooks of the run loop (sim/engines/direct/step_loop.h) ----------
+  std::vector<double> startState();
+  double maxStepSize() const;
+  auto& stepper() { return stepper_; }
+  const double* mechanicalEnd(const double* y) const { return y + lay_.mechanical(); }
+  bool complete() const { return report_.complete; }
+  void countStep() { ++report_.counts.steps; }
+  bool findCrossings();
+  double locateWindow();  // brackets the crossings; the window's end th_e
+  void resolveWindow(double t_e, double th_e);
+  void rearm(const double* y);
+  void emitSamplesBefore(double t_limit, bool inclusive);
+  void fail(double t, const std::string& why) {
+    if (report_.complete) {
+      report_.complete = false;
+      std::ostringstream os;
+      os << "simulation failed at t = " << t << " s (tau = " << sp_.epsilon * omega0_ * t
+         << "): " << why;
+      report_.failure = os.str();
+    }
+  }
+
  private:
   // --- witnesses --------------------------------------------------------------------------
   double witnessAt(const Witness& w, double th);
@@ -142,32 +165,10 @@ class DirectRun : public EventSystem {
     return (h >= 0 ? 1.0 : -1.0) * eq_.holdingForceRate(y);
   }
 
-  // --- the run's stages ---------------------------------------------------------------------
-  std::vector<double> startState();
-  double maxStepSize() const;
-  // false: rejected (h is the retry's size); err: the accepted step's error estimate
-  bool attemptStep(double step, double& h, double& err);
-  void findCrossings();
-  double locateWindow();  // brackets the crossings; the window's end th_e
-  void resolveWindow(double t_e, double th_e);
-  void rearm(const double* y);
-  void integrate(double h_max, StormGuard& storm);
-
   // --- recording --------------------------------------------------------------------------
   const std::vector<double>& makeRow(const double* y, double t);  // in row_
   void recordTrajectory(const double* y, double t);
   void recordEnvelope(const double* y, double t);
-  void emitSamplesBefore(double t_limit, bool inclusive);
-
-  void fail(double t, const std::string& why) {
-    if (report_.complete) {
-      report_.complete = false;
-      std::ostringstream os;
-      os << "simulation failed at t = " << t << " s (tau = " << sp_.epsilon * omega0_ * t
-         << "): " << why;
-      report_.failure = os.str();
-    }
-  }
 
   const Rig& rig_;
   DirectOptions opt_;
@@ -201,7 +202,6 @@ class DirectRun : public EventSystem {
   double friction_settle_J_ = 0.0;  // kinetic energy removed by plastic stops
   bool debug_ = std::getenv("METROSYNC_DEBUG") != nullptr;
   double t_end_ = 0.0;
-  int nonfinite_ = 0;  // consecutive attempts that produced a NaN or an infinity
 };
 
 template <int N>
@@ -439,32 +439,13 @@ double DirectRun<N>::maxStepSize() const {
   return fastest / 10;
 }
 
-// One attempt; false when rejected, with h set to the retry's size. A step that produced a NaN
-// or an infinity is redone 4 times smaller, a few times; a state that is not finite itself fails.
-template <int N>
-bool DirectRun<N>::attemptStep(double step, double& h, double& err) {
-  err = stepper_.attempt(step);
-  if (err <= 1.0) {
-    nonfinite_ = 0;
-    return true;
-  }
-  if (!std::isfinite(err) &&
-      (++nonfinite_ > 50 || !std::all_of(stepper_.y(), stepper_.y() + lay_.mechanical(),
-                                         [](double v) { return std::isfinite(v); }))) {
-    fail(stepper_.t(), "non-finite state");
-    return false;
-  }
-  h = std::isfinite(err) ? stepper_.nextStepSize(step, err, false) : 0.25 * step;
-  return false;
-}
-
 // A pendulum's tick witnesses (side * theta - theta_c) can report only if |theta| ends at or past
 // theta_c, or if its rate theta' = thetadot changes sign inside the step (a grazing maximum, or a
 // dip before a crossing): detectComponent() reports nothing else (its rates at the step's ends are
 // f(y0) and f(y1), whose angle rows are the rates). One pass over the pendulums finds those; with
 // N pendulums most steps have none, and the 2N witnesses are not looked at one by one.
 template <int N>
-void DirectRun<N>::findCrossings() {
+bool DirectRun<N>::findCrossings() {
   found_.clear();
   const double* y0 = stepper_.y();
   const double* y1 = stepper_.y1();
@@ -481,6 +462,7 @@ void DirectRun<N>::findCrossings() {
     if (wi.kind == WitnessKind::Tick && !maybe_[wi.pendulum]) continue;
     if (auto c = detect(w)) found_.push_back(*c);
   }
+  return !found_.empty();
 }
 
 // The window (sim/events/window.h): every crossing bracketed, the end at the earliest.
@@ -546,50 +528,6 @@ void DirectRun<N>::rearm(const double* y) {
   for (int j = 0; j < lay_.n; ++j) resolver_->rearm(j, y[lay_.theta(j)]);
 }
 
-// Steps to t_end: each kept step either has no crossing (samples, re-arming, advance) or ends
-// at its earliest event window, resolved before the next step.
-template <int N>
-void DirectRun<N>::integrate(double h_max, StormGuard& storm) {
-  double h = std::min(h_max, 0.5 * period_ * std::pow(rig_.sim.accuracy, 1.0 / (tab_.order + 1)));
-  while (stepper_.t() < t_end_) {
-    const double t0 = stepper_.t();
-    const bool last = t0 + h >= t_end_ * (1 - 4 * std::numeric_limits<double>::epsilon());
-    const double step = last ? t_end_ - t0 : h;
-    const double min_step =
-        std::max(1e-14 * period_, 16 * std::numeric_limits<double>::epsilon() * t0);
-    if (!(step > min_step) && !last) {
-      fail(t0, "step size underflow (h = " + std::to_string(step) + " s)");
-      break;
-    }
-    double err = 0.0;
-    if (!attemptStep(step, h, err)) {
-      if (!report_.complete) break;
-      continue;
-    }
-
-    ++report_.counts.steps;
-    const double t1 = last ? t_end_ : stepper_.t1();
-    h = std::min(h_max, stepper_.nextStepSize(step, err, true));
-    findCrossings();
-    if (found_.empty()) {
-      emitSamplesBefore(t1, true);
-      rearm(stepper_.y1());
-      stepper_.advance();
-      if (last) break;
-      continue;
-    }
-    const double th_e = locateWindow();
-    const double t_e = th_e >= 1.0 ? t1 : t0 + th_e * step;
-    emitSamplesBefore(t_e, false);
-    resolveWindow(t_e, th_e);
-    if (storm.note(t_e)) {
-      fail(t_e, storm.why());
-      break;
-    }
-    if (last && th_e >= 1.0) break;
-  }
-}
-
 // --- the run --------------------------------------------------------------------------------
 
 template <int N>
@@ -608,7 +546,8 @@ RunReport DirectRun<N>::run() {
   try {
     recordTrajectory(y.data(), 0.0);
     recordEnvelope(y.data(), 0.0);
-    integrate(h_max, storm);
+    integrateTo(*this, t_end_, firstStepSize(h_max, period_, rig_.sim.accuracy, tab_.order), h_max,
+                period_, storm);
     t_fin = stepper_.t() >= t_end_ * (1 - 1e-15) && report_.complete ? t_end_ : stepper_.t();
     std::copy(stepper_.y(), stepper_.y() + lay_.dim(), y_fin.begin());
   } catch (const std::exception& e) {

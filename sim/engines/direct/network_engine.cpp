@@ -11,6 +11,7 @@
 #include "base/number_text.h"
 #include "models/network_equations.h"
 #include "sim/engines/direct/direct_engine.h"
+#include "sim/engines/direct/step_loop.h"
 #include "sim/events/crossing.h"
 #include "sim/events/resolver.h"
 #include "sim/events/window.h"
@@ -30,8 +31,6 @@ using network::NetworkEquations;
 // one step for any amplitude the escapement sustains (a tick witness stays above zero for about a
 // tenth of a period), long enough to cost nothing when the accuracy sets the step.
 constexpr double kMaxStepPeriods = 0.05;
-// The shortest step, relative to the run's time: below it the step size has underflowed.
-constexpr double kMinStepRelative = 1e-14;
 // Resolution passes per event window: each pass settles the platforms whose support moved; a
 // stack of P platforms needs at most P passes.
 constexpr int kSettlePassesPerPlatform = 2;
@@ -89,21 +88,29 @@ class NetworkRun {
   NetworkRun(const Network& net, NetworkSink& sink);
   NetworkRunReport run();
 
+  // --- the hooks of the run loop (sim/engines/direct/step_loop.h) ---------------------------
+  ode::RkStepper& stepper() { return stepper_; }
+  const double* mechanicalEnd(const double* y) const { return y + lay_.dampingWork(); }
+  bool complete() const { return report_.complete; }
+  void countStep() { ++report_.steps; }
+  bool findCrossings();
+  void emitSamplesBefore(double t_limit, bool inclusive);
+  void rearm(const double* y);
+  double locateWindow();
+  void resolveWindow(double t_e, double th_e);
+  void fail(double t, const std::string& why);
+
  private:
   bool armed(const Witness& w) const;
   double witnessValue(const Witness& w, const double* y, const std::vector<double>& lambda) const;
   double witnessAt(const Witness& w, double th);
   std::optional<WindowCrossing> detect(int index);
-  void findCrossings();
-  void resolveWindow(double t_e, double th_e);
+  void resolveContacts(double t_e, double th_e);
   void settleSupports();
   void absorb(const WindowOutcome& out, int p);
-  void emitSamples(double t_limit, bool inclusive);
   void sample(double t, const std::vector<double>& y);
-  bool integrate();
   void finish();
   void setTolerances(const Rig& rig);
-  void fail(double t, const std::string& why);
 
   const Network& net_;
   NetworkSink& sink_;
@@ -249,10 +256,32 @@ std::optional<WindowCrossing> NetworkRun::detect(int index) {
                       [](double) { return 0.0; });
 }
 
-void NetworkRun::findCrossings() {
+bool NetworkRun::findCrossings() {
   found_.clear();
   for (int i = 0; i < static_cast<int>(witnesses_.size()); ++i)
     if (auto c = detect(i)) found_.push_back(*c);
+  return !found_.empty();
+}
+
+// The escapements re-armed on the state y (the kept step's end: y_ follows it).
+void NetworkRun::rearm(const double* y) {
+  std::copy(y, y + lay_.dim(), y_.begin());
+  for (int p = 0; p < lay_.platforms; ++p) resolvers_[p].rearm(*views_[p]);
+}
+
+// The window (sim/events/window.h): every crossing bracketed, the end at the earliest.
+double NetworkRun::locateWindow() {
+  return metrosync::locateWindow(found_,
+                                 [&](int w, double th) { return witnessAt(witnesses_[w], th); });
+}
+
+// The window's end state in y_, resolved; the escapements re-armed on the result, the stepper
+// restarted from it.
+void NetworkRun::resolveWindow(double t_e, double th_e) {
+  stepper_.interpolate(th_e, y_.data());
+  resolveContacts(t_e, th_e);
+  for (int p = 0; p < lay_.platforms; ++p) resolvers_[p].rearm(*views_[p]);
+  stepper_.restart(t_e, y_.data());
 }
 
 void NetworkRun::absorb(const WindowOutcome& out, int p) {
@@ -291,7 +320,7 @@ void NetworkRun::settleSupports() {
 // when its witness has crossed (the stick margins judged on the window's state before any
 // impulse, the slip velocities when the platform's turn comes: an earlier platform's tick may
 // have moved the one below it) or when its slip was stopped where it could not get going.
-void NetworkRun::resolveWindow(double t_e, double th_e) {
+void NetworkRun::resolveContacts(double t_e, double th_e) {
   const std::vector<double> lambda = eq_.holdingForces(y_.data(), modes_);
   std::vector<char> forced(lay_.platforms, 0);
   for (const WindowCrossing& c : found_)
@@ -314,7 +343,7 @@ void NetworkRun::resolveWindow(double t_e, double th_e) {
 
 // The samples on the grid (simulation.sample) in the current step before t_limit (or at it, if
 // inclusive), strictly before t_end: the run's last sample is its final state, at t_end exactly.
-void NetworkRun::emitSamples(double t_limit, bool inclusive) {
+void NetworkRun::emitSamplesBefore(double t_limit, bool inclusive) {
   const double t0 = stepper_.t(), h = stepper_.h();
   for (;;) {
     const double ts = next_sample_ * sample_dt_;
@@ -345,52 +374,13 @@ NetworkRunReport NetworkRun::run() {
   sample(0.0, y_);
   next_sample_ = 1;
   stepper_.restart(0.0, y_.data());
-  integrate();
+  const double h_max = kMaxStepPeriods * period_;
+  StormGuard storm(period_, StormGuard::kMaxEvents, StormGuard::kWindowPeriods);
+  direct::integrateTo(*this, t_end_,
+                      direct::firstStepSize(h_max, period_, net_.sim.accuracy, tab_.order), h_max,
+                      period_, storm);
   finish();
   return report_;
-}
-
-// Steps to t_end (y_ is the state at stepper_.t() throughout); false when the run failed.
-bool NetworkRun::integrate() {
-  const double h_max = kMaxStepPeriods * period_;
-  double h = stepper_.initialStepSize(h_max);
-  while (stepper_.t() < t_end_) {
-    const double t = stepper_.t();
-    const double step = std::min({h, h_max, t_end_ - t});
-    if (!(step > kMinStepRelative * std::max(1.0, t_end_))) {
-      fail(t, "step size underflow");
-      return false;
-    }
-    const double err = stepper_.attempt(step);
-    if (!(err <= 1.0)) {
-      if (!std::isfinite(err)) {
-        fail(t, "the state is not finite");
-        return false;
-      }
-      h = stepper_.nextStepSize(step, err, false);
-      continue;
-    }
-    ++report_.steps;
-    h = stepper_.nextStepSize(step, err, true);
-    findCrossings();
-    if (found_.empty()) {
-      emitSamples(stepper_.t1(), true);
-      stepper_.advance();
-      for (int p = 0; p < lay_.platforms; ++p) resolvers_[p].rearm(*views_[p]);
-      std::copy(stepper_.y(), stepper_.y() + lay_.dim(), y_.begin());
-      continue;
-    }
-    // the window (sim/events/window.h): every crossing bracketed, the end at the earliest
-    const double th_e =
-        locateWindow(found_, [&](int w, double th) { return witnessAt(witnesses_[w], th); });
-    const double t_e = th_e >= 1.0 ? stepper_.t1() : t + th_e * step;
-    emitSamples(t_e, false);
-    stepper_.interpolate(th_e, y_.data());
-    resolveWindow(t_e, th_e);
-    for (int p = 0; p < lay_.platforms; ++p) resolvers_[p].rearm(*views_[p]);
-    stepper_.restart(t_e, y_.data());
-  }
-  return true;
 }
 
 // The run's last sample: its final state, at t_end exactly when complete (the last step ends

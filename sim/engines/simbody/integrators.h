@@ -1,5 +1,5 @@
 // Simbody's integrators by the names simulation.integrator accepts (simbodyIntegratorNames(),
-// sim/engines/simbody/simbody_engine.h), for the single-platform and the network engine.
+// sim/engines/simbody/simbody_engine.h), for the one run loop (platform_run.h).
 #pragma once
 
 #include <Simbody.h>

@@ -1,10 +1,8 @@
-// The Simbody engine for networks of platforms (docs/networks.md): the network as one Simbody
-// MultibodySystem (models/simbody/network_system.h), Simbody's integrators, thin witnesses, and
-// the event semantics of the direct network engine (sim/engines/direct/network_engine.h) through
-// the shared resolver: one EventResolver per platform over a view of the Simbody state (its
-// pendulums, the contact under it), every due tick of a window applied as one impulse through
-// Simbody's full mass matrix with every contact free, then each platform's Coulomb rule, then the
-// platforms whose support an impulse moved. Streams the same samples into the same sink.
+// The Simbody engine's entry for a network of platforms (docs/networks.md): the network's system
+// from the one builder (models/simbody/platform_system.h), run by the one run loop
+// (sim/engines/simbody/platform_run.h) that also runs single rigs, with the event semantics of
+// the direct network engine (sim/engines/direct/network_engine.h) through the shared resolver.
+// Streams its samples (network::Layout) into the sink.
 #pragma once
 
 #include "models/network.h"

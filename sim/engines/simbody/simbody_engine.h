@@ -1,7 +1,8 @@
-// The full model (e1.1a-c) as a Simbody MultibodySystem: a slider for the platform (absent when
-// the platform is fixed), a pin per swinging pendulum, our Coulomb stick-slip element, and the
-// escapement as impulsive events. Streams trajectory rows (at rig.sim.sample_s, by interpolation)
-// and envelope rows (one per fast period) into `sink`.
+// The full model (e1.1a-c) on Simbody for a single-platform rig: the rig as a network of one
+// (models/simbody/platform_system.h: a slider for the platform, absent when it is fixed, a pin per
+// swinging pendulum, the Coulomb contact), run by the one run loop (platform_run.h) with the
+// escapement as impulsive events. Streams trajectory rows (at rig.sim.sample_s, by
+// interpolation), envelope rows (one per fast period) and event rows into `sink`.
 #pragma once
 
 #include "models/rig.h"

@@ -1,4 +1,4 @@
-#include "models/simbody/network_system.h"
+#include "models/simbody/platform_system.h"
 
 #include <stdexcept>
 
@@ -8,14 +8,27 @@ namespace metrosync {
 
 using namespace SimTK;
 
+Network networkOfOne(const Rig& rig) {
+  Network net;
+  net.name = rig.name;
+  net.gravity_m_s2 = rig.gravity_m_s2;
+  net.sim = rig.sim;
+  NetworkPlatform p;
+  p.name = "platform";
+  p.rig = rig;
+  net.platforms.push_back(p);
+  return net;
+}
+
 namespace {
 
-// The ground springs and dampers (-k_p x_p - c_p xdot_p) and the couplings (-k (x_a - x_b) -
-// c (xdot_a - xdot_b) on a, the opposite on b), on the platforms' absolute coordinates, applied
-// as forces along x on the platforms' bodies; the springs' potential energy for the ledger.
+// The ground springs and dampers of stacked platforms (-k_p x_p - c_p xdot_p) and the couplings
+// (-k (x_a - x_b) - c (xdot_a - xdot_b) on a, the opposite on b), on the platforms' absolute
+// coordinates, applied as forces along x on the platforms' bodies; the springs' potential energy
+// for the ledger. (A table platform's ground spring and damper are mobility forces on its slider.)
 class NetworkSprings : public Force::Custom::Implementation {
  public:
-  explicit NetworkSprings(const NetworkSystem& ns) : ns_(ns) {}
+  explicit NetworkSprings(const PlatformSystem& ns) : ns_(ns) {}
   void calcForce(const State& s, Vector_<SpatialVec>& bodyForces, Vector_<Vec3>&,
                  Vector&) const override {
     const network::NetworkEquations& eq = ns_.equations();
@@ -24,7 +37,7 @@ class NetworkSprings : public Force::Custom::Implementation {
     };
     for (int p = 0; p < ns_.numPlatforms(); ++p) {
       const network::Block& b = eq.block(p);
-      if (b.moves && (b.k != 0 || b.c != 0)) push(p, -b.k * ns_.x(s, p) - b.c * ns_.xdot(s, p));
+      if (stacked(p) && (b.k != 0 || b.c != 0)) push(p, -b.k * ns_.x(s, p) - b.c * ns_.xdot(s, p));
     }
     for (const Coupling& k : ns_.network().couplings) {
       const double F = -k.k_N_m * (ns_.x(s, k.a) - ns_.x(s, k.b)) -
@@ -36,6 +49,7 @@ class NetworkSprings : public Force::Custom::Implementation {
   Real calcPotentialEnergy(const State& s) const override {
     double e = 0.0;
     for (int p = 0; p < ns_.numPlatforms(); ++p) {
+      if (!stacked(p)) continue;  // a table platform's spring is a mobility spring
       const double x = ns_.x(s, p);
       e += 0.5 * ns_.equations().block(p).k * x * x;
     }
@@ -48,19 +62,22 @@ class NetworkSprings : public Force::Custom::Implementation {
   bool dependsOnlyOnPositions() const override { return false; }
 
  private:
-  const NetworkSystem& ns_;
+  bool stacked(int p) const { return ns_.moves(p) && !ns_.onGround(p); }
+  const PlatformSystem& ns_;
 };
 
-// Integrates, as three continuous state variables z, the power taken out by the pivot dampers,
-// by the contacts' friction, and by the ground and coupling dampers (joules).
+// Integrates, as continuous state variables z, the power taken out by the pivot dampers, by the
+// contacts' friction, and (a third z, only when the network has any) by the ground and coupling
+// dampers (joules): no z that stays 0, so that a single rig integrates the state it always did.
 class NetworkMeter : public Force::Custom::Implementation {
  public:
-  NetworkMeter(const GeneralForceSubsystem& forces, const NetworkSystem& ns, ZIndex& z)
-      : forces_(forces), ns_(ns), z_(z) {}
+  NetworkMeter(const GeneralForceSubsystem& forces, const PlatformSystem& ns, ZIndex& z,
+               bool dampers)
+      : forces_(forces), ns_(ns), z_(z), dampers_(dampers) {}
   void calcForce(const State&, Vector_<SpatialVec>&, Vector_<Vec3>&, Vector&) const override {}
   Real calcPotentialEnergy(const State&) const override { return 0; }
   void realizeTopology(State& s) const override {
-    z_ = s.allocateZ(forces_.getMySubsystemIndex(), Vector(3, 0.0));
+    z_ = s.allocateZ(forces_.getMySubsystemIndex(), Vector(dampers_ ? 3 : 2, 0.0));
   }
   void realizeAcceleration(const State& s) const override {
     const network::NetworkEquations& eq = ns_.equations();
@@ -84,18 +101,19 @@ class NetworkMeter : public Force::Custom::Implementation {
     Vector& zdot = s.updZDot(forces_.getMySubsystemIndex());
     zdot[z_] = damping;
     zdot[z_ + 1] = friction;
-    zdot[z_ + 2] = dampers;
+    if (dampers_) zdot[z_ + 2] = dampers;
   }
 
  private:
   const GeneralForceSubsystem& forces_;
-  const NetworkSystem& ns_;
+  const PlatformSystem& ns_;
   ZIndex& z_;
+  bool dampers_;
 };
 
 }  // namespace
 
-NetworkSystem::NetworkSystem(const Network& net)
+PlatformSystem::PlatformSystem(const Network& net)
     : net_(net), eq_(net_), matter_(system_), forces_(system_) {
   Force::Gravity(forces_, matter_, -YAxis, net_.gravity_m_s2);
   const int np = numPlatforms();
@@ -103,17 +121,20 @@ NetworkSystem::NetworkSystem(const Network& net)
   contacts_.assign(np, nullptr);
   parent_.assign(np, -1);
   pins_.resize(eq_.layout().n);
+  owner_.resize(eq_.layout().n);
   std::vector<char> made(np, 0);
   for (int p = 0; p < np; ++p) addPlatform(p, made);
   for (int p = 0; p < np; ++p) addPendulums(p);
-  Force::Custom(forces_, new NetworkSprings(*this));
-  Force::Custom(forces_, new NetworkMeter(forces_, *this, z_));
+  if (needsSprings()) Force::Custom(forces_, new NetworkSprings(*this));
+  for (int p = 0; p < np; ++p) has_dampers_ = has_dampers_ || (moves(p) && eq_.block(p).c != 0);
+  for (const Coupling& k : net_.couplings) has_dampers_ = has_dampers_ || k.c_Ns_m != 0;
+  Force::Custom(forces_, new NetworkMeter(forces_, *this, z_, has_dampers_));
   system_.realizeTopology();
 }
 
 // Platform p's slider and its contact's law, after the platform it rests on (a stack is built
 // from the bottom; the loader has refused cycles).
-void NetworkSystem::addPlatform(int p, std::vector<char>& made) {
+void PlatformSystem::addPlatform(int p, std::vector<char>& made) {
   if (made[p]) return;
   made[p] = 1;
   const network::Block& b = eq_.block(p);
@@ -133,6 +154,10 @@ void NetworkSystem::addPlatform(int p, std::vector<char>& made) {
     throw std::invalid_argument("platform " + net_.platforms[p].name + ": mass must be > 0");
   Body::Rigid board(MassProperties(carried, Vec3(0), UnitInertia(1)));
   sliders_[p] = MobilizedBody::Slider(parent, Transform(), board, Transform());
+  if (parent_[p] < 0) {  // on Ground: the slider's coordinate is x_p
+    if (b.k > 0) Force::MobilityLinearSpring(forces_, sliders_[p], MobilizerQIndex(0), b.k, 0.0);
+    if (b.c > 0) Force::MobilityLinearDamper(forces_, sliders_[p], MobilizerUIndex(0), b.c);
+  }
   if (b.friction.setValued()) {
     auto* element = new CoulombContact(forces_, sliders_[p], b.friction.dry);
     Force::Custom(forces_, element);  // takes ownership
@@ -142,60 +167,70 @@ void NetworkSystem::addPlatform(int p, std::vector<char>& made) {
   }
 }
 
-void NetworkSystem::addPendulums(int p) {
+void PlatformSystem::addPendulums(int p) {
   const network::Block& b = eq_.block(p);
   MobilizedBody parent = matter_.Ground();
   if (b.moves) parent = sliders_[p];
   for (int j = b.first; j < b.first + b.count; ++j) {
     const direct::PendulumConstants& q = eq_.pendulum(j);
-    const MetronomeSpec& m = net_.platforms[p].rig.metronomes[q.rig_index - net_.firstMetronome(p)];
+    const int i = q.rig_index - net_.firstMetronome(p);  // its index on the platform
+    const MetronomeSpec& m = net_.platforms[p].rig.metronomes[i];
     const double mass = m.pendulum_mass_kg, L = m.length_m, I = m.inertia_kgm2;
-    // inertia about the pivot as in MetronomeSystem: I about the pin axis z
+    // inertia about the pivot: I about z (the pin axis); the other two moments chosen so that
+    // the central inertia (I - m L^2 on every axis) is valid for a point pendulum too
     const double d = I - mass * L * L;
     Body::Rigid bob(MassProperties(mass, Vec3(0, -L, 0), Inertia(I, d, I)));
     // pivots spaced along the board; the spacing does not enter e1.1 (constants c_i)
-    const Vec3 pivot(0.1 * static_cast<double>(j - b.first), 0, 0);
+    const Vec3 pivot(0.1 * static_cast<double>(i), 0, 0);
+    owner_[j] = p;
     pins_[j] = MobilizedBody::Pin(parent, Transform(pivot), bob, Transform());
     if (q.damping > 0)
       Force::MobilityLinearDamper(forces_, pins_[j], MobilizerUIndex(0), q.damping);
   }
 }
 
-double NetworkSystem::x(const State& s, int p) const {
+bool PlatformSystem::needsSprings() const {
+  if (!net_.couplings.empty()) return true;
+  for (int p = 0; p < numPlatforms(); ++p)
+    if (moves(p) && !onGround(p) && (eq_.block(p).k != 0 || eq_.block(p).c != 0)) return true;
+  return false;
+}
+
+double PlatformSystem::x(const State& s, int p) const {
   if (!moves(p)) return 0.0;
   const double q = sliders_[p].getOneQ(s, MobilizerQIndex(0));
   return parent_[p] >= 0 ? q + x(s, parent_[p]) : q;
 }
 
-double NetworkSystem::xdot(const State& s, int p) const {
+double PlatformSystem::xdot(const State& s, int p) const {
   if (!moves(p)) return 0.0;
   const double u = sliders_[p].getOneU(s, MobilizerUIndex(0));
   return parent_[p] >= 0 ? u + xdot(s, parent_[p]) : u;
 }
 
-double NetworkSystem::slipVelocity(const State& s, int p) const {
+double PlatformSystem::slipVelocity(const State& s, int p) const {
   return moves(p) ? sliders_[p].getOneU(s, MobilizerUIndex(0)) : 0.0;
 }
 
-double NetworkSystem::theta(const State& s, int j) const {
+double PlatformSystem::theta(const State& s, int j) const {
   return pins_[j].getOneQ(s, MobilizerQIndex(0));
 }
 
-double NetworkSystem::thetadot(const State& s, int j) const {
+double PlatformSystem::thetadot(const State& s, int j) const {
   return pins_[j].getOneU(s, MobilizerUIndex(0));
 }
 
-double NetworkSystem::dampingLoss(const State& s) const {
+double PlatformSystem::dampingLoss(const State& s) const {
   return s.getZ(forces_.getMySubsystemIndex())[z_];
 }
-double NetworkSystem::frictionLoss(const State& s) const {
+double PlatformSystem::frictionLoss(const State& s) const {
   return s.getZ(forces_.getMySubsystemIndex())[z_ + 1];
 }
-double NetworkSystem::damperLoss(const State& s) const {
-  return s.getZ(forces_.getMySubsystemIndex())[z_ + 2];
+double PlatformSystem::damperLoss(const State& s) const {
+  return has_dampers_ ? s.getZ(forces_.getMySubsystemIndex())[z_ + 2] : 0.0;
 }
 
-void NetworkSystem::layoutState(const State& s, std::vector<double>& y) const {
+void PlatformSystem::layoutState(const State& s, std::vector<double>& y) const {
   const network::Layout& lay = eq_.layout();
   y.assign(lay.dim(), 0.0);
   for (int p = 0; p < lay.platforms; ++p) {
@@ -211,7 +246,7 @@ void NetworkSystem::layoutState(const State& s, std::vector<double>& y) const {
   y[lay.damperWork()] = damperLoss(s);
 }
 
-State NetworkSystem::initialState() {
+State PlatformSystem::initialState() {
   State s = system_.getDefaultState();
   for (int p = 0; p < numPlatforms(); ++p) {
     if (!moves(p)) continue;
@@ -224,8 +259,7 @@ State NetworkSystem::initialState() {
   }
   for (int j = 0; j < numPendulums(); ++j) {
     const direct::PendulumConstants& q = eq_.pendulum(j);
-    int p = 0;
-    while (j >= eq_.block(p).first + eq_.block(p).count) ++p;
+    const int p = owner_[j];
     const MetronomeSpec& m = net_.platforms[p].rig.metronomes[q.rig_index - net_.firstMetronome(p)];
     pins_[j].setOneQ(s, MobilizerQIndex(0), m.start_angle_rad);
     pins_[j].setOneU(s, MobilizerUIndex(0), m.start_rate_rad_s);

@@ -1,0 +1,154 @@
+// The limiting case of the one model (issue 24): a network of one platform on the table, no
+// coupling, no ground damper, is the single rig. Its equations (models/network_equations.h, which
+// compose each platform's single-platform arrow) against the single-platform equations
+// (models/minimal_equations.h) on random states in every contact mode, and its run on the
+// network engine against the single-platform engine's.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "models/minimal_equations.h"
+#include "models/network_equations.h"
+#include "sim/engines/direct/direct_engine.h"
+#include "sim/engines/direct/network_engine.h"
+#include "yaml/network_loader.h"
+
+namespace metrosync {
+namespace {
+
+// Two metronomes of the paper's experiment (yaml/rigs/experiment.yaml), one with a longer
+// pendulum, on one board with the given friction and a ground spring.
+std::string board(const std::string& friction, double duration) {
+  const std::string m =
+      "      - {box_mass: 0.0602, pendulum: {mass: 0.0226, length: LEN, decay_rate: 0.5}, "
+      "escapement: {angle: 0.244, steady_amplitude: 0.785}, start: {angle: ANG, rate: 0.1}}\n";
+  auto metronome = [&](const std::string& len, const std::string& ang) {
+    std::string s = m;
+    s.replace(s.find("LEN"), 3, len);
+    s.replace(s.find("ANG"), 3, ang);
+    return s;
+  };
+  return "units: physical\nplatforms:\n  - name: only\n    mass: 0.1432\n    friction: " +
+         friction + "\n    spring: {k: 2.0}\n    metronomes:\n" + metronome("0.0225", "0.785") +
+         metronome("0.03", "-0.6") + "simulation: {duration: " + std::to_string(duration) +
+         ", accuracy: 1e-12}\n";
+}
+
+// Round-off of the two evaluation orders: the network adds the platform's push, friction and
+// its contact's holding force in other steps than the single rig (a stuck contact's zero
+// acceleration comes out of a 1 x 1 solve, to a few ulps); 1e-13 of each kind's size is
+// hundreds of ulps and a millionth of any modelling difference.
+constexpr double kRoundOff = 1e-13;
+
+// max |y_i| over [begin, end)
+double size(const std::vector<double>& y, int begin, int end) {
+  double s = 0.0;
+  for (int i = begin; i < end; ++i) s = std::max(s, std::abs(y[i]));
+  return s;
+}
+
+void expectSameRates(const std::string& friction, PlatformMode mode) {
+  const Network net = loadNetworkText(board(friction, 1.0), "one.yaml");
+  ASSERT_EQ(net.platforms.size(), 1u);
+  const network::NetworkEquations nq(net);
+  const direct::MetronomeEquations sq(net.platforms[0].rig);
+  const network::Layout lay = nq.layout();
+  const direct::StateLayout sl = sq.layout();
+  ASSERT_EQ(lay.n, sl.n);
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    std::vector<double> ys(sl.dim(), 0.0), yn(lay.dim(), 0.0);
+    ys[direct::StateLayout::kX] = 0.01 * u(gen);
+    ys[direct::StateLayout::kV] = mode == PlatformMode::Stuck ? 0.0 : 0.05 * u(gen);
+    for (int j = 0; j < sl.n; ++j) {
+      ys[sl.theta(j)] = 1.2 * u(gen);
+      ys[sl.omega(j)] = 5.0 * u(gen);
+    }
+    yn[lay.x(0)] = ys[direct::StateLayout::kX];
+    yn[lay.v(0)] = ys[direct::StateLayout::kV];
+    for (int j = 0; j < sl.n; ++j) {
+      yn[lay.theta(j)] = ys[sl.theta(j)];
+      yn[lay.omega(j)] = ys[sl.omega(j)];
+    }
+    std::vector<double> ds(sl.dim()), dn(lay.dim());
+    sq.rhs(ys.data(), mode, ds.data());
+    nq.rhs(yn.data(), {mode}, dn.data());
+    const double a_size = std::max(std::abs(ds[direct::StateLayout::kV]),
+                                   size(ds, sl.omega(0), sl.omega(0) + sl.n) * 1e-3);
+    EXPECT_EQ(dn[lay.x(0)], ds[direct::StateLayout::kX]);
+    EXPECT_NEAR(dn[lay.v(0)], ds[direct::StateLayout::kV], kRoundOff * a_size) << trial;
+    const double dw_size = size(ds, sl.omega(0), sl.omega(0) + sl.n);
+    for (int j = 0; j < sl.n; ++j) {
+      EXPECT_EQ(dn[lay.theta(j)], ds[sl.theta(j)]) << trial << " " << j;
+      EXPECT_NEAR(dn[lay.omega(j)], ds[sl.omega(j)], kRoundOff * dw_size) << trial << " " << j;
+    }
+    EXPECT_EQ(dn[lay.dampingWork()], ds[sl.dampingWork()]) << trial;
+    EXPECT_NEAR(dn[lay.frictionWork()], ds[sl.frictionWork()],
+                kRoundOff * std::abs(ds[sl.frictionWork()]))
+        << trial;
+    EXPECT_EQ(dn[lay.damperWork()], 0.0);
+    // the energy and an impulse are the arrow's own arithmetic: the same bits
+    EXPECT_EQ(nq.energy(yn.data()), sq.energy(ys.data())) << trial;
+    const std::vector<double> pin = {1e-4 * u(gen), 1e-4 * u(gen)};
+    const double contact = 1e-3 * u(gen);
+    EXPECT_EQ(nq.applyImpulse(yn.data(), pin, {contact}),
+              sq.applyImpulse(ys.data(), pin.data(), contact));
+    EXPECT_EQ(yn[lay.v(0)], ys[direct::StateLayout::kV]);
+    for (int j = 0; j < sl.n; ++j) EXPECT_EQ(yn[lay.omega(j)], ys[sl.omega(j)]) << j;
+    EXPECT_EQ(nq.contactMobility(yn.data(), 0), sq.platformMobility(ys.data()));
+    if (mode == PlatformMode::Stuck && friction.find("coulomb") != std::string::npos) {
+      yn[lay.v(0)] = ys[direct::StateLayout::kV] = 0.0;
+      const double h = sq.holdingForce(ys.data());
+      EXPECT_NEAR(nq.holdingForces(yn.data(), {mode})[0], h, kRoundOff * std::abs(h)) << trial;
+    }
+  }
+}
+
+TEST(OnePlatformNetwork, EquationsAreTheSingleRigsInEveryCoulombMode) {
+  for (PlatformMode mode :
+       {PlatformMode::Stuck, PlatformMode::SlipPositive, PlatformMode::SlipNegative})
+    expectSameRates("{law: coulomb, mu: 6.5e-4}", mode);
+}
+
+TEST(OnePlatformNetwork, EquationsAreTheSingleRigsWithViscousAndNoFriction) {
+  expectSameRates("{law: viscous, c: 0.02}", PlatformMode::Stuck);
+  expectSameRates("{law: none}", PlatformMode::Stuck);
+}
+
+struct LastState : NetworkSink {
+  void sample(double, const std::vector<double>&, const std::vector<PlatformMode>&) override {}
+};
+
+// The two engines' runs of the same board agree to their accuracy: at 1e-12 a few seconds with
+// stick-slip and ticks stay within 1e-8 (tests/direct/test_network_engine.cpp's kAgree).
+TEST(OnePlatformNetwork, RunsAsTheSingleRig) {
+  const Network net = loadNetworkText(board("{law: coulomb, mu: 1e-4}", 3.0), "one.yaml");
+  ASSERT_TRUE(net.isSingleRig());
+  LastState sink;
+  const NetworkRunReport nrep = runNetworkDirect(net, sink);
+  ASSERT_TRUE(nrep.complete) << nrep.failure;
+  MemorySink one;
+  const RunReport srep = runDirectModel(net.toSingleRig(), one);
+  ASSERT_TRUE(srep.complete) << srep.failure;
+  EXPECT_GT(srep.counts.slip_reversals, 0);  // the board slid both ways
+  EXPECT_EQ(nrep.slip_reversals, srep.counts.slip_reversals);
+  EXPECT_EQ(nrep.stick_slip, srep.counts.stick_slip);
+  const std::vector<double>& row = srep.final_trajectory_row;  // t, x, xdot, theta_i, thetadot_i
+  const network::Layout lay = network::NetworkEquations(net).layout();
+  constexpr double kAgree = 1e-8;
+  EXPECT_NEAR(nrep.final_state[lay.x(0)], row[1], kAgree);
+  EXPECT_NEAR(nrep.final_state[lay.v(0)], row[2], kAgree);
+  for (int j = 0; j < lay.n; ++j) {
+    EXPECT_NEAR(nrep.final_state[lay.theta(j)], row[3 + 2 * j], kAgree) << j;
+    EXPECT_NEAR(nrep.final_state[lay.omega(j)], row[4 + 2 * j], kAgree) << j;
+  }
+  for (int i = 0; i < lay.n; ++i) EXPECT_EQ(nrep.ticks[i], srep.counts.escapements[i]) << i;
+}
+
+}  // namespace
+}  // namespace metrosync
