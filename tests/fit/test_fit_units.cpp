@@ -1,7 +1,8 @@
 // The pieces of fit's verdict against closed forms: the noise level estimated from a record's
 // high-frequency part (sim/analysis/fit/noise_level.h) against the noise put in, and the standard
 // errors and identifiability rule (sim/analysis/fit/fit_statistics.h) on a linear model, where
-// sigma^2 (J^T J)^-1 is exact.
+// sigma^2 (J^T J)^-1 is exact; and the likelihood region's interval (likelihood_region.h)
+// against a scan of a two-valley cost.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -11,6 +12,7 @@
 
 #include "sim/analysis/fit/data_file.h"
 #include "sim/analysis/fit/fit_statistics.h"
+#include "sim/analysis/fit/likelihood_region.h"
 #include "sim/analysis/fit/noise_level.h"
 #include "tests/fit/fit_data.h"
 
@@ -122,6 +124,50 @@ TEST(FitStatistics, LinearModelErrorsAndTheIdentifiabilityRule) {
   const Uncertainty c = uncertainty(twice, v, free, {false, false, true});
   EXPECT_GE(c.worst, 0);
   EXPECT_NE(c.why.find("combination"), std::string::npos) << c.why;
+}
+
+// The likelihood region's interval (likelihood_region.h) against a brute-force scan of the
+// sublevel set of a cost with two valleys of the same curvature (one key, standard error se):
+// chi2(v) = min((v - a)^2, (v - b)^2 + rise) / se^2, the second valley `rise` variances above
+// the first. The region {v: chi2 - min chi2 < 9} is the interval's, the standard error its
+// farther side from a over 3; a valley at or above 9 variances adds nothing; with the best alone
+// the interval is a -+ 3 se and the standard error se exactly (no inflation).
+TEST(LikelihoodRegion, IsTheSublevelSetOfATwoValleyCost) {
+  const double a = 1.0, se = 0.01;
+  const auto scan = [&](double b, double rise) {
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (double v = a - 0.2; v <= a + 0.2; v += 1e-6) {
+      const double chi2 = std::min((v - a) * (v - a), (v - b) * (v - b) + rise * se * se);
+      if (chi2 / (se * se) < 9) lo = std::min(lo, v), hi = std::max(hi, v);
+    }
+    return std::make_pair(lo, hi);
+  };
+  for (const auto& [b, rise] : std::vector<std::pair<double, double>>{
+           {a + 0.025, 2.0}, {a - 0.033, 4.4}, {a + 0.05, 0.5}, {a + 0.04, 8.0}}) {
+    SCOPED_TRACE(b);
+    const auto iv = likelihoodIntervals({a}, {se}, {{{b}, rise}}, {-HUGE_VAL});
+    ASSERT_TRUE(iv[0]);
+    const auto [lo, hi] = scan(b, rise);
+    EXPECT_NEAR(iv[0]->lower, lo, 2e-6);
+    EXPECT_NEAR(iv[0]->upper, hi, 2e-6);
+    EXPECT_TRUE(iv[0]->from_optima);
+    EXPECT_NEAR(iv[0]->std_error, std::max(a - lo, hi - a) / 3, 1e-6);
+    EXPECT_GT(iv[0]->std_error, se);
+  }
+  // a valley 9 or more variances up is outside the region; the best alone: no inflation
+  for (const std::vector<RegionOptimum>& others :
+       {std::vector<RegionOptimum>{}, std::vector<RegionOptimum>{{{a + 0.05}, 9.0}}}) {
+    const auto iv = likelihoodIntervals({a}, {se}, others, {-HUGE_VAL});
+    EXPECT_EQ(iv[0]->std_error, se);
+    EXPECT_FALSE(iv[0]->from_optima);
+    EXPECT_NEAR(iv[0]->lower, a - 3 * se, 1e-15);
+    EXPECT_NEAR(iv[0]->upper, a + 3 * se, 1e-15);
+  }
+  // a key without a standard error has no interval; a bound cuts the interval, not the error
+  const auto iv = likelihoodIntervals({a, 0.02}, {std::nullopt, se}, {}, {0.0, 0.0});
+  EXPECT_FALSE(iv[0]);
+  EXPECT_EQ(iv[1]->lower, 0.0);
+  EXPECT_EQ(iv[1]->std_error, se);
 }
 
 }  // namespace

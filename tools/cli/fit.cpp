@@ -204,7 +204,10 @@ void printFit(const FitReport& rep, const OutputDir& dir, const std::vector<std:
   for (std::size_t j = 0; j < rep.free.size(); ++j) {
     std::cout << "  " << rep.free[j].name << " = ";
     if (r.values[j])
-      std::cout << numberText(*r.values[j]) << " +- " << numberText(*r.std_errors[j], 2);
+      std::cout << numberText(*r.values[j]) << " +- " << numberText(*r.std_errors[j], 2)
+                << (r.std_error_from.size() > j && r.std_error_from[j] == "optima"
+                        ? " (the spread of the optima found)"
+                        : "");
     else
       std::cout << "not identifiable (" << r.not_identifiable_because[j] << "; kept at "
                 << numberText(r.used[j]) << ")";

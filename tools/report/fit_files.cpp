@@ -95,6 +95,7 @@ nlohmann::json optimaJson(const FitReport& rep) {
     out.push_back({{"values", values},
                    {"rms", numberOrNull(o.rms)},
                    {"at_noise_level", o.at_noise},
+                   {"rise", numberOrNull(o.rise)},
                    {"start", start}});
   }
   return out;
@@ -111,6 +112,9 @@ nlohmann::json perKeyJson(const FitReport& rep) {
   const FitOutcome& r = rep.outcome;
   nlohmann::json j = {{"values", nlohmann::json::object()},
                       {"std_errors", nlohmann::json::object()},
+                      {"curvature_std_errors", nlohmann::json::object()},
+                      {"std_error_from", nlohmann::json::object()},
+                      {"intervals", nlohmann::json::object()},
                       {"identifiable", nlohmann::json::object()},
                       {"not_identifiable_because", nlohmann::json::object()},
                       {"profile", nlohmann::json::object()},
@@ -125,6 +129,14 @@ nlohmann::json perKeyJson(const FitReport& rep) {
     j["keys"][name] = rep.free[k].keys;
     j["values"][name] = optionalJson(r.values[k]);
     j["std_errors"][name] = optionalJson(r.std_errors[k]);
+    j["curvature_std_errors"][name] =
+        optionalJson(r.curvature_std_errors.empty() ? std::nullopt : r.curvature_std_errors[k]);
+    const bool known = !r.std_error_from.empty() && !r.std_error_from[k].empty();
+    j["std_error_from"][name] = known ? nlohmann::json(r.std_error_from[k]) : nullptr;
+    j["intervals"][name] = nullptr;
+    if (!r.intervals.empty() && r.intervals[k])
+      j["intervals"][name] = {numberOrNull(r.intervals[k]->first),
+                              numberOrNull(r.intervals[k]->second)};
     j["identifiable"][name] = static_cast<bool>(r.identifiable[k]);
     j["not_identifiable_because"][name] =
         r.identifiable[k] ? nlohmann::json(nullptr) : nlohmann::json(r.not_identifiable_because[k]);

@@ -9,6 +9,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "models/rig.h"
@@ -67,6 +68,9 @@ struct Optimum {
   std::vector<double> start;   // where the search began
   double rms = 0.0;            // as FitOutcome::rms
   bool at_noise = false;       // every column's residual at its noise level
+  // its weighted sum of squares above the best's, in variances (likelihood_region.h); NaN when
+  // the best has a key held (no common variance to measure it in)
+  double rise = std::nan("");
 };
 
 // A key's profile: the others refitted with it held at value -+ 2 standard errors; how much the
@@ -80,6 +84,12 @@ struct Profile {
 struct FitOutcome {
   // per free parameter, in `free` order; values and std_errors empty where not identifiable
   std::vector<std::optional<double>> values, std_errors;
+  // the best optimum's own curvature errors, the interval each key's likelihood region spans over
+  // every optimum found within it (likelihood_region.h), and which of the two std_errors is:
+  // "curvature" or "optima" ("" where not identifiable)
+  std::vector<std::optional<double>> curvature_std_errors;
+  std::vector<std::optional<std::pair<double, double>>> intervals;
+  std::vector<std::string> std_error_from;
   std::vector<double> used;  // what the model ran with: the fitted value, or the start
   std::vector<bool> identifiable;
   std::vector<std::string> not_identifiable_because;            // "" where identifiable

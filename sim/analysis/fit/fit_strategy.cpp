@@ -13,6 +13,7 @@
 #include "sim/analysis/fit/fit_statistics.h"
 #include "sim/analysis/fit/fit_verdict.h"
 #include "sim/analysis/fit/least_squares.h"
+#include "sim/analysis/fit/likelihood_region.h"
 #include "sim/analysis/fit/model_samples.h"
 
 namespace metrosync {
@@ -377,10 +378,33 @@ std::vector<Candidate> search(const FitProblem& p, const ModelFit& mf,
   return found;
 }
 
+// The probes' distances along each principal axis, in standard deviations.
+constexpr double kProbeSigmas[] = {-4.0, -2.0, 2.0, 4.0};
+
+// Adds the optimum solved from y to `found` unless it is one already there.
+void solveFrom(const FitProblem& p, const ModelFit& mf, const Final& fin,
+               const std::vector<bool>& held, const std::vector<double>& y, const char* how,
+               std::vector<Candidate>& found) {
+  Candidate c;
+  try {
+    c.solution = fin.solve(y, held);
+    c.optimum = optimumOf(mf, y, c.solution.values);
+  } catch (const std::exception&) {
+    return;  // the model fails on the way: no optimum there
+  }
+  c.strategy = found.front().strategy + how;
+  for (const Candidate& f : found)
+    if (sameOptimum(p, f.optimum, c.optimum)) return;
+  found.push_back(c);
+}
+
 // Probes around the best optimum along each principal axis of its covariance, at -+2 and -+4
 // standard deviations (no solve: one model run each). Where a long record makes the cost rugged a
 // lower optimum can lie a few standard deviations away behind a ridge; a probe lower than the
-// optimum is solved from, and what it reaches joins the list (first if better).
+// optimum is solved from. And from each probe along the weakest axis (the largest variance: on
+// the benchmark's records a metronome's damping and impulse together) the whole record is solved
+// again: neighbouring optima at the noise level lie along it (docs/bench/fit.md, record 49), and
+// the likelihood region (likelihood_region.h) needs them. What they reach joins the list.
 void probe(const FitProblem& p, const ModelFit& mf, const Final& fin, const std::vector<bool>& held,
            std::vector<Candidate>& found) {
   const std::vector<double> x = found.front().optimum.values;
@@ -397,30 +421,57 @@ void probe(const FitProblem& p, const ModelFit& mf, const Final& fin, const std:
     for (std::size_t b = 0; b < k; ++b)
       if (u.std_errors[a] && u.std_errors[b] && u.correlation[a][b])
         cov(a, b) = *u.std_errors[a] * *u.std_errors[b] * *u.correlation[a][b];
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov);  // eigenvalues ascending
   double best = fin.ssr(x);
   std::vector<double> lowest;
+  std::vector<std::vector<double>> weakest;
   for (std::size_t axis = 0; axis < k; ++axis)
-    for (const double sigmas : {-4.0, -2.0, 2.0, 4.0}) {
+    for (const double sigmas : kProbeSigmas) {
       std::vector<double> y = x;
       for (std::size_t j = 0; j < k; ++j)
         y[j] = std::max(x[j] + sigmas * std::sqrt(std::max(eig.eigenvalues()(axis), 0.0)) *
                                    eig.eigenvectors()(j, axis),
                         p.free[j].lower);
+      if (axis + 1 == k) weakest.push_back(y);
       const double s = fin.ssr(y);
       if (s < best) best = s, lowest = y;
     }
-  if (lowest.empty()) return;
-  Candidate c;
-  c.solution = fin.solve(lowest, held);
-  c.optimum = optimumOf(mf, lowest, c.solution.values);
-  c.strategy = found.front().strategy + ", then a probe around it";
-  for (const Candidate& f : found)
-    if (sameOptimum(p, f.optimum, c.optimum)) return;
-  found.push_back(c);
+  if (!lowest.empty()) solveFrom(p, mf, fin, held, lowest, ", then a probe around it", found);
+  for (const std::vector<double>& y : weakest)
+    if (y != lowest)
+      solveFrom(p, mf, fin, held, y, ", then a restart along its weakest direction", found);
   std::stable_sort(found.begin(), found.end(), [](const Candidate& a, const Candidate& b) {
     return a.optimum.rms < b.optimum.rms;
   });
+}
+
+// Each optimum's rise above the best x (in variances), and each key's interval over the
+// likelihood region and its standard error (likelihood_region.h). Only when no key is held: an
+// optimum found with every key free is not comparable with a best refitted with one held.
+void region(const FitProblem& p, const Final& fin, const std::vector<double>& x,
+            const std::vector<bool>& held, FitOutcome& out) {
+  const std::size_t k = x.size();
+  out.curvature_std_errors = out.std_errors;
+  out.intervals.assign(k, std::nullopt);
+  out.std_error_from.assign(k, "");
+  for (std::size_t j = 0; j < k; ++j)
+    if (out.std_errors[j] && !held[j]) out.std_error_from[j] = "curvature";
+  if (std::find(held.begin(), held.end(), true) != held.end()) return;
+  const double best = fin.ssr(x), sigma2 = best / (fin.m - static_cast<double>(k));
+  std::vector<RegionOptimum> others;
+  for (Optimum& o : out.optima) {
+    o.rise = o.values == x ? 0.0 : (fin.ssr(o.values) - best) / sigma2;
+    if (o.values != x) others.push_back({o.values, o.rise});
+  }
+  std::vector<double> lower;
+  for (const FreeParameter& f : p.free) lower.push_back(f.lower);
+  const auto iv = likelihoodIntervals(x, out.std_errors, others, lower);
+  for (std::size_t j = 0; j < k; ++j) {
+    if (!iv[j]) continue;
+    out.intervals[j] = std::make_pair(iv[j]->lower, iv[j]->upper);
+    out.std_errors[j] = iv[j]->std_error;
+    out.std_error_from[j] = iv[j]->from_optima ? "optima" : "curvature";
+  }
 }
 
 // The outcome's values, residuals, noise and verdict at x.
@@ -475,6 +526,7 @@ FitOutcome fitModel(const FitProblem& p) {
   out.strategy = found.front().strategy;
   std::vector<double> x = out.optima.front().values;
   determine(fin, x, held, best, out);
+  region(p, fin, x, held, out);
   describe(mf, x, held, best, out);
   return out;
 }

@@ -9,9 +9,11 @@
 // Further starting points (the section-3 shortcuts' values where a --set start hides one, then a
 // Halton sequence over [start / 2, 2 start] and [start / 4, 4 start] in turn of each key that
 // cannot be negative, start -+ 2 scale of the others), at most settings.starts, while no optimum is
-// at the noise level and new optima still turn up; every distinct optimum is kept. At the best:
+// at the noise level and new optima still turn up; every distinct optimum is kept; probes and
+// restarts along the weakest axis around the best (neighbouring optima). At the best:
 // keys the data do not determine (fit_statistics.h) are held at their starts and the others fitted
-// again; standard errors, correlations, profiles; the verdict (fit_verdict.h).
+// again; standard errors, correlations, profiles; each key's interval over the likelihood region
+// of the optima found (likelihood_region.h); the verdict (fit_verdict.h).
 // --model slow: step 2 alone, on the swings' amplitudes (the slow flow is itself an envelope).
 #pragma once
 
