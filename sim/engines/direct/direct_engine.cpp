@@ -247,18 +247,7 @@ DirectRun<N>::DirectRun(const Rig& rig, RunSink& sink, const DirectOptions& opt)
   env_th_.resize(n_rig_, 0.0);
   env_w_.resize(n_rig_, 0.0);
 
-  // error control in the scaled variables' units (s2.1): angles in units of sqrt(eps), the
-  // platform in units of I1 eps^{3/2} / (m1 L1), time in 1/omega0; the ledger's quadratures are
-  // not controlled (nothing depends on them)
-  const double acc = rig.sim.accuracy;
-  std::vector<double> atol(lay_.dim(), -1.0);
-  atol[StateLayout::kX] = acc * sp_.x_scale_m;
-  atol[StateLayout::kV] = acc * sp_.x_scale_m * omega0_;
-  for (int j = 0; j < lay_.n; ++j) {
-    atol[lay_.theta(j)] = acc * sp_.angle_scale;
-    atol[lay_.omega(j)] = acc * sp_.angle_scale * omega0_;
-  }
-  stepper_.setTolerances(acc, atol);
+  stepper_.setTolerances(rig.sim.accuracy, scaledTolerances(rig.sim.accuracy, sp_, lay_));
 }
 
 // --- witnesses ------------------------------------------------------------------------------
@@ -364,7 +353,7 @@ void DirectRun<N>::emitSamplesBefore(double t_limit, bool inclusive) {
 template <int N>
 std::vector<double> DirectRun<N>::startState() {
   std::vector<double> y(lay_.dim(), 0.0);
-  writePlatformStart(rig_, eq_.hasPlatform(), StateLayout::kX, StateLayout::kV, lay_, 0, y.data());
+  writePlatformStart(rig_, eq_.hasPlatform(), lay_, 0, 0, y.data());
   resolver_.emplace(startResolver(
       lay_, y.data(), 0, lay_.n, [&](int j) { return eq_.escapement(j); }, eq_.friction(),
       period_));

@@ -109,7 +109,6 @@ class NetworkRun {
   void absorb(const WindowOutcome& out, int p);
   void sample(double t, const std::vector<double>& y);
   void finish();
-  void setTolerances(const Rig& rig);
 
   const Network& net_;
   NetworkSink& sink_;
@@ -153,8 +152,7 @@ NetworkRun::NetworkRun(const Network& net, NetworkSink& sink)
   y_.assign(lay_.dim(), 0.0);
   for (int p = 0; p < lay_.platforms; ++p) {
     const network::Block& b = eq_.block(p);
-    direct::writePlatformStart(net.platforms[p].rig, b.moves, lay_.x(p), lay_.v(p), lay_, b.first,
-                               y_.data());
+    direct::writePlatformStart(net.platforms[p].rig, b.moves, lay_, p, b.first, y_.data());
     for (int k = b.first; k < b.first + b.count; ++k)
       if (eq_.escapement(k).active()) witnesses_.addTicks(k);
     const bool set_valued = b.moves && b.friction.setValued();
@@ -164,23 +162,7 @@ NetworkRun::NetworkRun(const Network& net, NetworkSink& sink)
         set_valued ? b.friction : PlatformFriction{}, period_));
     views_.push_back(std::make_unique<ContactView>(eq_, y_, modes_, p, report_.events));
   }
-  setTolerances(scales);
-}
-
-void NetworkRun::setTolerances(const Rig& rig) {
-  // as the direct engine: errors in the scaled variables' units (s2.1), quadratures uncontrolled
-  const ScaledParams sp = computeScaled(rig);
-  const double acc = net_.sim.accuracy, omega0 = 1.0 / sp.time_scale_s;
-  std::vector<double> atol(lay_.dim(), -1.0);
-  for (int p = 0; p < lay_.platforms; ++p) {
-    atol[lay_.x(p)] = acc * sp.x_scale_m;
-    atol[lay_.v(p)] = acc * sp.x_scale_m * omega0;
-  }
-  for (int j = 0; j < lay_.n; ++j) {
-    atol[lay_.theta(j)] = acc * sp.angle_scale;
-    atol[lay_.omega(j)] = acc * sp.angle_scale * omega0;
-  }
-  stepper_.setTolerances(acc, atol);
+  stepper_.setTolerances(net.sim.accuracy, direct::scaledTolerances(net.sim.accuracy, sp, lay_));
 }
 
 double NetworkRun::witnessValue(const RunWitness& w, const double* y,
