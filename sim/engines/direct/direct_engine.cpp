@@ -2,13 +2,13 @@
 //   1. witnesses (sim/events/witness.h), each turned into one that rises through zero at its
 //      event: ticks side * theta_i - theta_c,i (only while armed, sim/events/resolver.h); the
 //      platform's PlatformWitness with the sign flipped (|H| - bound while stuck, -mode * xdot
-//      while slipping).
-//   2. detection on each kept step: a sign change between the step's ends, or a hidden double
-//      crossing (grazing) found at the extreme of the witness inside the step (the root of its
-//      rate on the dense output); then each crossing is bracketed by Illinois on the dense output
-//      to a few ulps. The window ends at the earliest bracket's upper end; every witness past
-//      zero there belongs to it (its sign decides, not its bracket: near a root the dense output
-//      is not monotone at the ulp level).
+//      while slipping), in the list the network's run uses too (sim/events/witness_list.h).
+//   2. detection on each kept step (the list's): a sign change between the step's ends, or a
+//      hidden double crossing (grazing) found at the extreme of the witness inside the step (the
+//      root of its rate on the dense output); then each crossing is bracketed by Illinois on the
+//      dense output to a few ulps. The window ends at the earliest bracket's upper end; every
+//      witness past zero there belongs to it (its sign decides, not its bracket: near a root the
+//      dense output is not monotone at the ulp level).
 //   3. the shared resolver (sim/events/resolver.h) acts on the window's end state, through this
 //      engine's EventSystem (the state vector and the platform mode).
 //   4. recorders: trajectory rows and envelope samples from the dense output on the shared
