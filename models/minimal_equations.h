@@ -39,6 +39,10 @@ namespace metrosync::direct {
 struct StateLayout {
   int n = 0;  // swinging pendulums
   static constexpr int kX = 0, kV = 1;
+  // a network of one platform's slots (models/network_equations.h, network::Layout)
+  static constexpr int platforms = 1;
+  static constexpr int x(int) { return kX; }
+  static constexpr int v(int) { return kV; }
   int theta(int j) const { return 2 + j; }
   int omega(int j) const { return 2 + n + j; }
   int dampingWork() const { return 2 + 2 * n; }

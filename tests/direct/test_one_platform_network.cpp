@@ -135,6 +135,9 @@ TEST(OnePlatformNetwork, RunsAsTheSingleRig) {
   MemorySink one;
   const RunReport srep = runDirectModel(net.toSingleRig(), one);
   ASSERT_TRUE(srep.complete) << srep.failure;
+  // one start-state construction (sim/engines/direct/start_state.h), the same equations: the
+  // start's energy (after the contact's mode is settled at rest) is the same bits
+  EXPECT_EQ(nrep.ledger.initial_J, srep.ledger.initial_J);
   EXPECT_GT(srep.counts.slip_reversals, 0);  // the board slid both ways
   EXPECT_EQ(nrep.slip_reversals, srep.counts.slip_reversals);
   EXPECT_EQ(nrep.stick_slip, srep.counts.stick_slip);

@@ -2,13 +2,13 @@
 //   1. witnesses (sim/events/witness.h), each turned into one that rises through zero at its
 //      event: ticks side * theta_i - theta_c,i (only while armed, sim/events/resolver.h); the
 //      platform's PlatformWitness with the sign flipped (|H| - bound while stuck, -mode * xdot
-//      while slipping).
-//   2. detection on each kept step: a sign change between the step's ends, or a hidden double
-//      crossing (grazing) found at the extreme of the witness inside the step (the root of its
-//      rate on the dense output); then each crossing is bracketed by Illinois on the dense output
-//      to a few ulps. The window ends at the earliest bracket's upper end; every witness past
-//      zero there belongs to it (its sign decides, not its bracket: near a root the dense output
-//      is not monotone at the ulp level).
+//      while slipping), in the list the network's run uses too (sim/events/witness_list.h).
+//   2. detection on each kept step (the list's): a sign change between the step's ends, or a
+//      hidden double crossing (grazing) found at the extreme of the witness inside the step (the
+//      root of its rate on the dense output); then each crossing is bracketed by Illinois on the
+//      dense output to a few ulps. The window ends at the earliest bracket's upper end; every
+//      witness past zero there belongs to it (its sign decides, not its bracket: near a root the
+//      dense output is not monotone at the ulp level).
 //   3. the shared resolver (sim/events/resolver.h) acts on the window's end state, through this
 //      engine's EventSystem (the state vector and the platform mode).
 //   4. recorders: trajectory rows and envelope samples from the dense output on the shared
@@ -28,6 +28,7 @@
 #include "base/constants.h"
 #include "models/minimal_equations.h"
 #include "models/scaling.h"
+#include "sim/engines/direct/start_state.h"
 #include "sim/engines/direct/step_loop.h"
 #include "sim/events/crossing.h"
 #include "sim/events/resolver.h"
@@ -35,6 +36,7 @@
 #include "sim/events/storm_guard.h"
 #include "sim/events/window.h"
 #include "sim/events/witness.h"
+#include "sim/events/witness_list.h"
 #include "sim/ode/rk_stepper.h"
 #include "sim/ode/root_find.h"
 #include "sim/record/envelope_recorder.h"
@@ -71,14 +73,6 @@ class Dynamics final {
 constexpr int stateDim(int n) {
   return n > 0 ? 4 + 2 * n : ode::kDynamic;
 }
-
-enum class WitnessKind { Tick, Platform };
-
-struct Witness {
-  WitnessKind kind;
-  int pendulum = -1;  // Tick: index among the swinging pendulums
-  int side = 0;       // Tick: +1 or -1
-};
 
 // A crossing found in the current step (sim/events/window.h); `forced` marks a slip that could
 // not get going: stopped a sixteenth into the step.
@@ -148,13 +142,23 @@ class DirectRun : public EventSystem {
     }
   }
 
+  // --- witnesses: the model's side of the shared list (sim/events/witness_list.h) ------------
+  bool armed(const RunWitness& w) const { return resolver_->armed(w.index, w.side); }
+  std::optional<LinearForm> linearForm(const RunWitness& w) const {
+    if (w.tick())
+      return LinearForm{lay_.theta(w.index), -1, static_cast<double>(w.side),
+                        eq_.pendulum(w.index).theta_c};
+    if (mode() == PlatformMode::Stuck) return std::nullopt;
+    return LinearForm{StateLayout::kV, -1, -static_cast<double>(static_cast<int>(mode())), 0.0};
+  }
+  std::optional<Crossing> detectStuck(int index, const RunWitness& w);
+  double stuckValueAt(const RunWitness&, double th) {
+    stepper_.interpolate(th, yb_.data());
+    return excessPush(yb_.data());
+  }
+
  private:
-  // --- witnesses --------------------------------------------------------------------------
-  double witnessAt(const Witness& w, double th);
-  std::optional<Crossing> detect(int index);
-  std::optional<Crossing> detectComponent(int index, int k, double sign, double offset,
-                                          bool allow_forced);
-  std::optional<Crossing> detectMargin(int index);
+  double witnessAt(int w, double th) { return witnesses_.valueAt(stepper_, *this, w, th); }
   // the stuck platform's witness made rising: -stickMargin = |H| - static bound, and its rate
   double excessPush(const double* y) const {
     return risingSign(PlatformWitness::kDirection) *
@@ -187,8 +191,7 @@ class DirectRun : public EventSystem {
   ode::RkStepperT<Dynamics<N>, stateDim(N), 2> stepper_;
   RunReport report_;
   double omega0_ = 1.0, period_ = 1.0;
-  std::vector<Witness> witnesses_;
-  std::vector<Crossing> found_;
+  WitnessList witnesses_;
   std::vector<char> maybe_;  // (n x 1): may pendulum j's tick witnesses report in this step?
   std::optional<EventResolver> resolver_;
   std::optional<SampleSchedule> schedule_;
@@ -236,75 +239,27 @@ DirectRun<N>::DirectRun(const Rig& rig, RunSink& sink, const DirectOptions& opt)
   report_.counts.escapements.assign(n_rig_, 0);
   omega0_ = 1.0 / sp_.time_scale_s;
   period_ = kTwoPi / omega0_;
-  for (int j = 0; j < lay_.n; ++j) {
-    if (!(eq_.pendulum(j).impulse > 0)) continue;
-    witnesses_.push_back({WitnessKind::Tick, j, +1});
-    witnesses_.push_back({WitnessKind::Tick, j, -1});
-  }
-  if (eq_.friction().setValued()) witnesses_.push_back({WitnessKind::Platform, -1, 0});
+  for (int j = 0; j < lay_.n; ++j)
+    if (eq_.escapement(j).active()) witnesses_.addTicks(j);
+  if (eq_.friction().setValued()) witnesses_.addContact(0);
   ya_.resize(lay_.dim());
   yb_.resize(lay_.dim());
   env_th_.resize(n_rig_, 0.0);
   env_w_.resize(n_rig_, 0.0);
 
-  // error control in the scaled variables' units (s2.1): angles in units of sqrt(eps), the
-  // platform in units of I1 eps^{3/2} / (m1 L1), time in 1/omega0; the ledger's quadratures are
-  // not controlled (nothing depends on them)
-  const double acc = rig.sim.accuracy;
-  std::vector<double> atol(lay_.dim(), -1.0);
-  atol[StateLayout::kX] = acc * sp_.x_scale_m;
-  atol[StateLayout::kV] = acc * sp_.x_scale_m * omega0_;
-  for (int j = 0; j < lay_.n; ++j) {
-    atol[lay_.theta(j)] = acc * sp_.angle_scale;
-    atol[lay_.omega(j)] = acc * sp_.angle_scale * omega0_;
-  }
-  stepper_.setTolerances(acc, atol);
+  stepper_.setTolerances(rig.sim.accuracy, scaledTolerances(rig.sim.accuracy, sp_, lay_));
 }
 
 // --- witnesses ------------------------------------------------------------------------------
 
-template <int N>
-double DirectRun<N>::witnessAt(const Witness& w, double th) {
-  if (w.kind == WitnessKind::Tick)
-    return w.side * stepper_.component(lay_.theta(w.pendulum), th) -
-           eq_.pendulum(w.pendulum).theta_c;
-  if (mode() == PlatformMode::Stuck) {
-    stepper_.interpolate(th, yb_.data());
-    return excessPush(yb_.data());
-  }
-  return -static_cast<int>(mode()) * stepper_.component(StateLayout::kV, th);
-}
-
-template <int N>
-std::optional<Crossing> DirectRun<N>::detect(int index) {
-  const Witness& w = witnesses_[index];
-  if (w.kind == WitnessKind::Tick && !resolver_->armed(w.pendulum, w.side)) return std::nullopt;
-  if (w.kind == WitnessKind::Tick)
-    return detectComponent(index, lay_.theta(w.pendulum), w.side, eq_.pendulum(w.pendulum).theta_c,
-                           false);
-  if (mode() == PlatformMode::Stuck) return detectMargin(index);
-  return detectComponent(index, StateLayout::kV, -static_cast<int>(mode()), 0.0, true);
-}
-
-// g(th) = sign * y_k(th) - offset on the dense output, rising through zero
-// (sim/events/crossing.h).
-template <int N>
-std::optional<Crossing> DirectRun<N>::detectComponent(int index, int k, double sign, double offset,
-                                                      bool allow_forced) {
-  return detectLinear(LinearWitness(stepper_, k, sign, offset), index, allow_forced);
-}
-
 // |H| - bound while stuck: H is a function of the whole state, its rate known in closed form.
 template <int N>
-std::optional<Crossing> DirectRun<N>::detectMargin(int index) {
+std::optional<Crossing> DirectRun<N>::detectStuck(int index, const RunWitness&) {
   auto end_rates = [&] {
     return std::optional<std::pair<double, double>>(
         {excessPushRate(stepper_.y()), excessPushRate(stepper_.y1())});
   };
-  auto value_at = [&](double th) {
-    stepper_.interpolate(th, yb_.data());
-    return excessPush(yb_.data());
-  };
+  auto value_at = [&](double th) { return stuckValueAt(RunWitness{}, th); };
   auto rate_at = [&](double th) {
     stepper_.interpolate(th, yb_.data());
     return excessPushRate(yb_.data());
@@ -398,20 +353,10 @@ void DirectRun<N>::emitSamplesBefore(double t_limit, bool inclusive) {
 template <int N>
 std::vector<double> DirectRun<N>::startState() {
   std::vector<double> y(lay_.dim(), 0.0);
-  if (eq_.hasPlatform()) {
-    y[StateLayout::kX] = rig_.platform.start_x_m;
-    y[StateLayout::kV] = rig_.platform.start_v_m_s;
-  }
-  std::vector<Escapement> esc;
-  std::vector<double> theta0;
-  for (int j = 0; j < lay_.n; ++j) {
-    const MetronomeSpec& m = rig_.metronomes[eq_.pendulum(j).rig_index];
-    y[lay_.theta(j)] = m.start_angle_rad;
-    y[lay_.omega(j)] = m.start_rate_rad_s;
-    esc.push_back(eq_.escapement(j));
-    theta0.push_back(m.start_angle_rad);
-  }
-  resolver_.emplace(esc, eq_.friction(), period_, theta0);
+  writePlatformStart(rig_, eq_.hasPlatform(), lay_, 0, 0, y.data());
+  resolver_.emplace(startResolver(
+      lay_, y.data(), 0, lay_.n, [&](int j) { return eq_.escapement(j); }, eq_.friction(),
+      period_));
   if (eq_.friction().setValued()) {
     ev_y_ = y.data();
     mobility_ = 0.0;
@@ -446,7 +391,6 @@ double DirectRun<N>::maxStepSize() const {
 // N pendulums most steps have none, and the 2N witnesses are not looked at one by one.
 template <int N>
 bool DirectRun<N>::findCrossings() {
-  found_.clear();
   const double* y0 = stepper_.y();
   const double* y1 = stepper_.y1();
   const int n = lay_.n;
@@ -457,12 +401,8 @@ bool DirectRun<N>::findCrossings() {
     const bool turns = (w0 > 0 && w1 < 0) || (w0 < 0 && w1 > 0);  // not w0 * w1: underflow
     maybe_[j] = std::abs(th1) >= eq_.pendulum(j).theta_c || turns;
   }
-  for (int w = 0; w < static_cast<int>(witnesses_.size()); ++w) {
-    const Witness& wi = witnesses_[w];
-    if (wi.kind == WitnessKind::Tick && !maybe_[wi.pendulum]) continue;
-    if (auto c = detect(w)) found_.push_back(*c);
-  }
-  return !found_.empty();
+  return witnesses_.findCrossings(
+      stepper_, *this, [&](const RunWitness& w) { return !w.tick() || maybe_[w.index]; });
 }
 
 // The window (sim/events/window.h): every crossing bracketed, the end at the earliest.
@@ -472,7 +412,7 @@ double DirectRun<N>::locateWindow() {
   // interpolant as a polynomial, confirmed on the exact interpolant; a stuck platform's margin
   // is a function of the whole state
   using Poly = typename decltype(stepper_)::Polynomial;
-  struct PolyWitness {  // sign * y_k(th) - offset
+  struct PolyWitness {  // sign * y_k(th) - offset (a linear form with b < 0)
     Poly p;
     double sign, offset;
     double operator()(double th) const { return sign * p(th) - offset; }
@@ -482,16 +422,12 @@ double DirectRun<N>::locateWindow() {
     }
   };
   auto approx = [&](int w) -> std::optional<PolyWitness> {
-    const Witness& wi = witnesses_[w];
-    if (wi.kind == WitnessKind::Platform && mode() == PlatformMode::Stuck) return std::nullopt;
-    const bool tick = wi.kind == WitnessKind::Tick;
-    const int k = tick ? lay_.theta(wi.pendulum) : StateLayout::kV;
-    const double sign = tick ? wi.side : -static_cast<int>(mode());
-    const double offset = tick ? eq_.pendulum(wi.pendulum).theta_c : 0.0;
-    return PolyWitness{stepper_.componentPolynomial(k), sign, offset};
+    const std::optional<LinearForm> f = linearForm(witnesses_[w]);
+    if (!f) return std::nullopt;
+    return PolyWitness{stepper_.componentPolynomial(f->a), f->sign, f->offset};
   };
   return metrosync::locateWindow(
-      found_, [&](int w, double th) { return witnessAt(witnesses_[w], th); }, approx);
+      witnesses_.found(), [&](int w, double th) { return witnessAt(w, th); }, approx);
 }
 
 // The window's end state in ya_: the platform's witness decides whether it switches (a tick
@@ -501,10 +437,9 @@ template <int N>
 void DirectRun<N>::resolveWindow(double t_e, double th_e) {
   stepper_.interpolate(th_e, ya_.data());
   bool platform = false;
-  for (const Crossing& c : found_) {
-    const Witness& w = witnesses_[c.witness];
-    if (w.kind == WitnessKind::Platform && (c.forced || witnessAt(w, th_e) >= 0)) platform = true;
-  }
+  for (const Crossing& c : witnesses_.found())
+    if (!witnesses_[c.witness].tick() && (c.forced || witnessAt(c.witness, th_e) >= 0))
+      platform = true;
   ++report_.counts.events;
   if (debug_)
     std::fprintf(stderr, "event t %.17g th %.17g platform %d mode %d v %.6g\n", t_e, th_e,

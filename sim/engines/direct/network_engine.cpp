@@ -11,11 +11,13 @@
 #include "base/number_text.h"
 #include "models/network_equations.h"
 #include "sim/engines/direct/direct_engine.h"
+#include "sim/engines/direct/start_state.h"
 #include "sim/engines/direct/step_loop.h"
 #include "sim/events/crossing.h"
 #include "sim/events/resolver.h"
 #include "sim/events/window.h"
 #include "sim/events/witness.h"
+#include "sim/events/witness_list.h"
 #include "sim/ode/rk_stepper.h"
 #include "sim/ode/rk_tableau.h"
 #include "sim/ode/root_find.h"
@@ -76,13 +78,6 @@ class ContactView : public EventSystem {
   long& rows_;
 };
 
-// A witness, rising through zero at its event: a tick (pendulum j, side) or a contact (p).
-struct Witness {
-  bool tick = true;
-  int index = 0;  // global pendulum (tick) or platform (contact)
-  int side = 1;
-};
-
 class NetworkRun {
  public:
   NetworkRun(const Network& net, NetworkSink& sink);
@@ -100,17 +95,20 @@ class NetworkRun {
   void resolveWindow(double t_e, double th_e);
   void fail(double t, const std::string& why);
 
+  // --- witnesses: the model's side of the shared list (sim/events/witness_list.h) ------------
+  bool armed(const RunWitness& w) const;
+  std::optional<LinearForm> linearForm(const RunWitness& w) const;
+  std::optional<WindowCrossing> detectStuck(int index, const RunWitness& w);
+  double stuckValueAt(const RunWitness& w, double th);
+
  private:
-  bool armed(const Witness& w) const;
-  double witnessValue(const Witness& w, const double* y, const std::vector<double>& lambda) const;
-  double witnessAt(const Witness& w, double th);
-  std::optional<WindowCrossing> detect(int index);
+  double witnessValue(const RunWitness& w, const double* y,
+                      const std::vector<double>& lambda) const;
   void resolveContacts(double t_e, double th_e);
   void settleSupports();
   void absorb(const WindowOutcome& out, int p);
   void sample(double t, const std::vector<double>& y);
   void finish();
-  void setTolerances(const Rig& rig);
 
   const Network& net_;
   NetworkSink& sink_;
@@ -123,8 +121,7 @@ class NetworkRun {
   std::vector<double> y_, scratch_;
   std::vector<std::unique_ptr<ContactView>> views_;
   std::vector<EventResolver> resolvers_;
-  std::vector<Witness> witnesses_;
-  std::vector<WindowCrossing> found_;  // the crossings of the current step
+  WitnessList witnesses_;
   NetworkRunReport report_;
   SplitTimer timer_;  // the engine's time against the recording's
   double period_ = 1.0, sample_dt_ = 1.0, t_end_ = 0.0;
@@ -154,57 +151,23 @@ NetworkRun::NetworkRun(const Network& net, NetworkSink& sink)
   report_.ticks.assign(net.numMetronomes(), 0);
   y_.assign(lay_.dim(), 0.0);
   for (int p = 0; p < lay_.platforms; ++p) {
-    const NetworkPlatform& np = net.platforms[p];
-    if (eq_.block(p).moves) {
-      y_[lay_.x(p)] = np.rig.platform.start_x_m;
-      y_[lay_.v(p)] = np.rig.platform.start_v_m_s;
-    }
-  }
-  int j = 0;
-  for (const NetworkPlatform& np : net.platforms)
-    for (const MetronomeSpec& m : np.rig.metronomes) {
-      if (m.locked) continue;
-      y_[lay_.theta(j)] = m.start_angle_rad;
-      y_[lay_.omega(j)] = m.start_rate_rad_s;
-      ++j;
-    }
-  for (int p = 0; p < lay_.platforms; ++p) {
     const network::Block& b = eq_.block(p);
-    std::vector<Escapement> esc;
-    std::vector<double> th0;
-    for (int k = b.first; k < b.first + b.count; ++k) {
-      esc.push_back(eq_.escapement(k));
-      th0.push_back(y_[lay_.theta(k)]);
-      if (eq_.escapement(k).active())
-        for (int side : {-1, 1}) witnesses_.push_back({true, k, side});
-    }
+    direct::writePlatformStart(net.platforms[p].rig, b.moves, lay_, p, b.first, y_.data());
+    for (int k = b.first; k < b.first + b.count; ++k)
+      if (eq_.escapement(k).active()) witnesses_.addTicks(k);
     const bool set_valued = b.moves && b.friction.setValued();
-    if (set_valued) witnesses_.push_back({false, p, 0});
-    resolvers_.emplace_back(esc, set_valued ? b.friction : PlatformFriction{}, period_, th0);
+    if (set_valued) witnesses_.addContact(p);
+    resolvers_.push_back(direct::startResolver(
+        lay_, y_.data(), b.first, b.count, [&](int k) { return eq_.escapement(k); },
+        set_valued ? b.friction : PlatformFriction{}, period_));
     views_.push_back(std::make_unique<ContactView>(eq_, y_, modes_, p, report_.events));
   }
-  setTolerances(scales);
+  stepper_.setTolerances(net.sim.accuracy, direct::scaledTolerances(net.sim.accuracy, sp, lay_));
 }
 
-void NetworkRun::setTolerances(const Rig& rig) {
-  // as the direct engine: errors in the scaled variables' units (s2.1), quadratures uncontrolled
-  const ScaledParams sp = computeScaled(rig);
-  const double acc = net_.sim.accuracy, omega0 = 1.0 / sp.time_scale_s;
-  std::vector<double> atol(lay_.dim(), -1.0);
-  for (int p = 0; p < lay_.platforms; ++p) {
-    atol[lay_.x(p)] = acc * sp.x_scale_m;
-    atol[lay_.v(p)] = acc * sp.x_scale_m * omega0;
-  }
-  for (int j = 0; j < lay_.n; ++j) {
-    atol[lay_.theta(j)] = acc * sp.angle_scale;
-    atol[lay_.omega(j)] = acc * sp.angle_scale * omega0;
-  }
-  stepper_.setTolerances(acc, atol);
-}
-
-double NetworkRun::witnessValue(const Witness& w, const double* y,
+double NetworkRun::witnessValue(const RunWitness& w, const double* y,
                                 const std::vector<double>& lambda) const {
-  if (w.tick) {
+  if (w.tick()) {
     return TickWitness{w.index, w.side}.value(eq_.escapement(w.index), y[lay_.theta(w.index)]);
   }
   const network::Block& b = eq_.block(w.index);
@@ -213,54 +176,43 @@ double NetworkRun::witnessValue(const Witness& w, const double* y,
   return risingSign(PlatformWitness::kDirection) * g;
 }
 
-bool NetworkRun::armed(const Witness& w) const {
+bool NetworkRun::armed(const RunWitness& w) const {
   int p = 0;  // the platform of pendulum w.index: its resolver numbers its pendulums from 0
   while (w.index >= eq_.block(p).first + eq_.block(p).count) ++p;
   return resolvers_[p].armed(w.index - eq_.block(p).first, w.side);
 }
 
-// A witness on the current step's dense output (rising through zero at its event).
-double NetworkRun::witnessAt(const Witness& w, double th) {
-  if (w.tick)  // one component of the dense output: O(1), whatever the network's size
-    return TickWitness{w.index, w.side}.value(eq_.escapement(w.index),
-                                              stepper_.component(lay_.theta(w.index), th));
+// A tick on its angle, a slipping contact on its slip velocity against the platform below.
+std::optional<LinearForm> NetworkRun::linearForm(const RunWitness& w) const {
+  if (w.tick())
+    return LinearForm{lay_.theta(w.index), -1, static_cast<double>(w.side),
+                      eq_.escapement(w.index).theta_c};
+  const int p = w.index;
+  if (modes_[p] == PlatformMode::Stuck) return std::nullopt;
+  const int below = eq_.block(p).below;
+  return LinearForm{lay_.v(p), below < 0 ? -1 : lay_.v(below),
+                    -static_cast<double>(static_cast<int>(modes_[p])), 0.0};
+}
+
+// A stuck contact's margin on the dense output: a function of the whole state (the holding
+// forces of every stuck contact).
+double NetworkRun::stuckValueAt(const RunWitness& w, double th) {
   stepper_.interpolate(th, scratch_.data());
   return witnessValue(w, scratch_.data(), eq_.holdingForces(scratch_.data(), modes_));
 }
 
-// The crossing of witness `index` in the accepted step (sim/events/crossing.h, as the
-// single-platform engine's): a tick on its angle, a slipping contact on its slip velocity (a slip
-// that started from rest included), a stuck contact's margin by the sign change of its ends.
-std::optional<WindowCrossing> NetworkRun::detect(int index) {
-  const Witness& w = witnesses_[index];
-  if (w.tick) {
-    if (!armed(w)) return std::nullopt;
-    return detectLinear(
-        LinearWitness(stepper_, lay_.theta(w.index), w.side, eq_.escapement(w.index).theta_c),
-        index, false);
-  }
-  const int p = w.index;
-  if (modes_[p] != PlatformMode::Stuck) {
-    const int below = eq_.block(p).below;
-    return detectLinear(LinearWitness(stepper_, lay_.v(p), -static_cast<int>(modes_[p]), 0.0,
-                                      below < 0 ? -1 : lay_.v(below)),
-                        index, true);
-  }
+// A stuck contact's crossing: the sign change of its margin between the step's ends (its rate has
+// no closed form here).
+std::optional<WindowCrossing> NetworkRun::detectStuck(int index, const RunWitness& w) {
   auto margin = [&](const double* y) { return witnessValue(w, y, eq_.holdingForces(y, modes_)); };
-  auto value_at = [&](double th) {
-    stepper_.interpolate(th, scratch_.data());
-    return margin(scratch_.data());
-  };
+  auto value_at = [&](double th) { return stuckValueAt(w, th); };
   auto no_rates = [] { return std::optional<std::pair<double, double>>(); };
   return detectMargin(index, margin(stepper_.y()), margin(stepper_.y1()), no_rates, value_at,
                       [](double) { return 0.0; });
 }
 
 bool NetworkRun::findCrossings() {
-  found_.clear();
-  for (int i = 0; i < static_cast<int>(witnesses_.size()); ++i)
-    if (auto c = detect(i)) found_.push_back(*c);
-  return !found_.empty();
+  return witnesses_.findCrossings(stepper_, *this, [](const RunWitness&) { return true; });
 }
 
 // The escapements re-armed on the state y (the kept step's end: y_ follows it).
@@ -271,8 +223,9 @@ void NetworkRun::rearm(const double* y) {
 
 // The window (sim/events/window.h): every crossing bracketed, the end at the earliest.
 double NetworkRun::locateWindow() {
-  return metrosync::locateWindow(found_,
-                                 [&](int w, double th) { return witnessAt(witnesses_[w], th); });
+  return metrosync::locateWindow(witnesses_.found(), [&](int w, double th) {
+    return witnesses_.valueAt(stepper_, *this, w, th);
+  });
 }
 
 // The window's end state in y_, resolved; the escapements re-armed on the result, the stepper
@@ -323,12 +276,14 @@ void NetworkRun::settleSupports() {
 void NetworkRun::resolveContacts(double t_e, double th_e) {
   const std::vector<double> lambda = eq_.holdingForces(y_.data(), modes_);
   std::vector<char> forced(lay_.platforms, 0);
-  for (const WindowCrossing& c : found_)
+  for (const WindowCrossing& c : witnesses_.found())
     if (c.forced && c.th.hi <= th_e) forced[witnesses_[c.witness].index] = 1;
   for (int p = 0; p < lay_.platforms; ++p) {
     bool reported = forced[p];
-    for (const Witness& w : witnesses_)
-      if (!w.tick && w.index == p) reported = reported || witnessValue(w, y_.data(), lambda) >= 0;
+    for (int i = 0; i < witnesses_.size(); ++i) {
+      const RunWitness& w = witnesses_[i];
+      if (!w.tick() && w.index == p) reported = reported || witnessValue(w, y_.data(), lambda) >= 0;
+    }
     absorb(resolvers_[p].resolve(*views_[p], reported), p);
   }
   settleSupports();
