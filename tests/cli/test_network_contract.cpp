@@ -164,5 +164,24 @@ TEST(NetworkContract, OnePlatformIsLabelledAsASingleRig) {
   EXPECT_EQ(s["regime"], "in-phase");
 }
 
+// The refusal names a network of one in the singular (main said "a network of 1 platforms").
+TEST(NetworkContract, ANetworkOfOneIsNamedInTheSingular) {
+  const std::string dir = scratchDir("netc", "singular", true);
+  std::ofstream(dir + "/one.yaml")
+      << "units: physical\nname: one-board\ngravity: 9.81\n"
+      << "platforms:\n  - name: board\n    mass: 0.1432\n"
+      << "    friction: {law: coulomb, mu: 6.5e-4}\n"
+      << "    spring: {k: 2.0, c: 0.01}\n    metronomes:\n"
+      << "      - {box_mass: 0.0602, pendulum: {mass: 0.0226, length: 0.0225, decay_rate: 0.5}, "
+         "escapement: {angle: 0.244, steady_amplitude: 0.785}}\nsimulation: {duration: 2}\n";
+  const auto r = runMetrosync("run " + shellQuote(dir + "/one.yaml") + " --model slow -q --out " +
+                              shellQuote(dir + "/out"));
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("a network of 1 platform runs the full model only"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("1 platforms"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+}
+
 }  // namespace
 }  // namespace metrosync
