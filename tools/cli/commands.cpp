@@ -291,13 +291,13 @@ RunOutcome runNetwork(const Options& opt, const Network& net, const std::string&
   installStopHandlers();  // before any file exists
   const std::optional<OutputDir> dir = openOutputDir(opt, net.name, "run");
   NetworkFiles files(*dir, net);
-  const NetworkRunReport report = engine.runNetwork(net, files);
+  RunReport report = engine.runNetwork(net, files);
+  const auto t0 = std::chrono::steady_clock::now();
   files.commit();
+  report.write_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   RunOutcome out;
-  out.summary = files.summary(report);
-  out.summary["model"] = "full";
-  out.summary["rig"] = net.name;
-  out.summary["units"] = "physical";
+  out.summary = runSummaryJson(net.name, Units::Physical, report, files.verdictJson(report));
   const std::string label = out.summary["network"]["regime"].get<std::string>();
   std::vector<std::string> names = files.fileNames();
   if (!opt.no_plot)

@@ -86,13 +86,13 @@ struct Witness {
 class NetworkRun {
  public:
   NetworkRun(const Network& net, NetworkSink& sink);
-  NetworkRunReport run();
+  RunReport run();
 
   // --- the hooks of the run loop (sim/engines/direct/step_loop.h) ---------------------------
   ode::RkStepper& stepper() { return stepper_; }
   const double* mechanicalEnd(const double* y) const { return y + lay_.dampingWork(); }
   bool complete() const { return report_.complete; }
-  void countStep() { ++report_.steps; }
+  void countStep() { ++report_.counts.steps; }
   bool findCrossings();
   void emitSamplesBefore(double t_limit, bool inclusive);
   void rearm(const double* y);
@@ -125,7 +125,7 @@ class NetworkRun {
   std::vector<EventResolver> resolvers_;
   std::vector<Witness> witnesses_;
   std::vector<WindowCrossing> found_;  // the crossings of the current step
-  NetworkRunReport report_;
+  RunReport report_;
   SplitTimer timer_;  // the engine's time against the recording's
   double period_ = 1.0, sample_dt_ = 1.0, t_end_ = 0.0;
   double last_window_t_ = -1.0;  // time of the last resolved window
@@ -149,9 +149,13 @@ NetworkRun::NetworkRun(const Network& net, NetworkSink& sink)
   period_ = kTwoPi * sp.time_scale_s;
   t_end_ = net.sim.t_end_s;
   sample_dt_ = net.sim.sample_s > 0 ? net.sim.sample_s : period_ / 20;
+  report_.model = "full";
+  report_.engine = "direct";
   report_.integrator = tab_.name;
+  report_.accuracy = net.sim.accuracy;
+  report_.has_ledger = true;
   report_.fast_period_s = period_;
-  report_.ticks.assign(net.numMetronomes(), 0);
+  report_.counts.escapements.assign(net.numMetronomes(), 0);
   y_.assign(lay_.dim(), 0.0);
   for (int p = 0; p < lay_.platforms; ++p) {
     const NetworkPlatform& np = net.platforms[p];
@@ -181,7 +185,7 @@ NetworkRun::NetworkRun(const Network& net, NetworkSink& sink)
     const bool set_valued = b.moves && b.friction.setValued();
     if (set_valued) witnesses_.push_back({false, p, 0});
     resolvers_.emplace_back(esc, set_valued ? b.friction : PlatformFriction{}, period_, th0);
-    views_.push_back(std::make_unique<ContactView>(eq_, y_, modes_, p, report_.events));
+    views_.push_back(std::make_unique<ContactView>(eq_, y_, modes_, p, report_.counts.events));
   }
   setTolerances(scales);
 }
@@ -287,9 +291,10 @@ void NetworkRun::resolveWindow(double t_e, double th_e) {
 void NetworkRun::absorb(const WindowOutcome& out, int p) {
   report_.ledger.escapement_in_J += out.escapement_in;
   report_.ledger.friction_out_J += out.friction_out;
-  report_.stick_slip += out.stick_slip;
-  report_.slip_reversals += out.slip_reversals;
-  for (int j : out.ticked) ++report_.ticks[eq_.pendulum(eq_.block(p).first + j).rig_index];
+  report_.counts.stick_slip += out.stick_slip;
+  report_.counts.slip_reversals += out.slip_reversals;
+  for (int j : out.ticked)
+    ++report_.counts.escapements[eq_.pendulum(eq_.block(p).first + j).rig_index];
 }
 
 // Platforms whose contact the window's later changes left inconsistent: stuck with a velocity (an
@@ -337,7 +342,7 @@ void NetworkRun::resolveContacts(double t_e, double th_e) {
   // restart) is that window continued, not a new one (sim/events/window.h: one window per
   // instant)
   if (!(t_e - last_window_t_ <= kSameInstantUlps * std::numeric_limits<double>::epsilon() * t_e))
-    ++report_.events;
+    ++report_.counts.events;
   last_window_t_ = t_e;
 }
 
@@ -364,7 +369,7 @@ void NetworkRun::fail(double t, const std::string& why) {
   report_.failure = "at t = " + numberText(t, 6, Notation::Fixed) + " s: " + why;
 }
 
-NetworkRunReport NetworkRun::run() {
+RunReport NetworkRun::run() {
   timer_ = SplitTimer();
   scratch_.resize(lay_.dim());
   for (int p = 0; p < lay_.platforms; ++p)
@@ -388,7 +393,7 @@ NetworkRunReport NetworkRun::run() {
 void NetworkRun::finish() {
   report_.t_end = report_.complete ? t_end_ : stepper_.t();
   sample(report_.t_end, y_);
-  report_.rhs_evals = stepper_.evaluations();
+  report_.counts.rhs_evals = stepper_.evaluations();
   report_.final_state = y_;
   report_.ledger.final_J = eq_.energy(y_.data());
   report_.ledger.damping_out_J = y_[lay_.dampingWork()] + y_[lay_.damperWork()];
@@ -399,7 +404,7 @@ void NetworkRun::finish() {
 
 }  // namespace
 
-NetworkRunReport runNetworkDirect(const Network& net, NetworkSink& sink) {
+RunReport runNetworkDirect(const Network& net, NetworkSink& sink) {
   return NetworkRun(net, sink).run();
 }
 
