@@ -30,6 +30,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "models/network_text.h"
 #include "yaml/rig_build.h"
 #include "yaml/rig_overrides.h"
 #include "yaml/rig_plan.h"
@@ -55,8 +56,8 @@ Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
     // a network (docs/networks.md): one platform on the table, uncoupled, is today's rig
     const Network net = buildNetwork(root, RigSource{display_name, overrides}, stem, options);
     if (net.isSingleRig()) return net.toSingleRig();
-    src.fail(platforms->at, "platforms: a network of " + std::to_string(net.platforms.size()) +
-                                " platforms and " + std::to_string(net.couplings.size()) +
+    src.fail(platforms->at, "platforms: a " + networkOfPlatforms(net.platforms.size()) + " and " +
+                                std::to_string(net.couplings.size()) +
                                 " coupling(s); this command takes a single platform (a network "
                                 "runs with `metrosync run --engine direct`, see docs/networks.md)");
   }

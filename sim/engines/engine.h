@@ -40,7 +40,7 @@ class Engine {
   virtual bool runsNetworks() const { return false; }
   // Runs the network to net.sim.t_end_s into `sink` (engines that runsNetworks() only; the others
   // throw std::logic_error). A failed simulation gives complete = false.
-  virtual NetworkRunReport runNetwork(const Network& net, NetworkSink& sink) const {
+  virtual RunReport runNetwork(const Network& net, NetworkSink& sink) const {
     throw std::logic_error("the " + name() + " engine runs single-platform rigs only");
   }
 };

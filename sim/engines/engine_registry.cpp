@@ -33,7 +33,7 @@ class DirectEngine final : public Engine {
   }
   RunReport run(const Rig& rig, RunSink& sink) const override { return runDirectModel(rig, sink); }
   bool runsNetworks() const override { return true; }
-  NetworkRunReport runNetwork(const Network& net, NetworkSink& sink) const override {
+  RunReport runNetwork(const Network& net, NetworkSink& sink) const override {
     return runNetworkDirect(net, sink);
   }
 };
@@ -56,7 +56,7 @@ class SimbodyEngine final : public Engine {
     return simbodyPlugin().run(rig, sink);
   }
   bool runsNetworks() const override { return true; }
-  NetworkRunReport runNetwork(const Network& net, NetworkSink& sink) const override {
+  RunReport runNetwork(const Network& net, NetworkSink& sink) const override {
     return simbodyPlugin().run_network(net, sink);
   }
 };

@@ -59,6 +59,12 @@ struct RunReport {
   EnvelopeRow final_row;  // last envelope row (tau, A, psi)
   // full model: state at the end, in the rig's units: t, x, xdot, theta_i, thetadot_i, platform
   std::vector<double> final_trajectory_row;
+  // A run of a network of platforms (models/network.h; its samples go to a NetworkSink,
+  // sim/record/network_report.h): counts.escapements in the network's global numbering (locked
+  // ones stay 0), the ledger's damping_out_J with the ground and coupling dampers, and
+  double t_end = 0.0;               // the requested end exactly when complete, else the stop
+  std::vector<double> final_state;  // the state at t_end, in the layout of network::Layout
+  double fast_period_s = 0.0;       // 2 pi / omega0 of the network's first swinging pendulum
 };
 
 // Receives rows as the run produces them; implementations must not keep the whole run in memory.

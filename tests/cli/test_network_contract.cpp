@@ -164,5 +164,52 @@ TEST(NetworkContract, OnePlatformIsLabelledAsASingleRig) {
   EXPECT_EQ(s["regime"], "in-phase");
 }
 
+// One report of every run (sim/record/run_report.h), one summary.json builder: a network's
+// summary.json has every key a single rig's report gives, counts and ledger alike (main's network
+// summary had no `accuracy` and no `write_seconds`), with the network's own accuracy.
+TEST(NetworkContract, SummaryHasEveryKeyOfASingleRunsReport) {
+  const std::string net_out =
+      runNetwork("report", "--set simulation.duration=1 --set simulation.accuracy=1e-9");
+  const nlohmann::json n = nlohmann::json::parse(slurp(net_out + "/summary.json"));
+  const std::string single = scratchDir("netc", "report-single", true);
+  const auto r = runMetrosync(
+      "run " + shellQuote(std::string(METROSYNC_SOURCE_DIR) + "/yaml/rigs/experiment.yaml") +
+      " --model full -q --no-plot --set simulation.duration=1 --out " +
+      shellQuote(single + "/out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json s = nlohmann::json::parse(slurp(single + "/out/summary.json"));
+  for (const char* key : {"model", "engine", "integrator", "accuracy", "counts", "energy",
+                          "wall_seconds", "engine_seconds", "write_seconds", "complete", "command",
+                          "units", "rig", "version", "regime", "regime_window", "final"}) {
+    ASSERT_TRUE(s.contains(key)) << key;
+    EXPECT_TRUE(n.contains(key)) << key;
+  }
+  for (const auto& [key, value] : s["counts"].items())
+    EXPECT_TRUE(n["counts"].contains(key)) << key;
+  for (const auto& [key, value] : s["energy"].items())
+    EXPECT_TRUE(n["energy"].contains(key)) << key;
+  EXPECT_EQ(n["accuracy"].get<double>(), 1e-9);
+  EXPECT_GE(n["write_seconds"].get<double>(), 0.0);
+}
+
+// The refusal names a network of one in the singular (main said "a network of 1 platforms").
+TEST(NetworkContract, ANetworkOfOneIsNamedInTheSingular) {
+  const std::string dir = scratchDir("netc", "singular", true);
+  std::ofstream(dir + "/one.yaml")
+      << "units: physical\nname: one-board\ngravity: 9.81\n"
+      << "platforms:\n  - name: board\n    mass: 0.1432\n"
+      << "    friction: {law: coulomb, mu: 6.5e-4}\n"
+      << "    spring: {k: 2.0, c: 0.01}\n    metronomes:\n"
+      << "      - {box_mass: 0.0602, pendulum: {mass: 0.0226, length: 0.0225, decay_rate: 0.5}, "
+         "escapement: {angle: 0.244, steady_amplitude: 0.785}}\nsimulation: {duration: 2}\n";
+  const auto r = runMetrosync("run " + shellQuote(dir + "/one.yaml") + " --model slow -q --out " +
+                              shellQuote(dir + "/out"));
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("a network of 1 platform runs the full model only"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("1 platforms"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+}
+
 }  // namespace
 }  // namespace metrosync

@@ -95,15 +95,15 @@ void compareNetworkEngines(const std::string& name) {
   net_direct.sim.accuracy = 1e-12;
 
   NetworkSamples sd, ss;
-  const NetworkRunReport d = runNetworkDirect(net_direct, sd);
-  const NetworkRunReport s = runNetworkSimbody(net, ss);
+  const RunReport d = runNetworkDirect(net_direct, sd);
+  const RunReport s = runNetworkSimbody(net, ss);
   ASSERT_TRUE(d.complete) << d.failure;
   ASSERT_TRUE(s.complete) << s.failure;
   EXPECT_EQ(s.engine, "simbody");
-  EXPECT_EQ(d.ticks, s.ticks);
-  EXPECT_EQ(d.stick_slip, s.stick_slip);
-  EXPECT_EQ(d.slip_reversals, s.slip_reversals);
-  EXPECT_EQ(d.events, s.events);
+  EXPECT_EQ(d.counts.escapements, s.counts.escapements);
+  EXPECT_EQ(d.counts.stick_slip, s.counts.stick_slip);
+  EXPECT_EQ(d.counts.slip_reversals, s.counts.slip_reversals);
+  EXPECT_EQ(d.counts.events, s.counts.events);
 
   const network::Layout lay = network::NetworkEquations(net).layout();
   const double x_unit = sp.x_scale_m, v_unit = sp.x_scale_m * omega0;

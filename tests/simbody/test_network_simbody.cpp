@@ -71,7 +71,7 @@ TEST(NetworkSimbody, ZeroCouplingDecouplesIntoSinglePlatformRuns) {
       network(left + right, "couplings:\n  - {between: [left, right], k: 0.0}\n", 3.0, 1e-12),
       "k0.yaml");
   Samples sink;
-  const NetworkRunReport rep = runNetworkSimbody(net, sink);
+  const RunReport rep = runNetworkSimbody(net, sink);
   ASSERT_TRUE(rep.complete) << rep.failure;
   const network::Layout lay = network::NetworkEquations(net).layout();
   int j = 0;
@@ -88,11 +88,11 @@ TEST(NetworkSimbody, ZeroCouplingDecouplesIntoSinglePlatformRuns) {
     for (std::size_t i = 0; i < net.platforms[p].rig.metronomes.size(); ++i, ++j) {
       EXPECT_NEAR(rep.final_state[lay.theta(j)], row[3 + 2 * i], kAgree) << "pendulum " << j;
       EXPECT_NEAR(rep.final_state[lay.omega(j)], row[4 + 2 * i], kAgree) << "pendulum " << j;
-      EXPECT_EQ(rep.ticks[j], single.counts.escapements[i]) << "pendulum " << j;
+      EXPECT_EQ(rep.counts.escapements[j], single.counts.escapements[i]) << "pendulum " << j;
     }
   }
-  EXPECT_EQ(rep.stick_slip, stick_slip);
-  EXPECT_GT(rep.stick_slip, 0);  // the Coulomb board did stick and slip
+  EXPECT_EQ(rep.counts.stick_slip, stick_slip);
+  EXPECT_GT(rep.counts.stick_slip, 0);  // the Coulomb board did stick and slip
 }
 
 // The limiting case: a network of one platform on the table is the single rig. Both go through the
@@ -105,16 +105,16 @@ TEST(NetworkSimbody, OnePlatformNetworkIsTheSingleRig) {
   const Network net = loadNetworkText(network(board, "", 3.0, 1e-10), "one.yaml");
   ASSERT_EQ(net.platforms.size(), 1u);
   Samples sink;
-  const NetworkRunReport rep = runNetworkSimbody(net, sink);
+  const RunReport rep = runNetworkSimbody(net, sink);
   MemorySink one;
   const RunReport single = runFullModel(net.platforms[0].rig, one);
   ASSERT_TRUE(rep.complete) << rep.failure;
   ASSERT_TRUE(single.complete) << single.failure;
-  EXPECT_GT(rep.stick_slip, 2);  // the board did stick and slip
-  EXPECT_EQ(rep.stick_slip, single.counts.stick_slip);
-  EXPECT_EQ(rep.slip_reversals, single.counts.slip_reversals);
-  EXPECT_EQ(rep.ticks, single.counts.escapements);
-  EXPECT_EQ(rep.steps, single.counts.steps);
+  EXPECT_GT(rep.counts.stick_slip, 2);  // the board did stick and slip
+  EXPECT_EQ(rep.counts.stick_slip, single.counts.stick_slip);
+  EXPECT_EQ(rep.counts.slip_reversals, single.counts.slip_reversals);
+  EXPECT_EQ(rep.counts.escapements, single.counts.escapements);
+  EXPECT_EQ(rep.counts.steps, single.counts.steps);
   EXPECT_EQ(rep.ledger.escapement_in_J, single.ledger.escapement_in_J);
   EXPECT_EQ(rep.ledger.friction_out_J, single.ledger.friction_out_J);
   const network::Layout lay = network::NetworkEquations(net).layout();
@@ -151,10 +151,10 @@ TEST(NetworkSimbody, FrictionlessNetworkConservesMomentumAndClosesItsLedger) {
       network(a + b, "couplings:\n  - {between: [a, b], k: 5.0, c: 0.01}\n", 5.0, 1e-12),
       "pair.yaml");
   Samples sink;
-  const NetworkRunReport rep = runNetworkSimbody(net, sink);
+  const RunReport rep = runNetworkSimbody(net, sink);
   ASSERT_TRUE(rep.complete) << rep.failure;
   long ticks = 0;
-  for (long t : rep.ticks) ticks += t;
+  for (long t : rep.counts.escapements) ticks += t;
   EXPECT_GT(ticks, 10);  // the escapements did act
   expectMomentumConserved(net, sink);
   EXPECT_LT(std::abs(rep.ledger.relativeResidual()), 1e-9) << rep.ledger.residual_J();
@@ -175,9 +175,9 @@ TEST(NetworkSimbody, StackThatSlipsConservesMomentumAndClosesItsLedger) {
   // the contact between the boards is internal: momentum is conserved through every switch
   const Network net = stack("{law: none}", 5.0, 1e-12);
   Samples sink;
-  const NetworkRunReport rep = runNetworkSimbody(net, sink);
+  const RunReport rep = runNetworkSimbody(net, sink);
   ASSERT_TRUE(rep.complete) << rep.failure;
-  EXPECT_GT(rep.stick_slip, 2);  // the contact did switch
+  EXPECT_GT(rep.counts.stick_slip, 2);  // the contact did switch
   expectMomentumConserved(net, sink);
   EXPECT_LT(std::abs(rep.ledger.relativeResidual()), 1e-9) << rep.ledger.residual_J();
   EXPECT_GT(rep.ledger.friction_out_J, 0.0);
@@ -194,7 +194,7 @@ TEST(NetworkSimbody, StackStuckThroughoutIsOnePlatformWithBoth) {
       platform("top", "{law: coulomb, mu: 1.0e4}", "    on: base\n", metronome(0.5, -0.3, 0.03));
   const Network net = loadNetworkText(network(base + top, "", 3.0, 1e-12), "stack.yaml");
   Samples sink;
-  const NetworkRunReport rep = runNetworkSimbody(net, sink);
+  const RunReport rep = runNetworkSimbody(net, sink);
   ASSERT_TRUE(rep.complete) << rep.failure;
   Rig both = net.platforms[0].rig;
   both.platform.mass_kg += net.platforms[1].rig.platform.mass_kg;
@@ -202,8 +202,8 @@ TEST(NetworkSimbody, StackStuckThroughoutIsOnePlatformWithBoth) {
   MemorySink one;
   const RunReport single = runFullModel(both, one);
   ASSERT_TRUE(single.complete) << single.failure;
-  EXPECT_EQ(rep.stick_slip, single.counts.stick_slip);
-  EXPECT_GT(rep.stick_slip, 0);
+  EXPECT_EQ(rep.counts.stick_slip, single.counts.stick_slip);
+  EXPECT_GT(rep.counts.stick_slip, 0);
   const std::vector<double>& row = single.final_trajectory_row;
   const network::Layout lay = network::NetworkEquations(net).layout();
   EXPECT_NEAR(rep.final_state[lay.x(0)], row[1], kAgree);
@@ -244,15 +244,15 @@ void expectEnginesAgree(const Network& net, double simbody_accuracy, long min_sw
   net_direct.sim.accuracy = 1e-12;
   net_direct.sim.integrator = "verner76";
   Samples sd, ss;
-  const NetworkRunReport d = runNetworkDirect(net_direct, sd);
-  const NetworkRunReport s = runNetworkSimbody(net_simbody, ss);
+  const RunReport d = runNetworkDirect(net_direct, sd);
+  const RunReport s = runNetworkSimbody(net_simbody, ss);
   ASSERT_TRUE(d.complete) << d.failure;
   ASSERT_TRUE(s.complete) << s.failure;
-  EXPECT_GE(d.stick_slip + d.slip_reversals, min_switches);
-  EXPECT_EQ(d.ticks, s.ticks);
-  EXPECT_EQ(d.stick_slip, s.stick_slip);
-  EXPECT_EQ(d.slip_reversals, s.slip_reversals);
-  EXPECT_EQ(d.events, s.events);
+  EXPECT_GE(d.counts.stick_slip + d.counts.slip_reversals, min_switches);
+  EXPECT_EQ(d.counts.escapements, s.counts.escapements);
+  EXPECT_EQ(d.counts.stick_slip, s.counts.stick_slip);
+  EXPECT_EQ(d.counts.slip_reversals, s.counts.slip_reversals);
+  EXPECT_EQ(d.counts.events, s.counts.events);
   expectConsistentContacts(net, sd);
   expectConsistentContacts(net, ss);
   const ScaledParams sp = computeScaled(net.unionRig());

@@ -11,6 +11,7 @@
 #include <iostream>
 
 #include "base/number_text.h"
+#include "models/network_text.h"
 #include "models/scaling.h"
 #include "tools/cli/animate_plugin.h"
 #include "tools/cli/animation_track.h"
@@ -141,8 +142,8 @@ AnimationTrack simulate(const AnimateOptions& opt, AnimationRequest& req, std::s
       throw UsageError("--engine " + o.engine + ": a network runs on the direct engine only");
     rig_name = net->name;
     setTimes(opt, net->sim.t_end_s, 1.0, req);
-    req.title = net->name + " - network of " + std::to_string(net->platforms.size()) +
-                " platforms - " + speedText(opt.speed, true);
+    req.title = net->name + " - " + networkOfPlatforms(net->platforms.size()) + " - " +
+                speedText(opt.speed, true);
     return trackNetwork(*net, req);
   }
   const Rig rig = loadRigText(text, displayName(opt), o.sets, lo);

@@ -361,7 +361,7 @@ AnimationTrack trackNetwork(Network net, const AnimationRequest& req) {
   AnimationTrack tr;
   tr.scene = networkScene(net, sp, req);
   NetworkTrackSink sink(net, sp, req, tr);
-  const NetworkRunReport rep = runNetworkDirect(net, sink);
+  const RunReport rep = runNetworkDirect(net, sink);
   tr.complete = rep.complete;
   tr.failure = rep.failure;
   finishFrames(tr, sink.ticks, req);

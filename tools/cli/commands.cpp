@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "base/number_text.h"
+#include "models/network_text.h"
 #include "models/scaling.h"
 #include "sim/analysis/compare.h"
 #include "sim/analysis/linear_decay.h"
@@ -285,19 +286,18 @@ RunOutcome runNetwork(const Options& opt, const Network& net, const std::string&
   const Engine& engine =
       chooseNetworkEngine(opt.engine, opt.model, net, rigDisplayName(opt), "runs");
   if (opt.no_files)
-    throw UsageError(rigDisplayName(opt) + ": a network of " +
-                     std::to_string(net.platforms.size()) +
-                     " platforms keeps its rows in files only: give it a folder");
+    throw UsageError(rigDisplayName(opt) + ": a " + networkOfPlatforms(net.platforms.size()) +
+                     " keeps its rows in files only: give it a folder");
   installStopHandlers();  // before any file exists
   const std::optional<OutputDir> dir = openOutputDir(opt, net.name, "run");
   NetworkFiles files(*dir, net);
-  const NetworkRunReport report = engine.runNetwork(net, files);
+  RunReport report = engine.runNetwork(net, files);
+  const auto t0 = std::chrono::steady_clock::now();
   files.commit();
+  report.write_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   RunOutcome out;
-  out.summary = files.summary(report);
-  out.summary["model"] = "full";
-  out.summary["rig"] = net.name;
-  out.summary["units"] = "physical";
+  out.summary = runSummaryJson(net.name, Units::Physical, report, files.verdictJson(report));
   const std::string label = out.summary["network"]["regime"].get<std::string>();
   std::vector<std::string> names = files.fileNames();
   if (!opt.no_plot)
@@ -306,9 +306,8 @@ RunOutcome runNetwork(const Options& opt, const Network& net, const std::string&
   addRunProvenance(out.summary, opt, text);
   finishSummary(out.summary, dir, names);
   if (!opt.quiet) {
-    std::cout << "network of " << net.platforms.size()
-              << (net.platforms.size() == 1 ? " platform (" : " platforms (") << engine.name()
-              << ", " << report.integrator << "): " << label
+    std::cout << networkOfPlatforms(net.platforms.size()) << " (" << engine.name() << ", "
+              << report.integrator << "): " << label
               << ", r = " << out.summary["network"]["r"].get<double>() << "\n";
     printFiles(dir, names);
   }

@@ -1,5 +1,6 @@
 #include "tools/cli/engines.h"
 
+#include "models/network_text.h"
 #include "sim/engines/plugin_loader.h"
 #include "tools/cli/exit_codes.h"
 #include "yaml/rig_loader.h"
@@ -23,7 +24,7 @@ const Engine& chooseEngine(const std::string& requested, const std::string& mode
 const Engine& chooseNetworkEngine(const std::string& requested, const std::string& model,
                                   const Network& net, const std::string& rig_name,
                                   const std::string& verb) {
-  const std::string what = "a network of " + std::to_string(net.platforms.size()) + " platforms";
+  const std::string what = "a " + networkOfPlatforms(net.platforms.size());
   const std::string full_only = " " + verb + " the full model only (--engine direct or simbody)";
   if (model == "slow")
     throw UsageError("--model slow: the slow flow is single-platform; " + what + full_only);

@@ -5,6 +5,7 @@
 
 #include "base/number_text.h"
 #include "contact/law_registry.h"
+#include "sim/analysis/network_verdict.h"
 #include "sim/analysis/regime.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/engines.h"
@@ -61,11 +62,74 @@ struct PointSink : RunSink {
   std::vector<std::string> kept;
 };
 
-// A network's point (tools/cli/network_sweep.h), with the test hook and the stop request.
-std::optional<SweepPoint> runNetworkPoint(const PointInput& in, long g) {
-  SweepPoint p = runNetworkSweepPoint(*in.net, *in.engine, g, injectedFailure(g));
-  if (FileSink::stopRequested()) return std::nullopt;
-  return p;
+// What a point's run leaves for its row: the report, the last envelope row (none when the run
+// never sampled), and, when it completed, its label and clusters.
+struct PointOutcome {
+  RunReport report;
+  std::optional<EnvelopeRow> last;
+  std::string regime, clusters;
+};
+
+// Runs a point's rig or network through `run`, with the test hook (tools/cli/fault_hooks.h): a
+// failed simulation is a failed report; nullopt when a stop request interrupted it.
+template <class Run>
+std::optional<RunReport> guardedRun(const PointInput& in, long g, Run run) {
+  RunReport rep;
+  try {
+    if (const std::optional<std::string> why = injectedFailure(g))
+      throw SimulationFailure{0.0, *why};
+    rep = run();
+  } catch (const RunInterrupted&) {
+    return std::nullopt;
+  } catch (const SimulationFailure& f) {
+    rep.complete = false;
+    rep.failure = "stopped at t = " + numberText(f.t) +
+                  (in.rig.units == Units::Physical ? " s" : "") + ": " + f.why;
+  } catch (const std::exception& e) {
+    rep.complete = false;
+    rep.failure = e.what();
+  }
+  // an engine that turned the interruption into a failed report
+  if (!rep.complete && FileSink::stopRequested()) return std::nullopt;
+  return rep;
+}
+
+// A network's point (docs/sweep-points.md): the network's label, each platform's regime.
+std::optional<PointOutcome> runNetworkPoint(const PointInput& in, long g) {
+  NetworkVerdict verdict(*in.net);
+  std::optional<RunReport> rep =
+      guardedRun(in, g, [&] { return in.engine->runNetwork(*in.net, verdict); });
+  if (!rep) return std::nullopt;
+  PointOutcome o{std::move(*rep), std::nullopt, "", ""};
+  if (!verdict.empty()) o.last = verdict.last();
+  if (!o.report.complete) return o;
+  o.regime = verdict.label();
+  const std::vector<std::string> regimes = verdict.platformRegimes();
+  for (std::size_t q = 0; q < regimes.size(); ++q)
+    o.clusters += (q ? "|" : "") + in.net->platforms[q].name + "=" + regimes[q];
+  return o;
+}
+
+// A single rig's point: its regime (SPEC 4) and clusters; `sink` keeps the envelope.
+std::optional<PointOutcome> runRigPoint(const PointInput& in, long g, PointSink& sink) {
+  std::optional<RunReport> rep = guardedRun(in, g, [&] { return in.engine->run(in.rig, sink); });
+  if (!rep) return std::nullopt;
+  PointOutcome o{std::move(*rep), std::nullopt, "", ""};
+  o.last = sink.window.empty() ? o.report.final_row : sink.window.last();
+  if (!o.report.complete) return o;
+  const RegimeVerdict v = classifyRegime(sink.window, in.scaled.theta_c, in.scaled.locked);
+  o.regime = regimeName(v);
+  o.clusters = clusterText(v.cluster_sizes);
+  return o;
+}
+
+// s = |Z| / mu = r sum_j A_j / mu of a Coulomb platform (inf at mu = 0), else NaN
+double driveStrength(const FrictionLaw& law, const EnvelopeRow& last, double r) {
+  if (!law.is(coulombLaw())) return std::numeric_limits<double>::quiet_NaN();
+  double sum = 0.0;
+  for (double a : last.A) sum += a;
+  const double mu = law.valueOr("mu", 0.0);
+  return mu > 0 ? r * sum / mu : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace
@@ -124,62 +188,44 @@ PointInput loadPoint(const std::string& text, const SweepOptions& opt, const Swe
 }
 
 std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
-  if (in.net) return runNetworkPoint(in, g);
   const ScaledParams& sp = in.scaled;
-  PointSink sink(sp.tau_end, sp.epsilon);
-  // the `uncoupled` rule: the slow flow's averaged drive, the full model's own stick/slip
-  if (in.engine->model() != "full") sink.window.setEnvelopePlatform(sp.friction);
-  sink.x_unit = in.rig.units == Units::Physical ? sp.x_scale_m : 1.0;
-  sink.keep = keep;
-  RunReport rep;
-  const double engine_cpu0 = threadCpuSeconds();
-  try {
-    if (const std::optional<std::string> why = injectedFailure(g))  // tools/cli/fault_hooks.h
-      throw SimulationFailure{0.0, *why};
-    rep = in.engine->run(in.rig, sink);
-  } catch (const RunInterrupted&) {
-    return std::nullopt;
-  } catch (const SimulationFailure& f) {
-    rep.complete = false;
-    rep.failure = "stopped at t = " + numberText(f.t) +
-                  (in.rig.units == Units::Physical ? " s" : "") + ": " + f.why;
-  } catch (const std::exception& e) {
-    rep.complete = false;
-    rep.failure = e.what();
+  std::optional<PointSink> sink;  // a single rig's (a network's verdict is its own sink)
+  if (!in.net) {
+    sink.emplace(sp.tau_end, sp.epsilon);
+    // the `uncoupled` rule: the slow flow's averaged drive, the full model's own stick/slip
+    if (in.engine->model() != "full") sink->window.setEnvelopePlatform(sp.friction);
+    sink->x_unit = in.rig.units == Units::Physical ? sp.x_scale_m : 1.0;
+    sink->keep = keep;
   }
-  // an engine that turned the interruption into a failed report
-  if (!rep.complete && FileSink::stopRequested()) return std::nullopt;
+  const double engine_cpu0 = threadCpuSeconds();
+  std::optional<PointOutcome> o = in.net ? runNetworkPoint(in, g) : runRigPoint(in, g, *sink);
+  if (!o) return std::nullopt;
 
-  const int n = static_cast<int>(sp.nu.size());
+  const int n = static_cast<int>(in.rig.metronomes.size());
   SweepPoint p;
   p.index = g;
-  p.complete = rep.complete;
-  p.engine_cpu_seconds = threadCpuSeconds() - engine_cpu0;
-  const EnvelopeRow last = sink.window.empty() ? rep.final_row : sink.window.last();
-  if (static_cast<int>(last.A.size()) == n && static_cast<int>(last.psi.size()) == n - 1) {
+  p.complete = o->report.complete;
+  if (!in.net) p.engine_cpu_seconds = threadCpuSeconds() - engine_cpu0;  // NaN: a network's
+  if (o->last && static_cast<int>(o->last->A.size()) == n &&
+      static_cast<int>(o->last->psi.size()) == n - 1) {
+    const EnvelopeRow& last = *o->last;
     p.A = last.A;
     for (double v : last.psi) p.psi.push_back(wrapToTwoPi(v));
     p.r = std::isnan(last.r) ? orderParameter(last.A, last.psi) : last.r;
     p.tau = last.tau;
-    if (sp.friction.is(coulombLaw())) {  // |Z| = r sum_j A_j
-      double sum = 0.0;
-      for (double a : last.A) sum += a;
-      const double mu = sp.friction.valueOr("mu", 0.0);
-      p.s = mu > 0 ? p.r * sum / mu : std::numeric_limits<double>::infinity();
-    }
+    if (!in.net) p.s = driveStrength(sp.friction, last, p.r);
   } else {
     p.A.assign(n, std::nan(""));
-    p.psi.assign(n - 1, std::nan(""));
+    p.psi.assign(n > 0 ? n - 1 : 0, std::nan(""));
   }
-  if (rep.complete) {
-    const RegimeVerdict v = classifyRegime(sink.window, sp.theta_c, sp.locked);
-    p.regime = regimeName(v);
-    p.clusters = clusterText(v.cluster_sizes);
+  if (o->report.complete) {
+    p.regime = o->regime;
+    p.clusters = o->clusters;
   } else {
     p.regime = "failed";
-    p.message = rep.failure.empty() ? "the run stopped early" : rep.failure;
+    p.message = o->report.failure.empty() ? "the run stopped early" : o->report.failure;
   }
-  p.kept_rows = std::move(sink.kept);
+  if (sink) p.kept_rows = std::move(sink->kept);
   return p;
 }
 

@@ -194,11 +194,9 @@ nlohmann::json NetworkFiles::regimeWindowJson() const {
           {"platforms", platforms}};
 }
 
-nlohmann::json NetworkFiles::summary(const NetworkRunReport& report) const {
+nlohmann::json NetworkFiles::verdictJson(const RunReport& report) const {
   const Impl& m = *impl_;
   nlohmann::json j;
-  j["command"] = "run";
-  j["version"] = metrosyncVersion();
   j["platforms"] = platformsJson(report.complete);
   const std::string label = report.complete ? m.verdict.label() : "unknown";
   j["network"] = {{"regime", label}, {"r", m.verdict.overall().r}};
@@ -208,15 +206,6 @@ nlohmann::json NetworkFiles::summary(const NetworkRunReport& report) const {
     const EnvelopeRow& last = m.verdict.last();
     j["final"] = {{"tau", last.tau}, {"A", last.A}, {"psi", last.psi}};
   }
-  j["complete"] = report.complete;
-  if (!report.complete) j["failure"] = report.failure;
-  j["engine"] = report.engine;
-  j["integrator"] = report.integrator;
-  j["counts"] = {{"steps", report.steps},           {"rhs_evals", report.rhs_evals},
-                 {"events", report.events},         {"escapements", report.ticks},
-                 {"stick_slip", report.stick_slip}, {"slip_reversals", report.slip_reversals}};
-  j["energy"] = energyJson(report.ledger);
-  addTimings(j, report.wall_seconds, report.engine_seconds);
   return j;
 }
 

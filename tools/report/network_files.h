@@ -27,10 +27,10 @@ class NetworkFiles : public NetworkSink {
               const std::vector<PlatformMode>& modes) override;
   void commit();
   std::vector<std::string> fileNames() const;
-  // summary.json's network part: a single run's keys (`final`, `regime`, `regime_window`, the
-  // counts, the ledger, `wall_seconds`, `engine_seconds`, `version`, `command`) and `platforms`
-  // (each with its regime, metronomes, final r and final envelope), `network` (label, final r)
-  nlohmann::json summary(const NetworkRunReport& report) const;
+  // the network's verdict in summary.json (runSummaryJson, tools/report/outputs.h): a single
+  // rig's keys (`final`, `regime`, `regime_window`) and `platforms` (each with its regime,
+  // metronomes, final r and final envelope), `network` (label, final r)
+  nlohmann::json verdictJson(const RunReport& report) const;
   // the time series for the plots: tau, then r per platform and overall, one row per sample
   const std::vector<std::vector<double>>& orderRows() const { return order_rows_; }
   // per sample: tau and each swinging metronome's phase relative to its platform's mean phase

@@ -319,12 +319,26 @@ std::vector<std::string> FileSink::fileNames() const {
 // ---------------------------------------------------------------------------------------------
 // summary.json
 
-nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict) {
+nlohmann::json reportJson(const RunReport& report) {
   nlohmann::json j;
   j["model"] = report.model;
   j["engine"] = report.engine;
   j["integrator"] = report.integrator;
   j["accuracy"] = report.accuracy;
+  j["counts"] = {
+      {"steps", report.counts.steps},           {"escapements", report.counts.escapements},
+      {"stick_slip", report.counts.stick_slip}, {"slip_reversals", report.counts.slip_reversals},
+      {"rhs_evals", report.counts.rhs_evals},   {"events", report.counts.events}};
+  addTimings(j, report.wall_seconds, report.engine_seconds);
+  j["write_seconds"] = report.write_seconds;
+  j["complete"] = report.complete;
+  if (!report.complete) j["failure"] = report.failure;
+  if (report.has_ledger) j["energy"] = energyJson(report.ledger);
+  return j;
+}
+
+nlohmann::json verdictJson(const RunReport& report, const RegimeVerdict& verdict) {
+  nlohmann::json j;
   j["regime"] =
       regimeName(verdict);  // the SPEC 4 name; for N >= 3 the clusters' (sim/analysis/regime.h)
   j["regime_window"] = {{"tau_start", verdict.window_tau_start},
@@ -345,15 +359,12 @@ nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict)
   if (!verdict.reason.empty()) j["regime_reason"] = verdict.reason;
   j["final"] = {
       {"tau", report.final_row.tau}, {"A", report.final_row.A}, {"psi", report.final_row.psi}};
-  j["counts"] = {
-      {"steps", report.counts.steps},           {"escapements", report.counts.escapements},
-      {"stick_slip", report.counts.stick_slip}, {"slip_reversals", report.counts.slip_reversals},
-      {"rhs_evals", report.counts.rhs_evals},   {"events", report.counts.events}};
-  addTimings(j, report.wall_seconds, report.engine_seconds);
-  j["write_seconds"] = report.write_seconds;
-  j["complete"] = report.complete;
-  if (!report.complete) j["failure"] = report.failure;
-  if (report.has_ledger) j["energy"] = energyJson(report.ledger);
+  return j;
+}
+
+nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict) {
+  nlohmann::json j = reportJson(report);
+  j.update(verdictJson(report, verdict));
   return j;
 }
 
@@ -373,18 +384,25 @@ void addTimings(nlohmann::json& summary, double wall_seconds, double engine_seco
   summary["engine_seconds"] = engine_seconds;
 }
 
-nlohmann::json runSummaryJson(const Rig& rig, const nlohmann::json& scaled, const RunReport& report,
-                              const RegimeVerdict& verdict) {
-  nlohmann::json j = reportJson(report, verdict);
+nlohmann::json runSummaryJson(const std::string& rig_name, Units units, const RunReport& report,
+                              const nlohmann::json& verdict) {
+  nlohmann::json j = reportJson(report);
+  j.update(verdict);
   j["command"] = "run";
-  j["units"] = toString(rig.units);
-  j["rig"] = rig.name;
-  std::vector<std::string> names;
-  for (const auto& m : rig.metronomes) names.push_back(m.name);
-  j["metronomes"] = names;
-  j["scaled"] = scaled;
+  j["units"] = toString(units);
+  j["rig"] = rig_name;
   j["version"] = metrosyncVersion();
   return j;
+}
+
+nlohmann::json runSummaryJson(const Rig& rig, const nlohmann::json& scaled, const RunReport& report,
+                              const RegimeVerdict& verdict) {
+  nlohmann::json keys = verdictJson(report, verdict);
+  std::vector<std::string> names;
+  for (const auto& m : rig.metronomes) names.push_back(m.name);
+  keys["metronomes"] = names;
+  keys["scaled"] = scaled;
+  return runSummaryJson(rig.name, rig.units, report, keys);
 }
 
 void addProvenance(nlohmann::json& summary, const std::string& resolved_rig_json) {

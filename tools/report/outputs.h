@@ -175,9 +175,15 @@ class FileSink : public RunSink {
   EnvelopeDecimator plot_;
 };
 
-// The per-model part of summary.json: model, engine, integrator, accuracy, regime, final
-// {tau, A[], psi[]}, counts {steps, escapements[], stick_slip, rhs_evals, events}, wall_seconds,
-// complete, failure (when incomplete), energy {...} (when the report has a ledger).
+// What summary.json says of a run's report (a single rig's or a network's): model, engine,
+// integrator, accuracy, counts {steps, escapements[], stick_slip, slip_reversals, rhs_evals,
+// events}, wall_seconds, engine_seconds, write_seconds, complete, failure (when incomplete),
+// energy {...} (when the report has a ledger).
+nlohmann::json reportJson(const RunReport& report);
+// A single rig's verdict: regime, regime_window {...}, regime_reason (when given), final {tau,
+// A[], psi[]} (a network's: NetworkFiles::verdictJson, tools/report/network_files.h).
+nlohmann::json verdictJson(const RunReport& report, const RegimeVerdict& verdict);
+// The per-model part of compare's summary.json: both of the above.
 nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict);
 
 // summary.json's `energy` (the ledger, in J) and the timings `wall_seconds`, `engine_seconds`:
@@ -185,7 +191,11 @@ nlohmann::json reportJson(const RunReport& report, const RegimeVerdict& verdict)
 nlohmann::json energyJson(const EnergyLedger& ledger);
 void addTimings(nlohmann::json& summary, double wall_seconds, double engine_seconds);
 
-// summary.json of `run`: reportJson plus units, rig, version, command and `scaled` (the object
+// summary.json of `run`, the one builder for a single rig and a network: reportJson, the run's
+// `verdict` keys, and units, rig, version, command.
+nlohmann::json runSummaryJson(const std::string& rig_name, Units units, const RunReport& report,
+                              const nlohmann::json& verdict);
+// ... of a single rig: its verdictJson with the metronomes' names and `scaled` (the object
 // `scale --json` prints).
 nlohmann::json runSummaryJson(const Rig& rig, const nlohmann::json& scaled, const RunReport& report,
                               const RegimeVerdict& verdict);

@@ -81,13 +81,13 @@ class ContactView : public EventSystem {
 class NetworkRun {
  public:
   NetworkRun(const Network& net, NetworkSink& sink);
-  NetworkRunReport run();
+  RunReport run();
 
   // --- the hooks of the run loop (sim/engines/direct/step_loop.h) ---------------------------
   ode::RkStepper& stepper() { return stepper_; }
   const double* mechanicalEnd(const double* y) const { return y + lay_.dampingWork(); }
   bool complete() const { return report_.complete; }
-  void countStep() { ++report_.steps; }
+  void countStep() { ++report_.counts.steps; }
   bool findCrossings();
   void emitSamplesBefore(double t_limit, bool inclusive);
   void rearm(const double* y);
@@ -122,7 +122,7 @@ class NetworkRun {
   std::vector<std::unique_ptr<ContactView>> views_;
   std::vector<EventResolver> resolvers_;
   WitnessList witnesses_;
-  NetworkRunReport report_;
+  RunReport report_;
   SplitTimer timer_;  // the engine's time against the recording's
   double period_ = 1.0, sample_dt_ = 1.0, t_end_ = 0.0;
   double last_window_t_ = -1.0;  // time of the last resolved window
@@ -146,9 +146,13 @@ NetworkRun::NetworkRun(const Network& net, NetworkSink& sink)
   period_ = kTwoPi * sp.time_scale_s;
   t_end_ = net.sim.t_end_s;
   sample_dt_ = net.sim.sample_s > 0 ? net.sim.sample_s : period_ / 20;
+  report_.model = "full";
+  report_.engine = "direct";
   report_.integrator = tab_.name;
+  report_.accuracy = net.sim.accuracy;
+  report_.has_ledger = true;
   report_.fast_period_s = period_;
-  report_.ticks.assign(net.numMetronomes(), 0);
+  report_.counts.escapements.assign(net.numMetronomes(), 0);
   y_.assign(lay_.dim(), 0.0);
   for (int p = 0; p < lay_.platforms; ++p) {
     const network::Block& b = eq_.block(p);
@@ -160,7 +164,7 @@ NetworkRun::NetworkRun(const Network& net, NetworkSink& sink)
     resolvers_.push_back(direct::startResolver(
         lay_, y_.data(), b.first, b.count, [&](int k) { return eq_.escapement(k); },
         set_valued ? b.friction : PlatformFriction{}, period_));
-    views_.push_back(std::make_unique<ContactView>(eq_, y_, modes_, p, report_.events));
+    views_.push_back(std::make_unique<ContactView>(eq_, y_, modes_, p, report_.counts.events));
   }
   stepper_.setTolerances(net.sim.accuracy, direct::scaledTolerances(net.sim.accuracy, sp, lay_));
 }
@@ -240,9 +244,10 @@ void NetworkRun::resolveWindow(double t_e, double th_e) {
 void NetworkRun::absorb(const WindowOutcome& out, int p) {
   report_.ledger.escapement_in_J += out.escapement_in;
   report_.ledger.friction_out_J += out.friction_out;
-  report_.stick_slip += out.stick_slip;
-  report_.slip_reversals += out.slip_reversals;
-  for (int j : out.ticked) ++report_.ticks[eq_.pendulum(eq_.block(p).first + j).rig_index];
+  report_.counts.stick_slip += out.stick_slip;
+  report_.counts.slip_reversals += out.slip_reversals;
+  for (int j : out.ticked)
+    ++report_.counts.escapements[eq_.pendulum(eq_.block(p).first + j).rig_index];
 }
 
 // Platforms whose contact the window's later changes left inconsistent: stuck with a velocity (an
@@ -292,7 +297,7 @@ void NetworkRun::resolveContacts(double t_e, double th_e) {
   // restart) is that window continued, not a new one (sim/events/window.h: one window per
   // instant)
   if (!(t_e - last_window_t_ <= kSameInstantUlps * std::numeric_limits<double>::epsilon() * t_e))
-    ++report_.events;
+    ++report_.counts.events;
   last_window_t_ = t_e;
 }
 
@@ -319,7 +324,7 @@ void NetworkRun::fail(double t, const std::string& why) {
   report_.failure = "at t = " + numberText(t, 6, Notation::Fixed) + " s: " + why;
 }
 
-NetworkRunReport NetworkRun::run() {
+RunReport NetworkRun::run() {
   timer_ = SplitTimer();
   scratch_.resize(lay_.dim());
   for (int p = 0; p < lay_.platforms; ++p)
@@ -343,7 +348,7 @@ NetworkRunReport NetworkRun::run() {
 void NetworkRun::finish() {
   report_.t_end = report_.complete ? t_end_ : stepper_.t();
   sample(report_.t_end, y_);
-  report_.rhs_evals = stepper_.evaluations();
+  report_.counts.rhs_evals = stepper_.evaluations();
   report_.final_state = y_;
   report_.ledger.final_J = eq_.energy(y_.data());
   report_.ledger.damping_out_J = y_[lay_.dampingWork()] + y_[lay_.damperWork()];
@@ -354,7 +359,7 @@ void NetworkRun::finish() {
 
 }  // namespace
 
-NetworkRunReport runNetworkDirect(const Network& net, NetworkSink& sink) {
+RunReport runNetworkDirect(const Network& net, NetworkSink& sink) {
   return NetworkRun(net, sink).run();
 }
 

@@ -21,6 +21,6 @@ namespace metrosync {
 // Runs the network to net.sim.t_end_s. Never throws for a failed simulation (complete = false);
 // throws std::invalid_argument for a network it cannot run (an unknown integrator name, no
 // swinging pendulum).
-NetworkRunReport runNetworkDirect(const Network& net, NetworkSink& sink);
+RunReport runNetworkDirect(const Network& net, NetworkSink& sink);
 
 }  // namespace metrosync

@@ -44,11 +44,14 @@ class NetworkRecorder : public RunRecorder {
 
 }  // namespace
 
-NetworkRunReport runNetworkSimbody(const Network& net, NetworkSink& sink) {
+RunReport runNetworkSimbody(const Network& net, NetworkSink& sink) {
   const double time_scale = computeScaled(net.unionRig()).time_scale_s;
   PlatformSystem ps(net);
-  NetworkRunReport report;
+  RunReport report;
+  report.model = "full";
   report.engine = "simbody";
+  report.accuracy = net.sim.accuracy;
+  report.has_ledger = true;
   report.integrator =
       net.sim.integrator.empty() ? simbodyIntegratorNames().front() : net.sim.integrator;
   report.fast_period_s = kTwoPi * time_scale;
@@ -56,13 +59,9 @@ NetworkRunReport runNetworkSimbody(const Network& net, NetworkSink& sink) {
   const PlatformRunResult r = runPlatforms(ps, report.integrator, time_scale, recorder);
   report.complete = r.complete;
   report.failure = r.failure;
-  report.steps = r.counts.steps;
-  report.rhs_evals = r.counts.rhs_evals;
+  report.counts = r.counts;
   // a network report's events: its windows and its event rows (as the direct network engine's)
-  report.events = r.counts.events + r.forced_stops + r.event_rows;
-  report.stick_slip = r.counts.stick_slip;
-  report.slip_reversals = r.counts.slip_reversals;
-  report.ticks = r.counts.escapements;
+  report.counts.events = r.counts.events + r.forced_stops + r.event_rows;
   report.ledger = r.ledger;
   report.t_end = r.t_end;
   report.final_state = recorder.finalState();

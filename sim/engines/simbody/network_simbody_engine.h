@@ -13,6 +13,6 @@ namespace metrosync {
 // Runs the network to net.sim.t_end_s with net.sim.integrator (a Simbody integrator; empty: the
 // default, rk-merson). Never throws for a failed simulation (complete = false); throws
 // std::invalid_argument for a network it cannot run (an unknown integrator, no swinging pendulum).
-NetworkRunReport runNetworkSimbody(const Network& net, NetworkSink& sink);
+RunReport runNetworkSimbody(const Network& net, NetworkSink& sink);
 
 }  // namespace metrosync

@@ -20,9 +20,9 @@ constexpr int kSimbodyPluginAbi = 1;
 
 struct SimbodyPlugin {
   int abi = kSimbodyPluginAbi;
-  RunReport (*run)(const Rig&, RunSink&) = nullptr;                         // runFullModel
-  NetworkRunReport (*run_network)(const Network&, NetworkSink&) = nullptr;  // runNetworkSimbody
-  DrivenCoulombMeasurement (*coulomb_probe)(double B) = nullptr;  // measureDrivenCoulomb(B)
+  RunReport (*run)(const Rig&, RunSink&) = nullptr;                  // runFullModel
+  RunReport (*run_network)(const Network&, NetworkSink&) = nullptr;  // runNetworkSimbody
+  DrivenCoulombMeasurement (*coulomb_probe)(double B) = nullptr;     // measureDrivenCoulomb(B)
 };
 
 }  // namespace metrosync
