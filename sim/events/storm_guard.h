@@ -13,6 +13,14 @@ class StormGuard {
  public:
   static constexpr long kMaxEvents = 1000;
   static constexpr double kWindowPeriods = 1e-6;
+  // The sustained tier, for an integrator that resolves a storm coarsely (Simbody's steps around
+  // a 1.6 GHz ringing of yaml/rigs/hard/storm.yaml come ~5e-10 s apart: about 600 windows per
+  // millionth of a period, never 1000, so the burst rule above never trips while the run crawls
+  // through 10^6 reversals). Twenty thousand discontinuities within a ten-thousandth of a period
+  // is still four orders of magnitude above any physical sequence (a few per half period per
+  // metronome) and trips such a storm after seconds of CPU.
+  static constexpr long kSustainedEvents = 20000;
+  static constexpr double kSustainedWindowPeriods = 1e-4;
 
   // period: the fast period in the engine's time unit
   explicit StormGuard(double period, long max_events = kMaxEvents,

@@ -101,4 +101,24 @@ TEST(CliEngine, EventStormExitsWithCode3AndAMessage) {
   EXPECT_TRUE(fs::exists(dir + "/trajectory.csv")) << "files written so far are kept";
 }
 
+// The same storm on the Simbody engine: its steps resolve the ringing coarsely (a window every
+// ~5e-10 s, never 1000 within a millionth of a period), so the storm rule's sustained tier
+// (sim/events/storm_guard.h) must stop it. Measured: exit 3 after 6.3 s of CPU. Before that tier
+// the run crawled for over 30 minutes; the bound below (300 s, far above the measured time) turns
+// such a crawl into a failure of this test rather than of the suite's time limit.
+TEST(CliEngine, EventStormOnSimbodyExitsWithCode3AndAMessage) {
+  const std::string dir = scratch("storm_simbody");
+  const Result r = metrosync::testing_support::runMetrosync(
+      "run " + std::string(METROSYNC_SOURCE_DIR) +
+          "/yaml/rigs/hard/storm.yaml --engine simbody --quiet --out " + dir,
+      {"", "timeout 300"});
+  ASSERT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("event storm"), std::string::npos) << r.err;
+  const json s = summary(dir);
+  EXPECT_FALSE(s["complete"].get<bool>());
+  EXPECT_EQ(s["engine"], "simbody");
+  EXPECT_NE(s["failure"].get<std::string>().find("event storm"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir + "/trajectory.csv")) << "files written so far are kept";
+}
+
 }  // namespace
