@@ -6,8 +6,8 @@
 // on the platform and (through the relative slider) the platform below; while stuck the slider's
 // ACCELERATION is locked at zero, so that several stuck contacts are held together by one solve
 // of Simbody's prescribed motion, and each lock's generalized force is that contact's holding
-// force. The slip velocity is kept as it is (zero to rounding after a stop): unlike
-// CoulombElement's velocity lock, sticking never zeroes a velocity, as the direct engine's
+// force. The slip velocity is kept as it is (zero to rounding after a stop): sticking never
+// zeroes a velocity (a plastic stop does, with its reaction), as the direct engine's
 // "u' = 0" (models/network_equations.h). Mode switches are made by the event resolver
 // (sim/events/), never here.
 #pragma once

@@ -76,7 +76,7 @@ int periodicity(const std::vector<DrivenCoulombSwitch>& s, double tol, double& m
 struct DrivenRun {
   DrivenRun(double B, const DrivenCoulombOptions& opt) : h(B), integ(h.system) {
     State s = h.system.getDefaultState();
-    h.element->settleAtRest(h.system, s);
+    h.settleAtRest(s);
     integ.setAccuracy(opt.accuracy);
     integ.setMaximumStepSize(maxStepFor(B));
     ts = std::make_unique<TimeStepper>(h.system, integ);

@@ -1,7 +1,7 @@
-// The full model's Coulomb element (contact/simbody/coulomb_element.h) on its own, in the set-up
+// The full model's Coulomb contact (contact/simbody/coulomb_contact.h) on its own, in the set-up
 // of the paper's appendix "ac" (eq. c1): a unit mass on a Simbody slider with unit Coulomb
-// friction, driven by the prescribed force B sin t, switched by the element's own rules
-// (witness, resolveSwitch, settleAtRest) exactly as in the full model. Started from rest, it is
+// friction, driven by the prescribed force B sin t, switched by the law's rules (the contact's
+// witness; resolveSwitch, settleAtRest in driven_coulomb_harness.h). Started from rest, it is
 // run until its switch instants repeat from one period to the next (the periodic steady state);
 // the acceleration y'' over that period then gives the slow flow's averaged coefficients by
 // Fourier projection,

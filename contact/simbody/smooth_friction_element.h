@@ -1,7 +1,7 @@
 // The Simbody adapter of a smooth platform law (PlatformFriction with setValued() false: viscous,
 // and any law added beside it in contact/): a Force::Custom element applying the law's force
 // PlatformFriction::force(xdot) on the platform's slider. The set-valued law (Coulomb) has its
-// own element with modes (coulomb_element.h).
+// own element with modes (coulomb_contact.h).
 #pragma once
 
 #include <Simbody.h>

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <random>
 
-#include "contact/simbody/coulomb_element.h"
 #include "models/minimal_equations.h"
 
 namespace metrosync::direct {

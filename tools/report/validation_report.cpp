@@ -406,8 +406,8 @@ void mdSummary(std::ostream& md, const ValidationResults& r) {
 // part 1: beta1, beta2 against the Coulomb element
 void mdBetas(std::ostream& md, const ValidationResults& r, const std::vector<std::string>& plots) {
   md << "## 1. β₁, β₂ against the full model's Coulomb element\n\n"
-     << "The Simbody Coulomb element of the full model (`contact/simbody/coulomb_element.h`: its "
-        "witness, `resolveSwitch` and `settleAtRest`), on a unit mass with unit friction bound, "
+     << "The Simbody Coulomb contact of the full model (`contact/simbody/coulomb_contact.h`: its "
+        "witness; `resolveSwitch` and `settleAtRest` in `driven_coulomb_harness.h`), on a unit mass with unit friction bound, "
         "driven by B sin t (eq. c1, B = s), started at rest and run until its switch instants "
         "repeat from one drive period to the next (to "
      << shortSci(DrivenCoulombOptions{}.periodic_tol)

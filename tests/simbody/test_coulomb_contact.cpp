@@ -1,4 +1,4 @@
-// The Coulomb element on its own: a unit mass on a slider with unit Coulomb friction, driven by a
+// The Coulomb contact on its own: a unit mass on a slider with unit Coulomb friction, driven by a
 // prescribed force B sin t (the paper's eq. c1). Its steady response must be the closed-form
 // periodic solution y_p of appendix "ac" (contact/averaged_response.h, independent code).
 #include <Simbody.h>
@@ -20,7 +20,7 @@ using Harness = DrivenCoulombHarness;
 void checkAgainstClosedForm(double B, int periods, double tol) {
   Harness h(B);
   State s = h.system.getDefaultState();
-  h.element->settleAtRest(h.system, s);
+  h.settleAtRest(s);
   RungeKuttaMersonIntegrator integ(h.system);
   integ.setAccuracy(1e-12);
   // a stuck platform changes nothing the error control sees: cap the step so that the stick
@@ -47,15 +47,15 @@ void checkAgainstClosedForm(double B, int periods, double tol) {
   EXPECT_GT(h.switches().size(), 2u * (periods - 1)) << "B = " << B << ": too few switches";
 }
 
-TEST(CoulombElement, HoldingForceIsMinusTheAppliedForce) {
+TEST(DrivenCoulombContact, HoldingForceIsMinusTheAppliedForce) {
   // a constant push P on a stuck platform: friction must supply -P
   for (double P : {0.3, -0.7}) {
     Harness h(0.0);
     Force::MobilityConstantForce(h.forces, h.slider, 0, P);
     h.system.realizeTopology();
     State s = h.system.getDefaultState();
-    EXPECT_EQ(h.element->settleAtRest(h.system, s), PlatformMode::Stuck);
-    EXPECT_NEAR(h.element->holdingForce(s), -P, 1e-12);
+    EXPECT_EQ(h.settleAtRest(s), PlatformMode::Stuck);
+    EXPECT_NEAR(h.contact->holdingForce(s), -P, 1e-12);
     EXPECT_NEAR(h.slider.getOneUDot(s, MobilizerUIndex(0)), 0.0, 1e-12);
   }
   // beyond the bound it slips the way it is pushed
@@ -63,31 +63,31 @@ TEST(CoulombElement, HoldingForceIsMinusTheAppliedForce) {
   Force::MobilityConstantForce(h.forces, h.slider, 0, -1.5);
   h.system.realizeTopology();
   State s = h.system.getDefaultState();
-  EXPECT_EQ(h.element->settleAtRest(h.system, s), PlatformMode::SlipNegative);
+  EXPECT_EQ(h.settleAtRest(s), PlatformMode::SlipNegative);
   EXPECT_NEAR(h.slider.getOneUDot(s, MobilizerUIndex(0)), -0.5, 1e-12);
 }
 
 // Tolerance 1e-8 (the bound): the integrator runs at 1e-12 and the switches are located
 // within a window of ~1e-13 in time, so the sampled velocity is good to ~1e-10.
-TEST(CoulombElement, StickSlipResponseMatchesClosedFormAtB14) {
+TEST(DrivenCoulombContact, StickSlipResponseMatchesClosedFormAtB14) {
   checkAgainstClosedForm(1.4, 12, 1e-8);
 }
 
-TEST(CoulombElement, PureSlipResponseMatchesClosedFormAtB2) {
+TEST(DrivenCoulombContact, PureSlipResponseMatchesClosedFormAtB2) {
   checkAgainstClosedForm(2.0, 40, 1e-8);
 }
 
-TEST(CoulombElement, StaysStillForWeakDrive) {
+TEST(DrivenCoulombContact, StaysStillForWeakDrive) {
   for (double B : {0.5, 0.999, 1.0}) {
     Harness h(B);
     State s = h.system.getDefaultState();
-    h.element->settleAtRest(h.system, s);
+    h.settleAtRest(s);
     RungeKuttaMersonIntegrator integ(h.system);
     integ.setAccuracy(1e-10);
     TimeStepper ts(h.system, integ);
     ts.initialize(s);
     ts.stepTo(6 * Pi);
-    EXPECT_EQ(h.element->mode(ts.getState()), PlatformMode::Stuck) << "B = " << B;
+    EXPECT_EQ(h.contact->mode(ts.getState()), PlatformMode::Stuck) << "B = " << B;
     EXPECT_EQ(h.slider.getOneQ(ts.getState(), MobilizerQIndex(0)), 0.0) << "B = " << B;
     EXPECT_TRUE(h.switches().empty()) << "B = " << B;
   }
