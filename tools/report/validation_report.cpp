@@ -407,7 +407,8 @@ void mdSummary(std::ostream& md, const ValidationResults& r) {
 void mdBetas(std::ostream& md, const ValidationResults& r, const std::vector<std::string>& plots) {
   md << "## 1. β₁, β₂ against the full model's Coulomb element\n\n"
      << "The Simbody Coulomb contact of the full model (`contact/simbody/coulomb_contact.h`: its "
-        "witness; `resolveSwitch` and `settleAtRest` in `driven_coulomb_harness.h`), on a unit mass with unit friction bound, "
+        "witness; `resolveSwitch` and `settleAtRest` in `driven_coulomb_harness.h`), on a unit "
+        "mass with unit friction bound, "
         "driven by B sin t (eq. c1, B = s), started at rest and run until its switch instants "
         "repeat from one drive period to the next (to "
      << shortSci(DrivenCoulombOptions{}.periodic_tol)
