@@ -1,10 +1,11 @@
 // Issue 17, item 6: a sweep of ten million points starts at once and its memory does not grow
-// with the grid. Under run_limited.sh (200 MB of address space, killed after 5 s) it is stopped
-// by SIGINT after 3 s (2 s failed once on a loaded 2-core machine: no point had finished): it
-// must by then have run points and written them, then end as an
+// with the grid. Under run_limited.sh (200 MB of address space, killed after 30 s) it is stopped
+// by SIGINT after 10 s: it must by then have run points and written them, then end as an
 // interrupted sweep does (exit 3, rows kept, sweep.json saying so). Checking every point's rig
 // before starting (what the sweep did before) takes minutes for such a grid and holds one rig per
-// point: killed by the time limit (exit 137) or out of memory (exit 1).
+// point: killed by the time limit (exit 137) or out of memory (exit 1). (Idle, the stop handler is
+// in place and 1500 rows written within 0.5 s; on a loaded 2-core machine a SIGINT after 2 s
+// failed it once, and one after 3 s came before the handler (exit 130): hence 10 s.)
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -19,8 +20,8 @@ namespace {
 TEST(HostileSweep, TenMillionPointsStartAtOnceInBoundedMemory) {
   const std::string out = testing_support::scratchDir("hostile", "bigsweep");
   testing_support::RunIn in;
-  in.env = shellQuote(sourceDir() + "/tests/hostile/run_limited.sh") +
-           " timeout --preserve-status -s INT 3";
+  in.env = "RUN_LIMITED_SECONDS=30 " + shellQuote(sourceDir() + "/tests/hostile/run_limited.sh") +
+           " timeout --preserve-status -s INT 10";
   // 3162 x 3162 = 9 998 244 points of the slow flow, over friction and the start's phase
   const CommandResult r =
       runMetrosync("sweep " + shellQuote(sourceDir() + "/yaml/rigs/experiment-scaled.yaml") +
@@ -34,7 +35,7 @@ TEST(HostileSweep, TenMillionPointsStartAtOnceInBoundedMemory) {
   std::string line;
   long rows = -1;  // the header
   while (std::getline(regimes, line)) ++rows;
-  EXPECT_GE(rows, 1) << "no point finished within 3 s";
+  EXPECT_GE(rows, 1) << "no point finished within 10 s";
   const nlohmann::json status = nlohmann::json::parse(std::ifstream(out + "/sweep.json"));
   EXPECT_EQ(status["points"]["grid"].get<long>(), 3162L * 3162L);
   EXPECT_TRUE(status["interrupted"].get<bool>());
