@@ -6,7 +6,8 @@ namespace metrosync {
 
 std::string StormGuard::why() const {
   std::ostringstream os;
-  os << "event storm: more than " << max_events_ << " events within " << window_periods_
+  const Tier& t = tripped_ ? *tripped_ : burst_;
+  os << "event storm: more than " << t.max_events << " events within " << t.window_periods
      << " fast periods";
   return os.str();
 }

@@ -256,7 +256,6 @@ class PlatformRun {
   }
   void noteDiscontinuity(double t) {
     if (storm_->note(t)) fail(t, storm_->why());
-    if (sustained_storm_->note(t)) fail(t, sustained_storm_->why());
   }
 
   PlatformSystem& ps_;
@@ -272,8 +271,7 @@ class PlatformRun {
   std::vector<EventResolver> resolvers_;
   std::optional<SampleSchedule> schedule_;
   std::optional<StormGuard> storm_;
-  std::optional<StormGuard> sustained_storm_;  // the storm rule's sustained tier
-  State* ev_s_ = nullptr;                      // the state the resolvers act on
+  State* ev_s_ = nullptr;  // the state the resolvers act on
   // grazing guard: the last checked step end, and the state of a redo
   StepEnd prev_, cur_;
   Vector prev_y_;
@@ -596,8 +594,6 @@ PlatformRunResult PlatformRun::run() {
   timer_ = SplitTimer();
   schedule_.emplace(rec_.sampleInterval(), period_, t_end_);
   storm_.emplace(period_);
-  sustained_storm_.emplace(period_, StormGuard::kSustainedEvents,
-                           StormGuard::kSustainedWindowPeriods);
   State s0 = startState();
   result_.ledger.initial_J = energy(ps_, s0);
   std::unique_ptr<Integrator> integ = makeRunIntegrator(s0);
