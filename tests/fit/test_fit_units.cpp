@@ -12,6 +12,7 @@
 
 #include "sim/analysis/fit/data_file.h"
 #include "sim/analysis/fit/fit_statistics.h"
+#include "sim/analysis/fit/least_squares.h"
 #include "sim/analysis/fit/likelihood_region.h"
 #include "sim/analysis/fit/noise_level.h"
 #include "tests/fit/fit_data.h"
@@ -124,6 +125,71 @@ TEST(FitStatistics, LinearModelErrorsAndTheIdentifiabilityRule) {
   const Uncertainty c = uncertainty(twice, v, free, {false, false, true});
   EXPECT_GE(c.worst, 0);
   EXPECT_NE(c.why.find("combination"), std::string::npos) << c.why;
+}
+
+// A key the record determines to 1e-9 of itself, as a long record's late phase does (docs/bench/
+// fit.md, seed 2's record 7): r_i = sin(phi_i(x)) - sin(phi_i(1)) - e_i, phi_i = 2 pi t_i (10 +
+// 1e4 (x - 1)), t_i in [0, 1), N(0, 1e-3) noise. A difference over 1e-4 of x turns the late
+// phases by up to 2 pi: a secant across a wrapped phase, not the derivative.
+struct WrappingPhase {
+  static constexpr int m = 2000;
+  static constexpr double kSigma = 1e-3, kRate = 1e4;
+  Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(m, 0.0, 1.0 - 1.0 / m), e{m};
+  WrappingPhase() {
+    std::mt19937 gen(7);
+    std::normal_distribution<double> noise(0.0, kSigma);
+    for (int i = 0; i < m; ++i) e(i) = noise(gen);
+  }
+  Eigen::VectorXd phase(double x) const { return 2 * M_PI * t.array() * (10 + kRate * (x - 1)); }
+  bool operator()(const std::vector<double>& x, double* r) const {
+    Eigen::Map<Eigen::VectorXd>(r, m) =
+        phase(x[0]).array().sin() - phase(1.0).array().sin() - e.array();
+    return true;
+  }
+  // the derivative in closed form
+  Eigen::VectorXd column(double x) const {
+    return (phase(x).array().cos() * (2 * M_PI * kRate) * t.array()).matrix();
+  }
+};
+
+// The Jacobian is the derivative (to 1e-4), and the standard error sigma / |J| (to 1e-3): the
+// difference step shrinks where the model stops being linear over it (difference_step.h).
+TEST(FitStatistics, DifferenceStepStaysWhereTheModelIsLinear) {
+  const WrappingPhase model;
+  const std::vector<double> v = {1.0};
+  const std::vector<FreeParameter> free = {key("x", 1.0)};
+  const Linearization lin = linearize(std::cref(model), model.m, v, free);
+  const Eigen::VectorXd exact = model.column(1.0);
+  EXPECT_LT((lin.J.col(0) - exact).norm(), 1e-4 * exact.norm());
+  EXPECT_EQ(lin.smooth_rows, model.m);
+  const Uncertainty u = uncertainty(lin, v, free, {false});
+  const double se = std::sqrt(model.e.squaredNorm() / (model.m - 1)) / exact.norm();
+  EXPECT_NEAR(*u.std_errors[0], se, 1e-3 * se);
+}
+
+// The local solver reaches the least-squares minimum of that key (to a quarter of its standard
+// error: the solver stops at a change of 1e-8 of the key) from 300 standard errors off
+// (a turn of 0.02 rad of the last phase): its derivatives take the same step rule. The minimum:
+// Gauss-Newton with the closed-form derivative.
+TEST(FitStatistics, SolverConvergesOnAKeyDeterminedToOnePartIn1e9) {
+  const WrappingPhase model;
+  double best = 1.0;
+  for (int k = 0; k < 20; ++k) {
+    Eigen::VectorXd r(model.m);
+    model({best}, r.data());
+    const Eigen::VectorXd J = model.column(best);
+    best -= J.dot(r) / J.squaredNorm();
+  }
+  const double se = model.kSigma / model.column(best).norm();
+  LocalProblem p;
+  p.residuals = std::cref(model);
+  p.residual_count = model.m;
+  p.start = {best + 300 * se};
+  p.scale = {1.0};
+  p.lower = {0.0};
+  p.held = {false};
+  const LocalSolution s = solveLocal(p);
+  EXPECT_NEAR(s.values[0], best, 0.25 * se) << s.report;
 }
 
 // The likelihood region's interval (likelihood_region.h) against a brute-force scan of the

@@ -166,6 +166,11 @@ Outcome fitRecord(const Truth& truth, const Settings& set, int index, std::mt199
     opt.free.push_back(kKeys[k]);
     opt.sets.push_back(std::string(kKeys[k]) + "=" + numberText(o.start[k], 17));
   }
+  std::ofstream cmd(stem + ".command");  // the same fit from the command line
+  cmd << "metrosync fit " << stem << ".yaml " << stem << ".csv";
+  for (std::size_t k = 0; k < opt.free.size(); ++k)
+    cmd << " --free " << opt.free[k] << " --set " << opt.sets[k];
+  cmd << "\n";
   if (data.empty()) return o.error = "the " + set.engine + " run failed", o;
   const auto t0 = std::chrono::steady_clock::now();
   const double c0 = threadCpuSeconds();
@@ -274,7 +279,9 @@ int main(int argc, char** argv) {
   app.add_option("--jobs", jobs, "records fitted at once, each on its own thread (default 1)")
       ->check(CLI::Range(1, 64));
   app.add_option("--out", out, "markdown file to write (default docs/bench/fit.md)");
-  app.add_option("--keep", keep, "keep each record's rig and data (recordI.yaml, .csv) in DIR");
+  app.add_option(
+      "--keep", keep,
+      "keep each record's rig, data and fit command (recordI.yaml, .csv, .command) in DIR");
   CLI11_PARSE(app, argc, argv);
   set.dir =
       !keep.empty()

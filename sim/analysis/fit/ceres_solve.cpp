@@ -7,14 +7,12 @@
 #include <stdexcept>
 
 #include "sim/analysis/fit/ceres_plugin.h"
+#include "sim/analysis/fit/difference_step.h"
 
 namespace metrosync {
 
 namespace {
 
-// Central-difference step, relative to the parameter (in units of its scale): the simulation's
-// own relative error (simulation.accuracy, 1e-8 by default) stays 1e-4 below the differences.
-constexpr double kDiffStep = 1e-4;
 // The solver stops when the cost changes by less than this fraction in a step.
 constexpr double kFunctionTolerance = 1e-10;
 // The model is run this far (in units of the scale) inside a lower bound: a rig may not exist at
@@ -43,6 +41,65 @@ struct Functor {
       if (!std::isfinite(r[i])) return false;
     return true;
   }
+};
+
+// The residuals and their central differences (one-sided where the model fails on one side) over
+// each key's own step (difference_step.h): Ceres' numeric differences take one relative step for
+// every key, too long for a key the record determines to 1e-5 of itself. A shrunk step is kept
+// for the next evaluation (and doubled back towards the first while it moves the residuals by
+// less than a quarter of kStepRise).
+class DifferenceCost : public ceres::DynamicCostFunction {
+ public:
+  explicit DifferenceCost(Functor f) : f_(std::move(f)) {}
+  void addKey() {
+    AddParameterBlock(1);
+    shrink_.push_back(1.0);
+  }
+  bool Evaluate(double const* const* x, double* r, double** jac) const override {
+    if (!f_(x, r)) return false;
+    if (jac == nullptr) return true;
+    const int m = num_residuals();
+    double sigma2 = 0.0;
+    for (int i = 0; i < m; ++i) sigma2 += r[i] * r[i] / m;
+    for (std::size_t b = 0; b < shrink_.size(); ++b)
+      if (jac[b] != nullptr && !column(x, r, sigma2, b, jac[b])) return false;
+    return true;
+  }
+
+ private:
+  // d r / d x_b into col; false when the model fails on both sides
+  bool column(double const* const* x, const double* r0, double sigma2, std::size_t b,
+              double* col) const {
+    const int m = num_residuals();
+    const double h0 = firstDifferenceStep(x[b][0]);
+    std::vector<double> plus(m), minus(m), moved(shrink_.size());
+    std::vector<const double*> at(shrink_.size());
+    for (std::size_t c = 0; c < at.size(); ++c) moved[c] = x[c][0], at[c] = &moved[c];
+    for (double h = shrink_[b] * h0;;) {
+      moved[b] = x[b][0] + h;
+      const bool p = f_(at.data(), plus.data());
+      moved[b] = x[b][0] - h;
+      const bool q = f_(at.data(), minus.data());
+      if (!p && !q) return false;
+      const double* hi = p ? plus.data() : r0;
+      const double* lo = q ? minus.data() : r0;
+      const double span = (p ? h : 0.0) + (q ? h : 0.0);
+      double rise = 0.0;
+      for (int i = 0; i < m; ++i) {
+        col[i] = (hi[i] - lo[i]) / span;
+        rise += col[i] * h * col[i] * h;
+      }
+      rise = sigma2 > 0 ? rise / sigma2 : 0.0;
+      const double next = shrunkDifferenceStep(h, h0, rise);
+      if (next == 0.0) {
+        shrink_[b] = rise < kStepRise / 4 ? std::min(1.0, 2 * h / h0) : h / h0;
+        return true;
+      }
+      h = next;
+    }
+  }
+  Functor f_;
+  mutable std::vector<double> shrink_;  // per key: its step over its first step
 };
 
 // Keeps the last accepted point: when a later step's derivatives cannot be evaluated (the solve
@@ -77,18 +134,14 @@ LocalSolution solveLocalWithCeres(const LocalProblem& p) {
     throw std::invalid_argument("solveLocal: inconsistent problem");
   std::vector<double> x(k);
   for (std::size_t j = 0; j < k; ++j) x[j] = p.start[j] / p.scale[j];
-  ceres::NumericDiffOptions nd;
-  nd.relative_step_size = kDiffStep;
-  auto* f = new Functor{&p, {}};
-  auto* cost = new ceres::DynamicNumericDiffCostFunction<Functor, ceres::CENTRAL>(
-      f, ceres::TAKE_OWNERSHIP, nd);
+  Functor f{&p, {}};
   std::vector<double*> blocks;
   for (std::size_t j = 0; j < k; ++j) {
-    f->block_of.push_back(p.held[j] ? -1 : static_cast<int>(blocks.size()));
-    if (p.held[j]) continue;
-    blocks.push_back(&x[j]);
-    cost->AddParameterBlock(1);
+    f.block_of.push_back(p.held[j] ? -1 : static_cast<int>(blocks.size()));
+    if (!p.held[j]) blocks.push_back(&x[j]);
   }
+  auto* cost = new DifferenceCost(f);
+  for (std::size_t b = 0; b < blocks.size(); ++b) cost->addKey();
   cost->SetNumResiduals(p.residual_count);
   LocalSolution out{p.start, 0, true, ""};
   if (blocks.empty()) return delete cost, out;

@@ -6,14 +6,12 @@
 #include <stdexcept>
 
 #include "base/number_text.h"
+#include "sim/analysis/fit/difference_step.h"
 
 namespace metrosync {
 
 namespace {
 
-// Central-difference step in units of each key's scale: the simulation's own relative error
-// (simulation.accuracy, 1e-8 by default) stays 1e-4 below the differences.
-constexpr double kDiffStep = 1e-4;
 // Columns from steps this many times smaller and larger agree with it to kSmoothAgreement where
 // the model is smooth and nearly linear over that range; they do not past an escapement at
 // grazing (a tick there or not: the difference jumps by the same amount whatever the step) or
@@ -65,6 +63,22 @@ bool difference(const ResidualFunction& f, const std::vector<double>& values,
   return plus || minus;
 }
 
+// The difference step of key j (in units of its scale, difference_step.h) and its column `col`;
+// sigma2: the residuals' mean square at `values`.
+double linearStep(const ResidualFunction& f, const std::vector<double>& values,
+                  const std::vector<FreeParameter>& free, std::size_t j, const Eigen::VectorXd& r0,
+                  double sigma2, Eigen::VectorXd& col) {
+  const double h0 = firstDifferenceStep(values[j] / free[j].scale);
+  for (double h = h0;;) {
+    if (!difference(f, values, free, j, h, r0, col))
+      throw std::invalid_argument("the model fails on both sides of " + free[j].name);
+    const double next =
+        sigma2 > 0 ? shrunkDifferenceStep(h, h0, (col * h).squaredNorm() / sigma2) : 0.0;
+    if (next == 0.0) return h;
+    h = next;
+  }
+}
+
 }  // namespace
 
 Linearization linearize(const ResidualFunction& f, int m, const std::vector<double>& values,
@@ -75,10 +89,9 @@ Linearization linearize(const ResidualFunction& f, int m, const std::vector<doub
   if (!f(values, lin.r.data())) throw std::invalid_argument("the model fails at the optimum");
   Eigen::VectorXd col(m), other(m);
   lin.smooth_rows = m;
+  const double sigma2 = lin.r.squaredNorm() / m;
   for (std::size_t j = 0; j < values.size(); ++j) {
-    const double h = kDiffStep * std::max(std::abs(values[j]) / free[j].scale, 1.0);
-    if (!difference(f, values, free, j, h, lin.r, col))
-      throw std::invalid_argument("the model fails on both sides of " + free[j].name);
+    const double h = linearStep(f, values, free, j, lin.r, sigma2, col);
     lin.J.col(static_cast<int>(j)) = col;
     for (const double step : {h / kStepRatio, h * kStepRatio})
       if (find_smooth && difference(f, values, free, j, step, lin.r, other))

@@ -40,8 +40,15 @@ constexpr double kPriorWidth = 0.5;
 constexpr double kLossNoises = 3.0;
 // The search stops after this many starts in a row that lead to optima already found.
 constexpr int kStartsInVain = 2;
-// Two optima are one when every key agrees to this fraction of its scale, and their rms too.
+// The search's test of a start in vain: it led into a valley already found when every key agrees
+// to this fraction of its scale with an optimum found, and the rms too.
 constexpr double kSameOptimum = 1e-3;
+// Two optima are one (the same minimum, solved twice) when every key agrees to this fraction of
+// its scale: the solver's own precision (its parameter tolerance, 1e-8), far below a standard
+// error. Coarser would be wrong: a long record's standard errors reach 4e-5 of a key
+// (docs/bench/fit.md, seed 2's record 7), and neighbouring optima a few of them apart are what
+// the likelihood region (likelihood_region.h) is made of; kSameOptimum would merge them.
+constexpr double kSameMinimum = 1e-6;
 // The profile's points, in standard errors, and the least rise of the sum of squares there (in
 // its variance) that still determines the key (a linear model rises by 4).
 constexpr double kProfileSigmas = 2.0;
@@ -255,10 +262,20 @@ Optimum optimumOf(const ModelFit& mf, const std::vector<double>& start,
           atNoiseLevel(rmsByQuantity(mf.data(), predicted), mf.data().noise)};
 }
 
-bool sameOptimum(const FitProblem& p, const Optimum& a, const Optimum& b) {
-  if (!(std::abs(a.rms - b.rms) <= kSameOptimum * std::max(a.rms, b.rms))) return false;
+// a and b agree to `fraction` of each key's scale (and of their rms)
+bool sameOptimum(const FitProblem& p, const Optimum& a, const Optimum& b,
+                 double fraction = kSameOptimum) {
+  if (!(std::abs(a.rms - b.rms) <= fraction * std::max(a.rms, b.rms))) return false;
   for (std::size_t j = 0; j < p.free.size(); ++j)
-    if (!(std::abs(a.values[j] - b.values[j]) <= kSameOptimum * p.free[j].scale)) return false;
+    if (!(std::abs(a.values[j] - b.values[j]) <= fraction * p.free[j].scale)) return false;
+  return true;
+}
+
+// c's optimum is not in `found` yet (kSameMinimum)
+template <class List, class Item>
+bool isNew(const FitProblem& p, const List& found, const Item& c) {
+  for (const auto& f : found)
+    if (sameOptimum(p, f.optimum, c.optimum, kSameMinimum)) return false;
   return true;
 }
 
@@ -369,7 +386,7 @@ std::vector<Candidate> search(const FitProblem& p, const ModelFit& mf,
     bool known = false;
     for (const Candidate& f : found) known = known || sameOptimum(p, f.optimum, c.optimum);
     in_vain = known ? in_vain + 1 : 0;
-    if (!known) found.push_back(std::move(c));
+    if (isNew(p, found, c)) found.push_back(std::move(c));
     if (at_noise) break;
   }
   std::stable_sort(found.begin(), found.end(), [](const Candidate& a, const Candidate& b) {
@@ -378,8 +395,12 @@ std::vector<Candidate> search(const FitProblem& p, const ModelFit& mf,
   return found;
 }
 
-// The probes' distances along each principal axis, in standard deviations.
+// The probes' distances along each principal axis, in standard deviations; along the weakest
+// also the far ones: where the cost is rugged (dimples narrower than the valley they sit in) an
+// optimum as low as the best can lie 8-9 of the best's curvature errors away (docs/bench/fit.md,
+// seed 2's record 7), out of reach of the near probes' solves.
 constexpr double kProbeSigmas[] = {-4.0, -2.0, 2.0, 4.0};
+constexpr double kFarProbeSigmas[] = {-16.0, -8.0, 8.0, 16.0};
 
 // Adds the optimum solved from y to `found` unless it is one already there.
 void solveFrom(const FitProblem& p, const ModelFit& mf, const Final& fin,
@@ -393,9 +414,19 @@ void solveFrom(const FitProblem& p, const ModelFit& mf, const Final& fin,
     return;  // the model fails on the way: no optimum there
   }
   c.strategy = found.front().strategy + how;
-  for (const Candidate& f : found)
-    if (sameOptimum(p, f.optimum, c.optimum)) return;
-  found.push_back(c);
+  if (isNew(p, found, c)) found.push_back(c);
+}
+
+// x moved `sigmas` standard deviations along the covariance's principal axis `axis` (its keys'
+// lower bounds kept)
+std::vector<double> along(const std::vector<double>& x,
+                          const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& eig,
+                          std::size_t axis, double sigmas, const FitProblem& p) {
+  std::vector<double> y = x;
+  const double sd = std::sqrt(std::max(eig.eigenvalues()(axis), 0.0));
+  for (std::size_t j = 0; j < x.size(); ++j)
+    y[j] = std::max(x[j] + sigmas * sd * eig.eigenvectors()(j, axis), p.free[j].lower);
+  return y;
 }
 
 // Probes around the best optimum along each principal axis of its covariance, at -+2 and -+4
@@ -427,15 +458,12 @@ void probe(const FitProblem& p, const ModelFit& mf, const Final& fin, const std:
   std::vector<std::vector<double>> weakest;
   for (std::size_t axis = 0; axis < k; ++axis)
     for (const double sigmas : kProbeSigmas) {
-      std::vector<double> y = x;
-      for (std::size_t j = 0; j < k; ++j)
-        y[j] = std::max(x[j] + sigmas * std::sqrt(std::max(eig.eigenvalues()(axis), 0.0)) *
-                                   eig.eigenvectors()(j, axis),
-                        p.free[j].lower);
+      const std::vector<double> y = along(x, eig, axis, sigmas, p);
       if (axis + 1 == k) weakest.push_back(y);
       const double s = fin.ssr(y);
       if (s < best) best = s, lowest = y;
     }
+  for (const double sigmas : kFarProbeSigmas) weakest.push_back(along(x, eig, k - 1, sigmas, p));
   if (!lowest.empty()) solveFrom(p, mf, fin, held, lowest, ", then a probe around it", found);
   for (const std::vector<double>& y : weakest)
     if (y != lowest)
