@@ -395,12 +395,8 @@ std::vector<Candidate> search(const FitProblem& p, const ModelFit& mf,
   return found;
 }
 
-// The probes' distances along each principal axis, in standard deviations; along the weakest
-// also the far ones: where the cost is rugged (dimples narrower than the valley they sit in) an
-// optimum as low as the best can lie 8-9 of the best's curvature errors away (docs/bench/fit.md,
-// seed 2's record 7), out of reach of the near probes' solves.
+// The probes' distances along each principal axis, in standard deviations.
 constexpr double kProbeSigmas[] = {-4.0, -2.0, 2.0, 4.0};
-constexpr double kFarProbeSigmas[] = {-16.0, -8.0, 8.0, 16.0};
 
 // Adds the optimum solved from y to `found` unless it is one already there.
 void solveFrom(const FitProblem& p, const ModelFit& mf, const Final& fin,
@@ -463,7 +459,6 @@ void probe(const FitProblem& p, const ModelFit& mf, const Final& fin, const std:
       const double s = fin.ssr(y);
       if (s < best) best = s, lowest = y;
     }
-  for (const double sigmas : kFarProbeSigmas) weakest.push_back(along(x, eig, k - 1, sigmas, p));
   if (!lowest.empty()) solveFrom(p, mf, fin, held, lowest, ", then a probe around it", found);
   for (const std::vector<double>& y : weakest)
     if (y != lowest)
