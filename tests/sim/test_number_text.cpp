@@ -63,8 +63,9 @@ TEST(NumberText, IsPrintfForEveryPrecisionAndNotation) {
     for (int p = 0; p <= 17; ++p) {
       ASSERT_EQ(numberText(v, p), printed("g", p, v)) << "%g, p = " << p;
       ASSERT_EQ(numberText(v, p, Notation::Scientific), printed("e", p, v)) << "%e, p = " << p;
-      if (std::abs(v) < 1e30)
+      if (std::abs(v) < 1e30) {
         ASSERT_EQ(numberText(v, p, Notation::Fixed), printed("f", p, v)) << "%f, p = " << p;
+      }
     }
   }
   EXPECT_EQ(numberText(0.1), "0.1");  // the default: %g

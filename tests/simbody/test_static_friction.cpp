@@ -85,8 +85,12 @@ TEST(StaticFriction, SlipsAtTheStaticBoundUnderTheKineticForce) {
     EXPECT_NEAR(r.report.final_trajectory_row[1], 2 * x_k - x0, 1e-6 * (x0 - x_k));
     EXPECT_EQ(r.report.final_trajectory_row.back(), 0.0) << "stuck at the end";
     // the energy ledger (spring energy against friction's work) closes
-    if (engine == "direct") ASSERT_TRUE(r.report.has_ledger);
-    if (r.report.has_ledger) EXPECT_LE(std::abs(r.report.ledger.relativeResidual()), 1e-6);
+    if (engine == "direct") {
+      ASSERT_TRUE(r.report.has_ledger);
+    }
+    if (r.report.has_ledger) {
+      EXPECT_LE(std::abs(r.report.ledger.relativeResidual()), 1e-6);
+    }
   }
 }
 

@@ -96,6 +96,15 @@ TEST(NetworkSweep, CouplingMapGivesTheNetworkLabelOfEachRun) {
   EXPECT_EQ(m["model"], "full");
   EXPECT_EQ(m["engine"], "direct");
   EXPECT_TRUE(m["complete"].get<bool>());
+  // timings.csv: a network's point has its engine's CPU seconds as a rig's has, inside its own
+  const auto timing = rows(d + "/sweep/timings.csv");
+  ASSERT_EQ(timing.size(), 4u);
+  for (std::size_t k = 1; k < timing.size(); ++k) {
+    ASSERT_EQ(timing[k].size(), 4u) << "row " << k << ": an empty engine_cpu_seconds";
+    const double cpu = std::stod(timing[k][2]), engine = std::stod(timing[k][3]);
+    EXPECT_GT(engine, 0.0) << "row " << k;
+    EXPECT_LE(engine, cpu) << "row " << k;
+  }
 }
 
 TEST(NetworkSweep, TwoKeysMakeAMapAndTheSlowFlowIsRefused) {

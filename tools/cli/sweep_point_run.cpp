@@ -205,7 +205,8 @@ std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
   SweepPoint p;
   p.index = g;
   p.complete = o->report.complete;
-  if (!in.net) p.engine_cpu_seconds = threadCpuSeconds() - engine_cpu0;  // NaN: a network's
+  // the engine's run with the sink it streams into (a rig's envelope window, a network's verdict)
+  p.engine_cpu_seconds = threadCpuSeconds() - engine_cpu0;
   if (o->last && static_cast<int>(o->last->A.size()) == n &&
       static_cast<int>(o->last->psi.size()) == n - 1) {
     const EnvelopeRow& last = *o->last;
