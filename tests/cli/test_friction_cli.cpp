@@ -66,7 +66,7 @@ TEST(FrictionCli, BadStaticCoefficientIsRefusedWithFileLineAndKey) {
 TEST(FrictionCli, TheSlowFlowRefusesStaticAboveKinetic) {
   const std::string rig = rigWithFriction("slow", "{law: coulomb, mu: 6.5e-4, mu_static: 1e-3}");
   const std::string dir = fs::path(rig).parent_path().string();
-  for (const std::string cmd :
+  for (const std::string& cmd :
        {"run " + shellQuote(rig) + " --model slow", "compare " + shellQuote(rig),
         "continue " + shellQuote(rig) + " --param platform.friction.mu --to 2e-3",
         "basin " + shellQuote(rig) + " --random metronomes.0.start.angle=0:0.8 --samples 2"}) {

@@ -94,7 +94,9 @@ TEST(SweepMemory, ExternalSortIsStableAndBounded) {
       sort.forEach([&](long g, const std::string& text) { got.emplace_back(g, text); });
       EXPECT_EQ(got, want) << "runs of " << chunk << " bytes, reading " << pass;
     }
-    if (chunk < 1000) EXPECT_LE(sort.maxLinesHeld(), chunk / 20 + 1) << chunk;
+    if (chunk < 1000) {
+      EXPECT_LE(sort.maxLinesHeld(), chunk / 20 + 1) << chunk;
+    }
   }
   EXPECT_TRUE(fs::is_empty(d)) << "the runs' private folders are removed";
 }

@@ -217,9 +217,10 @@ TEST(Install, DebianPackageDeclaresItsDependenciesAndRunsFromItsFiles) {
   for (const char* lib : {"libsimbody", "libyaml-cpp", "libstdc++6", "gnuplot"})
     EXPECT_NE(depends.find(lib), std::string::npos) << lib << " missing in: " << depends;
   const bool python = fs::exists(kBuild / "python/metrosync/__init__.py");
-  if (python)  // the module imports numpy and is made for one Python version
+  if (python) {  // the module imports numpy and is made for one Python version
     for (const char* dep : {"python3-numpy", "python3 (>= 3.", "python3 (<< 3."})
       EXPECT_NE(depends.find(dep), std::string::npos) << dep << " missing in: " << depends;
+  }
 
   const std::string files = sh("dpkg-deb -c " + shellQuote(deb)).out;
   for (const char* f : {"./usr/bin/metrosync", "./usr/share/man/man1/metrosync.1.gz",
