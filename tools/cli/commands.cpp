@@ -291,7 +291,7 @@ RunOutcome runNetwork(const Options& opt, const Network& net, const std::string&
   installStopHandlers();  // before any file exists
   const std::optional<OutputDir> dir = openOutputDir(opt, net.name, "run");
   NetworkFiles files(*dir, net);
-  RunReport report = engine.runNetwork(net, files);
+  RunReport report = engine.run(net, files);
   const auto t0 = std::chrono::steady_clock::now();
   files.commit();
   report.write_seconds =

@@ -78,10 +78,10 @@ NetworkFiles::NetworkFiles(const OutputDir& dir, const Network& net)
     : impl_(std::make_unique<Impl>(dir, net)) {}
 NetworkFiles::~NetworkFiles() = default;
 
-void NetworkFiles::sample(double t, const std::vector<double>& y,
-                          const std::vector<PlatformMode>& modes) {
+void NetworkFiles::stateSample(double t, const std::vector<double>& y,
+                               const std::vector<PlatformMode>& modes) {
   Impl& m = *impl_;
-  m.verdict.sample(t, y, modes);
+  m.verdict.stateSample(t, y, modes);
   std::vector<double> row{t};
   for (int p = 0; p < m.lay.platforms; ++p) {
     const bool coulomb = m.eq.block(p).friction.setValued() && m.eq.block(p).moves;

@@ -14,17 +14,17 @@
 #include <vector>
 
 #include "models/network.h"
-#include "sim/record/network_report.h"
+#include "sim/record/run_report.h"
 #include "tools/report/outputs.h"
 
 namespace metrosync {
 
-class NetworkFiles : public NetworkSink {
+class NetworkFiles : public StateSink {
  public:
   NetworkFiles(const OutputDir& dir, const Network& net);
   ~NetworkFiles() override;
-  void sample(double t, const std::vector<double>& y,
-              const std::vector<PlatformMode>& modes) override;
+  void stateSample(double t, const std::vector<double>& y,
+                   const std::vector<PlatformMode>& modes) override;
   void commit();
   std::vector<std::string> fileNames() const;
   // the network's verdict in summary.json (runSummaryJson, tools/report/outputs.h): a single
