@@ -21,7 +21,7 @@
 // within about a minute.
 //
 // Networks of platforms (docs/networks.md) are compared the same way, sample by sample, on the
-// network engines of both (runNetworkDirect, runNetworkSimbody).
+// network entries of both (runNetworkDirect, runSimbody).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -78,8 +78,8 @@ NetworkFiles::NetworkFiles(const OutputDir& dir, const Network& net)
     : impl_(std::make_unique<Impl>(dir, net)) {}
 NetworkFiles::~NetworkFiles() = default;
 
-void NetworkFiles::stateSample(double t, const std::vector<double>& y,
-                               const std::vector<PlatformMode>& modes) {
+void NetworkFiles::add(double t, const std::vector<double>& y,
+                       const std::vector<PlatformMode>& modes) {
   Impl& m = *impl_;
   m.verdict.stateSample(t, y, modes);
   std::vector<double> row{t};

@@ -19,12 +19,14 @@
 
 namespace metrosync {
 
-class NetworkFiles : public StateSink {
+// A network's part of the one file writer (FileSink, tools/report/outputs.h, which hands it the
+// run's states).
+class NetworkFiles {
  public:
   NetworkFiles(const OutputDir& dir, const Network& net);
-  ~NetworkFiles() override;
-  void stateSample(double t, const std::vector<double>& y,
-                   const std::vector<PlatformMode>& modes) override;
+  ~NetworkFiles();
+  // one sample (RunSink::stateSample)
+  void add(double t, const std::vector<double>& y, const std::vector<PlatformMode>& modes);
   void commit();
   std::vector<std::string> fileNames() const;
   // the network's verdict in summary.json (runSummaryJson, tools/report/outputs.h): a single

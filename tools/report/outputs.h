@@ -24,6 +24,9 @@
 
 namespace metrosync {
 
+class NetworkFiles;
+struct Network;
+
 // `runs/<rig name>-<command>`, the rig name reduced to characters safe in a file name. With
 // overrides (--set, in the order given) `-<hash>` is appended: 8 hex digits of overridesHash, so
 // that runs of one rig with different overrides do not share (and overwrite) a folder; without
@@ -107,13 +110,18 @@ struct RunInterrupted : std::runtime_error {
   double t;  // when, in the rig's time unit
 };
 
-// The RunSink of a command: streams trajectory.csv and envelope.csv into `dir`, and keeps what the
-// summary and plots need (the regime window, a decimated copy of the envelope) in O(N) memory.
-// A stop request (requestStop(), e.g. from a SIGINT handler) makes the next row throw
-// RunInterrupted (once), so that the engine stops and reports what it has.
+// The one file writer, the RunSink of a command: a single rig's rows stream into trajectory.csv,
+// envelope.csv (and events.csv) in `dir`, keeping what the summary and plots need (the regime
+// window, a decimated copy of the envelope) in O(N) memory; a network's states into the network's
+// files, in its own columns (its part NetworkFiles, tools/report/network_files.h). A stop request
+// (requestStop(), e.g. from a SIGINT handler) makes the next row throw RunInterrupted (once), so
+// that the engine stops and reports what it has.
 class FileSink : public RunSink {
  public:
   FileSink(const OutputDir& dir, const RunFilesOptions& opt);
+  // A network of platforms' files (docs/networks.md): its states, no single rig's rows.
+  FileSink(const OutputDir& dir, const Network& net);
+  ~FileSink() override;
   // No file: the same rows checked and judged, handed only to the tap (the Python module's
   // results in memory without out=, tools/report/run_columns.h).
   explicit FileSink(const RunFilesOptions& opt);
@@ -128,6 +136,15 @@ class FileSink : public RunSink {
                    const std::vector<double>& after) override;
   // stick/slip events tell the regime window what the platform does between trajectory rows
   void eventRow(const char* kind, const std::vector<double>& row) override;
+  bool wantsTrajectory() const override { return !network_; }
+  bool wantsEnvelope() const override { return !network_; }
+  bool wantsEventRows() const override { return !network_; }
+  bool wantsStates() const override { return network_ != nullptr; }
+  void stateSample(double t, const std::vector<double>& y,
+                   const std::vector<PlatformMode>& modes) override;
+  // a network's files: its verdict for summary.json and its rows for the plots (nullptr for a
+  // single rig)
+  const NetworkFiles* network() const { return network_.get(); }
 
   // Writes the rows still queued for the writer threads (their text is made off the run's thread:
   // tools/report/deferred_rows.h), then renames every file written to its final name. Called
@@ -162,6 +179,7 @@ class FileSink : public RunSink {
   DeferredRows::Format envelopeFormat() const;
 
   RunFilesOptions opt_;
+  std::unique_ptr<NetworkFiles> network_;  // a network's files
   std::unique_ptr<AtomicFile> trajectory_, envelope_, events_;
   // the rows' text is made on writer threads (after the files, so they stop first)
   std::unique_ptr<DeferredRows> trajectory_text_, envelope_text_, events_text_;
