@@ -18,6 +18,7 @@
 #include "tools/cli/engines.h"
 #include "tools/report/comparison_csv.h"
 #include "tools/report/network_files.h"
+#include "tools/report/network_plot.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
 #include "tools/report/progress_log.h"

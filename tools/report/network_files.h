@@ -15,7 +15,7 @@
 
 #include "models/network.h"
 #include "sim/record/run_report.h"
-#include "tools/report/outputs.h"
+#include "tools/report/output_dir.h"
 
 namespace metrosync {
 
@@ -46,11 +46,5 @@ class NetworkFiles {
   std::unique_ptr<Impl> impl_;
   std::vector<std::vector<double>> order_rows_, raster_rows_;
 };
-
-// The plots of a network run: order.png (r per platform and overall against tau) and raster.png
-// (metronome against tau, colour = phase relative to its platform's mean). Returns the files made
-// (none when gnuplot is missing).
-std::vector<std::string> plotNetwork(const OutputDir& dir, const NetworkFiles& files,
-                                     const Network& net, const std::string& title);
 
 }  // namespace metrosync
