@@ -36,7 +36,8 @@ class Engine {
   // the network of one, networkOfOne(rig) (run(rig, sink) below); a single rig's run writes its
   // rows exactly as it always has. As the engines' own entry points: a failed simulation gives
   // complete = false; RunInterrupted and SimulationFailure thrown by the sink pass through. An
-  // engine that does not runsNetworks() throws std::logic_error for a network of more than one.
+  // engine that does not runsNetworks() throws std::logic_error for a network that is not a
+  // single rig (Network::isSingleRig).
   virtual RunReport run(const Network& net, RunSink& sink) const = 0;
   RunReport run(const Rig& rig, RunSink& sink) const { return run(networkOfOne(rig), sink); }
   // Does the engine run networks of two or more platforms (docs/networks.md)?

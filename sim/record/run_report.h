@@ -72,8 +72,10 @@ struct RunReport {
 // The one sink of every run: a single rig's rows in the rig's units (trajectory, envelope, event
 // rows and records), and a network's state at every sample (stateSample). A run calls what its
 // model has and the sink wants: a network of two or more platforms has no rows in a single rig's
-// format, so its run calls stateSample only; a single rig's run calls the rows, and on Simbody
-// also stateSample when wantsStates().
+// format, so its run calls stateSample only; a single rig's run calls the rows, and when the sink
+// wantsStates() Simbody's also calls stateSample, while the direct engine runs the rig as a
+// network (states only: its single-rig and network runs are still two, direct_engine.cpp and
+// network_engine.cpp).
 struct RunSink {
   virtual ~RunSink() = default;
   // t, x, xdot, theta_1, thetadot_1, ..., theta_N, thetadot_N, platform (0, 1, -1) in the rig's
@@ -109,7 +111,7 @@ struct RunSink {
                            const std::vector<PlatformMode>& modes) {}
 };
 
-// A sink of states only (a network's files, verdict, animation track): no single rig's rows.
+// A sink of states only (a network's verdict, the animation's track): no single rig's rows.
 struct StateSink : RunSink {
   bool wantsTrajectory() const override { return false; }
   bool wantsEnvelope() const override { return false; }
