@@ -24,6 +24,18 @@ int Network::firstMetronome(int p) const {
   return n;
 }
 
+Network networkOfOne(const Rig& rig) {
+  Network net;
+  net.name = rig.name;
+  net.gravity_m_s2 = rig.gravity_m_s2;
+  net.sim = rig.sim;
+  NetworkPlatform p;
+  p.name = "platform";
+  p.rig = rig;
+  net.platforms.push_back(p);
+  return net;
+}
+
 bool Network::isSingleRig() const {
   return platforms.size() == 1 && couplings.empty() && platforms[0].on < 0 &&
          platforms[0].spring_c_Ns_m == 0.0;

@@ -56,4 +56,8 @@ struct Network {
   Rig scalesRig() const;
 };
 
+// The rig as a network of one platform on the table (the rig's gravity and settings): its
+// toSingleRig() is the rig again.
+Network networkOfOne(const Rig& rig);
+
 }  // namespace metrosync

@@ -8,18 +8,6 @@ namespace metrosync {
 
 using namespace SimTK;
 
-Network networkOfOne(const Rig& rig) {
-  Network net;
-  net.name = rig.name;
-  net.gravity_m_s2 = rig.gravity_m_s2;
-  net.sim = rig.sim;
-  NetworkPlatform p;
-  p.name = "platform";
-  p.rig = rig;
-  net.platforms.push_back(p);
-  return net;
-}
-
 namespace {
 
 // The ground springs and dampers of stacked platforms (-k_p x_p - c_p xdot_p) and the couplings

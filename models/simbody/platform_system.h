@@ -29,9 +29,6 @@
 
 namespace metrosync {
 
-// The rig as a network of one platform on the table (the rig's gravity and settings).
-Network networkOfOne(const Rig& rig);
-
 class PlatformSystem {
  public:
   explicit PlatformSystem(const Network& net);

@@ -56,8 +56,8 @@ struct NetworkVerdict::Impl {
 NetworkVerdict::NetworkVerdict(const Network& net) : impl_(std::make_unique<Impl>(net)) {}
 NetworkVerdict::~NetworkVerdict() = default;
 
-void NetworkVerdict::sample(double t, const std::vector<double>& y,
-                            const std::vector<PlatformMode>&) {
+void NetworkVerdict::stateSample(double t, const std::vector<double>& y,
+                                 const std::vector<PlatformMode>&) {
   Impl& m = *impl_;
   const double tau = t * m.omega0 * m.sp.epsilon;
   std::vector<double> phi(m.lay.n);

@@ -14,16 +14,16 @@
 #include "sim/analysis/network_regime.h"
 #include "sim/analysis/order_parameter.h"
 #include "sim/record/envelope.h"
-#include "sim/record/network_report.h"
+#include "sim/record/run_report.h"
 
 namespace metrosync {
 
-class NetworkVerdict : public NetworkSink {
+class NetworkVerdict : public StateSink {
  public:
   explicit NetworkVerdict(const Network& net);
   ~NetworkVerdict() override;
-  void sample(double t, const std::vector<double>& y,
-              const std::vector<PlatformMode>& modes) override;
+  void stateSample(double t, const std::vector<double>& y,
+                   const std::vector<PlatformMode>& modes) override;
 
   bool empty() const;
   // The network's label ("unknown" when no sample fell in the window).

@@ -11,7 +11,6 @@
 
 #include "models/network.h"
 #include "models/rig.h"
-#include "sim/record/network_report.h"
 #include "sim/record/run_report.h"
 
 namespace metrosync {
@@ -32,17 +31,17 @@ class Engine {
   // sim/engines/plugin_loader.h); throws PluginError when it cannot. selectEngine() calls it, so
   // that a missing plugin is reported before anything is written.
   virtual void load() const {}
-  // Runs the rig to its end (rig.sim.t_end_s, or its tau for the slow flow) into `sink`. As the
-  // engines' own entry points: a failed simulation gives complete = false; RunInterrupted and
-  // SimulationFailure thrown by the sink pass through.
-  virtual RunReport run(const Rig& rig, RunSink& sink) const = 0;
-  // Does the engine run networks of platforms (models/network.h, docs/networks.md)?
+  // Runs the network to its end (net.sim.t_end_s; a single rig's tau for the slow flow) into
+  // `sink` (sim/record/run_report.h: a single rig's rows, a network's states). A single rig is
+  // the network of one, networkOfOne(rig) (run(rig, sink) below); a single rig's run writes its
+  // rows exactly as it always has. As the engines' own entry points: a failed simulation gives
+  // complete = false; RunInterrupted and SimulationFailure thrown by the sink pass through. An
+  // engine that does not runsNetworks() throws std::logic_error for a network that is not a
+  // single rig (Network::isSingleRig).
+  virtual RunReport run(const Network& net, RunSink& sink) const = 0;
+  RunReport run(const Rig& rig, RunSink& sink) const { return run(networkOfOne(rig), sink); }
+  // Does the engine run networks of two or more platforms (docs/networks.md)?
   virtual bool runsNetworks() const { return false; }
-  // Runs the network to net.sim.t_end_s into `sink` (engines that runsNetworks() only; the others
-  // throw std::logic_error). A failed simulation gives complete = false.
-  virtual RunReport runNetwork(const Network& net, NetworkSink& sink) const {
-    throw std::logic_error("the " + name() + " engine runs single-platform rigs only");
-  }
 };
 
 // Every engine of this build, in the order --help lists them (the default full engine first).

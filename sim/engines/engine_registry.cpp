@@ -1,7 +1,8 @@
 // The registry of sim/engines/engine.h: the three engines as thin adapters over their entry
-// points (runDirectModel, runFullModel, runSlowFlow), whose internals live in their folders;
-// runFullModel through the Simbody plugin (sim/engines/simbody_plugin.h).
+// points (runDirectModel and runNetworkDirect, runSimbody, runSlowFlow), whose internals live in
+// their folders; runSimbody through the Simbody plugin (sim/engines/simbody_plugin.h).
 #include <algorithm>
+#include <stdexcept>
 
 #include "models/scaling.h"
 #include "sim/engines/direct/direct_engine.h"
@@ -31,11 +32,12 @@ class DirectEngine final : public Engine {
   std::string description() const override {
     return "the full model in minimal coordinates (the default; ~100x faster than simbody)";
   }
-  RunReport run(const Rig& rig, RunSink& sink) const override { return runDirectModel(rig, sink); }
-  bool runsNetworks() const override { return true; }
-  RunReport runNetwork(const Network& net, NetworkSink& sink) const override {
+  // a single rig through its own hot path (DirectRun<N>) unless the sink wants states
+  RunReport run(const Network& net, RunSink& sink) const override {
+    if (net.isSingleRig() && !sink.wantsStates()) return runDirectModel(net.toSingleRig(), sink);
     return runNetworkDirect(net, sink);
   }
+  bool runsNetworks() const override { return true; }
 };
 
 class SimbodyEngine final : public Engine {
@@ -52,13 +54,10 @@ class SimbodyEngine final : public Engine {
   }
   // Simbody itself is in a plugin (sim/engines/simbody_plugin.h), loaded when selected
   void load() const override { simbodyPlugin(); }
-  RunReport run(const Rig& rig, RunSink& sink) const override {
-    return simbodyPlugin().run(rig, sink);
+  RunReport run(const Network& net, RunSink& sink) const override {
+    return simbodyPlugin().run(net, sink);
   }
   bool runsNetworks() const override { return true; }
-  RunReport runNetwork(const Network& net, NetworkSink& sink) const override {
-    return simbodyPlugin().run_network(net, sink);
-  }
 };
 
 class SlowFlowEngine final : public Engine {
@@ -70,7 +69,10 @@ class SlowFlowEngine final : public Engine {
   std::string description() const override {
     return "the slow flow (the averaged envelope equations), to the rig's tau";
   }
-  RunReport run(const Rig& rig, RunSink& sink) const override {
+  RunReport run(const Network& net, RunSink& sink) const override {
+    if (!net.isSingleRig())
+      throw std::logic_error("the slowflow engine runs single-platform rigs only");
+    const Rig rig = net.toSingleRig();
     const ScaledParams sp = computeScaled(rig);
     SlowFlowOptions so;
     so.tau_end = sp.tau_end;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/platform_mode.h"
 #include "models/rig.h"
 #include "models/scaling.h"
 #include "sim/record/envelope.h"
@@ -59,15 +60,22 @@ struct RunReport {
   EnvelopeRow final_row;  // last envelope row (tau, A, psi)
   // full model: state at the end, in the rig's units: t, x, xdot, theta_i, thetadot_i, platform
   std::vector<double> final_trajectory_row;
-  // A run of a network of platforms (models/network.h; its samples go to a NetworkSink,
-  // sim/record/network_report.h): counts.escapements in the network's global numbering (locked
-  // ones stay 0), the ledger's damping_out_J with the ground and coupling dampers, and
+  // A run of a network of platforms (models/network.h; its states go to RunSink::stateSample):
+  // counts.escapements in the network's global numbering (locked ones stay 0), the ledger's
+  // damping_out_J with the ground and coupling dampers, and
   double t_end = 0.0;               // the requested end exactly when complete, else the stop
   std::vector<double> final_state;  // the state at t_end, in the layout of network::Layout
   double fast_period_s = 0.0;       // 2 pi / omega0 of the network's first swinging pendulum
 };
 
 // Receives rows as the run produces them; implementations must not keep the whole run in memory.
+// The one sink of every run: a single rig's rows in the rig's units (trajectory, envelope, event
+// rows and records), and a network's state at every sample (stateSample). A run calls what its
+// model has and the sink wants: a network of two or more platforms has no rows in a single rig's
+// format, so its run calls stateSample only; a single rig's run calls the rows, and when the sink
+// wantsStates() Simbody's also calls stateSample, while the direct engine runs the rig as a
+// network (states only: its single-rig and network runs are still two, direct_engine.cpp and
+// network_engine.cpp).
 struct RunSink {
   virtual ~RunSink() = default;
   // t, x, xdot, theta_1, thetadot_1, ..., theta_N, thetadot_N, platform (0, 1, -1) in the rig's
@@ -92,6 +100,25 @@ struct RunSink {
   virtual bool wantsEventRecords() const { return false; }
   virtual void eventRecord(const char* kind, int metronome, const std::vector<double>& before,
                            const std::vector<double>& after) {}
+  // Full model, a network of platforms (docs/networks.md): the state at every sample time
+  // (simulation.sample, default period/20) strictly before the run's end, then its final state (at
+  // exactly the requested end when the run completed). y in the layout of network::Layout
+  // (models/network_equations.h: x_p, xdot_p, ..., theta_j, ..., thetadot_j, ..., three ledger
+  // quadratures), x_p, xdot_p absolute; modes: each platform's contact mode (Stuck for every
+  // non-Coulomb contact). false: an engine need not call stateSample (asked once, at the start).
+  virtual bool wantsStates() const { return false; }
+  virtual void stateSample(double t, const std::vector<double>& y,
+                           const std::vector<PlatformMode>& modes) {}
+};
+
+// A sink of states only (a network's verdict, the animation's track): no single rig's rows.
+struct StateSink : RunSink {
+  bool wantsTrajectory() const override { return false; }
+  bool wantsEnvelope() const override { return false; }
+  bool wantsEventRows() const override { return false; }
+  bool wantsStates() const override { return true; }
+  void stateSample(double t, const std::vector<double>& y,
+                   const std::vector<PlatformMode>& modes) override = 0;
 };
 
 struct EventRecord {
@@ -102,6 +129,14 @@ struct EventRecord {
 
 // A sink that keeps everything in memory: for tests and small comparisons.
 struct MemorySink : RunSink {
+  // with keep_states: every stateSample too (a network's run)
+  bool keep_states = false;
+  struct State {
+    double t;
+    std::vector<double> y;
+    std::vector<PlatformMode> modes;
+  };
+  std::vector<State> states;
   std::vector<std::vector<double>> trajectory;
   std::vector<EnvelopeRow> envelope;
   std::vector<std::pair<std::string, std::vector<double>>> events;
@@ -115,6 +150,11 @@ struct MemorySink : RunSink {
   void eventRecord(const char* kind, int metronome, const std::vector<double>& before,
                    const std::vector<double>& after) override {
     records.push_back({kind, metronome, before, after});
+  }
+  bool wantsStates() const override { return keep_states; }
+  void stateSample(double t, const std::vector<double>& y,
+                   const std::vector<PlatformMode>& modes) override {
+    states.push_back({t, y, modes});
   }
 };
 

@@ -198,8 +198,9 @@ TEST(Animate, TicksAreTheEnginesTicks) {
   const cli::AnimationTrack nt = cli::trackNetwork(net, req);
   net.sim.t_end_s = req.to;
   net.sim.sample_s = req.frameInterval();
-  struct Discard : NetworkSink {
-    void sample(double, const std::vector<double>&, const std::vector<PlatformMode>&) override {}
+  struct Discard : StateSink {
+    void stateSample(double, const std::vector<double>&,
+                     const std::vector<PlatformMode>&) override {}
   } discard;
   const RunReport nrep = runNetworkDirect(net, discard);
   ASSERT_EQ(nt.ticks.size(), nrep.counts.escapements.size());

@@ -21,7 +21,7 @@
 // within about a minute.
 //
 // Networks of platforms (docs/networks.md) are compared the same way, sample by sample, on the
-// network engines of both (runNetworkDirect, runNetworkSimbody).
+// network entries of both (runNetworkDirect, runSimbody).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -34,7 +34,6 @@
 #include "models/scaling.h"
 #include "sim/engines/direct/direct_engine.h"
 #include "sim/engines/direct/network_engine.h"
-#include "sim/engines/simbody/network_simbody_engine.h"
 #include "sim/engines/simbody/simbody_engine.h"
 #include "yaml/network_loader.h"
 #include "yaml/rig_loader.h"
@@ -67,12 +66,12 @@ const std::map<std::string, std::string>& notComparable() {
 class EnginesAgree : public ::testing::TestWithParam<std::string> {};
 
 // Every sample of a network run.
-struct NetworkSamples : NetworkSink {
+struct NetworkSamples : StateSink {
   std::vector<double> t;
   std::vector<std::vector<double>> y;
   std::vector<std::vector<PlatformMode>> modes;
-  void sample(double ts, const std::vector<double>& ys,
-              const std::vector<PlatformMode>& ms) override {
+  void stateSample(double ts, const std::vector<double>& ys,
+                   const std::vector<PlatformMode>& ms) override {
     t.push_back(ts);
     y.push_back(ys);
     modes.push_back(ms);
@@ -96,7 +95,7 @@ void compareNetworkEngines(const std::string& name) {
 
   NetworkSamples sd, ss;
   const RunReport d = runNetworkDirect(net_direct, sd);
-  const RunReport s = runNetworkSimbody(net, ss);
+  const RunReport s = runSimbody(net, ss);
   ASSERT_TRUE(d.complete) << d.failure;
   ASSERT_TRUE(s.complete) << s.failure;
   EXPECT_EQ(s.engine, "simbody");
@@ -149,7 +148,7 @@ TEST_P(EnginesAgree, OnShippedRig) {
 
   MemorySink sd, ss;
   const RunReport d = runDirectModel(rig_direct, sd);
-  const RunReport s = runFullModel(rig, ss);
+  const RunReport s = runSimbody(networkOfOne(rig), ss);
   ASSERT_TRUE(d.complete) << d.failure;
   ASSERT_TRUE(s.complete) << s.failure;
 

@@ -56,9 +56,10 @@ Network frictionlessPair(const std::string& a_metronomes, const std::string& b_m
       "pair.yaml");
 }
 
-struct LastSample : NetworkSink {
+struct LastSample : StateSink {
   std::vector<std::vector<double>> rows;
-  void sample(double, const std::vector<double>& y, const std::vector<PlatformMode>&) override {
+  void stateSample(double, const std::vector<double>& y,
+                   const std::vector<PlatformMode>&) override {
     rows.push_back(y);
   }
 };

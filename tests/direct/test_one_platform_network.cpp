@@ -120,8 +120,8 @@ TEST(OnePlatformNetwork, EquationsAreTheSingleRigsWithViscousAndNoFriction) {
   expectSameRates("{law: none}", PlatformMode::Stuck);
 }
 
-struct LastState : NetworkSink {
-  void sample(double, const std::vector<double>&, const std::vector<PlatformMode>&) override {}
+struct LastState : StateSink {
+  void stateSample(double, const std::vector<double>&, const std::vector<PlatformMode>&) override {}
 };
 
 // The two engines' runs of the same board agree to their accuracy: at 1e-12 a few seconds with

@@ -48,7 +48,7 @@ void expectConserved(Start start, bool antiphase, double delta) {
     Rig r = rig;
     MemorySink sink;
     if (engine == 1) r.sim.accuracy = 1e-14;
-    const RunReport rep = engine == 0 ? runDirectModel(r, sink) : runFullModel(r, sink);
+    const RunReport rep = engine == 0 ? runDirectModel(r, sink) : runSimbody(networkOfOne(r), sink);
     const std::string what = rep.engine + (antiphase ? " antiphase" : " in phase") +
                              (start == Start::ByPhase ? " by phase" : " by state") + " delta " +
                              std::to_string(delta);

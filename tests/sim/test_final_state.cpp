@@ -30,7 +30,7 @@ struct EngineCase {
 
 std::vector<EngineCase> engines() {
   return {{"direct", [](const Rig& r, RunSink& s) { return runDirectModel(r, s); }},
-          {"simbody", [](const Rig& r, RunSink& s) { return runFullModel(r, s); }}};
+          {"simbody", [](const Rig& r, RunSink& s) { return runSimbody(networkOfOne(r), s); }}};
 }
 
 // The average of A_i = hypot(theta_i, thetadot_i) and of exp(i (atan2(theta_i, thetadot_i) - t))

@@ -23,7 +23,7 @@ TEST(FullModel, SpringPlatformDecaysLinearlyAtTheCoulombRate) {
   rig.platform.start_x_m = -0.05;
   rig.sim.accuracy = 1e-10;
   MemorySink sink;
-  RunReport r = runFullModel(rig, sink);
+  RunReport r = runSimbody(networkOfOne(rig), sink);
   ASSERT_TRUE(r.complete) << r.failure;
   // the reversals: the platform stops at each extreme and slips back ("slip" events)
   std::vector<double> t, amp;
@@ -68,7 +68,7 @@ TEST(FullModel, SingleMetronomeSettlesToAStarWithErrorShrinkingWithEpsilon) {
     Rig rig = rigFromScaled(in);
     EXPECT_TRUE(rig.platform.friction == FrictionLaw::fixed());
     MemorySink sink;
-    RunReport r = runFullModel(rig, sink);
+    RunReport r = runSimbody(networkOfOne(rig), sink);
     ASSERT_TRUE(r.complete) << r.failure;
     errors.push_back(std::abs(r.final_row.A[0] - a_star));
     EXPECT_GT(r.counts.escapements[0], 100);
@@ -83,7 +83,7 @@ TEST(FullModel, MetronomeBelowCriticalImpulseStops) {
   in.metronomes.resize(1);
   in.metronomes[0].J = 0.9 * kPi * in.metronomes[0].nu * in.metronomes[0].theta_c;  // J < J_c
   MemorySink sink;
-  RunReport r = runFullModel(rigFromScaled(in), sink);
+  RunReport r = runSimbody(networkOfOne(rigFromScaled(in)), sink);
   ASSERT_TRUE(r.complete) << r.failure;
   EXPECT_LT(r.final_row.A[0], in.metronomes[0].theta_c);
   // after the last tick the amplitude only decays
@@ -99,7 +99,7 @@ TEST(FullModel, ExactAntiphaseKeepsCoulombPlatformStill) {
   in.metronomes[1].theta0 = 0.0;
   in.metronomes[1].thetadot0 = 1.9;
   MemorySink sink;
-  RunReport r = runFullModel(rigFromScaled(in), sink);
+  RunReport r = runSimbody(networkOfOne(rigFromScaled(in)), sink);
   ASSERT_TRUE(r.complete) << r.failure;
   EXPECT_EQ(r.counts.stick_slip, 0);
   EXPECT_GT(r.counts.escapements[0], 50);
@@ -122,7 +122,7 @@ TEST(FullModel, FreePlatformConservesHorizontalMomentum) {
   rig.platform.start_v_m_s = 0.01;
   rig.sim.accuracy = 1e-10;
   MemorySink sink;
-  RunReport r = runFullModel(rig, sink);
+  RunReport r = runSimbody(networkOfOne(rig), sink);
   ASSERT_TRUE(r.complete) << r.failure;
   ASSERT_GT(r.counts.escapements[0], 20);
   const double M = rig.totalMass();
@@ -158,7 +158,7 @@ TEST(FullModel, EnergyLedgerClosesWithEveryEffectOn) {
   rig.platform.spring_N_m = 2.0;
   rig.sim.accuracy = 1e-9;
   MemorySink sink;
-  RunReport r = runFullModel(rig, sink);
+  RunReport r = runSimbody(networkOfOne(rig), sink);
   ASSERT_TRUE(r.complete) << r.failure;
   ASSERT_TRUE(r.has_ledger);
   // the spring keeps the platform going: mostly slip reversals, counted apart from stick <-> slip
@@ -189,8 +189,8 @@ TEST(FullModel, SimultaneousTicksEqualOneDoubledMetronome) {
   m.damping_kg_s *= 2;
   m.impulse_Nms *= 2;
   MemorySink s2, s1;
-  RunReport r2 = runFullModel(pair, s2);
-  RunReport r1 = runFullModel(one, s1);
+  RunReport r2 = runSimbody(networkOfOne(pair), s2);
+  RunReport r1 = runSimbody(networkOfOne(one), s1);
   ASSERT_TRUE(r2.complete && r1.complete);
   EXPECT_EQ(r2.counts.escapements[0], r2.counts.escapements[1]);
   EXPECT_EQ(r2.counts.escapements[0], r1.counts.escapements[0]);
@@ -214,7 +214,7 @@ TEST(FullModel, ResultDoesNotDependOnMetronomeOrder) {
   Rig b = a;
   std::swap(b.metronomes[0], b.metronomes[1]);
   MemorySink sa, sb;
-  RunReport ra = runFullModel(a, sa), rb = runFullModel(b, sb);
+  RunReport ra = runSimbody(networkOfOne(a), sa), rb = runSimbody(networkOfOne(b), sb);
   ASSERT_TRUE(ra.complete && rb.complete);
   EXPECT_EQ(ra.counts.escapements[0], rb.counts.escapements[1]);
   EXPECT_EQ(ra.counts.stick_slip, rb.counts.stick_slip);
@@ -244,7 +244,7 @@ TEST(FullModel, GrazingCrossingIsNotMissed) {
                       std::sqrt(m.pendulum_mass_kg * rig.gravity_m_s2 * m.length_m /
                                 m.inertia_kgm2);  // half a swing
     MemorySink sink;
-    RunReport r = runFullModel(rig, sink);
+    RunReport r = runSimbody(networkOfOne(rig), sink);
     ASSERT_TRUE(r.complete) << r.failure;
     EXPECT_EQ(r.counts.escapements[0], rel > 0 ? 1 : 0) << "theta_max/theta_c - 1 = " << rel;
   }

@@ -13,7 +13,6 @@
 #include "models/network_equations.h"
 #include "models/scaling.h"
 #include "sim/engines/direct/network_engine.h"
-#include "sim/engines/simbody/network_simbody_engine.h"
 #include "sim/engines/simbody/simbody_engine.h"
 #include "yaml/network_loader.h"
 
@@ -47,12 +46,12 @@ std::string network(const std::string& platforms, const std::string& couplings, 
          "simulation: {duration: " + num(duration) + ", accuracy: " + num(accuracy) + "}\n";
 }
 
-struct Samples : NetworkSink {
+struct Samples : StateSink {
   std::vector<double> t;
   std::vector<std::vector<double>> y;
   std::vector<std::vector<PlatformMode>> modes;
-  void sample(double ts, const std::vector<double>& ys,
-              const std::vector<PlatformMode>& ms) override {
+  void stateSample(double ts, const std::vector<double>& ys,
+                   const std::vector<PlatformMode>& ms) override {
     t.push_back(ts);
     y.push_back(ys);
     modes.push_back(ms);
@@ -71,14 +70,14 @@ TEST(NetworkSimbody, ZeroCouplingDecouplesIntoSinglePlatformRuns) {
       network(left + right, "couplings:\n  - {between: [left, right], k: 0.0}\n", 3.0, 1e-12),
       "k0.yaml");
   Samples sink;
-  const RunReport rep = runNetworkSimbody(net, sink);
+  const RunReport rep = runSimbody(net, sink);
   ASSERT_TRUE(rep.complete) << rep.failure;
   const network::Layout lay = network::NetworkEquations(net).layout();
   int j = 0;
   long stick_slip = 0;
   for (int p = 0; p < 2; ++p) {
     MemorySink one;
-    const RunReport single = runFullModel(net.platforms[p].rig, one);  // Simbody, alone
+    const RunReport single = runSimbody(networkOfOne(net.platforms[p].rig), one);  // Simbody, alone
     ASSERT_TRUE(single.complete) << single.failure;
     stick_slip += single.counts.stick_slip;
     const std::vector<double>& row = single.final_trajectory_row;  // t, x, xdot, theta, thetadot..
@@ -105,9 +104,9 @@ TEST(NetworkSimbody, OnePlatformNetworkIsTheSingleRig) {
   const Network net = loadNetworkText(network(board, "", 3.0, 1e-10), "one.yaml");
   ASSERT_EQ(net.platforms.size(), 1u);
   Samples sink;
-  const RunReport rep = runNetworkSimbody(net, sink);
+  const RunReport rep = runSimbody(net, sink);
   MemorySink one;
-  const RunReport single = runFullModel(net.platforms[0].rig, one);
+  const RunReport single = runSimbody(networkOfOne(net.platforms[0].rig), one);
   ASSERT_TRUE(rep.complete) << rep.failure;
   ASSERT_TRUE(single.complete) << single.failure;
   EXPECT_GT(rep.counts.stick_slip, 2);  // the board did stick and slip
@@ -151,7 +150,7 @@ TEST(NetworkSimbody, FrictionlessNetworkConservesMomentumAndClosesItsLedger) {
       network(a + b, "couplings:\n  - {between: [a, b], k: 5.0, c: 0.01}\n", 5.0, 1e-12),
       "pair.yaml");
   Samples sink;
-  const RunReport rep = runNetworkSimbody(net, sink);
+  const RunReport rep = runSimbody(net, sink);
   ASSERT_TRUE(rep.complete) << rep.failure;
   long ticks = 0;
   for (long t : rep.counts.escapements) ticks += t;
@@ -175,7 +174,7 @@ TEST(NetworkSimbody, StackThatSlipsConservesMomentumAndClosesItsLedger) {
   // the contact between the boards is internal: momentum is conserved through every switch
   const Network net = stack("{law: none}", 5.0, 1e-12);
   Samples sink;
-  const RunReport rep = runNetworkSimbody(net, sink);
+  const RunReport rep = runSimbody(net, sink);
   ASSERT_TRUE(rep.complete) << rep.failure;
   EXPECT_GT(rep.counts.stick_slip, 2);  // the contact did switch
   expectMomentumConserved(net, sink);
@@ -194,13 +193,13 @@ TEST(NetworkSimbody, StackStuckThroughoutIsOnePlatformWithBoth) {
       platform("top", "{law: coulomb, mu: 1.0e4}", "    on: base\n", metronome(0.5, -0.3, 0.03));
   const Network net = loadNetworkText(network(base + top, "", 3.0, 1e-12), "stack.yaml");
   Samples sink;
-  const RunReport rep = runNetworkSimbody(net, sink);
+  const RunReport rep = runSimbody(net, sink);
   ASSERT_TRUE(rep.complete) << rep.failure;
   Rig both = net.platforms[0].rig;
   both.platform.mass_kg += net.platforms[1].rig.platform.mass_kg;
   for (const MetronomeSpec& m : net.platforms[1].rig.metronomes) both.metronomes.push_back(m);
   MemorySink one;
-  const RunReport single = runFullModel(both, one);
+  const RunReport single = runSimbody(networkOfOne(both), one);
   ASSERT_TRUE(single.complete) << single.failure;
   EXPECT_EQ(rep.counts.stick_slip, single.counts.stick_slip);
   EXPECT_GT(rep.counts.stick_slip, 0);
@@ -245,7 +244,7 @@ void expectEnginesAgree(const Network& net, double simbody_accuracy, long min_sw
   net_direct.sim.integrator = "verner76";
   Samples sd, ss;
   const RunReport d = runNetworkDirect(net_direct, sd);
-  const RunReport s = runNetworkSimbody(net_simbody, ss);
+  const RunReport s = runSimbody(net_simbody, ss);
   ASSERT_TRUE(d.complete) << d.failure;
   ASSERT_TRUE(s.complete) << s.failure;
   EXPECT_GE(d.counts.stick_slip + d.counts.slip_reversals, min_switches);

@@ -35,7 +35,8 @@ struct Trial {
 
 Trial runOn(const std::string& engine, const Rig& rig) {
   Trial r;
-  r.report = engine == "direct" ? runDirectModel(rig, r.sink) : runFullModel(rig, r.sink);
+  r.report =
+      engine == "direct" ? runDirectModel(rig, r.sink) : runSimbody(networkOfOne(rig), r.sink);
   return r;
 }
 

@@ -31,7 +31,7 @@ inline std::vector<Scenario> loadScenarios() {
 
 inline ValidationEngines engines() {
   ValidationEngines e;
-  e.full_model = [](const Rig& rig, RunSink& sink) { return runFullModel(rig, sink); };
+  e.full_model = [](const Rig& rig, RunSink& sink) { return runSimbody(networkOfOne(rig), sink); };
   e.coulomb_probe = [](double s) { return measureDrivenCoulomb(s); };
   return e;
 }

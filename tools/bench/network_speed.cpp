@@ -10,9 +10,9 @@
 #include "yaml/network_loader.h"
 
 namespace {
-struct NullSink : metrosync::NetworkSink {
-  void sample(double, const std::vector<double>&,
-              const std::vector<metrosync::PlatformMode>&) override {}
+struct NullSink : metrosync::StateSink {
+  void stateSample(double, const std::vector<double>&,
+                   const std::vector<metrosync::PlatformMode>&) override {}
 };
 }  // namespace
 

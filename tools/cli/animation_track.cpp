@@ -252,7 +252,7 @@ ScaledParams networkScales(const Network& net) {
   return computeScaled(rig);
 }
 
-class NetworkTrackSink : public NetworkSink {
+class NetworkTrackSink : public StateSink {
  public:
   NetworkTrackSink(const Network& net, const ScaledParams& sp, const AnimationRequest& req,
                    AnimationTrack& tr)
@@ -262,8 +262,8 @@ class NetworkTrackSink : public NetworkSink {
     const long frames = std::max(1L, req.frameCount());
     stride_ = std::max<long>(1, frames / static_cast<long>(kMaxTracePoints));
   }
-  void sample(double t, const std::vector<double>& y,
-              const std::vector<PlatformMode>& modes) override;
+  void stateSample(double t, const std::vector<double>& y,
+                   const std::vector<PlatformMode>& modes) override;
   std::vector<Tick> ticks;
 
  private:
@@ -282,8 +282,8 @@ class NetworkTrackSink : public NetworkSink {
   long stride_ = 1, seen_ = 0;
 };
 
-void NetworkTrackSink::sample(double t, const std::vector<double>& y,
-                              const std::vector<PlatformMode>& modes) {
+void NetworkTrackSink::stateSample(double t, const std::vector<double>& y,
+                                   const std::vector<PlatformMode>& modes) {
   Snapshot s;
   s.t = t;
   for (int p = 0; p < lay_.platforms; ++p) {

@@ -18,6 +18,7 @@
 #include "tools/cli/engines.h"
 #include "tools/report/comparison_csv.h"
 #include "tools/report/network_files.h"
+#include "tools/report/network_plot.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
 #include "tools/report/progress_log.h"
@@ -280,8 +281,9 @@ void addSection3A(nlohmann::json& summary, const LinearDecay& decay, const Rig& 
                             {"extremes", s3a->extremes}};
 }
 
-// `run` on a network of platforms (docs/networks.md): the network's engine and files
-// (tools/report/network_files.h) in a single rig's steps; its rows are in files only.
+// `run` on a network of platforms (docs/networks.md): the network's engine and the one file writer
+// (FileSink, its network part tools/report/network_files.h) in a single rig's steps; its rows are
+// in files only.
 RunOutcome runNetwork(const Options& opt, const Network& net, const std::string& text) {
   const Engine& engine =
       chooseNetworkEngine(opt.engine, opt.model, net, rigDisplayName(opt), "runs");
@@ -290,16 +292,14 @@ RunOutcome runNetwork(const Options& opt, const Network& net, const std::string&
                      " keeps its rows in files only: give it a folder");
   installStopHandlers();  // before any file exists
   const std::optional<OutputDir> dir = openOutputDir(opt, net.name, "run");
-  NetworkFiles files(*dir, net);
-  RunReport report = engine.runNetwork(net, files);
-  const auto t0 = std::chrono::steady_clock::now();
-  files.commit();
-  report.write_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  FileSink sink(*dir, net);
+  RunReport report = engine.run(net, sink);
+  report.write_seconds = sink.commit();
+  const NetworkFiles& files = *sink.network();
   RunOutcome out;
   out.summary = runSummaryJson(net.name, Units::Physical, report, files.verdictJson(report));
   const std::string label = out.summary["network"]["regime"].get<std::string>();
-  std::vector<std::string> names = files.fileNames();
+  std::vector<std::string> names = sink.fileNames();
   if (!opt.no_plot)
     for (const std::string& png : plotNetwork(*dir, files, net, net.name + " - " + label))
       names.push_back(png);

@@ -98,7 +98,7 @@ std::optional<RunReport> guardedRun(const PointInput& in, long g, Run run) {
 std::optional<PointOutcome> runNetworkPoint(const PointInput& in, long g) {
   NetworkVerdict verdict(*in.net);
   std::optional<RunReport> rep =
-      guardedRun(in, g, [&] { return in.engine->runNetwork(*in.net, verdict); });
+      guardedRun(in, g, [&] { return in.engine->run(*in.net, verdict); });
   if (!rep) return std::nullopt;
   PointOutcome o{std::move(*rep), std::nullopt, "", ""};
   if (!verdict.empty()) o.last = verdict.last();

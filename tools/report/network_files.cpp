@@ -13,7 +13,6 @@
 #include "sim/analysis/regime.h"
 #include "sim/record/atomic_file.h"
 #include "sim/record/envelope.h"
-#include "tools/report/plot.h"
 
 namespace metrosync {
 
@@ -78,10 +77,10 @@ NetworkFiles::NetworkFiles(const OutputDir& dir, const Network& net)
     : impl_(std::make_unique<Impl>(dir, net)) {}
 NetworkFiles::~NetworkFiles() = default;
 
-void NetworkFiles::sample(double t, const std::vector<double>& y,
-                          const std::vector<PlatformMode>& modes) {
+void NetworkFiles::add(double t, const std::vector<double>& y,
+                       const std::vector<PlatformMode>& modes) {
   Impl& m = *impl_;
-  m.verdict.sample(t, y, modes);
+  m.verdict.stateSample(t, y, modes);
   std::vector<double> row{t};
   for (int p = 0; p < m.lay.platforms; ++p) {
     const bool coulomb = m.eq.block(p).friction.setValued() && m.eq.block(p).moves;
@@ -207,61 +206,6 @@ nlohmann::json NetworkFiles::verdictJson(const RunReport& report) const {
     j["final"] = {{"tau", last.tau}, {"A", last.A}, {"psi", last.psi}};
   }
   return j;
-}
-
-namespace {
-
-std::string rowsText(const std::vector<std::vector<double>>& rows) {
-  std::ostringstream os;
-  for (const auto& r : rows) {
-    for (std::size_t k = 0; k < r.size(); ++k) os << (k ? " " : "") << numberText(r[k], 9);
-    os << "\n";
-  }
-  return os.str();
-}
-
-// one "tau metronome phase" line per metronome and kept sample, for a palette raster
-std::string rasterText(const std::vector<std::vector<double>>& rows) {
-  std::ostringstream os;
-  for (const auto& r : rows)
-    for (std::size_t k = 1; k < r.size(); ++k)
-      os << numberText(r[0]) << " " << k << " " << numberText(r[k]) << "\n";
-  return os.str();
-}
-
-}  // namespace
-
-std::vector<std::string> plotNetwork(const OutputDir& dir, const NetworkFiles& files,
-                                     const Network& net, const std::string& title) {
-  std::vector<std::string> made;
-  const int groups = static_cast<int>(net.platforms.size());
-  auto order_script = [&](const std::string& data, const std::string& png) {
-    std::ostringstream s;
-    s << "set terminal pngcairo size 1000,500\nset output " << gnuplotQuote(png) << "\n"
-      << "set title " << gnuplotQuote(title) << " noenhanced\nset xlabel 'tau'\nset ylabel 'r'\n"
-      << "set yrange [0:1.05]\nset key outside right\nplot ";
-    for (int g = 0; g < groups; ++g)
-      s << gnuplotQuote(data) << " using 1:" << g + 2 << " with lines title "
-        << gnuplotQuote("r " + net.platforms[g].name) << " noenhanced, ";
-    s << gnuplotQuote(data) << " using 1:" << groups + 2 << " with lines lw 2 title 'r (all)'\n";
-    return s.str();
-  };
-  if (drawPng(dir, "order.png", rowsText(files.orderRows()), order_script))
-    made.push_back("order.png");
-  auto raster_script = [&](const std::string& data, const std::string& png) {
-    std::ostringstream s;
-    s << "set terminal pngcairo size 1000,600\nset output " << gnuplotQuote(png) << "\n"
-      << "set title " << gnuplotQuote(title + " - phase relative to its platform")
-      << " noenhanced\n"
-      << "set xlabel 'tau'\nset ylabel 'metronome'\nset cbrange [-pi:pi]\n"
-      << "set palette model HSV functions gray, 1, 0.9\nunset key\n"  // cyclic: -pi = pi
-      << "set yrange [0.5:" << net.numMetronomes() + 0.5 << "]\n"
-      << "plot " << gnuplotQuote(data) << " using 1:2:3 with points pt 5 ps 0.4 palette\n";
-    return s.str();
-  };
-  if (drawPng(dir, "raster.png", rasterText(files.rasterRows()), raster_script))
-    made.push_back("raster.png");
-  return made;
 }
 
 }  // namespace metrosync

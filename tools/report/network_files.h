@@ -14,17 +14,19 @@
 #include <vector>
 
 #include "models/network.h"
-#include "sim/record/network_report.h"
-#include "tools/report/outputs.h"
+#include "sim/record/run_report.h"
+#include "tools/report/output_dir.h"
 
 namespace metrosync {
 
-class NetworkFiles : public NetworkSink {
+// A network's part of the one file writer (FileSink, tools/report/outputs.h, which hands it the
+// run's states).
+class NetworkFiles {
  public:
   NetworkFiles(const OutputDir& dir, const Network& net);
-  ~NetworkFiles() override;
-  void sample(double t, const std::vector<double>& y,
-              const std::vector<PlatformMode>& modes) override;
+  ~NetworkFiles();
+  // one sample (RunSink::stateSample)
+  void add(double t, const std::vector<double>& y, const std::vector<PlatformMode>& modes);
   void commit();
   std::vector<std::string> fileNames() const;
   // the network's verdict in summary.json (runSummaryJson, tools/report/outputs.h): a single
@@ -44,11 +46,5 @@ class NetworkFiles : public NetworkSink {
   std::unique_ptr<Impl> impl_;
   std::vector<std::vector<double>> order_rows_, raster_rows_;
 };
-
-// The plots of a network run: order.png (r per platform and overall against tau) and raster.png
-// (metronome against tau, colour = phase relative to its platform's mean). Returns the files made
-// (none when gnuplot is missing).
-std::vector<std::string> plotNetwork(const OutputDir& dir, const NetworkFiles& files,
-                                     const Network& net, const std::string& title);
 
 }  // namespace metrosync

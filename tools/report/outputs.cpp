@@ -16,89 +16,11 @@
 #include "base/number_text.h"
 #include "sim/record/private_dir.h"
 #include "tools/report/build_info.h"
+#include "tools/report/network_files.h"
 
 namespace metrosync {
 
 namespace fs = std::filesystem;
-
-// ---------------------------------------------------------------------------------------------
-// OutputDir
-
-std::uint64_t overridesHash(const std::vector<std::string>& overrides) {
-  std::uint64_t h = 14695981039346656037ull;
-  auto add = [&h](unsigned char c) { h = (h ^ c) * 1099511628211ull; };
-  for (const std::string& o : overrides) {
-    for (char c : o) add(static_cast<unsigned char>(c));
-    add('\n');
-  }
-  return h;
-}
-
-std::string defaultOutputDir(const std::string& rig_name, const std::string& command,
-                             const std::vector<std::string>& overrides) {
-  std::string safe;
-  for (char c : rig_name) {
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                    c == '-' || c == '_' || c == '.';
-    safe += ok ? c : '_';
-  }
-  if (safe.empty() || safe.find_first_not_of('.') == std::string::npos) safe = "rig";
-  std::string dir = "runs/" + safe + "-" + command;
-  if (!overrides.empty()) {
-    char hex[24];
-    std::snprintf(hex, sizeof hex, "-%08llx",
-                  static_cast<unsigned long long>(overridesHash(overrides) >> 32));
-    dir += hex;
-  }
-  return dir;
-}
-
-OutputDir::OutputDir(std::string path) : path_(std::move(path)) {
-  if (path_.empty()) throw std::runtime_error("empty output directory name");
-  while (path_.size() > 1 && path_.back() == '/') path_.pop_back();
-  std::error_code ec;
-  fs::create_directories(path_, ec);
-  if (ec || !fs::is_directory(path_))
-    throw std::runtime_error("cannot create the output directory " + path_ + ": " +
-                             (ec ? ec.message() : "not a directory"));
-}
-
-const std::vector<std::string>& OutputDir::outputNames() {
-  static const std::vector<std::string> names = {
-      "trajectory.csv", "envelope.csv", "envelope_full.csv", "envelope_slow.csv", "comparison.csv",
-      "summary.json",   "envelope.png", "comparison.png",    "order.csv",         "order.png",
-      "raster.png",  // a network's (docs/networks.md)
-      "fitted.yaml",    "fit.json",     "fit.png",           "measure.json",  // docs/fit.md
-      "events.csv",     "envelope.svg", "envelope.pdf",      "comparison.svg",    "comparison.pdf",
-  };
-  return names;
-}
-
-void OutputDir::removeStaleOutputs() const {
-  std::error_code ec;
-  for (const auto& name : outputNames()) fs::remove(file(name), ec);
-  // temporary files of earlier interrupted commands (".NAME.<pid>.part" whose process is gone)
-  for (const auto& entry : fs::directory_iterator(path_, ec)) {
-    const std::string n = entry.path().filename().string();
-    if (isStalePrivateDirName(n)) {  // a plot's private folder (sim/record/private_dir.h)
-      fs::remove_all(entry.path(), ec);
-      continue;
-    }
-    if (n.size() < 7 || n[0] != '.' || n.compare(n.size() - 5, 5, ".part") != 0) continue;
-    const std::string core = n.substr(1, n.size() - 6);  // NAME.<pid>
-    const size_t dot = core.rfind('.');
-    if (dot == std::string::npos) continue;
-    const std::string name = core.substr(0, dot), pid_text = core.substr(dot + 1);
-    bool ours = false;
-    for (const auto& o : outputNames())  // NAME itself, or a helper file of it (NAME.dat)
-      ours = ours || name == o || name.compare(0, o.size() + 1, o + ".") == 0;
-    if (!ours || pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos)
-      continue;
-    const long pid = std::stol(pid_text);
-    if (pid != ::getpid() && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
-      fs::remove(entry.path(), ec);
-  }
-}
 
 // ---------------------------------------------------------------------------------------------
 // EnvelopeDecimator
@@ -295,8 +217,23 @@ void FileSink::envelopeRow(const EnvelopeRow& row) {
   checkStop(row.tau / opt_.epsilon * opt_.time_unit);
 }
 
+FileSink::FileSink(const OutputDir& dir, const Network& net)
+    : network_(std::make_unique<NetworkFiles>(dir, net)),
+      window_(opt_.tau_end, opt_.epsilon) {}  // unused: a network's verdict is NetworkFiles'
+
+FileSink::~FileSink() = default;
+
+void FileSink::stateSample(double t, const std::vector<double>& y,
+                           const std::vector<PlatformMode>& modes) {
+  if (network_) network_->add(t, y, modes);
+}
+
 double FileSink::commit() {
   const auto t0 = std::chrono::steady_clock::now();
+  if (network_) {  // written as they came: what is left is the commit itself
+    network_->commit();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
   for (DeferredRows* w : {trajectory_text_.get(), envelope_text_.get(), events_text_.get()})
     if (w) w->finish();
   const double waited =
@@ -308,6 +245,7 @@ double FileSink::commit() {
 }
 
 std::vector<std::string> FileSink::fileNames() const {
+  if (network_) return network_->fileNames();
   std::vector<std::string> names;
   if (!envelope_) return names;  // no folder
   if (opt_.trajectory) names.push_back(opt_.trajectory_name);

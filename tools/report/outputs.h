@@ -21,34 +21,12 @@
 #include "sim/record/envelope.h"
 #include "sim/record/run_report.h"
 #include "tools/report/deferred_rows.h"
+#include "tools/report/output_dir.h"
 
 namespace metrosync {
 
-// `runs/<rig name>-<command>`, the rig name reduced to characters safe in a file name. With
-// overrides (--set, in the order given) `-<hash>` is appended: 8 hex digits of overridesHash, so
-// that runs of one rig with different overrides do not share (and overwrite) a folder; without
-// them the name is exactly the SPEC's.
-std::string defaultOutputDir(const std::string& rig_name, const std::string& command,
-                             const std::vector<std::string>& overrides = {});
-// FNV-1a (64 bits) of the overrides, each followed by a newline: the same on every machine.
-std::uint64_t overridesHash(const std::vector<std::string>& overrides);
-
-// The --out directory. The constructor creates it (with its parents): construct it only once the
-// rig and the command line have been validated (SPEC 5: a bad rig writes nothing).
-class OutputDir {
- public:
-  explicit OutputDir(std::string path);  // throws std::runtime_error when it cannot
-  const std::string& path() const { return path_; }
-  std::string file(const std::string& name) const { return path_ + "/" + name; }
-  // Removes metrosync's own output files (the names below) left by an earlier command in this
-  // directory, so that a stale trajectory.csv never sits next to a new summary.json. Other files
-  // are left alone.
-  void removeStaleOutputs() const;
-  static const std::vector<std::string>& outputNames();
-
- private:
-  std::string path_;
-};
+class NetworkFiles;
+struct Network;
 
 // Keeps at most about `max_rows` of a stream of envelope rows for plotting: when the buffer holds
 // 2 max_rows rows every other one is dropped and the stride doubles. The last row is always kept.
@@ -107,13 +85,18 @@ struct RunInterrupted : std::runtime_error {
   double t;  // when, in the rig's time unit
 };
 
-// The RunSink of a command: streams trajectory.csv and envelope.csv into `dir`, and keeps what the
-// summary and plots need (the regime window, a decimated copy of the envelope) in O(N) memory.
-// A stop request (requestStop(), e.g. from a SIGINT handler) makes the next row throw
-// RunInterrupted (once), so that the engine stops and reports what it has.
+// The one file writer, the RunSink of a command: a single rig's rows stream into trajectory.csv,
+// envelope.csv (and events.csv) in `dir`, keeping what the summary and plots need (the regime
+// window, a decimated copy of the envelope) in O(N) memory; a network's states into the network's
+// files, in its own columns (its part NetworkFiles, tools/report/network_files.h). A stop request
+// (requestStop(), e.g. from a SIGINT handler) makes the next row throw RunInterrupted (once), so
+// that the engine stops and reports what it has.
 class FileSink : public RunSink {
  public:
   FileSink(const OutputDir& dir, const RunFilesOptions& opt);
+  // A network of platforms' files (docs/networks.md): its states, no single rig's rows.
+  FileSink(const OutputDir& dir, const Network& net);
+  ~FileSink() override;
   // No file: the same rows checked and judged, handed only to the tap (the Python module's
   // results in memory without out=, tools/report/run_columns.h).
   explicit FileSink(const RunFilesOptions& opt);
@@ -128,6 +111,15 @@ class FileSink : public RunSink {
                    const std::vector<double>& after) override;
   // stick/slip events tell the regime window what the platform does between trajectory rows
   void eventRow(const char* kind, const std::vector<double>& row) override;
+  bool wantsTrajectory() const override { return !network_; }
+  bool wantsEnvelope() const override { return !network_; }
+  bool wantsEventRows() const override { return !network_; }
+  bool wantsStates() const override { return network_ != nullptr; }
+  void stateSample(double t, const std::vector<double>& y,
+                   const std::vector<PlatformMode>& modes) override;
+  // a network's files: its verdict for summary.json and its rows for the plots (nullptr for a
+  // single rig)
+  const NetworkFiles* network() const { return network_.get(); }
 
   // Writes the rows still queued for the writer threads (their text is made off the run's thread:
   // tools/report/deferred_rows.h), then renames every file written to its final name. Called
@@ -162,6 +154,7 @@ class FileSink : public RunSink {
   DeferredRows::Format envelopeFormat() const;
 
   RunFilesOptions opt_;
+  std::unique_ptr<NetworkFiles> network_;  // a network's files
   std::unique_ptr<AtomicFile> trajectory_, envelope_, events_;
   // the rows' text is made on writer threads (after the files, so they stop first)
   std::unique_ptr<DeferredRows> trajectory_text_, envelope_text_, events_text_;

@@ -80,7 +80,7 @@ class ContactView : public EventSystem {
 
 class NetworkRun {
  public:
-  NetworkRun(const Network& net, NetworkSink& sink);
+  NetworkRun(const Network& net, RunSink& sink);
   RunReport run();
 
   // --- the hooks of the run loop (sim/engines/direct/step_loop.h) ---------------------------
@@ -111,7 +111,7 @@ class NetworkRun {
   void finish();
 
   const Network& net_;
-  NetworkSink& sink_;
+  RunSink& sink_;
   NetworkEquations eq_;
   network::Layout lay_;
   std::vector<PlatformMode> modes_;
@@ -131,7 +131,7 @@ class NetworkRun {
   long next_sample_ = 0;
 };
 
-NetworkRun::NetworkRun(const Network& net, NetworkSink& sink)
+NetworkRun::NetworkRun(const Network& net, RunSink& sink)
     : net_(net),
       sink_(sink),
       eq_(net),
@@ -316,7 +316,7 @@ void NetworkRun::emitSamplesBefore(double t_limit, bool inclusive) {
 
 void NetworkRun::sample(double t, const std::vector<double>& y) {
   RecordingScope rec(timer_);
-  sink_.sample(t, y, modes_);
+  sink_.stateSample(t, y, modes_);
 }
 
 void NetworkRun::fail(double t, const std::string& why) {
@@ -359,7 +359,7 @@ void NetworkRun::finish() {
 
 }  // namespace
 
-RunReport runNetworkDirect(const Network& net, NetworkSink& sink) {
+RunReport runNetworkDirect(const Network& net, RunSink& sink) {
   return NetworkRun(net, sink).run();
 }
 

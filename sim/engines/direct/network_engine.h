@@ -14,13 +14,13 @@
 
 #include "contact/friction_law.h"
 #include "models/network.h"
-#include "sim/record/network_report.h"
+#include "sim/record/run_report.h"
 
 namespace metrosync {
 
 // Runs the network to net.sim.t_end_s. Never throws for a failed simulation (complete = false);
 // throws std::invalid_argument for a network it cannot run (an unknown integrator name, no
 // swinging pendulum).
-RunReport runNetworkDirect(const Network& net, NetworkSink& sink);
+RunReport runNetworkDirect(const Network& net, RunSink& sink);
 
 }  // namespace metrosync

@@ -3,7 +3,7 @@
 // Simbody's integrator, thin witnesses, the shared event resolver (sim/events/resolver.h), the
 // grazing guard, and samples on the shared schedule (sim/events/sample_schedule.h). What it
 // records and how its report reads are the caller's: a RunRecorder takes the samples and the
-// event rows (simbody_engine.cpp for a rig, network_simbody_engine.cpp for a network).
+// event rows (its one recorder: simbody_engine.cpp, a single rig's rows and a network's states).
 #pragma once
 
 #include <Simbody.h>

@@ -1,8 +1,8 @@
 // The Simbody engine's plugin interface (docs/bench/process.md): everything of metrosync that
-// needs Simbody (and through it LAPACK) -- the full model as a multibody system, its network
-// engine, the Coulomb element's harness -- behind one table of functions, so that the
-// `metrosync` executable loads Simbody only when one of them runs. The table is exported as
-// `metrosync_simbody_plugin` by the plugin metrosync-simbody.so (dlopen'ed by
+// needs Simbody (and through it LAPACK) -- the full model of a network as a multibody system (a
+// single rig is the network of one), the Coulomb element's harness -- behind one table of
+// functions, so that the `metrosync` executable loads Simbody only when one of them runs. The table
+// is exported as `metrosync_simbody_plugin` by the plugin metrosync-simbody.so (dlopen'ed by
 // sim/engines/simbody_plugin.h) and linked in directly by the tests and the Python module.
 // No Simbody type appears here.
 #pragma once
@@ -10,19 +10,18 @@
 #include "contact/simbody/driven_coulomb.h"
 #include "models/network.h"
 #include "models/rig.h"
-#include "sim/record/network_report.h"
 #include "sim/record/run_report.h"
 
 namespace metrosync {
 
 // Raised whenever the table changes: a plugin of another build is refused, not called.
-constexpr int kSimbodyPluginAbi = 1;
+constexpr int kSimbodyPluginAbi = 2;
 
 struct SimbodyPlugin {
   int abi = kSimbodyPluginAbi;
-  RunReport (*run)(const Rig&, RunSink&) = nullptr;                  // runFullModel
-  RunReport (*run_network)(const Network&, NetworkSink&) = nullptr;  // runNetworkSimbody
-  DrivenCoulombMeasurement (*coulomb_probe)(double B) = nullptr;     // measureDrivenCoulomb(B)
+  // runSimbody: a network, a single rig being networkOfOne(rig)
+  RunReport (*run)(const Network&, RunSink&) = nullptr;
+  DrivenCoulombMeasurement (*coulomb_probe)(double B) = nullptr;  // measureDrivenCoulomb(B)
 };
 
 }  // namespace metrosync

@@ -1,11 +1,14 @@
-// The Simbody engine's entry for a single-platform rig: the rig as a network of one
-// (models/simbody/platform_system.h), run by the one run loop (platform_run.h), recorded in the
-// rig's files: trajectory rows (at rig.sim.sample_s, by interpolation), envelope samples on the
-// shared schedule and on both sides of every event, event rows and the event record.
+// The Simbody engine's one entry: a network's system (models/simbody/platform_system.h), run by
+// the one run loop (platform_run.h), recorded by one recorder into the one sink: a single rig's
+// rows in the rig's units (its trajectory, envelope, event rows and record) when the network is a
+// single rig, the network's states (network::Layout) when the sink wants them.
 #include "sim/engines/simbody/simbody_engine.h"
 
+#include <memory>
 #include <sstream>
 
+#include "base/constants.h"
+#include "models/scaling.h"
 #include "models/simbody/platform_system.h"
 #include "sim/engines/simbody/platform_run.h"
 #include "sim/record/envelope_recorder.h"
@@ -20,44 +23,41 @@ std::vector<bool> activeMask(const Rig& rig) {
   return a;
 }
 
-// A rig's files from the run's states: rows in the rig's units, the envelope in scaled time.
-class RigRecorder : public RunRecorder {
+// A single rig's rows from the run's states: in the rig's units, the envelope in scaled time.
+class RigRows {
  public:
-  RigRecorder(const Rig& rig, const PlatformSystem& ps, RunSink& sink, RunReport& report)
+  RigRows(const Rig& rig, const PlatformSystem& ps, RunSink& sink)
       : rig_(rig),
-        sp_(computeScaled(rig)),
+        sp_(computeScaled(rig_)),
         ps_(ps),
         sink_(sink),
-        report_(report),
-        n_(static_cast<int>(rig.metronomes.size())),
-        env_(sp_.epsilon, activeMask(rig), sink),
+        n_(static_cast<int>(rig_.metronomes.size())),
+        env_(sp_.epsilon, activeMask(rig_), sink),
         pendulum_(n_, -1) {
     omega0_ = 1.0 / sp_.time_scale_s;
     for (int j = 0; j < ps.numPendulums(); ++j) pendulum_[ps.equations().pendulum(j).rig_index] = j;
   }
   double timeScale() const { return sp_.time_scale_s; }
 
-  double sampleInterval() const override { return rig_.sim.sample_s; }
-  void sample(const SimTK::State& s, double t, bool row, bool envelope) override {
+  void sample(const SimTK::State& s, double t, bool row, bool envelope) {
     if (row) recordTrajectory(s, t);
     if (envelope) recordEnvelope(s, t);
   }
-  void aroundEvent(const SimTK::State& s, double t) override { recordEnvelope(s, t); }
-  bool wantsEventRecords() const override { return sink_.wantsEventRecords(); }
-  void eventRow(const char* kind, const SimTK::State& s) override {
+  void eventRow(const char* kind, const SimTK::State& s) {
     sink_.eventRow(kind, makeRow(s, s.getTime()));
   }
-  void snapshotBefore(const SimTK::State& s) override { before_ = makeRow(s, s.getTime()); }
-  void recordEvent(const char* kind, int metronome, const SimTK::State& s) override {
+  void snapshotBefore(const SimTK::State& s) { before_ = makeRow(s, s.getTime()); }
+  void recordEvent(const char* kind, int metronome, const SimTK::State& s) {
     sink_.eventRecord(kind, metronome, before_, makeRow(s, s.getTime()));
   }
   // the last trajectory row and the period it closes (SPEC 3 final)
-  void finish(const SimTK::State& s) override {
+  void finish(const SimTK::State& s, RunReport& report) {
     recordTrajectory(s, s.getTime());
     recordEnvelope(s, s.getTime());
-    report_.final_row = env_.finish();
+    report.final_trajectory_row = std::move(last_row_);
+    report.final_row = env_.finish();
   }
-  std::string failureText(double t, const std::string& why) const override {
+  std::string failureText(double t, const std::string& why) const {
     std::ostringstream os;
     // t in the rig's own time unit (seconds, or scaled time for a scaled rig)
     const bool scaled = rig_.units == Units::Scaled;
@@ -65,6 +65,7 @@ class RigRecorder : public RunRecorder {
        << " (tau = " << sp_.epsilon * omega0_ * t << "): " << why;
     return os.str();
   }
+  void recordEnvelope(const SimTK::State& s, double t);
 
  private:
   double theta(const SimTK::State& s, int i) const {
@@ -82,24 +83,23 @@ class RigRecorder : public RunRecorder {
   void recordTrajectory(const SimTK::State& s, double t) {
     std::vector<double> row = makeRow(s, t);
     sink_.trajectoryRow(row);
-    report_.final_trajectory_row = std::move(row);
+    last_row_ = std::move(row);
   }
-  void recordEnvelope(const SimTK::State& s, double t);
 
-  const Rig& rig_;
+  const Rig rig_;
   ScaledParams sp_;
   const PlatformSystem& ps_;
   RunSink& sink_;
-  RunReport& report_;
   int n_;
   EnvelopeRecorder env_;
   std::vector<int> pendulum_;  // (metronomes) its swinging pendulum in the system, or -1
   double omega0_ = 1;
-  std::vector<double> before_;  // the state before the event being recorded (events.csv)
+  std::vector<double> before_;    // the state before the event being recorded (events.csv)
+  std::vector<double> last_row_;  // the last trajectory row (RunReport::final_trajectory_row)
   std::vector<double> scratch_th_, scratch_w_;
 };
 
-std::vector<double> RigRecorder::makeRow(const SimTK::State& s, double t) const {
+std::vector<double> RigRows::makeRow(const SimTK::State& s, double t) const {
   std::vector<double> row;
   row.reserve(4 + 2 * n_);
   const bool scaled = rig_.units == Units::Scaled;
@@ -117,7 +117,7 @@ std::vector<double> RigRecorder::makeRow(const SimTK::State& s, double t) const 
   return row;
 }
 
-void RigRecorder::recordEnvelope(const SimTK::State& s, double t) {
+void RigRows::recordEnvelope(const SimTK::State& s, double t) {
   scratch_th_.resize(n_);
   scratch_w_.resize(n_);
   for (int i = 0; i < n_; ++i) {
@@ -127,23 +127,95 @@ void RigRecorder::recordEnvelope(const SimTK::State& s, double t) {
   env_.sample(t * omega0_, scratch_th_.data(), scratch_w_.data());
 }
 
+// The one recorder: a single rig's rows (when the network is one), the network's states (when the
+// sink wants them), and the final state for the report either way.
+class Recorder : public RunRecorder {
+ public:
+  Recorder(const Network& net, const PlatformSystem& ps, RunSink& sink)
+      : net_(net), ps_(ps), sink_(sink), states_(sink.wantsStates()) {
+    if (net.isSingleRig()) rows_ = std::make_unique<RigRows>(net.toSingleRig(), ps, sink);
+  }
+  bool singleRig() const { return rows_ != nullptr; }
+  // the rig's 1/omega0 for a single rig, else the network's (Network::unionRig)
+  double timeScale() const {
+    return rows_ ? rows_->timeScale() : computeScaled(net_.unionRig()).time_scale_s;
+  }
+  std::vector<double>& finalState() { return y_; }
+
+  double sampleInterval() const override { return net_.sim.sample_s; }
+  void sample(const SimTK::State& s, double t, bool row, bool envelope) override {
+    if (rows_) rows_->sample(s, t, row, envelope);
+    if (states_ && row) recordState(s, t);
+  }
+  void aroundEvent(const SimTK::State& s, double t) override {
+    if (rows_) rows_->recordEnvelope(s, t);
+  }
+  bool wantsEventRecords() const override { return rows_ && sink_.wantsEventRecords(); }
+  void eventRow(const char* kind, const SimTK::State& s) override {
+    if (rows_) rows_->eventRow(kind, s);
+  }
+  void snapshotBefore(const SimTK::State& s) override {
+    if (rows_) rows_->snapshotBefore(s);
+  }
+  void recordEvent(const char* kind, int metronome, const SimTK::State& s) override {
+    if (rows_) rows_->recordEvent(kind, metronome, s);
+  }
+  // the last sample: the final state (the schedule's samples stop short of the end)
+  void finish(const SimTK::State& s) override {
+    if (rows_) rows_->finish(s, report_);
+    if (states_)
+      recordState(s, s.getTime());
+    else
+      ps_.layoutState(s, y_);
+  }
+  std::string failureText(double t, const std::string& why) const override {
+    return rows_ ? rows_->failureText(t, why) : "at t = " + std::to_string(t) + " s: " + why;
+  }
+  RunReport& report() { return report_; }
+
+ private:
+  void recordState(const SimTK::State& s, double t) {
+    ps_.layoutState(s, y_);
+    modes_.assign(ps_.numPlatforms(), PlatformMode::Stuck);
+    for (int p = 0; p < ps_.numPlatforms(); ++p)
+      if (ps_.contact(p)) modes_[p] = ps_.contact(p)->mode(s);
+    sink_.stateSample(t, y_, modes_);
+  }
+
+  const Network& net_;
+  const PlatformSystem& ps_;
+  RunSink& sink_;
+  const bool states_;
+  std::unique_ptr<RigRows> rows_;  // a single rig's
+  std::vector<double> y_;
+  std::vector<PlatformMode> modes_;
+  RunReport report_;
+};
+
 }  // namespace
 
-RunReport runFullModel(const Rig& rig, RunSink& sink) {
-  PlatformSystem ps(networkOfOne(rig));
-  RunReport report;
+RunReport runSimbody(const Network& net, RunSink& sink) {
+  PlatformSystem ps(net);
+  Recorder recorder(net, ps, sink);
+  RunReport& report = recorder.report();
   report.model = "full";
   report.engine = "simbody";
   report.integrator =
-      rig.sim.integrator.empty() ? simbodyIntegratorNames().front() : rig.sim.integrator;
-  report.accuracy = rig.sim.accuracy;
-  RigRecorder recorder(rig, ps, sink, report);
-  const PlatformRunResult r = runPlatforms(ps, report.integrator, recorder.timeScale(), recorder);
+      net.sim.integrator.empty() ? simbodyIntegratorNames().front() : net.sim.integrator;
+  report.accuracy = net.sim.accuracy;
+  report.has_ledger = true;
+  const double time_scale = recorder.timeScale();
+  report.fast_period_s = kTwoPi * time_scale;
+  const PlatformRunResult r = runPlatforms(ps, report.integrator, time_scale, recorder);
   report.complete = r.complete;
   report.failure = r.failure;
   report.counts = r.counts;
+  // a network report's events: its windows and its event rows (as the direct network engine's);
+  // a single rig's: its windows (as the direct engine's)
+  if (!recorder.singleRig()) report.counts.events += r.forced_stops + r.event_rows;
   report.ledger = r.ledger;
-  report.has_ledger = true;
+  report.t_end = r.t_end;
+  report.final_state = std::move(recorder.finalState());
   report.wall_seconds = r.wall_seconds;
   report.engine_seconds = r.engine_seconds;
   return report;
