@@ -15,7 +15,6 @@
 // known).
 #pragma once
 
-#include <algorithm>
 #include <optional>
 #include <vector>
 
@@ -80,20 +79,6 @@ class WitnessList {
     if (const std::optional<LinearForm> f = run.linearForm(w))
       return LinearWitness(s, f->a, f->sign, f->offset, f->b).value(th);
     return run.stuckValueAt(w, th);
-  }
-
-  // The window's contact decision, one rule for every run: a contact reports when its witness
-  // crossed in the step and is past zero at the window's end th_e on the dense output (the state
-  // before any of the window's impulses), or its crossing was forced (a slip stopped where it
-  // could not get going). One flag per platform, into `reported` (sized by the run). A contact
-  // that a later impulse of the window leaves inconsistent is the run's to settle.
-  template <class Stepper, class Run>
-  void contactsReported(Stepper& s, Run& run, double th_e, std::vector<char>& reported) {
-    std::fill(reported.begin(), reported.end(), 0);
-    for (const WindowCrossing& c : found_) {
-      const RunWitness& w = list_[c.witness];
-      if (!w.tick() && (c.forced || valueAt(s, run, c.witness, th_e) >= 0)) reported[w.index] = 1;
-    }
   }
 
  private:

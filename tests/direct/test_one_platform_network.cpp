@@ -125,10 +125,9 @@ struct LastState : NetworkSink {
 };
 
 // The two runs of the same board agree to their accuracy: at 1e-12, three seconds with stick-slip
-// and ticks, the same contact decision at every window's end (WitnessList::contactsReported),
-// measured 1.6e-12 apart at most (a rate; the angles 5e-14). Not round-off: the network steps at
-// most 0.05 of a period and brackets its windows on the exact interpolant, the single rig a tenth
-// of its fastest oscillation and on a component's polynomial.
+// and ticks, measured 1.6e-12 apart at most (a rate; the angles 5e-14). Not round-off: the
+// network steps at most 0.05 of a period and brackets its windows on the exact interpolant, the
+// single rig a tenth of its fastest oscillation and on a component's polynomial.
 TEST(OnePlatformNetwork, RunsAsTheSingleRig) {
   const Network net = loadNetworkText(board("{law: coulomb, mu: 1e-4}", 3.0), "one.yaml");
   ASSERT_TRUE(net.isSingleRig());

@@ -193,7 +193,6 @@ class DirectRun : public EventSystem {
   double omega0_ = 1.0, period_ = 1.0;
   WitnessList witnesses_;
   std::vector<char> maybe_;  // (n x 1): may pendulum j's tick witnesses report in this step?
-  std::vector<char> reported_ = {0};  // the window's contact decision (one platform)
   std::optional<EventResolver> resolver_;
   std::optional<SampleSchedule> schedule_;
   double* ev_y_ = nullptr;      // the state the resolver acts on, at time ev_t_
@@ -437,8 +436,10 @@ double DirectRun<N>::locateWindow() {
 template <int N>
 void DirectRun<N>::resolveWindow(double t_e, double th_e) {
   stepper_.interpolate(th_e, ya_.data());
-  witnesses_.contactsReported(stepper_, *this, th_e, reported_);
-  const bool platform = reported_[0];
+  bool platform = false;
+  for (const Crossing& c : witnesses_.found())
+    if (!witnesses_[c.witness].tick() && (c.forced || witnessAt(c.witness, th_e) >= 0))
+      platform = true;
   ++report_.counts.events;
   if (debug_)
     std::fprintf(stderr, "event t %.17g th %.17g platform %d mode %d v %.6g\n", t_e, th_e,

@@ -122,7 +122,6 @@ class NetworkRun {
   std::vector<std::unique_ptr<ContactView>> views_;
   std::vector<EventResolver> resolvers_;
   WitnessList witnesses_;
-  std::vector<char> reported_;  // the window's contact decision, one flag per platform
   RunReport report_;
   SplitTimer timer_;  // the engine's time against the recording's
   double period_ = 1.0, sample_dt_ = 1.0, t_end_ = 0.0;
@@ -275,14 +274,23 @@ void NetworkRun::settleSupports() {
   }
 }
 
-// The window's end state in y_: the contacts' decision on the window's state before any impulse
-// (the single rig's rule, WitnessList::contactsReported), then each platform's resolver in file
-// order; a contact that an earlier platform's impulse left inconsistent settles after them all.
+// The window's end state in y_: each platform's resolver acts in file order; its contact reports
+// when its witness has crossed (the stick margins judged on the window's state before any
+// impulse, the slip velocities when the platform's turn comes: an earlier platform's tick may
+// have moved the one below it) or when its slip was stopped where it could not get going.
 void NetworkRun::resolveContacts(double t_e, double th_e) {
-  reported_.resize(lay_.platforms);
-  witnesses_.contactsReported(stepper_, *this, th_e, reported_);
-  for (int p = 0; p < lay_.platforms; ++p)
-    absorb(resolvers_[p].resolve(*views_[p], reported_[p]), p);
+  const std::vector<double> lambda = eq_.holdingForces(y_.data(), modes_);
+  std::vector<char> forced(lay_.platforms, 0);
+  for (const WindowCrossing& c : witnesses_.found())
+    if (c.forced && c.th.hi <= th_e) forced[witnesses_[c.witness].index] = 1;
+  for (int p = 0; p < lay_.platforms; ++p) {
+    bool reported = forced[p];
+    for (int i = 0; i < witnesses_.size(); ++i) {
+      const RunWitness& w = witnesses_[i];
+      if (!w.tick() && w.index == p) reported = reported || witnessValue(w, y_.data(), lambda) >= 0;
+    }
+    absorb(resolvers_[p].resolve(*views_[p], reported), p);
+  }
   settleSupports();
   // a window that follows the last one within the localization's resolution (a few ulps of t: a
   // contact left just past its witness by the last window's impulses, found again at the
