@@ -271,14 +271,6 @@ bool sameOptimum(const FitProblem& p, const Optimum& a, const Optimum& b,
   return true;
 }
 
-// c's optimum is not in `found` yet (kSameMinimum)
-template <class List, class Item>
-bool isNew(const FitProblem& p, const List& found, const Item& c) {
-  for (const auto& f : found)
-    if (sameOptimum(p, f.optimum, c.optimum, kSameMinimum)) return false;
-  return true;
-}
-
 // What the final stage needs again and again: the whole record's residuals.
 struct Final {
   const FitProblem& p;
@@ -363,6 +355,13 @@ struct Candidate {
   LocalSolution solution;
   std::string strategy;
 };
+
+// c's optimum is not in `found` yet (kSameMinimum)
+bool isNew(const FitProblem& p, const std::vector<Candidate>& found, const Candidate& c) {
+  for (const Candidate& f : found)
+    if (sameOptimum(p, f.optimum, c.optimum, kSameMinimum)) return false;
+  return true;
+}
 
 // Every distinct optimum from the starting points of fit_strategy.h, best first.
 std::vector<Candidate> search(const FitProblem& p, const ModelFit& mf,
