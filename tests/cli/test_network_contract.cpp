@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -209,6 +210,28 @@ TEST(NetworkContract, ANetworkOfOneIsNamedInTheSingular) {
       << r.err;
   EXPECT_EQ(r.err.find("1 platforms"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+}
+
+// SIGINT stops a network's run as it stops a single rig's (tests/cli CliInterrupted): exit 3, the
+// rows written so far kept whole, summary.json says complete: false and why; no temporary file.
+TEST(NetworkContract, SigintStopsTheRunAndKeepsItsRows) {
+  const std::string dir = scratchDir("netc", "sigint", true), out = dir + "/out";
+  const std::string script =
+      shellQuote(METROSYNC_BINARY) + " run " + shellQuote(kRig) +
+      " --quiet --no-plot --set simulation.duration=8000 --out " + shellQuote(out) +
+      " 2>/dev/null & pid=$!; for i in $(seq 600); do ls -A " + shellQuote(out) +
+      " 2>/dev/null | grep -q part && break; sleep 0.05; done; sleep 0.5; kill -" +
+      std::to_string(SIGINT) + " $pid; wait $pid; echo $? > " + shellQuote(dir + "/code");
+  ASSERT_EQ(std::system(("bash -c " + shellQuote(script)).c_str()), 0);
+  EXPECT_EQ(std::stoi(slurp(dir + "/code")), 3);
+  const nlohmann::json s = nlohmann::json::parse(slurp(out + "/summary.json"));
+  EXPECT_FALSE(s["complete"].get<bool>());
+  EXPECT_NE(s["failure"].get<std::string>().find("interrupted"), std::string::npos) << s["failure"];
+  const auto rows = numbers(out + "/trajectory.csv");
+  ASSERT_GE(rows.size(), 2u);
+  for (const auto& row : rows) EXPECT_EQ(row.size(), rows.front().size());
+  for (const auto& entry : std::filesystem::directory_iterator(out))
+    EXPECT_EQ(entry.path().filename().string().find(".part"), std::string::npos) << entry.path();
 }
 
 }  // namespace

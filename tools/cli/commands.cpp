@@ -162,27 +162,33 @@ std::unique_ptr<ProgressLog> attachProgress(const Options& opt, const LoadedRig&
   return log;
 }
 
-// Runs `engine` into `sink`. An engine that lets an interruption (or a SimulationFailure) through
-// still gives a report: incomplete, with what the sink saw.
-RunReport runModel(const Engine& engine, const LoadedRig& r, FileSink& sink) {
+// Runs `run` (an engine's run into a FileSink). An engine that lets an interruption (or a
+// SimulationFailure) through still gives a report: incomplete, with what the sink saw; `physical`:
+// its times are seconds.
+template <class Run>
+RunReport guardedRun(const Engine& engine, bool physical, Run run) {
   const Clock::time_point t0 = Clock::now();
   auto incomplete = [&](double t, const std::string& why) {
     RunReport rep;
     rep.model = engine.model();
     rep.engine = engine.name();
     rep.complete = false;
-    rep.failure = "stopped at t = " + numberText(t) + (r.rig.units == Units::Physical ? " s" : "") +
-                  ": " + why;
+    rep.failure = "stopped at t = " + numberText(t) + (physical ? " s" : "") + ": " + why;
     rep.wall_seconds = secondsSince(t0);
     return rep;
   };
   try {
-    return engine.run(r.rig, sink);
+    return run();
   } catch (const RunInterrupted& e) {
     return incomplete(e.t, e.what());
   } catch (const SimulationFailure& f) {
     return incomplete(f.t, f.why);
   }
+}
+
+RunReport runModel(const Engine& engine, const LoadedRig& r, FileSink& sink) {
+  return guardedRun(engine, r.rig.units == Units::Physical,
+                    [&] { return engine.run(r.rig, sink); });
 }
 
 // The regime of a finished run ("unknown" when it stopped early), and a final row for the
@@ -293,7 +299,7 @@ RunOutcome runNetwork(const Options& opt, const Network& net, const std::string&
   installStopHandlers();  // before any file exists
   const std::optional<OutputDir> dir = openOutputDir(opt, net.name, "run");
   FileSink sink(*dir, net);
-  RunReport report = engine.run(net, sink);
+  RunReport report = guardedRun(engine, true, [&] { return engine.run(net, sink); });
   report.write_seconds = sink.commit();
   const NetworkFiles& files = *sink.network();
   RunOutcome out;

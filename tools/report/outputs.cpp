@@ -225,7 +225,9 @@ FileSink::~FileSink() = default;
 
 void FileSink::stateSample(double t, const std::vector<double>& y,
                            const std::vector<PlatformMode>& modes) {
-  if (network_) network_->add(t, y, modes);
+  if (!network_) return;
+  network_->add(t, y, modes);
+  checkStop(t);  // a network's samples are its rows: where a signal stops it
 }
 
 double FileSink::commit() {
