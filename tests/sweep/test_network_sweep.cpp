@@ -107,6 +107,25 @@ TEST(NetworkSweep, CouplingMapGivesTheNetworkLabelOfEachRun) {
   }
 }
 
+// SIGINT stops a network sweep inside its running point, as a rig's sweep: two points of a
+// long run (200000 s, ~30 s each here) and SIGINT after 3 s: exit 3, no point done (the running
+// one interrupted, not finished first), sweep.json says so and --resume is offered.
+TEST(NetworkSweep, SigintInterruptsTheRunningPoint) {
+  const std::string d = scratchDir("netsweep", "sigint", true);
+  testing_support::RunIn in;
+  in.env = "timeout --foreground --preserve-status -s INT 3";  // one signal: see test_big_sweep.cpp
+  const auto r = runMetrosync("sweep " + shellQuote(pairRig(d)) +
+                                  " --vary couplings.0.k=0:10:2 --set simulation.duration=200000"
+                                  " --jobs 1 -q --no-plot --out " +
+                                  shellQuote(d + "/sweep"),
+                              in);
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("--resume"), std::string::npos) << r.err;
+  const nlohmann::json m = nlohmann::json::parse(slurp(d + "/sweep/sweep.json"));
+  EXPECT_TRUE(m["interrupted"].get<bool>());
+  EXPECT_EQ(m["points"]["done"].get<long>(), 0);
+}
+
 TEST(NetworkSweep, TwoKeysMakeAMapAndTheSlowFlowIsRefused) {
   const std::string d = scratchDir("netsweep", "map", true);
   const std::string rig = pairRig(d);

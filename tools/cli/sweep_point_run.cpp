@@ -62,6 +62,17 @@ struct PointSink : RunSink {
   std::vector<std::string> kept;
 };
 
+// A network's verdict (sim/analysis/network_verdict.h) that a stop request interrupts, as
+// PointSink does a rig's.
+struct NetworkPointSink : NetworkVerdict {
+  using NetworkVerdict::NetworkVerdict;
+  void stateSample(double t, const std::vector<double>& y,
+                   const std::vector<PlatformMode>& modes) override {
+    NetworkVerdict::stateSample(t, y, modes);
+    if (FileSink::stopRequested()) throw RunInterrupted(t, "interrupted by a signal");
+  }
+};
+
 // What a point's run leaves for its row: the report, the last envelope row (none when the run
 // never sampled), and, when it completed, its label and clusters.
 struct PointOutcome {
@@ -96,7 +107,7 @@ std::optional<RunReport> guardedRun(const PointInput& in, long g, Run run) {
 
 // A network's point (docs/sweep-points.md): the network's label, each platform's regime.
 std::optional<PointOutcome> runNetworkPoint(const PointInput& in, long g) {
-  NetworkVerdict verdict(*in.net);
+  NetworkPointSink verdict(*in.net);
   std::optional<RunReport> rep =
       guardedRun(in, g, [&] { return in.engine->run(*in.net, verdict); });
   if (!rep) return std::nullopt;
