@@ -68,12 +68,12 @@ struct RunReport {
   double fast_period_s = 0.0;       // 2 pi / omega0 of the network's first swinging pendulum
 };
 
-// Receives rows as the run produces them; implementations must not keep the whole run in memory.
-// The one sink of every run: a single rig's rows in the rig's units (trajectory, envelope, event
-// rows and records), and a network's state at every sample (stateSample). A run calls what its
-// model has and the sink wants: a network of two or more platforms has no rows in a single rig's
-// format, so its run calls stateSample only; a single rig's run calls the rows, and when the sink
-// wantsStates() Simbody's also calls stateSample, while the direct engine runs the rig as a
+// The one sink of every run, receiving what the run produces as it goes (implementations must not
+// keep the whole run in memory): a single rig's rows in the rig's units (trajectory, envelope,
+// event rows and records), and a network's state at every sample (stateSample). A run calls what
+// its model has and the sink wants: a network of two or more platforms has no rows in a single
+// rig's format, so its run calls stateSample only; a single rig's run calls the rows, and when the
+// sink wantsStates() Simbody's also calls stateSample, while the direct engine runs the rig as a
 // network (states only: its single-rig and network runs are still two, direct_engine.cpp and
 // network_engine.cpp).
 struct RunSink {

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "base/constants.h"
+#include "base/number_text.h"
 #include "models/scaling.h"
 #include "models/simbody/platform_system.h"
 #include "sim/engines/simbody/platform_run.h"
@@ -169,7 +170,7 @@ class Recorder : public RunRecorder {
       ps_.layoutState(s, y_);
   }
   std::string failureText(double t, const std::string& why) const override {
-    return rows_ ? rows_->failureText(t, why) : "at t = " + std::to_string(t) + " s: " + why;
+    return rows_ ? rows_->failureText(t, why) : "at t = " + numberText(t) + " s: " + why;
   }
   RunReport& report() { return report_; }
 
