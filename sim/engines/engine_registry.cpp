@@ -6,7 +6,6 @@
 
 #include "models/scaling.h"
 #include "sim/engines/direct/direct_engine.h"
-#include "sim/engines/direct/network_engine.h"
 #include "sim/engines/engine.h"
 #include "sim/engines/simbody/simbody_engine.h"
 #include "sim/engines/simbody_plugin.h"

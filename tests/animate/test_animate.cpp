@@ -11,7 +11,7 @@
 #include <map>
 #include <string>
 
-#include "sim/engines/direct/network_engine.h"
+#include "sim/engines/direct/direct_engine.h"
 #include "sim/engines/engine.h"
 #include "tests/common/run_metrosync.h"
 #include "tools/cli/animate.h"

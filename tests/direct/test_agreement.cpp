@@ -33,7 +33,6 @@
 #include "models/network_equations.h"
 #include "models/scaling.h"
 #include "sim/engines/direct/direct_engine.h"
-#include "sim/engines/direct/network_engine.h"
 #include "sim/engines/simbody/simbody_engine.h"
 #include "yaml/network_loader.h"
 #include "yaml/rig_loader.h"

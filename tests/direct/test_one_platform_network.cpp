@@ -14,7 +14,6 @@
 #include "models/minimal_equations.h"
 #include "models/network_equations.h"
 #include "sim/engines/direct/direct_engine.h"
-#include "sim/engines/direct/network_engine.h"
 #include "yaml/network_loader.h"
 
 namespace metrosync {

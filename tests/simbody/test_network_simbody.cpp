@@ -12,7 +12,7 @@
 
 #include "models/network_equations.h"
 #include "models/scaling.h"
-#include "sim/engines/direct/network_engine.h"
+#include "sim/engines/direct/direct_engine.h"
 #include "sim/engines/simbody/simbody_engine.h"
 #include "yaml/network_loader.h"
 

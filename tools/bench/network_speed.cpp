@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "sim/engines/direct/network_engine.h"
+#include "sim/engines/direct/direct_engine.h"
 #include "yaml/network_loader.h"
 
 namespace {

@@ -6,7 +6,7 @@
 
 #include "models/network_equations.h"
 #include "models/scaling.h"
-#include "sim/engines/direct/network_engine.h"
+#include "sim/engines/direct/direct_engine.h"
 
 namespace metrosync::cli {
 

@@ -10,33 +10,23 @@
 #include <string>
 #include <vector>
 
+#include "models/network.h"
 #include "models/rig.h"
-#include "sim/events/storm_guard.h"
+#include "sim/engines/direct/direct_integrators.h"
+#include "sim/engines/direct/direct_options.h"
 #include "sim/record/run_report.h"
 
 namespace metrosync {
-
-// Names accepted by simulation.integrator with this engine.
-const std::vector<std::string>& directIntegratorNames();
-
-// The integrator used when simulation.integrator is empty, chosen by measurement (see
-// tools/bench/direct_speed.py): verner76 while steps are set by the accuracy (few metronomes:
-// fewest operations for a given envelope error), dopri5 once the ticks of many metronomes cut
-// every step short (more than 8 swinging: each step then ends at an event and the cheapest step,
-// 6 evaluations against verner76's 16, wins; measured 1.9x faster at N = 100 with an envelope
-// error of 3e-7 at accuracy 1e-8).
-std::string defaultDirectIntegrator(const Rig& rig);
-
-struct DirectOptions {
-  // The storm rule's limits (sim/events/storm_guard.h): more than `storm_events` events with time
-  // advancing by less than `storm_window` fast periods (2 pi / omega0) ends the run, incomplete.
-  long storm_events = StormGuard::kMaxEvents;
-  double storm_window = StormGuard::kWindowPeriods;
-};
 
 // Runs the rig to rig.sim.t_end_s. Never throws for a failed simulation: the report says
 // complete = false and why (non-finite state, step-size underflow, event storm). Throws
 // std::invalid_argument for a rig it cannot run (an integrator name that is not its own).
 RunReport runDirectModel(const Rig& rig, RunSink& sink, const DirectOptions& options = {});
+
+// Runs the network to net.sim.t_end_s (docs/networks.md): its states go to sink.stateSample, the
+// last at t_end exactly. The same run as a rig's (sim/engines/direct/direct_run.h) over the
+// network's model (network_model.h). Never throws for a failed simulation (complete = false);
+// throws std::invalid_argument for a network it cannot run (an unknown integrator name).
+RunReport runNetworkDirect(const Network& net, RunSink& sink);
 
 }  // namespace metrosync
