@@ -31,7 +31,7 @@ class DirectEngine final : public Engine {
   std::string description() const override {
     return "the full model in minimal coordinates (the default; ~100x faster than simbody)";
   }
-  // a single rig through its own hot path (DirectRun<N>) unless the sink wants states
+  // a single rig on its own model (RigModel<N>, the hot path) unless the sink wants states
   RunReport run(const Network& net, RunSink& sink) const override {
     if (net.isSingleRig() && !sink.wantsStates()) return runDirectModel(net.toSingleRig(), sink);
     return runNetworkDirect(net, sink);

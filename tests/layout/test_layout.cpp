@@ -220,6 +220,34 @@ TEST(Layout, NoIncludeCycleOutsideTheContinuationsWalk) {
           << joined(cycle);
 }
 
+// The files of an engine's folder that define a window's resolution (a run class: `resolveWindow`
+// with a body). One per engine (issue 24: the direct engine had two run classes, one per model,
+// DirectRun<N> for a single rig and NetworkRun for a network; now one run over a model policy).
+std::map<std::string, std::vector<std::string>> runClassFiles(const fs::path& root) {
+  static const std::regex def(R"(\bresolveWindow\([^;{)]*\)[^;{]*\{)");
+  std::map<std::string, std::vector<std::string>> files;
+  for (const auto& e : fs::recursive_directory_iterator(root / "sim" / "engines")) {
+    if (!e.is_regular_file()) continue;
+    const std::string ext = e.path().extension().string();
+    if (ext != ".h" && ext != ".cpp") continue;
+    std::ifstream in(e.path());
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!std::regex_search(text, def)) continue;
+    const std::string rel = fs::relative(e.path(), root).generic_string();
+    files[folderOf(rel)].push_back(rel);
+  }
+  return files;
+}
+
+TEST(Layout, OneRunClassPerEngine) {
+  const auto files = runClassFiles(METROSYNC_SOURCE_DIR);
+  ASSERT_TRUE(files.count("sim/engines/direct")) << "the direct engine's run was not found";
+  ASSERT_TRUE(files.count("sim/engines/simbody")) << "the Simbody engine's run was not found";
+  for (const auto& [folder, list] : files)
+    EXPECT_EQ(list.size(), 1u) << folder << " has " << list.size() << " run classes:\n"
+                               << joined(list);
+}
+
 TEST(Layout, IncludeCycleFinderFindsACycle) {
   const fs::path root =
       fs::path(::testing::TempDir()) / ("metrosync_cycles_" + std::to_string(::getpid()));
