@@ -36,13 +36,6 @@ WindowOutcome EventResolver::settleAfterSupportImpulse(EventSystem& sys) {
   return out;
 }
 
-void EventResolver::rearm(int j, double theta) {
-  for (int side : {-1, 1}) {
-    char& a = armed_[2 * j + (side > 0)];
-    if (!a && esc_[j].rearms(theta, side)) a = 1;
-  }
-}
-
 void EventResolver::rearm(const EventSystem& sys) {
   for (int j = 0; j < static_cast<int>(esc_.size()); ++j) rearm(j, sys.theta(j));
 }

@@ -55,7 +55,12 @@ class EventResolver {
   // Re-arms the sides whose pendulums are back inside their critical angle (call on every state
   // the engine visits between windows: step ends).
   void rearm(const EventSystem& sys);
-  void rearm(int j, double theta);
+  void rearm(int j, double theta) {  // (inline: called for every pendulum at every step end)
+    for (int side : {-1, 1}) {
+      char& a = armed_[2 * j + (side > 0)];
+      if (!a && esc_[j].rearms(theta, side)) a = 1;
+    }
+  }
   // Is the tick of pendulum j on `side` armed (its witness may report)?
   bool armed(int j, int side) const { return armed_[2 * j + (side > 0)]; }
 

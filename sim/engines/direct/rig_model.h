@@ -50,10 +50,8 @@ constexpr int stateDim(int n) {
   return n > 0 ? 4 + 2 * n : ode::kDynamic;
 }
 
-// The single rig as the run's model (sim/engines/direct/direct_run.h): its minimal equations with
-// N known to the compiler, its one platform seen by the resolver through this class (the state the
-// window resolves, ev_y_), and its files: trajectory and envelope rows on the shared schedule,
-// event rows and records.
+// The rig's model: its one platform seen by the resolver through this class itself (on the state
+// the window resolves, ev_y_).
 template <int N>
 class RigModel final : public EventSystem {
  public:
