@@ -108,6 +108,11 @@ struct RunSink {
   virtual bool wantsStates() const { return false; }
   virtual void stateSample(double t, const std::vector<double>& y,
                            const std::vector<PlatformMode>& modes) {}
+  // Called by an engine that can take many steps between two rows (Simbody, whose grazing guard
+  // redoes steps smaller and smaller) after each of its steps, t in the unit of the rows' t (a
+  // network's: seconds). A sink may throw from it to stop the run, as from a row (FileSink: after
+  // a stop request, tools/report/outputs.h).
+  virtual void poll(double t) {}
 };
 
 // A sink of states only (a network's verdict, the animation's track): no single rig's rows.

@@ -56,6 +56,9 @@ struct PointSink : RunSink {
     if (row.size() > 2) window.platformMode(static_cast<int>(row.back()), row[1] / x_unit);
   }
   void eventRow(const char*, const std::vector<double>& row) override { trajectoryRow(row); }
+  void poll(double t) override {
+    if (FileSink::stopRequested()) throw RunInterrupted(t, "interrupted by a signal");
+  }
   RegimeWindow window;
   double x_unit = 1.0;  // trajectory x per scaled x
   bool keep = false;    // --keep envelope
@@ -69,6 +72,9 @@ struct NetworkPointSink : NetworkVerdict {
   void stateSample(double t, const std::vector<double>& y,
                    const std::vector<PlatformMode>& modes) override {
     NetworkVerdict::stateSample(t, y, modes);
+    poll(t);
+  }
+  void poll(double t) override {
     if (FileSink::stopRequested()) throw RunInterrupted(t, "interrupted by a signal");
   }
 };

@@ -117,6 +117,8 @@ class FileSink : public RunSink {
   bool wantsStates() const override { return network_ != nullptr; }
   void stateSample(double t, const std::vector<double>& y,
                    const std::vector<PlatformMode>& modes) override;
+  // between rows: a stop request stops the run there (RunInterrupted, once)
+  void poll(double t) override { checkStop(t); }
   // a network's files: its verdict for summary.json and its rows for the plots (nullptr for a
   // single rig)
   const NetworkFiles* network() const { return network_.get(); }

@@ -611,6 +611,7 @@ PlatformRunResult PlatformRun::run() {
       takeSamples(*integ, integ->getTime(), false);
       if (integ->getTime() >= t_end_) break;
       const Integrator::SuccessfulStepStatus status = integ->stepTo(schedule_->next(), t_end_);
+      rec_.poll(integ->getAdvancedTime());  // (a stop request between two rows)
       // a new step has been taken: check it before anything from it is recorded
       if (integ->getAdvancedTime() > checked_until_ && checkNewStep(*integ, status)) {
         if (!result_.complete) break;

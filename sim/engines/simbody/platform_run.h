@@ -36,6 +36,8 @@ class RunRecorder {
   virtual void eventRow(const char* kind, const SimTK::State& s) {}
   virtual void snapshotBefore(const SimTK::State& s) {}
   virtual void recordEvent(const char* kind, int metronome, const SimTK::State& s) {}
+  // after every step the integrator took (t in seconds): RunSink::poll
+  virtual void poll(double t) {}
   // the run's last state (at exactly the requested end when it completed)
   virtual void finish(const SimTK::State& s) = 0;
   // the failure message: `why` at t (seconds)

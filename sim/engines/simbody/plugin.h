@@ -15,7 +15,7 @@
 namespace metrosync {
 
 // Raised whenever the table changes: a plugin of another build is refused, not called.
-constexpr int kSimbodyPluginAbi = 2;
+constexpr int kSimbodyPluginAbi = 3;  // 3: RunSink::poll
 
 struct SimbodyPlugin {
   int abi = kSimbodyPluginAbi;

@@ -39,6 +39,8 @@ class RigRows {
     for (int j = 0; j < ps.numPendulums(); ++j) pendulum_[ps.equations().pendulum(j).rig_index] = j;
   }
   double timeScale() const { return sp_.time_scale_s; }
+  // t (seconds) in the unit of the rows' t: the rig's (seconds, or scaled time)
+  double rowTime(double t) const { return rig_.units == Units::Scaled ? t * omega0_ : t; }
 
   void sample(const SimTK::State& s, double t, bool row, bool envelope) {
     if (row) recordTrajectory(s, t);
@@ -148,6 +150,7 @@ class Recorder : public RunRecorder {
     if (rows_) rows_->sample(s, t, row, envelope);
     if (states_ && row) recordState(s, t);
   }
+  void poll(double t) override { sink_.poll(rows_ ? rows_->rowTime(t) : t); }
   void aroundEvent(const SimTK::State& s, double t) override {
     if (rows_) rows_->recordEnvelope(s, t);
   }
