@@ -11,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "base/number_text.h"
 #include "contact/escapement.h"
 #include "contact/platform_friction.h"
 #include "models/network.h"
@@ -19,6 +18,7 @@
 #include "sim/events/event_system.h"
 #include "sim/ode/rk_stepper.h"
 #include "sim/ode/rk_tableau.h"
+#include "sim/record/failure_text.h"
 #include "sim/record/run_report.h"
 #include "sim/record/split_timer.h"
 
@@ -112,7 +112,7 @@ class NetworkModel {
   std::vector<double> startState() const;
   void describe(RunReport& r) const;
   std::string failureText(double t, const std::string& why) const {
-    return "at t = " + numberText(t, 6, Notation::Fixed) + " s: " + why;
+    return networkFailureText(t, why);
   }
 
   // --- recording: the state on the grid ---------------------------------------------------

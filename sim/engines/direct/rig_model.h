@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -21,6 +20,7 @@
 #include "sim/ode/rk_stepper.h"
 #include "sim/ode/rk_tableau.h"
 #include "sim/record/envelope_recorder.h"
+#include "sim/record/failure_text.h"
 #include "sim/record/run_report.h"
 #include "sim/record/split_timer.h"
 
@@ -214,10 +214,7 @@ void RigModel<N>::describe(RunReport& r) const {
 
 template <int N>
 std::string RigModel<N>::failureText(double t, const std::string& why) const {
-  std::ostringstream os;
-  os << "simulation failed at t = " << t << " s (tau = " << sp_.epsilon * omega0_ * t
-     << "): " << why;
-  return os.str();
+  return rigFailureText(t, sp_, rig_.units == Units::Scaled, why);
 }
 
 // --- recording ------------------------------------------------------------------------------

@@ -5,14 +5,13 @@
 #include "sim/engines/simbody/simbody_engine.h"
 
 #include <memory>
-#include <sstream>
 
 #include "base/constants.h"
-#include "base/number_text.h"
 #include "models/scaling.h"
 #include "models/simbody/platform_system.h"
 #include "sim/engines/simbody/platform_run.h"
 #include "sim/record/envelope_recorder.h"
+#include "sim/record/failure_text.h"
 
 namespace metrosync {
 
@@ -61,12 +60,7 @@ class RigRows {
     report.final_row = env_.finish();
   }
   std::string failureText(double t, const std::string& why) const {
-    std::ostringstream os;
-    // t in the rig's own time unit (seconds, or scaled time for a scaled rig)
-    const bool scaled = rig_.units == Units::Scaled;
-    os << "simulation failed at t = " << (scaled ? t * omega0_ : t) << (scaled ? "" : " s")
-       << " (tau = " << sp_.epsilon * omega0_ * t << "): " << why;
-    return os.str();
+    return rigFailureText(t, sp_, rig_.units == Units::Scaled, why);
   }
   void recordEnvelope(const SimTK::State& s, double t);
 
@@ -173,7 +167,7 @@ class Recorder : public RunRecorder {
       ps_.layoutState(s, y_);
   }
   std::string failureText(double t, const std::string& why) const override {
-    return rows_ ? rows_->failureText(t, why) : "at t = " + numberText(t) + " s: " + why;
+    return rows_ ? rows_->failureText(t, why) : networkFailureText(t, why);
   }
   RunReport& report() { return report_; }
 
