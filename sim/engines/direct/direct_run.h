@@ -14,12 +14,12 @@
 //   PlatformMode mode(int p) const;
 //   double slipVelocity(int p, const double* y) const;  its xdot against the platform below
 //   double holdingForce(int p, const double* y) const;  the force friction holds while stuck
-//   static constexpr bool kHoldingForceRate;  double holdingForceRate(int p, const double* y);
+//   static constexpr bool kHoldingForceRate;  and if true, double holdingForceRate(int p, y)
 //   EventSystem& view(int p, double* y, double t);      platform p seen by its resolver, on y
 //   int below(int p) const;  int rigIndex(int j) const;  (its metronome's index for the counts)
 //   double period() const; double maxStepSize() const; double accuracy() const; double tEnd()
 //   const; double energy(const double* y) const;  double dampingOut(const double* y) const;
-//   std::vector<double> startState();   void describe(RunReport&) const;
+//   std::vector<double> startState();   int metronomes() const;  (the counts' size)
 //   recording: start(y), samplesBefore(stepper, t, inclusive), window(y, t) (before and after
 //   one), last(y, t), close(report, y, t); std::string failureText(double t, const std::string&).
 //
@@ -343,7 +343,11 @@ void DirectRun<Model>::setUp(const double* y0) {
 template <class Model>
 RunReport DirectRun<Model>::run() {
   timer_ = SplitTimer();
-  m_.describe(report_);
+  report_.model = "full";
+  report_.engine = "direct";
+  report_.integrator = m_.tableau().name;
+  report_.accuracy = m_.accuracy();
+  report_.counts.escapements.assign(m_.metronomes(), 0);
   report_.fast_period_s = m_.period();
   std::vector<double> y = m_.startState();
   setUp(y.data());

@@ -1,7 +1,5 @@
 #include "sim/engines/direct/network_model.h"
 
-#include <algorithm>
-
 #include "base/constants.h"
 #include "models/scaling.h"
 #include "sim/engines/direct/direct_integrators.h"
@@ -30,14 +28,6 @@ NetworkModel::NetworkModel(SplitTimer& timer, const Network& net, RunSink& sink)
   }
   scratch_.resize(lay_.dim());
   stepper_.setTolerances(net.sim.accuracy, scaledTolerances(net.sim.accuracy, sp, lay_));
-}
-
-void NetworkModel::describe(RunReport& r) const {
-  r.model = "full";
-  r.engine = "direct";
-  r.integrator = tab_.name;
-  r.accuracy = net_.sim.accuracy;
-  r.counts.escapements.assign(net_.numMetronomes(), 0);
 }
 
 std::vector<double> NetworkModel::startState() const {

@@ -7,6 +7,7 @@
 // most kMaxStepPeriods of a period).
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,8 +25,6 @@
 
 namespace metrosync::direct {
 
-using network::NetworkEquations;
-
 // The longest step, in fast periods: short enough that a witness cannot cross and return within
 // one step for any amplitude the escapement sustains (a tick witness stays above zero for about a
 // tenth of a period; a stuck contact's margin has no closed-form rate here), long enough to cost
@@ -34,12 +33,12 @@ constexpr double kMaxStepPeriods = 0.05;
 
 class NetworkRhs : public ode::OdeRhs {
  public:
-  NetworkRhs(const NetworkEquations& eq, const std::vector<PlatformMode>& modes)
+  NetworkRhs(const network::NetworkEquations& eq, const std::vector<PlatformMode>& modes)
       : eq_(eq), modes_(modes) {}
   void eval(const double* y, double* dy) override { eq_.rhs(y, modes_, dy); }
 
  private:
-  const NetworkEquations& eq_;
+  const network::NetworkEquations& eq_;
   const std::vector<PlatformMode>& modes_;
 };
 
@@ -47,7 +46,8 @@ class NetworkRhs : public ode::OdeRhs {
 // window resolves (bound by the run).
 class PlatformView : public EventSystem {
  public:
-  PlatformView(const NetworkEquations& eq, std::vector<PlatformMode>& modes, int p, long& rows)
+  PlatformView(const network::NetworkEquations& eq, std::vector<PlatformMode>& modes, int p,
+               long& rows)
       : eq_(eq), modes_(modes), p_(p), rows_(rows) {}
   void bind(double* y) { y_ = y; }
   int first() const { return eq_.block(p_).first; }
@@ -67,7 +67,7 @@ class PlatformView : public EventSystem {
   void eventRow(const char*) override { ++rows_; }
 
  private:
-  const NetworkEquations& eq_;
+  const network::NetworkEquations& eq_;
   double* y_ = nullptr;
   std::vector<PlatformMode>& modes_;
   int p_;
@@ -98,7 +98,6 @@ class NetworkModel {
   PlatformMode mode(int p) const { return modes_[p]; }
   double slipVelocity(int p, const double* y) const { return eq_.slipVelocity(y, p); }
   double holdingForce(int p, const double* y) const { return eq_.holdingForces(y, modes_)[p]; }
-  double holdingForceRate(int, const double*) const { return 0.0; }
   EventSystem& view(int p, double* y, double) {
     views_[p]->bind(y);
     return *views_[p];
@@ -110,7 +109,7 @@ class NetworkModel {
   double energy(const double* y) const { return eq_.energy(y); }
   double dampingOut(const double* y) const { return y[lay_.dampingWork()] + y[lay_.damperWork()]; }
   std::vector<double> startState() const;
-  void describe(RunReport& r) const;
+  int metronomes() const { return net_.numMetronomes(); }
   std::string failureText(double t, const std::string& why) const {
     return networkFailureText(t, why);
   }
@@ -134,7 +133,7 @@ class NetworkModel {
   SplitTimer& timer_;
   const Network& net_;
   RunSink& sink_;
-  NetworkEquations eq_;
+  network::NetworkEquations eq_;
   network::Layout lay_;
   std::vector<PlatformMode> modes_;
   std::vector<PlatformFriction> contacts_;  // the set-valued law under a moving platform, or none

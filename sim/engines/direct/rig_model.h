@@ -88,7 +88,7 @@ class RigModel final : public EventSystem {
   double energy(const double* y) const { return eq_.energy(y); }
   double dampingOut(const double* y) const { return y[lay_.dampingWork()]; }
   std::vector<double> startState();
-  void describe(RunReport& r) const;
+  int metronomes() const { return n_rig_; }
   std::string failureText(double t, const std::string& why) const;
 
   // --- recording ------------------------------------------------------------------------------
@@ -201,15 +201,6 @@ RigModel<N>::RigModel(SplitTimer& timer, const Rig& rig, RunSink& sink)
   env_th_.resize(n_rig_, 0.0);
   env_w_.resize(n_rig_, 0.0);
   stepper_.setTolerances(rig.sim.accuracy, scaledTolerances(rig.sim.accuracy, sp_, lay_));
-}
-
-template <int N>
-void RigModel<N>::describe(RunReport& r) const {
-  r.model = "full";
-  r.engine = "direct";
-  r.integrator = tab_.name;
-  r.accuracy = rig_.sim.accuracy;
-  r.counts.escapements.assign(n_rig_, 0);
 }
 
 template <int N>
