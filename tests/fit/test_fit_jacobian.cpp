@@ -25,6 +25,7 @@
 #include "sim/analysis/fit/model_samples.h"
 #include "sim/analysis/periodic_orbit/engine_trace.h"
 #include "sim/engines/engine.h"
+#include "tests/fit/fit_data.h"
 #include "yaml/rig_loader.h"
 #include "yaml/rig_writer.h"
 
@@ -36,29 +37,11 @@ constexpr double kAgree = 1e-5;
 constexpr double kDuration = 4.0;  // s
 constexpr double kRowDt = 0.0025;  // s, the fit's rows for a 100 Hz record
 
-// The experiment's pair with the paper's keys, mu-bar high enough that the board sticks and slips
-// between ticks, at accuracy 1e-12.
-const char* kPair = R"(units: physical
-name: pair
-platform:
-  mass: 0.1432
-  friction: {law: coulomb, mu: 2e-3}
-metronomes:
-  - name: A
-    box_mass: 0.0602
-    pendulum: {mass: 0.0226, length: 0.0225, damping: 0.0226}
-    escapement: {angle: 0.244, impulse: 1.4844e-5}
-    start: {angle: 0.785, rate: 0.0}
-  - name: B
-    box_mass: 0.0602
-    pendulum: {mass: 0.0226, length: 0.0225, damping: 0.0226}
-    escapement: {angle: 0.244, impulse: 1.4844e-5}
-    start: {angle: -0.6, rate: 1.5}
-start: {x: 0.0, v: 0.0}
-simulation:
-  duration: 4
-  accuracy: 1e-12
-)";
+// The experiment's pair with the paper's keys (tests/fit/fit_data.h), mu-bar high enough that the
+// board sticks and slips between ticks, 4 s at accuracy 1e-12.
+const std::vector<std::string> kPairSets = {"platform.friction.mu=2e-3",
+                                            "metronomes.1.start={angle: -0.6, rate: 1.5}",
+                                            "simulation.duration=4", "simulation.accuracy=1e-12"};
 
 // A free key, its value and its scale (the differences' unit; |value| when 0). A key that moves
 // the board more than the phases takes ten times its value: over 1e-6 of it the board's x
@@ -78,8 +61,9 @@ struct Case {
   FitData data;
   std::vector<double> values;
 
-  Case(std::string rig_text, std::vector<std::string> sets_, const std::vector<Key>& keys_)
-      : rig(std::move(rig_text)), sets(std::move(sets_)) {
+  Case(const std::vector<std::string>& more_sets, const std::vector<Key>& keys_)
+      : rig(fit_testing::kFiveKeyRig), sets(kPairSets) {
+    sets.insert(sets.end(), more_sets.begin(), more_sets.end());
     for (const Key& k : keys_) {
       FreeParameter f;
       f.name = k.name;
@@ -152,21 +136,20 @@ void expectTicksAndStickSlip(const Case& c) {
 }
 
 TEST(FitJacobian, EveryKeyOfACoulombBoardWithTicksAndStickSlip) {
-  Case c(kPair, {"metronomes.*.pendulum.inertia=1.2e-5"},
-         {{"platform.friction.mu", 2e-3},
-          {"platform.mass", 0.1432},
-          {"gravity", 9.81},
-          {"metronomes.0.box_mass", 0.0602},
-          {"metronomes.0.pendulum.mass", 0.0226},
-          {"metronomes.0.pendulum.length", 0.0225},
-          {"metronomes.0.pendulum.inertia", 1.2e-5},
-          {"metronomes.0.pendulum.damping", 0.0226},
-          {"metronomes.1.pendulum.damping", 0.0226},
-          {"metronomes.1.escapement.angle", 0.244},
-          {"metronomes.0.escapement.impulse", 1.4844e-5},
-          {"metronomes.1.escapement.impulse", 1.4844e-5},
-          {"metronomes.0.start.angle", 0.785},
-          {"metronomes.1.start.rate", 1.5}});
+  Case c({"metronomes.*.pendulum.inertia=1.2e-5"}, {{"platform.friction.mu", 2e-3},
+                                                    {"platform.mass", 0.1432},
+                                                    {"gravity", 9.81},
+                                                    {"metronomes.0.box_mass", 0.0602},
+                                                    {"metronomes.0.pendulum.mass", 0.0226},
+                                                    {"metronomes.0.pendulum.length", 0.0225},
+                                                    {"metronomes.0.pendulum.inertia", 1.2e-5},
+                                                    {"metronomes.0.pendulum.damping", 0.0226},
+                                                    {"metronomes.1.pendulum.damping", 0.0226},
+                                                    {"metronomes.1.escapement.angle", 0.244},
+                                                    {"metronomes.0.escapement.impulse", 1.4844e-5},
+                                                    {"metronomes.1.escapement.impulse", 1.4844e-5},
+                                                    {"metronomes.0.start.angle", 0.785},
+                                                    {"metronomes.1.start.rate", 1.5}});
   expectTicksAndStickSlip(c);
   expectExactColumns(c);
 }
@@ -174,8 +157,7 @@ TEST(FitJacobian, EveryKeyOfACoulombBoardWithTicksAndStickSlip) {
 // Static friction above kinetic, a spring to ground, a start that moves, and the keys a rig may
 // write as a decay rate and a steady amplitude.
 TEST(FitJacobian, StaticFrictionASpringAndTheOtherSpellings) {
-  Case c(kPair,
-         {"metronomes.0.pendulum={mass: 0.0226, length: 0.0225, decay_rate: 0.5}",
+  Case c({"metronomes.0.pendulum={mass: 0.0226, length: 0.0225, decay_rate: 0.5}",
           "metronomes.1.escapement={angle: 0.244, steady_amplitude: 0.785}"},
          {{"platform.friction.mu", 2e-3},
           {"platform.friction.mu_static", 3e-3, 3e-2},
@@ -189,7 +171,7 @@ TEST(FitJacobian, StaticFrictionASpringAndTheOtherSpellings) {
 }
 
 TEST(FitJacobian, ViscousBoard) {
-  Case c(kPair, {"platform.friction={law: viscous, c: 0.05}"},
+  Case c({"platform.friction={law: viscous, c: 0.05}"},
          {{"platform.friction.c", 0.05, 0.5},
           {"metronomes.0.pendulum.damping", 0.0226},
           {"metronomes.1.escapement.impulse", 1.4844e-5}});

@@ -22,27 +22,6 @@ using testing_support::runMetrosync;
 using testing_support::scratchDir;
 using testing_support::slurp;
 
-// The experiment's pair with the paper's keys: damping (kg/s) and impulse (N m s), 15 s.
-const char* kFiveKeyRig = R"(units: physical
-name: five
-platform:
-  mass: 0.1432
-  friction: {law: coulomb, mu: 6.5e-4}
-metronomes:
-  - name: A
-    box_mass: 0.0602
-    pendulum: {mass: 0.0226, length: 0.0225, damping: 0.0226}
-    escapement: {angle: 0.244, impulse: 1.4844e-5}
-    start: {angle: 0.785, rate: 0.0}
-  - name: B
-    box_mass: 0.0602
-    pendulum: {mass: 0.0226, length: 0.0225, damping: 0.0226}
-    escapement: {angle: 0.244, impulse: 1.4844e-5}
-    start: {angle: -0.785, rate: 0.25}
-simulation:
-  duration: 15
-)";
-
 // One metronome ticking on a still table at its steady amplitude (0.785 rad), 10 s.
 std::string tickingRig() {
   return std::regex_replace(kDecayRig, std::regex("angle: 0.2, rate"), "angle: 0.785, rate");

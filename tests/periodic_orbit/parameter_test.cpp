@@ -68,6 +68,19 @@ Vec randomState(const PhysicalModel& m, std::mt19937& rng) {
   return y;
 }
 
+// The parts one after another, as one vector.
+Vec stacked(const std::vector<Vec>& parts) {
+  Eigen::Index size = 0;
+  for (const Vec& p : parts) size += p.size();
+  Vec out(size);
+  Eigen::Index at = 0;
+  for (const Vec& p : parts) {
+    out.segment(at, p.size()) = p;
+    at += p.size();
+  }
+  return out;
+}
+
 // What the model computes at y, as one vector, for the rig's model: the rates in each mode, the
 // tick of pendulum 0 and of both, the plastic stop, the holding force and the static bound.
 Vec everything(const Rig& rig, const Vec& y) {
@@ -81,13 +94,7 @@ Vec everything(const Rig& rig, const Vec& y) {
   if (m.hasPlatform()) parts.push_back(m.plasticStop(y));
   parts.push_back(Vec::Constant(1, m.holdingForce(y)));
   parts.push_back(Vec::Constant(1, m.coulomb() ? m.equations().dryFriction().staticBound() : 0.0));
-  Vec out(0);
-  for (const Vec& p : parts) {
-    Vec grown(out.size() + p.size());
-    grown << out, p;
-    out = grown;
-  }
-  return out;
+  return stacked(parts);
 }
 
 // The same derivatives in closed form along the parameter direction dp.
@@ -101,13 +108,7 @@ Vec everythingAlong(const PhysicalModel& m, const Vec& y, const Vec& dp) {
   if (m.hasPlatform()) parts.push_back(m.plasticStopParameterJacobian(y) * dp);
   parts.push_back(Vec::Constant(1, m.holdingForceParameters(y).dot(dp)));
   parts.push_back(Vec::Constant(1, m.coulomb() ? m.staticBoundParameters().dot(dp) : 0.0));
-  Vec out(0);
-  for (const Vec& p : parts) {
-    Vec grown(out.size() + p.size());
-    grown << out, p;
-    out = grown;
-  }
-  return out;
+  return stacked(parts);
 }
 
 // hi, lo: the rig with a field moved by -+kStep of its size
