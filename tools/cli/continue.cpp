@@ -60,27 +60,30 @@ bool sameSlowFlow(const ScaledParams& a, const ScaledParams& b) {
          a.alpha == b.alpha && a.locked == b.locked;
 }
 
-// The rig with KEY_k = p_k, scaled; values the rig refuses give NaN parameters, so the corrector
-// fails there and the step control stays out.
-ScaledParams scaledAt(const ContinueOptions& opt, const std::vector<std::string>& keys,
-                      const std::vector<double>& values) {
-  std::vector<std::string> o;
-  for (size_t k = 0; k < keys.size(); ++k) o.push_back(keys[k] + "=" + roundTripText(values[k]));
-  try {
-    return computeScaled(loadContinueRig(opt, o));
-  } catch (const std::exception&) {
-    ScaledParams bad = computeScaled(loadContinueRig(opt, {}));
-    for (double& v : bad.nu) v = std::nan("");
-    return bad;
-  }
+// The rig with KEYS = values, scaled (the rig parsed once); values the rig refuses give NaN
+// parameters, so the corrector fails there and the step control stays out.
+std::function<ScaledParams(const std::vector<double>&)> scaledAt(
+    const ContinueOptions& opt, const std::vector<std::string>& keys) {
+  const ContinueRigAt rig = continueRigAt(opt, keys);
+  ScaledParams bad = computeScaled(loadContinueRig(opt, {}));
+  for (double& v : bad.nu) v = std::nan("");
+  return [rig, bad](const std::vector<double>& values) {
+    try {
+      return computeScaled(rig(values));
+    } catch (const std::exception&) {
+      return bad;
+    }
+  };
 }
 
 ParamsAt paramsAt(const ContinueOptions& opt) {
-  return [opt](double p) { return scaledAt(opt, {opt.param}, {p}); };
+  const auto at = scaledAt(opt, {opt.param});
+  return [at](double p) { return at({p}); };
 }
 
 ParamsAt2 paramsAt2(const ContinueOptions& opt) {
-  return [opt](double p1, double p2) { return scaledAt(opt, {opt.param, opt.fold_key}, {p1, p2}); };
+  const auto at = scaledAt(opt, {opt.param, opt.fold_key});
+  return [at](double p1, double p2) { return at({p1, p2}); };
 }
 
 // The scaled parameters with KEY = value; a value that makes one of them infinite or NaN (e.g.
@@ -110,10 +113,11 @@ ScaledParams finiteScaledAt(const ContinueOptions& opt, double value, const std:
 // input (exit 2), not a branch whose corrector fails at the first step.
 void checkRangeInside(const ContinueOptions& opt, double from, const std::string& option) {
   constexpr int kRangeSamples = 8;  // the continuation's steps are ~1/100 of the range
+  const ParamsAt params = paramsAt(opt);
   for (int k = 1; k < kRangeSamples; ++k) {
     const double v = from + (opt.to - from) * k / kRangeSamples;
     try {
-      SlowFlow flow(scaledAt(opt, {opt.param}, {v}));
+      SlowFlow flow(params(v));
     } catch (const std::invalid_argument& e) {
       throw UsageError(option + " " + opt.param + " from " + roundTripText(from) + " to " +
                        roundTripText(opt.to) + ": " + e.what() +
