@@ -255,6 +255,7 @@ SlowFlowContinuationSpec slowFlowSpec(const ContinueOptions& opt, double from, s
   if (!opt.all) spec.start = startState(opt, sp, how);
   spec.cycles = !opt.no_cycles;
   spec.cycle_points = opt.cycle_points;
+  spec.jobs = opt.jobs;
   if (!opt.fold_key.empty()) {
     spec.params2 = paramsAt2(opt);
     spec.from2 = secondStart(opt), spec.to2 = opt.to2;
@@ -382,6 +383,9 @@ CLI::App* addContinueCommand(CLI::App& app) {
              "points per direction of each branch")
       ->default_str(std::to_string(opt.max_points));
   c->add_flag("--all", opt.all, "every locked state at the start value (Newton from a grid)");
+  addInteger(c, "--jobs", opt.jobs, 0, kMaxJobs,
+             "threads for --all's seeds and branches (default and 0: one per hardware thread; "
+             "the files do not depend on it)");
   c->add_option("--out", opt.out, "output directory (default runs/<rig name>-continue)");
   c->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
   c->add_flag("--no-cycles", opt.no_cycles,

@@ -28,6 +28,7 @@ struct ContinueOptions {
   int cycle_points = 100;  // --cycle-points: each limit cycle's point budget
   std::string fold_key;    // --fold KEY2: continue each fold in KEY and KEY2
   double to2 = 0.0;        // --to2 VALUE: KEY2's other end (it starts at the rig's value)
+  int jobs = 0;            // --jobs: threads for --all (0: one per hardware thread)
 };
 
 // The rig with --set, then `extra` (the parameter's KEY=VALUE, named --param in messages; keys
