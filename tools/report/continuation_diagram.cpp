@@ -133,26 +133,24 @@ std::string specialRows(const ContinuationResult& r) {
   return d.str();
 }
 
+// KEY, then lo_k hi_k for each k.
+std::string rangeRow(double value, const std::vector<double>& lo, const std::vector<double>& hi) {
+  std::string d = num(value);
+  for (size_t k = 0; k < lo.size(); ++k) d += " " + num(lo[k]) + " " + num(hi[k]);
+  return d;
+}
+
 std::string familyRows(const continuation::ResultFamily& f) {
-  std::ostringstream d;
-  for (const auto& q : f.points) {
-    d << num(q.value);
-    for (size_t j = 0; j < q.psi_min.size(); ++j)
-      d << " " << num(q.psi_min[j]) << " " << num(q.psi_max[j]);
-    d << "\n";
-  }
-  return d.str();
+  std::string d;
+  for (const auto& q : f.points) d += rangeRow(q.value, q.psi_min, q.psi_max) + "\n";
+  return d;
 }
 
 std::string cycleRows(const continuation::ResultCycle& c) {
-  std::ostringstream d;
-  for (const auto& q : c.points) {
-    d << num(q.value);
-    for (size_t i = 0; i < q.A_min.size(); ++i)
-      d << " " << num(q.A_min[i]) << " " << num(q.A_max[i]);
-    d << " " << (q.stable ? 1 : 0) << "\n";
-  }
-  return d.str();
+  std::string d;
+  for (const auto& q : c.points)
+    d += rangeRow(q.value, q.A_min, q.A_max) + " " + (q.stable ? "1" : "0") + "\n";
+  return d;
 }
 
 // The confirmed folds of cycles: KEY, the largest A_max.
