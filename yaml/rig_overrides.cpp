@@ -144,9 +144,13 @@ Node rootWithOverrides(const std::string& yaml_text, const Source& src) {
   if (root.kind != Node::Kind::Map)
     src.fail(root.at, std::string("the rig is ") + kindName(root) +
                           "; expected a map of keys starting with units: physical or scaled");
-  for (std::size_t k = 1; k <= src.overrides().size(); ++k)
-    applyOverride(root, static_cast<int>(k), src);
+  applyOverrides(root, src, 1);
   return root;
+}
+
+void applyOverrides(Node& root, const Source& src, std::size_t first) {
+  for (std::size_t k = first; k <= src.overrides().size(); ++k)
+    applyOverride(root, static_cast<int>(k), src);
 }
 
 }  // namespace metrosync::rigfile

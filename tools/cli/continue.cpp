@@ -5,6 +5,9 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <sstream>
 
 #include "base/constants.h"
@@ -61,27 +64,30 @@ bool sameSlowFlow(const ScaledParams& a, const ScaledParams& b) {
          a.alpha == b.alpha && a.locked == b.locked;
 }
 
-// The rig with KEY_k = p_k, scaled; values the rig refuses give NaN parameters, so the corrector
-// fails there and the step control stays out.
-ScaledParams scaledAt(const ContinueOptions& opt, const std::vector<std::string>& keys,
-                      const std::vector<double>& values) {
-  std::vector<std::string> o;
-  for (size_t k = 0; k < keys.size(); ++k) o.push_back(keys[k] + "=" + roundTripText(values[k]));
-  try {
-    return computeScaled(loadContinueRig(opt, o));
-  } catch (const std::exception&) {
-    ScaledParams bad = computeScaled(loadContinueRig(opt, {}));
-    for (double& v : bad.nu) v = std::nan("");
-    return bad;
-  }
+// The rig with KEYS = values, scaled (the rig parsed once); values the rig refuses give NaN
+// parameters, so the corrector fails there and the step control stays out.
+std::function<ScaledParams(const std::vector<double>&)> scaledAt(
+    const ContinueOptions& opt, const std::vector<std::string>& keys) {
+  const ContinueRigAt rig = continueRigAt(opt, keys);
+  ScaledParams bad = computeScaled(loadContinueRig(opt, {}));
+  for (double& v : bad.nu) v = std::nan("");
+  return [rig, bad](const std::vector<double>& values) {
+    try {
+      return computeScaled(rig(values));
+    } catch (const std::exception&) {
+      return bad;
+    }
+  };
 }
 
 ParamsAt paramsAt(const ContinueOptions& opt) {
-  return [opt](double p) { return scaledAt(opt, {opt.param}, {p}); };
+  const auto at = scaledAt(opt, {opt.param});
+  return [at](double p) { return at({p}); };
 }
 
 ParamsAt2 paramsAt2(const ContinueOptions& opt) {
-  return [opt](double p1, double p2) { return scaledAt(opt, {opt.param, opt.fold_key}, {p1, p2}); };
+  const auto at = scaledAt(opt, {opt.param, opt.fold_key});
+  return [at](double p1, double p2) { return at({p1, p2}); };
 }
 
 // The scaled parameters with KEY = value; a value that makes one of them infinite or NaN (e.g.
@@ -111,10 +117,11 @@ ScaledParams finiteScaledAt(const ContinueOptions& opt, double value, const std:
 // input (exit 2), not a branch whose corrector fails at the first step.
 void checkRangeInside(const ContinueOptions& opt, double from, const std::string& option) {
   constexpr int kRangeSamples = 8;  // the continuation's steps are ~1/100 of the range
+  const ParamsAt params = paramsAt(opt);
   for (int k = 1; k < kRangeSamples; ++k) {
     const double v = from + (opt.to - from) * k / kRangeSamples;
     try {
-      SlowFlow flow(scaledAt(opt, {opt.param}, {v}));
+      SlowFlow flow(params(v));
     } catch (const std::invalid_argument& e) {
       throw UsageError(option + " " + opt.param + " from " + roundTripText(from) + " to " +
                        roundTripText(opt.to) + ": " + e.what() +
@@ -252,6 +259,7 @@ SlowFlowContinuationSpec slowFlowSpec(const ContinueOptions& opt, double from, s
   if (!opt.all) spec.start = startState(opt, sp, how);
   spec.cycles = !opt.no_cycles;
   spec.cycle_points = opt.cycle_points;
+  spec.jobs = opt.jobs;
   if (!opt.fold_key.empty()) {
     spec.params2 = paramsAt2(opt);
     spec.from2 = secondStart(opt), spec.to2 = opt.to2;
@@ -379,6 +387,9 @@ CLI::App* addContinueCommand(CLI::App& app) {
              "points per direction of each branch")
       ->default_str(std::to_string(opt.max_points));
   c->add_flag("--all", opt.all, "every locked state at the start value (Newton from a grid)");
+  addInteger(c, "--jobs", opt.jobs, 0, kMaxJobs,
+             "threads for --all's seeds and branches (default and 0: one per hardware thread; "
+             "the files do not depend on it)");
   c->add_option("--out", opt.out, "output directory (default runs/<rig name>-continue)");
   c->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
   addStrictFlag(c, opt.strict);
@@ -429,10 +440,26 @@ ContinuationResult slowFlowContinuation(const ContinueOptions& opt) {
   return result;
 }
 
+namespace {
+
+// The slow flow's continuation frees memory at the top of the heap at every step and allocates it
+// again; glibc hands it back to the kernel each time and it is faulted in again (n32 --all: 3.1 of
+// 18.9 s of CPU in the kernel, docs/bench/slow-continuation.md). The process keeps up to
+// kKeptHeap of freed memory instead.
+void keepFreedHeap() {
+#if defined(__GLIBC__)
+  constexpr int kKeptHeap = 256 << 20;
+  mallopt(M_TRIM_THRESHOLD, kKeptHeap);
+#endif
+}
+
+}  // namespace
+
 int continueCommand(const ContinueOptions& opt) {
   loadContinueRig(opt, {});  // a bad rig is said as such before its ranges are judged
   checkSensibleRanges(rigText(opt), rigDisplay(opt), opt.sets, opt.strict);
   if (opt.model == "full") return continueFullCommand(opt);
+  keepFreedHeap();
   const ContinuationResult result = slowFlowContinuation(opt);
   const Rig rig = loadContinueRig(opt, {opt.param + "=" + roundTripText(result.from)});
   const OutputDir dir(outDir(opt, rig));
