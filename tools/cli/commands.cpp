@@ -17,6 +17,7 @@
 #include "sim/record/atomic_file.h"
 #include "tools/cli/engines.h"
 #include "tools/report/comparison_csv.h"
+#include "tools/report/json_file.h"
 #include "tools/report/network_files.h"
 #include "tools/report/network_plot.h"
 #include "tools/report/outputs.h"
@@ -518,6 +519,7 @@ LoadedRig loadForScale(const Options& opt) {
 
 int scaleCommand(const Options& opt) {
   const LoadedRig r = loadForScale(opt);
+  checkFiniteJson("scale --json", r.scaled_json);
   if (opt.json)
     std::cout << r.scaled_json.dump(2) << "\n";
   else
