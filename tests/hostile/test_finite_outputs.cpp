@@ -23,10 +23,6 @@ namespace fs = std::filesystem;
 using testing_support::scratchDir;
 using testing_support::slurp;
 
-std::string rigPath(const std::string& name) {
-  return shellQuote(sourceDir() + "/yaml/rigs/" + name);
-}
-
 // "FILE row R column C: CELL" for every cell of a CSV text that spells a non-finite number in any
 // of the ways printf, iostreams and Python write one.
 std::vector<std::string> nonFiniteCells(const std::string& file, const std::string& text) {

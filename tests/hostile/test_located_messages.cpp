@@ -14,10 +14,6 @@ namespace {
 namespace fs = std::filesystem;
 using testing_support::scratchDir;
 
-std::string rigPath(const std::string& name) {
-  return shellQuote(sourceDir() + "/yaml/rigs/" + name);
-}
-
 struct Case {
   std::string args, says;
 };

@@ -6,15 +6,8 @@
 #include "sim/analysis/basin.h"
 #include "sim/analysis/fit/data_file.h"
 #include "sim/analysis/sweep.h"
-#include "tools/cli/animate.h"
-#include "tools/cli/basin.h"
-#include "tools/cli/command_line.h"
-#include "tools/cli/continue.h"
-#include "tools/cli/figures.h"
-#include "tools/cli/fit.h"
 #include "tools/cli/sweep.h"
-#include "tools/cli/sweep_point.h"
-#include "tools/cli/validate.h"
+#include "tools/fuzz/command_line_parser.h"
 #include "yaml/network_loader.h"
 #include "yaml/rig_loader.h"
 #include "yaml/utf8.h"
@@ -166,40 +159,6 @@ void dataFile(std::string_view input) {
 
 namespace {
 
-// metrosync's command line as tools/metrosync.cpp builds it, parsed without running.
-struct CommandLine {
-  CLI::App app;
-  cli::Options opt;
-  cli::SweepOptions sweep;
-  cli::ValidateOptions validate;
-  cli::FitOptions fit;
-  cli::MeasureOptions measure;
-  cli::FiguresOptions figures;
-  cli::AnimateOptions animate;
-  cli::BasinOptions basin;
-  cli::SweepPointOptions point;
-  cli::SweepCommands sweeps;
-  CLI::App* basin_app = nullptr;
-  // every command's options at their defaults (the app, built once, keeps its bindings to them)
-  void reset() {
-    opt = {}, sweep = {}, validate = {}, fit = {}, measure = {}, figures = {}, animate = {};
-    basin = {}, point = {};
-  }
-  CommandLine() {
-    cli::configureApp(app);
-    cli::addRigCommands(app, opt);
-    sweeps = cli::addSweepCommands(app, sweep);
-    cli::addValidateCommand(app, validate);
-    cli::addContinueCommand(app);
-    cli::addFitCommand(app, fit);
-    cli::addMeasureCommand(app, measure);
-    cli::addFiguresCommand(app, figures);
-    cli::addAnimateCommand(app, animate);
-    basin_app = cli::addBasinCommand(app, basin);
-    cli::addSweepPointCommand(app, point);
-  }
-};
-
 // A sweep's grid as the command checks it before any rig: the axes, the grid (lifted to the hard
 // cap: it must still be described, not listed), the manifest's text, the maps' axes, the shard.
 void checkSweepOptions(const cli::SweepOptions& o) {
@@ -225,15 +184,9 @@ void checkSweepOptions(const cli::SweepOptions& o) {
 void options(std::string_view input) {
   std::vector<std::string> args = nulSeparated(input);
   if (args.size() > 64) args.resize(64);
-  std::vector<char*> argv = {const_cast<char*>("metrosync")};
-  for (auto& a : args) argv.push_back(a.data());
-  static CommandLine cl;  // built once: CLI11 clears an app's results before each parse
+  static CommandLineParser cl;  // built once
   cl.reset();
-  try {
-    cl.app.parse(static_cast<int>(argv.size()), argv.data());
-  } catch (const CLI::ParseError&) {
-    return;  // refused: CLI11's message or the number rule's (tools/cli/number_option.h)
-  }
+  if (!cl.parse(args).empty()) return;  // refused: CLI11's message or the number rule's
   if (cl.sweeps.sweep->parsed()) checkSweepOptions(cl.sweep);
   if (cl.basin_app->parsed()) {
     for (const auto& r : cl.basin.random) {
