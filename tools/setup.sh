@@ -8,6 +8,8 @@
 #   bash tools/setup.sh test
 #   bash tools/setup.sh sanitize   (CI's second stage, .ci/run: the `fast` tests under
 #                                   AddressSanitizer + UndefinedBehaviorSanitizer in build-asan)
+#   bash tools/setup.sh fuzz [S]   (the fuzz stage, also the end of `test`: libFuzzer's targets
+#                                   in build-fuzz, S seconds each; tools/fuzz/run.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -29,7 +31,8 @@ test_packages=(libgtest-dev libbenchmark-dev
           python3-setuptools python3-wheel python3-pip python3-venv  # pip install . (tests/pip)
           jupyter-nbconvert python3-ipykernel python3-matplotlib python3-pandas  # the notebooks
           libcairo2-dev pkg-config ffmpeg  # `metrosync animate`: Cairo draws, ffmpeg encodes
-          libopenmpi-dev openmpi-bin)  # metrosync-mpi: a sweep over MPI ranks (docs/cluster.md)
+          libopenmpi-dev openmpi-bin  # metrosync-mpi: a sweep over MPI ranks (docs/cluster.md)
+          clang libclang-rt-14-dev)  # the fuzz stage: libFuzzer, ASan, UBSan (tools/fuzz)
 packages=("${run_packages[@]}")
 if [ "$mode" != run ]; then packages+=("${test_packages[@]}"); fi
 missing=()
@@ -54,12 +57,26 @@ command -v ccache >/dev/null 2>&1 && launcher="-DCMAKE_CXX_COMPILER_LAUNCHER=cca
 # -O1: a third of -O3's compile time, and what the sanitizers' documentation recommends for
 # readable reports at a small run-time cost.
 if [ "$mode" = sanitize ]; then
-  fast_tests=(test_contact test_models test_sim test_yaml test_layout test_bench_fast)
+  fast_tests=(test_contact test_models test_sim test_yaml test_layout test_bench_fast test_fuzz)
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
         -DMETROSYNC_SANITIZE=ON $launcher >/dev/null
   cmake --build build-asan -j"$jobs" --target "${fast_tests[@]}"
   ASAN_OPTIONS=detect_odr_violation=2:detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
     ctest --test-dir build-asan -L fast --output-on-failure -j"$jobs" --timeout 900
+  exit $?
+fi
+
+# The fuzz stage: its own build directory (clang, every object instrumented), only the fuzz
+# targets and the libraries they link built; each target then runs for S seconds (default
+# $METROSYNC_FUZZ_SECONDS, else 30), failing on a crash, leak, slow input or memory limit.
+fuzz_stage() {
+  CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
+        -DMETROSYNC_FUZZ=ON $launcher >/dev/null
+  cmake --build build-fuzz -j"$jobs" --target fuzz_targets
+  bash tools/fuzz/run.sh "$@"
+}
+if [ "$mode" = fuzz ]; then
+  fuzz_stage "$@"
   exit $?
 fi
 
@@ -73,9 +90,10 @@ case "$mode" in
   test)
     cmake --build build -j"$jobs"
     ctest --test-dir build --output-on-failure -j"$jobs" --timeout 900
+    fuzz_stage
     ;;
   *)
-    echo "usage: bash tools/setup.sh run|test|sanitize" >&2
+    echo "usage: bash tools/setup.sh run|test|sanitize|fuzz" >&2
     exit 2
     ;;
 esac

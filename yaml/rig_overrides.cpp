@@ -89,9 +89,13 @@ void setAt(Node& root, const KeyPath& path, const Node& value, Units units, cons
         cur->map.push_back(Entry{seg, here, fresh});
         next = &cur->map.back().value;
       }
-    } else {  // a list: resolveIn checked the index against this very tree
+    } else {  // a list: resolveIn checked an index against this very tree
+      // a name kept past the tree's end (a list the rig does not have, made just above)
+      if (path[i].kind != KeyPath::Segment::Kind::Index || path[i].index >= cur->seq.size())
+        src.fail(here, printable(at) + ": " + done + " has no entries (none is named '" +
+                           printable(seg) + "')");
       s = s->item.get();
-      next = &cur->seq.at(path[i].index);
+      next = &cur->seq[path[i].index];
     }
     cur = next;
   }

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cfloat>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -31,6 +33,9 @@ namespace {
 // At most this many frames (an hour of video at 30 fps, 3.3 GB of raw frames per minute through
 // the pipe at 1280x720): a larger request is almost surely a mistake in --speed or --fps.
 constexpr long kMaxFrames = 108000;
+// The index of a frame on the time line from t = 0 (--from on the frame grid) stays far inside a
+// long: 2^53, where doubles still count every integer.
+constexpr double kMaxFrameIndex = 9007199254740992.0;
 
 struct Output {
   std::string path;
@@ -76,12 +81,23 @@ void setTimes(const AnimateOptions& opt, double duration, double unit, Animation
   req.from = opt.from * unit;
   req.to = to * unit;
   req.speed = opt.speed * unit;
-  const long frames = req.frameCount();
-  if (frames < 1 || frames > kMaxFrames)
-    throw UsageError("--fps " + numberText(req.fps) + " x (" + numberText(to) + " - " +
-                     numberText(opt.from) + ") / --speed " + numberText(opt.speed) + " = " +
-                     std::to_string(frames) + " frames: must be 1 to " +
-                     std::to_string(kMaxFrames));
+  // counted in double before any rounding to an integer: an extreme --speed or --to gives a
+  // number of frames beyond every integer type, said as a double or as "more than" the largest
+  const double frames = std::round((req.to - req.from) * req.fps / req.speed);
+  // the first frame's index too: --from on a grid of frames finer than a long can count
+  const double first = std::round(req.from / req.frameInterval());
+  if (frames >= 1 && frames <= kMaxFrames && first < static_cast<double>(kMaxFrameIndex)) return;
+  const std::string count =
+      std::isfinite(frames) ? numberText(frames) : "more than " + numberText(DBL_MAX);
+  if (!(first < static_cast<double>(kMaxFrameIndex)))
+    throw UsageError(
+        "--from " + numberText(opt.from) + " at --fps " + numberText(req.fps) + " / --speed " +
+        numberText(opt.speed) + " is frame " +
+        (std::isfinite(first) ? numberText(first) : "more than " + numberText(DBL_MAX)) +
+        " of the video's time line: must be below " + numberText(kMaxFrameIndex));
+  throw UsageError("--fps " + numberText(req.fps) + " x (" + numberText(to) + " - " +
+                   numberText(opt.from) + ") / --speed " + numberText(opt.speed) + " = " + count +
+                   " frames: must be 1 to " + std::to_string(kMaxFrames));
 }
 
 std::string displayName(const AnimateOptions& opt) {

@@ -24,6 +24,7 @@
 #include "tools/cli/sweep_summary.h"
 #include "tools/report/basin_files.h"
 #include "tools/report/folder_lock.h"
+#include "tools/report/json_file.h"
 #include "tools/report/outputs.h"
 #include "yaml/network_loader.h"
 #include "yaml/rig_loader.h"
@@ -205,8 +206,7 @@ int basinImpl(const BasinOptions& opt, const SweepScheduler& schedule, int ranks
   files.push_back("basin.json");
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  writeFileAtomically(dir.file("basin.json"),
-                      basinJson(opt, plan, fractions, files, wall_s).dump(2) + "\n");
+  writeJsonFile(dir.file("basin.json"), basinJson(opt, plan, fractions, files, wall_s));
   if (!opt.run.quiet) {
     std::cout << "basin stability of " << plan.rig_name << " (" << modelTitle(plan.model) << ", "
               << plan.n << (plan.n == 1 ? " metronome" : " metronomes") << "), seed " << opt.seed

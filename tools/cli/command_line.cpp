@@ -8,6 +8,7 @@
 
 #include "sim/engines/plugin_loader.h"
 #include "sim/record/atomic_file.h"
+#include "sim/record/finite_check.h"
 #include "sim/record/safe_open.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/number_option.h"
@@ -151,6 +152,9 @@ int exitCodeOf(const std::function<int()>& handler) {
   } catch (const PluginError& e) {  // a plugin missing from the installation
     std::cerr << "metrosync: error: " << terminalText(e.what()) << "\n";
     return kBadInput;
+  } catch (const NonFiniteOutput& e) {  // a result that is not a number: a failed simulation
+    std::cerr << "metrosync: error: " << terminalText(e.what()) << "\n";
+    return kSimulationFailed;
   } catch (const std::exception& e) {
     std::cerr << "metrosync: error: " << terminalText(e.what()) << "\n";
     return kOtherError;

@@ -18,6 +18,7 @@
 #include "tools/cli/engines.h"
 #include "tools/cli/range_warnings.h"
 #include "tools/report/comparison_csv.h"
+#include "tools/report/json_file.h"
 #include "tools/report/network_files.h"
 #include "tools/report/network_plot.h"
 #include "tools/report/outputs.h"
@@ -524,6 +525,7 @@ LoadedRig loadForScale(const Options& opt) {
 
 int scaleCommand(const Options& opt) {
   const LoadedRig r = loadForScale(opt);
+  checkFiniteJson("scale --json", r.scaled_json);
   if (opt.json)
     std::cout << r.scaled_json.dump(2) << "\n";
   else

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #if defined(__GLIBC__)
@@ -144,7 +145,7 @@ double startValue(const ContinueOptions& opt, const std::string& option = "--par
   // a key with '*': the rig's value at its first element (metronome 1 for metronomes.*.X)
   const std::optional<double> in_rig = rigNumber(text, display, opt.sets, key.paths[0].text());
   if (!opt.from && !in_rig)
-    throw UsageError(option + " " + opt.param +
+    throw UsageError(display + ": " + option + " " + opt.param +
                      ": the key is not set in the rig (its default applies); give --from VALUE");
   const double from = opt.from ? *opt.from : *in_rig;  // both finite (tools/cli/number_option.h)
   if (opt.to == from)
@@ -160,27 +161,28 @@ double startValue(const ContinueOptions& opt, const std::string& option = "--par
   return from;
 }
 
+// --start's numbers, each whole and finite (nan, inf and 1e999 refused quoting the item).
 std::vector<double> parseList(const std::string& text) {
   std::vector<double> v;
   std::stringstream ss(text);
   std::string item;
   while (std::getline(ss, item, ',')) {
-    size_t used = 0;
-    double x = 0;
-    try {
-      x = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos)
+    const char* begin = item.c_str();
+    char* end = nullptr;
+    const double x = std::strtod(begin, &end);
+    if (end == begin ||
+        item.find_first_not_of(" \t", static_cast<size_t>(end - begin)) != std::string::npos)
       throw UsageError("--start " + text + ": '" + item + "' is not a number");
+    if (!std::isfinite(x))
+      throw UsageError("--start " + text + ": '" + item + "' is not a finite number");
     v.push_back(x);
   }
   return v;
 }
 
 // The start state (rotated z, N x 1) and how it was found.
-std::vector<Cd> startState(const ContinueOptions& opt, const ScaledParams& sp, std::string& how) {
+std::vector<Cd> startState(const ContinueOptions& opt, const ScaledParams& sp, double from,
+                           std::string& how) {
   const int n = static_cast<int>(sp.nu.size());
   if (!opt.start.empty()) {
     const std::vector<double> v = parseList(opt.start);
@@ -188,13 +190,16 @@ std::vector<Cd> startState(const ContinueOptions& opt, const ScaledParams& sp, s
       throw UsageError("--start " + opt.start + ": expected " + std::to_string(2 * n - 1) +
                        " numbers A_1..A_" + std::to_string(n) + ",psi_2..psi_" + std::to_string(n));
     for (int i = 0; i < n; ++i)
-      if (!(v[i] >= 0)) throw UsageError("--start: A_" + std::to_string(i + 1) + " must be >= 0");
+      if (!(v[i] >= 0))
+        throw UsageError("--start " + opt.start + ": A_" + std::to_string(i + 1) + " = " +
+                         roundTripText(v[i]) + ": must be >= 0");
     how = "--start " + opt.start;
     return stateFrom({v.begin(), v.begin() + n}, {v.begin() + n, v.end()});
   }
   const SettledState st = settleFromStart(sp, sp.tau_end > 0 ? sp.tau_end : 300.0);
   if (!st.settled)
-    throw UsageError("the rig's start does not settle to a locked state (slow flow up to tau = " +
+    throw UsageError("--param " + opt.param + " = " + roundTripText(from) +
+                     ": the rig's start does not settle to a locked state (slow flow up to tau = " +
                      roundTripText(st.tau) + "): " + st.why + "; give --start A_1,..,psi_N");
   how = "the rig's start, settled by the slow flow at tau = " + roundTripText(st.tau);
   return st.z;
@@ -256,7 +261,7 @@ SlowFlowContinuationSpec slowFlowSpec(const ContinueOptions& opt, double from, s
   spec.params = paramsAt(opt);
   spec.from = from, spec.to = opt.to;
   spec.settings = settingsFor(opt, from);
-  if (!opt.all) spec.start = startState(opt, sp, how);
+  if (!opt.all) spec.start = startState(opt, sp, from, how);
   spec.cycles = !opt.no_cycles;
   spec.cycle_points = opt.cycle_points;
   spec.jobs = opt.jobs;

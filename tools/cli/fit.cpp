@@ -15,6 +15,7 @@
 #include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
 #include "tools/cli/range_warnings.h"
+#include "tools/report/json_file.h"
 #include "yaml/key_path.h"
 #include "yaml/rig_loader.h"
 #include "yaml/rig_writer.h"
@@ -246,7 +247,7 @@ void writeFitFiles(const FitOptions& opt, const Rig& rig, const FitReport& rep) 
                               rig.name + " - " + opt.model + " model fitted to " + opt.data_path))
     files.push_back("fit.png");
   files.push_back("fit.json");
-  writeFileAtomically(dir.file("fit.json"), fitJson(rep).dump(2) + "\n");
+  writeJsonFile(dir.file("fit.json"), fitJson(rep));
   if (!opt.quiet) printFit(rep, dir, files);
 }
 

@@ -10,6 +10,7 @@
 #include "tools/cli/fit_inputs.h"
 #include "tools/cli/number_option.h"
 #include "tools/cli/range_warnings.h"
+#include "tools/report/json_file.h"
 #include "yaml/rig_limits.h"
 #include "yaml/rig_loader.h"
 #include "yaml/rig_writer.h"
@@ -199,7 +200,7 @@ int measureCommand(const MeasureOptions& opt) {
       throw UsageError(std::string("--out: ") + e.what());
     }
   }();
-  writeFileAtomically(dir.file("measure.json"), m.json.dump(2) + "\n");
+  writeJsonFile(dir.file("measure.json"), m.json);
   if (!opt.quiet) std::cout << m.json.dump(2) << "\n";
   return kSuccess;
 }

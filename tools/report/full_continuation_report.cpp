@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "sim/record/atomic_file.h"
+#include "tools/report/json_file.h"
 #include "tools/report/plot.h"
 #include "tools/report/report_numbers.h"
 
@@ -172,7 +173,7 @@ nlohmann::json fullContinuationSummaryJson(const FullContinuation& r, const std:
 std::vector<std::string> writeFullContinuation(const OutputDir& dir, const FullContinuation& r,
                                                const std::string& rig_name) {
   writeFileAtomically(dir.file("branches.csv"), fullBranchesCsv(r));
-  writeFileAtomically(dir.file("bifurcations.json"), fullBifurcationsJson(r).dump(2) + "\n");
+  writeJsonFile(dir.file("bifurcations.json"), fullBifurcationsJson(r));
   std::vector<std::string> written = {"branches.csv", "bifurcations.json"};
   if (drawPng(dir, "branches.png", plotData(r), [&](const std::string& d, const std::string& p) {
         return fullDiagramScript(r, d, p);

@@ -16,6 +16,7 @@
 #include "base/number_text.h"
 #include "sim/record/private_dir.h"
 #include "tools/report/build_info.h"
+#include "tools/report/json_file.h"
 #include "tools/report/network_files.h"
 
 namespace metrosync {
@@ -382,7 +383,9 @@ void addProvenance(nlohmann::json& summary, const std::string& resolved_rig_json
 }
 
 void writeSummary(const OutputDir& dir, const nlohmann::json& j) {
-  writeFileAtomically(dir.file("summary.json"), j.dump(2) + "\n");
+  // a failed run (exit 3) keeps its summary, a number it never reached null (docs/outputs.md)
+  const bool failed = j.is_object() && j.value("complete", true) == false;
+  writeJsonFile(dir.file("summary.json"), failed ? nullingNonFinite(j) : j);
 }
 
 }  // namespace metrosync

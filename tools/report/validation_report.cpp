@@ -9,6 +9,7 @@
 #include "base/number_text.h"
 #include "contact/averaged_response.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
+#include "tools/report/json_file.h"
 #include "tools/report/plot.h"
 #include "tools/report/validation_bifurcations_report.h"
 #include "tools/report/validation_full_orbits_report.h"
@@ -800,7 +801,7 @@ std::vector<std::string> writeValidationReport(const OutputDir& dir, const Valid
   std::vector<std::string> files = plots;
   writeFileAtomically(dir.file("report.md"), validationReportMarkdown(r, ctx, plots));
   files.push_back("report.md");
-  writeFileAtomically(dir.file("summary.json"), validationJson(r, ctx).dump(2) + "\n");
+  writeJsonFile(dir.file("summary.json"), validationJson(r, ctx));
   files.push_back("summary.json");
   return files;
 }
