@@ -15,9 +15,9 @@ class StaticCoulomb final : public LawKind {
   const char* name() const override { return "coulomb"; }
   const std::vector<LawParameter>& parameters() const override {
     static const std::vector<LawParameter> ps = {
-        {"mu", LawScale::Coefficient, "mu-bar, kinetic: |F| = mu-bar * M_total * g while slipping",
+        {"mu", kFrictionCoefficient, "mu-bar, kinetic: |F| = mu-bar * M_total * g while slipping",
          "the scaled kinetic coefficient mu = mu-bar / epsilon^{3/2}"},
-        {"mu_static", LawScale::Coefficient,
+        {"mu_static", kFrictionCoefficient,
          "static mu-bar, >= mu: a stuck platform holds while |F| < mu_static * M_total * g",
          "the scaled static coefficient, >= mu"}};
     return ps;
@@ -26,22 +26,39 @@ class StaticCoulomb final : public LawKind {
     if (v[1] >= v[0]) return std::nullopt;
     return LawViolation{"mu_static", "must be >= mu (static friction is at least the kinetic)"};
   }
-  PlatformFriction platform(const std::vector<double>& v, double normal_force) const override {
-    PlatformFriction f;
-    f.kind = PlatformFriction::Kind::SetValued;
-    f.dry = SetValuedLaw(v[1] * normal_force, v[0] * normal_force);
-    return f;
+  // bounds mu_static N (holding) and mu N (slipping: the constant slip force)
+  PlatformFriction platform(const std::vector<double>& v, double N) const override {
+    return PlatformFriction(*this, constants(v, N), {true, true, true, true},
+                            SetValuedLaw(v[1] * N, v[0] * N));
+  }
+  double force(const LawConstants& k, double, PlatformMode mode) const override {
+    return -(k.values[0] * k.normal_force) * static_cast<int>(mode);
+  }
+  double forceSlope(const LawConstants&, double, PlatformMode) const override { return 0.0; }
+  LawGradient forceGradient(const LawConstants& k, double, PlatformMode mode) const override {
+    LawGradient g;
+    g.values[0] = -k.normal_force * static_cast<int>(mode);
+    g.normal_force = -k.values[0] * static_cast<int>(mode);
+    return g;
+  }
+  LawGradient staticBoundGradient(const LawConstants& k) const override {
+    LawGradient g;
+    g.values[1] = k.normal_force;
+    g.normal_force = k.values[1];
+    return g;
   }
   SlowResponse slowResponse(const std::vector<double>& v) const override {
-    if (v[1] == v[0]) return coulombSlowResponse(v[0]);
-    SlowResponse r;
-    r.why =
+    if (v[1] == v[0]) return SlowResponse::dryFriction(v[0]);
+    return SlowResponse::refusedDry(
+        v[0],
         "platform.friction.mu_static > mu: the slow flow's averaged response is derived "
-        "for Coulomb's law (mu_static = mu) only; run the full model (--model full)";
-    return r;
+        "for Coulomb's law (mu_static = mu) only; run the full model (--model full)");
   }
   bool holdsDrive(const std::vector<double>& v, double drive) const override {
     return !(drive > v[1]);
+  }
+  std::optional<double> coulombCoefficient(const std::vector<double>& v) const override {
+    return v[1] == v[0] ? std::optional<double>(v[0]) : std::nullopt;
   }
 };
 

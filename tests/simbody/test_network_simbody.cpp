@@ -225,7 +225,7 @@ void expectConsistentContacts(const Network& net, const Samples& run) {
     for (int p = 0; p < eq.numPlatforms(); ++p) {
       if (!eq.block(p).moves || !eq.block(p).friction.setValued()) continue;
       if (eq.stuck(p, run.modes[r]))
-        EXPECT_LT(std::abs(h[p]), eq.block(p).friction.dry.staticBound() * (1 + 1e-9))
+        EXPECT_LT(std::abs(h[p]), eq.block(p).friction.bounds().staticBound() * (1 + 1e-9))
             << "platform " << p << " t = " << run.t[r];
       else
         EXPECT_GE(static_cast<int>(run.modes[r][p]) * eq.slipVelocity(run.y[r].data(), p), 0.0)

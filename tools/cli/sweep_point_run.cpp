@@ -4,7 +4,6 @@
 #include <limits>
 
 #include "base/number_text.h"
-#include "contact/law_registry.h"
 #include "sim/analysis/network_verdict.h"
 #include "sim/analysis/regime.h"
 #include "tools/cli/commands.h"
@@ -140,12 +139,13 @@ std::optional<PointOutcome> runRigPoint(const PointInput& in, long g, PointSink&
   return o;
 }
 
-// s = |Z| / mu = r sum_j A_j / mu of a Coulomb platform (inf at mu = 0), else NaN
+// s = |Z| / mu = r sum_j A_j / mu of a platform under Coulomb's law (inf at mu = 0), else NaN
 double driveStrength(const FrictionLaw& law, const EnvelopeRow& last, double r) {
-  if (!law.is(coulombLaw())) return std::numeric_limits<double>::quiet_NaN();
+  const std::optional<double> coulomb = law.coulombCoefficient();
+  if (!coulomb) return std::numeric_limits<double>::quiet_NaN();
   double sum = 0.0;
   for (double a : last.A) sum += a;
-  const double mu = law.valueOr("mu", 0.0);
+  const double mu = *coulomb;
   return mu > 0 ? r * sum / mu : std::numeric_limits<double>::infinity();
 }
 

@@ -73,9 +73,8 @@ Mat ScaledModel::physicalJacobian(const std::vector<double>& y, PlatformMode mod
     const double F = eq_.friction().force(v, mode);
     const double meff = eq_.totalMass() - p.S;
     a = (p.G + F) / meff;
-    da = (p.dG + a * p.dS) / meff;  // d((G + F) / (M - S))
-    if (eq_.friction().kind == PlatformFriction::Kind::Viscous)
-      da(kV) -= eq_.friction().viscous.c / meff;
+    da = (p.dG + a * p.dS) / meff;                        // d((G + F) / (M - S))
+    da(kV) += eq_.friction().forceSlope(v, mode) / meff;  // the law's dF/dxdot
     J(kX, kV) = 1.0;
     J.row(kV) = da.transpose();
   }

@@ -32,6 +32,7 @@ class ScaledModel {
   int theta(int j) const { return 2 + j; }
   int omega(int j) const { return 2 + n_ + j; }
   bool hasPlatform() const { return eq_.hasPlatform(); }
+  // the law has stick and slip (a set-valued law: Coulomb's, Stribeck's)
   bool coulomb() const { return eq_.friction().setValued(); }
   bool hasSpring() const { return spring_; }
   int rigIndex(int j) const { return eq_.pendulum(j).rig_index; }
@@ -39,7 +40,7 @@ class ScaledModel {
   bool ticks(int j) const { return eq_.pendulum(j).impulse > 0; }
   const ScaledParams& scaled() const { return sp_; }
 
-  // dz/dt in `mode` (Coulomb: stuck holds x and xdot; other laws ignore the mode).
+  // dz/dt in `mode` (a set-valued law: stuck holds x and xdot; other laws ignore the mode).
   Vec rhs(const Vec& z, PlatformMode mode) const;
   // d(rhs)/dz, (d x d).
   Mat jacobian(const Vec& z, PlatformMode mode) const;
@@ -48,7 +49,7 @@ class ScaledModel {
   // and the direction of its gradient matter here), and its gradient in z (xdot's entry 0).
   double holdingForce(const Vec& z) const;
   Vec holdingForceGradient(const Vec& z) const;
-  // The Coulomb law's mode of a platform at rest at z (stuck unless it breaks free).
+  // The set-valued law's mode of a platform at rest at z (stuck unless it breaks free).
   PlatformMode modeAtRest(const Vec& z) const;
 
   // A combined tick: side_j * J-bar_j on the pins of `ticked` (side by the sign of theta_j),
