@@ -14,6 +14,7 @@
   X(viscousLaw)       /* contact/viscous.cpp:        {law: viscous, c}             */ \
   X(noFrictionLaw)    /* contact/no_friction.cpp:    {law: none}                   */ \
   X(fixedPlatformLaw) /* contact/fixed_platform.cpp: {law: fixed}                  */ \
+  X(stribeckLaw)      /* contact/stribeck.cpp:       {law: stribeck, mu, mu_static, ...}  */ \
   /* a new law: one line above this one, ending in a backslash */
 // clang-format on
 
