@@ -12,6 +12,7 @@ mode="${1:-run}"
 shift || true
 
 packages=(cmake g++ make libsimbody-dev libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev
+          libfmt-dev  # base/number_text.cpp: the rows' text (header-only use)
           libcli11-dev libgtest-dev libbenchmark-dev gnuplot-nox
           libceres-dev  # metrosync fit (sim/analysis/fit)
           libboost-dev  # bench-only (tools/bench's Boost.Odeint peer, header-only)

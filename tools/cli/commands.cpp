@@ -132,6 +132,7 @@ RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::stri
   o.envelope_platform = !trajectory;  // the slow flow's `uncoupled` rule (sim/analysis/regime.h)
   o.x_unit = r.rig.units == Units::Physical ? r.scaled.x_scale_m : 1.0;
   o.law = r.scaled.friction;
+  o.recording_thread = true;  // one run at a time: its rows made beside its integration
   return o;
 }
 

@@ -74,10 +74,20 @@ double eventKindIndex(const char* kind) {
   throw std::logic_error(std::string("unknown event kind ") + kind);
 }
 
+// %.12g of v at the line's end (numberText's text, written in place)
+void appendNumber(double v, std::string& line) {
+  if (v != v) {
+    line += "nan";
+    return;
+  }
+  char buf[kMaxGeneralChars];
+  line.append(buf, writeGeneral(v, 12, buf));
+}
+
 void appendNumbers(const double* v, size_t n, std::string& line) {
   for (size_t k = 0; k < n; ++k) {
     if (k) line += ',';
-    line += numberText(v[k], 12);
+    appendNumber(v[k], line);
   }
 }
 
@@ -117,11 +127,19 @@ DeferredRows::Format FileSink::eventFormat() const {
              const double* v, std::string& line) {
     const double t = v[2];
     const int who = static_cast<int>(v[1]);
-    line += numberText(t, 12) + "," + numberText(eps * t / unit, 12) + "," +
-            kEventKinds[static_cast<size_t>(v[0])] + "," +
-            (who < 0 ? std::string("platform") : std::to_string(who + 1)) + ",";
+    appendNumber(t, line);
+    line += ',';
+    appendNumber(eps * t / unit, line);
+    line += ',';
+    line += kEventKinds[static_cast<size_t>(v[0])];
+    line += ',';
+    line += who < 0 ? std::string("platform") : std::to_string(who + 1);
+    line += ',';
     appendNumbers(v + 3, 2 * width, line);
-    if (seconds) line += "," + numberText(t, 12);
+    if (seconds) {
+      line += ',';
+      appendNumber(t, line);
+    }
   };
 }
 
