@@ -1,5 +1,6 @@
 // Coulomb's law (eq. frictionlaw), {law: coulomb, mu}: |F| <= mu-bar M g while stuck, F =
 // -mu-bar M g sign(xdot) while slipping. Its averaged response is the paper's eq. d2 at s = A / mu.
+#include "contact/law_gradients.h"
 #include "contact/law_kind.h"
 #include "contact/law_registry.h"
 
@@ -22,20 +23,14 @@ class Coulomb final : public LawKind {
                             SetValuedLaw::coulomb(v[0] * N));
   }
   double force(const LawConstants& k, double, PlatformMode mode) const override {
-    return -(k.values[0] * k.normal_force) * static_cast<int>(mode);
+    return constantSlipForce(k, 0, mode);
   }
   double forceSlope(const LawConstants&, double, PlatformMode) const override { return 0.0; }
   LawGradient forceGradient(const LawConstants& k, double, PlatformMode mode) const override {
-    LawGradient g;
-    g.values[0] = -k.normal_force * static_cast<int>(mode);
-    g.normal_force = -k.values[0] * static_cast<int>(mode);
-    return g;
+    return constantSlipGradient(k, 0, mode);
   }
   LawGradient staticBoundGradient(const LawConstants& k) const override {
-    LawGradient g;
-    g.values[0] = k.normal_force;
-    g.normal_force = k.values[0];
-    return g;
+    return boundGradient(k, 0);
   }
   SlowResponse slowResponse(const std::vector<double>& v) const override {
     return SlowResponse::dryFriction(v[0]);

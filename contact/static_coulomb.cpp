@@ -3,6 +3,7 @@
 // mu_static-bar M g; a slipping one feels mu-bar M g. With mu_static == mu it is Coulomb's law,
 // bit for bit. The slow flow's averaged response is derived for mu_static == mu only (paper
 // appendix "ac"); above it the slow flow refuses the law.
+#include "contact/law_gradients.h"
 #include "contact/law_kind.h"
 #include "contact/law_registry.h"
 
@@ -32,20 +33,14 @@ class StaticCoulomb final : public LawKind {
                             SetValuedLaw(v[1] * N, v[0] * N));
   }
   double force(const LawConstants& k, double, PlatformMode mode) const override {
-    return -(k.values[0] * k.normal_force) * static_cast<int>(mode);
+    return constantSlipForce(k, 0, mode);
   }
   double forceSlope(const LawConstants&, double, PlatformMode) const override { return 0.0; }
   LawGradient forceGradient(const LawConstants& k, double, PlatformMode mode) const override {
-    LawGradient g;
-    g.values[0] = -k.normal_force * static_cast<int>(mode);
-    g.normal_force = -k.values[0] * static_cast<int>(mode);
-    return g;
+    return constantSlipGradient(k, 0, mode);
   }
   LawGradient staticBoundGradient(const LawConstants& k) const override {
-    LawGradient g;
-    g.values[1] = k.normal_force;
-    g.normal_force = k.values[1];
-    return g;
+    return boundGradient(k, 1);
   }
   SlowResponse slowResponse(const std::vector<double>& v) const override {
     if (v[1] == v[0]) return SlowResponse::dryFriction(v[0]);

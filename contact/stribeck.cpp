@@ -12,6 +12,7 @@
 // refuses the law, naming it.
 #include <cmath>
 
+#include "contact/law_gradients.h"
 #include "contact/law_kind.h"
 #include "contact/law_registry.h"
 
@@ -91,10 +92,7 @@ class Stribeck final : public LawKind {
     return g;
   }
   LawGradient staticBoundGradient(const LawConstants& k) const override {
-    LawGradient g;
-    g.values[kMuStatic] = k.normal_force;
-    g.normal_force = k.values[kMuStatic];
-    return g;
+    return boundGradient(k, kMuStatic);
   }
   SlowResponse slowResponse(const std::vector<double>& v) const override {
     if (v[kMuStatic] == v[kMu]) return SlowResponse::dryFriction(v[kMu]);

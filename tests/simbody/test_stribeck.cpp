@@ -21,12 +21,15 @@
 
 #include "contact/law_registry.h"
 #include "models/scaling.h"
-#include "sim/engines/direct/direct_engine.h"
-#include "sim/engines/simbody/simbody_engine.h"
+#include "tests/common/full_model_trial.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync {
 namespace {
+
+using testing_support::expectSameBits;
+using testing_support::runOn;
+using testing_support::Trial;
 
 constexpr double kPi = 3.141592653589793;
 constexpr double kMu = 4.6e-3, kMuStatic = 9.2e-3;  // the high-friction rollers; static twice
@@ -43,18 +46,6 @@ Rig springRig(const FrictionLaw& law, double x0_over_static_x) {
 
 FrictionLaw stribeck(double mu, double mu_static, double V, double E = 2.0) {
   return FrictionLaw(stribeckLaw(), {mu, mu_static, V, E});
-}
-
-struct Trial {
-  RunReport report;
-  MemorySink sink;
-};
-
-Trial runOn(const std::string& engine, const Rig& rig) {
-  Trial r;
-  r.report =
-      engine == "direct" ? runDirectModel(rig, r.sink) : runSimbody(networkOfOne(rig), r.sink);
-  return r;
 }
 
 // The reference slip from rest at x0 > 0 (moving left): its stop time and position.
@@ -172,17 +163,6 @@ TEST(Stribeck, ScalesItsVelocityLikeTheBoardsVelocity) {
   Rig moving = rig;
   moving.platform.start_v_m_s = kV;
   EXPECT_DOUBLE_EQ(computeScaled(moving).xdot0, *sp.friction.value("stribeck_velocity"));
-}
-
-void expectSameBits(const Trial& a, const Trial& b) {
-  ASSERT_TRUE(a.report.complete && b.report.complete);
-  EXPECT_EQ(a.report.counts.steps, b.report.counts.steps);
-  EXPECT_EQ(a.report.counts.events, b.report.counts.events);
-  EXPECT_EQ(a.report.counts.stick_slip, b.report.counts.stick_slip);
-  EXPECT_EQ(a.report.counts.slip_reversals, b.report.counts.slip_reversals);
-  EXPECT_EQ(a.report.counts.escapements, b.report.counts.escapements);
-  EXPECT_EQ(a.sink.trajectory, b.sink.trajectory);  // every row, bit for bit
-  EXPECT_EQ(a.sink.events, b.sink.events);
 }
 
 // mu_static == mu: Coulomb's law bit for bit, on a board with ticking metronomes (stick-slip with
