@@ -15,16 +15,14 @@ class FixedPlatform final : public LawKind {
     static const std::vector<LawParameter> ps;
     return ps;
   }
-  PlatformFriction platform(const std::vector<double>&, double) const override {
-    PlatformFriction f;
-    f.kind = PlatformFriction::Kind::Fixed;
-    return f;
+  PlatformFriction platform(const std::vector<double>& v, double N) const override {
+    return PlatformFriction(*this, constants(v, N), {false, false, false, false});
   }
+  double force(const LawConstants&, double, PlatformMode) const override { return 0.0; }
+  double forceSlope(const LawConstants&, double, PlatformMode) const override { return 0.0; }
+  LawGradient forceGradient(const LawConstants&, double, PlatformMode) const override { return {}; }
   SlowResponse slowResponse(const std::vector<double>&) const override {
-    SlowResponse r;
-    r.kind = SlowResponse::Kind::Constant;
-    r.constant = {0.0, 0.0};
-    return r;
+    return SlowResponse::constant({0.0, 0.0});
   }
   bool holdsDrive(const std::vector<double>&, double) const override { return true; }
   std::optional<double> reportedMu() const override { return HUGE_VAL; }

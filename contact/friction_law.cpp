@@ -17,29 +17,31 @@ int indexOf(const LawKind& kind, const std::string& key) {
   return -1;
 }
 
-double factor(const LawScales& s, LawScale scale) {
-  return scale == LawScale::Coefficient ? s.coefficient : s.viscous;
+// (coefficient^c mass^m length^l rate^r) by products in that order, from 1.0: a viscous c's
+// factor is 1.0 * M * omega0 = M omega0, a coefficient's eps^{3/2}, bit for bit what
+// models/scaling.cpp always divided by.
+double power(double base, int exponent, double f) {
+  for (int k = 0; k < exponent; ++k) f *= base;
+  for (int k = 0; k > exponent; --k) f /= base;
+  return f;
+}
+
+double factor(const LawScales& s, const LawUnit& u) {
+  double f = power(s.coefficient, u.coefficient, 1.0);
+  f = power(s.mass, u.mass, f);
+  f = power(s.length, u.length, f);
+  return power(s.rate, u.rate, f);
 }
 
 }  // namespace
-
-AveragedResponse SlowResponse::at(double A) const {
-  switch (kind) {
-    case Kind::Constant:
-      return constant;
-    case Kind::Coulomb:
-      if (mu < 0.0) throw std::invalid_argument("averaged response: mu < 0");
-      return coulombResponse(std::fabs(A) / mu);
-    case Kind::None:
-      break;
-  }
-  throw std::invalid_argument(why);
-}
 
 FrictionLaw::FrictionLaw() : FrictionLaw(coulomb(0.0)) {}
 
 FrictionLaw::FrictionLaw(const LawKind& kind, std::vector<double> values)
     : kind_(&kind), values_(std::move(values)) {
+  if (kind.parameters().size() > static_cast<std::size_t>(kMaxLawParameters))
+    throw std::logic_error(std::string("friction law ") + kind.name() + ": more than " +
+                           std::to_string(kMaxLawParameters) + " parameters");
   if (values_.size() != kind.parameters().size())
     throw std::invalid_argument(std::string("friction law ") + kind.name() + ": " +
                                 std::to_string(kind.parameters().size()) + " values expected");
@@ -71,19 +73,19 @@ FrictionLaw FrictionLaw::with(const std::string& key, double v) const {
   return out;
 }
 
-// The same operations as models/scaling.cpp always did (a division by eps^{3/2} or M omega0, a
-// product on the way back), so that the scaled values keep their bits.
+// A division by the parameter's factor (a product on the way back), as models/scaling.cpp always
+// did, so that the scaled values keep their bits.
 FrictionLaw FrictionLaw::scaled(const LawScales& s) const {
   FrictionLaw out = *this;
   const std::vector<LawParameter>& ps = kind_->parameters();
-  for (std::size_t k = 0; k < ps.size(); ++k) out.values_[k] = values_[k] / factor(s, ps[k].scale);
+  for (std::size_t k = 0; k < ps.size(); ++k) out.values_[k] = values_[k] / factor(s, ps[k].unit);
   return out;
 }
 
 FrictionLaw FrictionLaw::physical(const LawScales& s) const {
   FrictionLaw out = *this;
   const std::vector<LawParameter>& ps = kind_->parameters();
-  for (std::size_t k = 0; k < ps.size(); ++k) out.values_[k] = values_[k] * factor(s, ps[k].scale);
+  for (std::size_t k = 0; k < ps.size(); ++k) out.values_[k] = values_[k] * factor(s, ps[k].unit);
   return out;
 }
 

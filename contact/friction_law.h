@@ -2,12 +2,14 @@
 // registry, contact/law_registry.h) and its parameter values, in the units of the rig it belongs
 // to (physical in PlatformSpec, scaled in ScaledParams). It carries everything the rest of the
 // code asks of a law: its name and keys (rig files, --set), its JSON, its scaling, the engines'
-// law at a normal force (contact/platform_friction.h), the slow flow's averaged response, and
-// whether it can hold the platform. Two laws are equal when they are the same kind with the same
-// values: every parameter counts, so a new one is never ignored by a comparison.
+// law at a normal force (contact/platform_friction.h: force, derivatives, bounds), the slow
+// flow's averaged response (contact/slow_response.h), and whether it can hold the platform. Two
+// laws are equal when they are the same kind with the same values: every parameter counts, so a
+// new one is never ignored by a comparison.
 //
 // To add a law: one file in contact/ defining its LawKind (contact/law_kind.h), one line in
-// contact/law_registry.h. Nothing else changes: readers, writers and engines go through here.
+// contact/law_registry.h. Nothing else changes: readers, writers and engines go through here
+// (docs/friction.md, "Adding a law").
 #pragma once
 
 #include <nlohmann/json_fwd.hpp>
@@ -20,10 +22,13 @@
 
 namespace metrosync {
 
-// Physical / scaled for each LawScale (models/scaling.h): scaled = physical / factor.
+// The rig's scales a parameter's unit is made of (contact/law_kind.h LawUnit; models/scaling.h):
+// scaled = physical / (coefficient^c mass^m length^l rate^r).
 struct LawScales {
   double coefficient = 1.0;  // eps^{3/2}
-  double viscous = 1.0;      // M omega0
+  double mass = 1.0;         // M (kg)
+  double length = 1.0;       // x_scale (m)
+  double rate = 1.0;         // omega0 (1/s)
 };
 
 class FrictionLaw {
@@ -40,6 +45,7 @@ class FrictionLaw {
 
   const LawKind& kind() const { return *kind_; }
   const char* name() const { return kind_->name(); }
+  const std::vector<LawParameter>& parameters() const { return kind_->parameters(); }
   const std::vector<double>& values() const { return values_; }
   bool is(const LawKind& k) const { return kind_ == &k; }
   // The value of parameter `key`; nullopt if the law has no such parameter.
@@ -59,6 +65,9 @@ class FrictionLaw {
   }
   bool setValued() const { return platform(1.0).setValued(); }
   bool platformMoves() const { return platform(1.0).platformMoves(); }
+  bool exertsForce() const { return platform(1.0).exertsForce(); }
+  // mu-bar (or scaled mu) when the law is Coulomb's law (LawKind::coulombCoefficient).
+  std::optional<double> coulombCoefficient() const { return kind_->coulombCoefficient(values_); }
   // The rules across parameters (mu_static >= mu); nullopt when they hold.
   std::optional<LawViolation> violation() const { return kind_->check(values_); }
 

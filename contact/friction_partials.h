@@ -3,8 +3,8 @@
 // platform feels in a mode changes with its slip velocity, with each of the law's own parameters
 // (FrictionLaw::values()) and with the normal force, and how the static bound -- the largest
 // holding force, where a stuck platform breaks free -- changes with the same parameters.
-// Everything law-dependent that those derivatives need is here, beside the laws (one function:
-// the law interface of issue 38 takes it over as one method per law).
+// Each law gives them itself (contact/platform_friction.h: PlatformFriction::forceSlope,
+// forceGradient, staticBoundGradient, one method per law in its file); this gathers them.
 #pragma once
 
 #include <vector>
@@ -24,10 +24,10 @@ struct FrictionPartials {
 };
 
 // The partials of `law` at normal force N, slip velocity v and platform mode `mode` (a set-valued
-// law's force is its kinetic force while slipping and no force while stuck, where the holding
+// law's force is its slip force while slipping and no force while stuck, where the holding
 // force is a constraint), in the law's units (F in newtons for a physical rig). Written into
-// `out`, whose vectors keep their storage from call to call; false for a law that does not give
-// them (the caller then differences its model instead).
+// `out`, whose vectors keep their storage from call to call. Every registered law gives them
+// (true); false is kept for a caller that differences its model instead.
 bool frictionPartials(const FrictionLaw& law, double normal_force, double v, PlatformMode mode,
                       FrictionPartials& out);
 

@@ -46,9 +46,13 @@ std::vector<std::string> lawKeys() {
 
 const LawKind* findLaw(const std::string& name, const std::vector<std::string>& keys) {
   for (const LawKind* k : lawRegistry()) {
-    if (name != k->name() || k->parameters().size() != keys.size()) continue;
+    if (name != k->name()) continue;
+    const auto given = [&](const LawParameter& p) {
+      return p.fallback || std::find(keys.begin(), keys.end(), p.key) != keys.end();
+    };
     if (std::all_of(keys.begin(), keys.end(),
-                    [&](const std::string& key) { return hasKey(*k, key); }))
+                    [&](const std::string& key) { return hasKey(*k, key); }) &&
+        std::all_of(k->parameters().begin(), k->parameters().end(), given))
       return k;
   }
   return nullptr;

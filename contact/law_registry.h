@@ -13,7 +13,9 @@
   X(staticCoulombLaw) /* contact/static_coulomb.cpp: {law: coulomb, mu, mu_static} */ \
   X(viscousLaw)       /* contact/viscous.cpp:        {law: viscous, c}             */ \
   X(noFrictionLaw)    /* contact/no_friction.cpp:    {law: none}                   */ \
-  X(fixedPlatformLaw) /* contact/fixed_platform.cpp: {law: fixed}                  */
+  X(fixedPlatformLaw) /* contact/fixed_platform.cpp: {law: fixed}                  */ \
+  X(stribeckLaw)      /* contact/stribeck.cpp:       {law: stribeck, mu, mu_static, ...}  */ \
+  /* a new law: one line above this one, ending in a backslash */
 // clang-format on
 
 namespace metrosync {
@@ -30,7 +32,8 @@ std::vector<std::string> lawNames();
 std::string lawsWithKey(const std::string& key);
 // Every parameter key of every law, once each (the rig schema's platform.friction keys).
 std::vector<std::string> lawKeys();
-// The law named `name` whose parameters are exactly `keys` (any order); nullptr if none.
+// The law named `name` that takes every key in `keys` and has every parameter it requires
+// among them (any order; a parameter with a default may be left out); nullptr if none.
 const LawKind* findLaw(const std::string& name, const std::vector<std::string>& keys);
 
 }  // namespace metrosync

@@ -1,10 +1,11 @@
 // What the event core asks of a set-valued (dry) friction law (eq. frictionlaw and its static
-// generalisation): the one place that decides stick and slip, for both engines and the event
-// resolver (sim/events/). A law value (contact/friction_law.h) hands the engines one of these.
-//   slipping (v != 0):  F = -kinetic_bound * sign(v)
+// generalisation): its bounds and the one place that decides stick and slip, for both engines
+// and the event resolver (sim/events/). A law's engine form (contact/platform_friction.h) carries
+// one; the force while slipping is the law's own (PlatformFriction::force: -kinetic_bound *
+// sign(v) for Coulomb's law, a function of the speed for others).
 //   sticking (v == 0):  F takes whatever value keeps the platform still, while |F| < static_bound;
 //                       once the force needed reaches the static bound, the platform slips in the
-//                       direction the other forces push it, with the kinetic force opposing.
+//                       direction the other forces push it, with the slip force opposing.
 // Coulomb's law has static_bound == kinetic_bound; static friction above kinetic has
 // static_bound > kinetic_bound (a slip that stops under a push between the two bounds sticks).
 // The tie |holding force| == static_bound breaks free, in every decision below (canHold,
@@ -28,10 +29,6 @@ class SetValuedLaw {
 
   double staticBound() const { return static_bound_; }
   double kineticBound() const { return kinetic_bound_; }
-
-  // Kinetic friction force while slipping in `mode`, i.e. at a velocity of that sign (0 when
-  // stuck: the holding force is a constraint).
-  double kineticForce(PlatformMode mode) const { return -kinetic_bound_ * static_cast<int>(mode); }
 
   // Can friction supply `holding_force` (the force that keeps the platform still)? Strictly
   // inside the static bound only: the tie breaks free. NaN is never held.
@@ -70,7 +67,8 @@ class SetValuedLaw {
 
  private:
   double static_bound_ = 0.0;   // largest holding force, >= kinetic_bound_
-  double kinetic_bound_ = 0.0;  // magnitude of the friction force while slipping, >= 0
+  double kinetic_bound_ = 0.0;  // Coulomb's slip force's magnitude (of a speed-dependent law: its
+                                // limit at high speed), >= 0
 };
 
 }  // namespace metrosync

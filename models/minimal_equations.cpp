@@ -113,7 +113,7 @@ inline __attribute__((always_inline)) void MetronomeEquations::rhsBody(
     const auto [G, schur] = schurSums(n, mL, mgL, inv_I, damp, spring_, w, y + StateLayout::kX, sn,
                                       cs, c, r, g_term, s_term);
     const double F = friction_.force(v, mode);  // the law's force (contact/platform_friction.h)
-    friction_power = friction_.power(v, mode);
+    friction_power = -F * v;                    // PlatformFriction::power
     a = (G + F) / (mass_ - schur);
     // pass 2: the pendulums
     for (int j = 0; j < n; ++j) dw[j] = (r[j] - c[j] * a) * inv_I[j];

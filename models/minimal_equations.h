@@ -10,7 +10,7 @@
 //                                                                                  (e1.1a, b)
 // Eliminating thetaddot_j (the Schur complement of diag(I)) gives the platform first, in O(N):
 //   Meff xddot = G + F,  Meff = M - sum_j c_j^2 / I_j,
-//   G = sum_j m_j L_j sin theta_j thetadot_j^2 - sum_j c_j r_j / I_j - k x  (- c-bar xdot viscous)
+//   G = sum_j m_j L_j sin theta_j thetadot_j^2 - sum_j c_j r_j / I_j - k x   (F: the law's force)
 // then thetaddot_j = (r_j - c_j xddot) / I_j. G is the push of everything but friction: a stuck
 // platform needs the holding force H = -G from friction (SetValuedLaw's holding_force).
 //
@@ -28,8 +28,8 @@
 namespace metrosync {
 
 // The platform's law from the rig at the normal force M g (eq. frictionlaw: a set-valued law's
-// bounds are its coefficients times M g), M the platform with everything on it, or the viscous
-// c-bar. Both engines take it from here.
+// bounds are its coefficients times M g), M the platform with everything on it. Both engines
+// take it from here.
 PlatformFriction platformFriction(const Rig& rig);
 
 }  // namespace metrosync
@@ -72,13 +72,13 @@ class MetronomeEquations {
   const PendulumConstants& pendulum(int j) const { return pend_[j]; }
   bool hasPlatform() const { return has_platform_; }
   const PlatformFriction& friction() const { return friction_; }
-  // the set-valued law (friction().setValued() only)
-  const SetValuedLaw& dryFriction() const { return friction_.dry; }
+  // the set-valued law's bounds (friction().setValued() only)
+  const SetValuedLaw& dryFriction() const { return friction_.bounds(); }
   Escapement escapement(int j) const { return {pend_[j].theta_c, pend_[j].impulse}; }
   double totalMass() const { return mass_; }
 
-  // dy/dt in the given platform mode (only Coulomb uses it: Stuck holds xdot = 0, a slip feels
-  // the kinetic force -bound * mode). dy also gets the damping and friction power.
+  // dy/dt in the given platform mode (only a set-valued law uses it: Stuck holds xdot = 0, a slip
+  // feels the law's slip force). dy also gets the damping and friction power.
   void rhs(const double* y, PlatformMode mode, double* dy) const { rhsN<kAnyN>(y, mode, dy); }
   // The same with the number of swinging pendulums known to the compiler (N == numSwinging(),
   // 1 .. kMaxFixedN), or kAnyN: the same operations in the same order, so the same bits.

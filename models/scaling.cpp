@@ -11,8 +11,8 @@
 
 namespace metrosync {
 
-LawScales lawScales(double epsilon, double M_omega0) {
-  return LawScales{epsilon * std::sqrt(epsilon), M_omega0};
+LawScales lawScales(double epsilon, double M, double x_scale, double omega0) {
+  return LawScales{epsilon * std::sqrt(epsilon), M, x_scale, omega0};
 }
 
 ScaledParams computeScaled(const Rig& rig) {
@@ -37,8 +37,9 @@ ScaledParams computeScaled(const Rig& rig) {
   p.x_scale_m = I1 * eps * sqrt_eps / (m1 * L1);
   p.tau_end = eps * omega0 * rig.sim.t_end_s;
 
-  // platform: mu = mu-bar / eps^{3/2} (Coulomb), c = c-bar / (M omega0) (viscous)
-  p.friction = rig.platform.friction.scaled(lawScales(eps, M * omega0));
+  // platform: each law parameter by its unit (mu = mu-bar / eps^{3/2}, c = c-bar / (M omega0),
+  // a velocity / (x_scale omega0))
+  p.friction = rig.platform.friction.scaled(lawScales(eps, M, p.x_scale_m, omega0));
   p.x0 = rig.platform.start_x_m / p.x_scale_m;
   p.xdot0 = rig.platform.start_v_m_s / (p.x_scale_m * omega0);
 
@@ -118,7 +119,8 @@ Rig rigFromScaled(const ScaledRigInput& in) {
         " metronomes: the pendulums alone would outweigh M = 1/epsilon (the platform mass would "
         "be <= 0; need epsilon * sum_i (1 + epsilon zeta_i)(1 + epsilon alpha_i) < 1)");
 
-  rig.platform.friction = in.friction.physical(lawScales(eps, M));  // c-bar = c M omega0
+  // omega0 = 1, x_scale = eps^{3/2}: c-bar = c M, a velocity V eps^{3/2}
+  rig.platform.friction = in.friction.physical(lawScales(eps, M, eps32, 1.0));
   rig.platform.start_x_m = eps32 * in.x0;  // x_scale = I1 eps^{3/2} / (m1 L1)
   rig.platform.start_v_m_s = eps32 * in.xdot0;
 

@@ -9,7 +9,7 @@
 //     eps J_i         = J-bar_i / (I_i sqrt(eps) omega0) (jump of thetadot_i on a still platform)
 //     theta_c,i       = theta-bar_c,i / sqrt(eps)
 //   viscous platform: c = c-bar / (M omega0)  (scaled platform equation xddot = -c xdot - ...)
-//   (each law parameter scales by its LawScale, contact/law_kind.h: lawScales below)
+//   (each law parameter scales by its unit, LawUnit in contact/law_kind.h: lawScales below)
 #pragma once
 
 #include <optional>
@@ -36,8 +36,10 @@ struct ScaledParams {
   double tau_end = 0.0;       // slow time at the end of the run
 };
 
-// The factors of a law's parameters: eps^{3/2} for a coefficient, M omega0 for a viscous c.
-LawScales lawScales(double epsilon, double M_omega0);
+// The scales a law parameter's unit is made of (contact/friction_law.h): eps^{3/2} for a
+// friction coefficient, the mass M, the length x_scale and the rate omega0 (a viscous c by
+// M omega0, a velocity by x_scale omega0).
+LawScales lawScales(double epsilon, double M, double x_scale, double omega0);
 
 // Scaled parameters of a rig (physical or an equivalent system built from scaled input).
 ScaledParams computeScaled(const Rig& rig);

@@ -56,15 +56,14 @@ SlowFlow::SlowFlow(const ScaledParams& p) : n_(static_cast<int>(p.nu.size())) {
     if (theta_c_[i] < 0.0) throw std::invalid_argument("slow flow: theta_c < 0");
     if (!locked[i]) active_.push_back(i);
   }
-  const std::vector<LawParameter>& keys = p.friction.kind().parameters();
+  const std::vector<LawParameter>& keys = p.friction.parameters();
   for (std::size_t k = 0; k < keys.size(); ++k) requireFinite(p.friction.values()[k], keys[k].key);
-  // the law's averaged response (contact/law_kind.h); a law without one is refused here
+  // the law's averaged response (contact/slow_response.h); a law without one is refused here
   const SlowResponse response = p.friction.slowResponse();
-  if (response.kind == SlowResponse::Kind::None)
-    throw std::invalid_argument("slow flow: " + response.why);
-  if (response.mu < 0.0) throw std::invalid_argument("slow flow: mu < 0");
-  mu_ = response.mu;
-  coulomb_regimes_ = response.kind == SlowResponse::Kind::Coulomb && response.mu > 0.0;
+  if (!response.available()) throw std::invalid_argument("slow flow: " + response.why());
+  if (response.mu() < 0.0) throw std::invalid_argument("slow flow: mu < 0");
+  mu_ = response.mu();
+  coulomb_regimes_ = response.hasRegimes();
   if (!coulomb_regimes_) constant_beta_ = response.at(1.0);  // A-independent for these laws
 }
 

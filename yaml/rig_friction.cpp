@@ -1,7 +1,8 @@
 // platform.friction: the law a rig file names, read through the registry of laws
 // (contact/law_registry.h). The name and the keys written choose the law ({law: coulomb, mu} is
 // Coulomb's law, {law: coulomb, mu, mu_static} static friction above kinetic); every parameter is
-// required and >= 0; then the law's own rules (mu_static >= mu).
+// required unless the law gives it a default, and >= 0; then the law's own rules (mu_static >=
+// mu).
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -57,7 +58,7 @@ const LawKind& chooseLaw(const Reader& f, const std::string& name, Units units) 
   const LawKind* want = smallestWith(name, keys);
   if (!want) f.bad(keys.back(), "no law: " + name + " takes all of these keys together");
   for (const LawParameter& p : want->parameters())
-    if (!f.has(p.key)) f.missing(p.key, help(p, units));
+    if (!f.has(p.key) && !p.fallback) f.missing(p.key, help(p, units));
   return *want;  // not reached: findLaw would have matched
 }
 
@@ -79,7 +80,9 @@ FrictionLaw readFriction(const Reader& platform, Units units) {
   const LawKind& kind = chooseLaw(f, name, units);
   std::vector<double> values;
   for (const LawParameter& p : kind.parameters())
-    values.push_back(nonNegative(f, p.key, f.number(p.key, help(p, units))));
+    values.push_back(!f.has(p.key) && p.fallback
+                         ? *p.fallback
+                         : nonNegative(f, p.key, f.number(p.key, help(p, units))));
   const FrictionLaw law(kind, values);
   if (const std::optional<LawViolation> v = law.violation()) f.bad(v->key, v->why);
   return law;

@@ -35,7 +35,7 @@ double CoulombContact::holdingForce(const State& s) const {
 
 double CoulombContact::witness(const State& s) const {
   const PlatformMode m = mode(s);
-  if (m == PlatformMode::Stuck) return law_.stickMargin(holdingForce(s));
+  if (m == PlatformMode::Stuck) return law().stickMargin(holdingForce(s));
   return static_cast<int>(m) * slipVelocity(s);
 }
 
@@ -43,7 +43,7 @@ void CoulombContact::calcForce(const State& s, Vector_<SpatialVec>&, Vector_<Vec
                                Vector& mobilityForces) const {
   const PlatformMode m = mode(s);
   if (m != PlatformMode::Stuck)
-    slider_.applyOneMobilityForce(s, 0, law_.kineticForce(m), mobilityForces);
+    slider_.applyOneMobilityForce(s, 0, friction_.force(slipVelocity(s), m), mobilityForces);
 }
 
 }  // namespace metrosync

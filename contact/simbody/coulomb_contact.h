@@ -1,8 +1,10 @@
-// The Simbody adapter of SetValuedLaw (contact/set_valued_law.h) for one contact of a network of
+// The Simbody adapter of a set-valued law (contact/platform_friction.h: its bounds,
+// contact/set_valued_law.h, and its slip force) for one contact of a network of
 // platforms (docs/networks.md): a Force::Custom element on the slider of the platform above the
 // contact, whose coordinate is the slip of that platform relative to what it rests on (the table,
 // or the platform below). The contact's mode (stuck, slipping right, slipping left) is a discrete
-// state variable; while slipping the element applies the kinetic force -bound * mode, a force pair
+// state variable; while slipping the element applies the law's slip force at the slip velocity
+// (Coulomb's -bound * mode), a force pair
 // on the platform and (through the relative slider) the platform below; while stuck the slider's
 // ACCELERATION is locked at zero, so that several stuck contacts are held together by one solve
 // of Simbody's prescribed motion, and each lock's generalized force is that contact's holding
@@ -14,17 +16,18 @@
 
 #include <Simbody.h>
 
-#include "contact/set_valued_law.h"
+#include "contact/platform_friction.h"
 
 namespace metrosync {
 
 class CoulombContact : public SimTK::Force::Custom::Implementation {
  public:
   CoulombContact(const SimTK::GeneralForceSubsystem& forces,
-                 const SimTK::MobilizedBody::Slider& slider, SetValuedLaw law)
-      : forces_(forces), slider_(slider), law_(law) {}
+                 const SimTK::MobilizedBody::Slider& slider, PlatformFriction friction)
+      : forces_(forces), slider_(slider), friction_(friction) {}
 
-  const SetValuedLaw& law() const { return law_; }
+  // the law's bounds and stick/slip decisions
+  const SetValuedLaw& law() const { return friction_.bounds(); }
   PlatformMode mode(const SimTK::State& s) const;
   // Stuck: the slider's acceleration locked at zero (its velocity untouched); a slip: unlocked.
   // Lowers the stage to Model.
@@ -47,7 +50,7 @@ class CoulombContact : public SimTK::Force::Custom::Implementation {
  private:
   const SimTK::GeneralForceSubsystem& forces_;
   SimTK::MobilizedBody::Slider slider_;
-  SetValuedLaw law_;
+  PlatformFriction friction_;  // a set-valued law
   mutable SimTK::DiscreteVariableIndex mode_index_;
 };
 

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "contact/friction_law.h"
+
 namespace metrosync {
 
 namespace {
@@ -75,7 +77,7 @@ PlatformMode DrivenCoulombHarness::resolveSwitch(State& s) const {
 DrivenCoulombHarness::DrivenCoulombHarness(double B) {
   Body::Rigid unit(MassProperties(1.0, Vec3(0), UnitInertia(1)));
   slider = MobilizedBody::Slider(matter.Ground(), Transform(), unit, Transform());
-  contact = new CoulombContact(forces, slider, SetValuedLaw::coulomb(1.0));
+  contact = new CoulombContact(forces, slider, FrictionLaw::coulomb(1.0).platform(1.0));
   Force::Custom(forces, contact);
   Force::Custom(forces, new Drive(slider, B));
   switch_ = new Switch(*this);

@@ -1,6 +1,6 @@
-// The Simbody adapter of a smooth platform law (PlatformFriction with setValued() false: viscous,
-// and any law added beside it in contact/): a Force::Custom element applying the law's force
-// PlatformFriction::force(xdot) on the platform's slider. The set-valued law (Coulomb) has its
+// The Simbody adapter of a smooth platform law (PlatformFriction with setValued() false and a
+// force: viscous, and any law added beside it in contact/): a Force::Custom element applying the
+// law's force PlatformFriction::force(xdot) on the platform's slider. A set-valued law has its
 // own element with modes (coulomb_contact.h).
 #pragma once
 

@@ -147,10 +147,10 @@ void PlatformSystem::addPlatform(int p, std::vector<char>& made) {
     if (b.c > 0) Force::MobilityLinearDamper(forces_, sliders_[p], MobilizerUIndex(0), b.c);
   }
   if (b.friction.setValued()) {
-    auto* element = new CoulombContact(forces_, sliders_[p], b.friction.dry);
+    auto* element = new CoulombContact(forces_, sliders_[p], b.friction);
     Force::Custom(forces_, element);  // takes ownership
     contacts_[p] = element;
-  } else if (b.friction.kind != PlatformFriction::Kind::None) {
+  } else if (b.friction.exertsForce()) {
     Force::Custom(forces_, new SmoothFrictionElement(sliders_[p], b.friction));
   }
 }

@@ -9,7 +9,8 @@
 //     is its absolute position);
 //   per contact the platform's law on its slider: CoulombContact
 //   (contact/simbody/coulomb_contact.h)
-//     for the set-valued Coulomb law, SmoothFrictionElement for a smooth law, nothing for none;
+//     for a set-valued law, SmoothFrictionElement for a smooth one, nothing for a law without a
+//     force (none);
 //   per swinging pendulum a Pin on its platform's body (on Ground when the platform is fixed;
 //     mass m_i, centre of mass at L_i below the pivot, inertia I_i about the pivot), gravity -g y,
 //     a pivot damper (torque -nu-bar L^2 thetadot) where nu-bar > 0;

@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "base/constants.h"
-#include "contact/law_registry.h"
 
 namespace metrosync {
 
@@ -11,7 +10,7 @@ bool isSection3ARig(const Rig& rig) {
   if (rig.units != Units::Physical || rig.metronomes.empty()) return false;
   for (const auto& m : rig.metronomes)
     if (!m.locked) return false;
-  return rig.platform.spring_N_m > 0 && rig.platform.friction.is(coulombLaw());
+  return rig.platform.spring_N_m > 0 && rig.platform.friction.coulombCoefficient().has_value();
 }
 
 void LinearDecay::addExtreme(double t_s, double x_m) {

@@ -5,7 +5,6 @@
 #include <exception>
 
 #include "contact/averaged_response.h"
-#include "contact/law_registry.h"
 #include "sim/analysis/validation_catalogue.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 
@@ -69,9 +68,9 @@ ModelRun runSlowModel(const ScaledParams& p, double epsilon, double tau_end) {
   run.envelope = std::move(sink.rows);
   if (run.report.complete)
     run.verdict = classifyRegime(run.envelope, tau_end, epsilon, q.theta_c, q.locked);
-  // the platform at the end: the Coulomb regime of the final drive s = |Z| / mu
+  // the platform at the end: the Coulomb regime of the final drive s = |Z| / mu (a dry law)
   const EnvelopeRow& f = run.report.final_row;
-  if (p.friction.is(coulombLaw()) && !f.A.empty()) {
+  if (p.friction.slowResponse().hasBorders() && !f.A.empty()) {
     std::complex<double> Z = f.A[0];
     for (size_t j = 1; j < f.A.size(); ++j) Z += std::polar(f.A[j], -f.psi[j - 1]);
     const double mu = run.mu;
@@ -102,7 +101,7 @@ ModelRun runFullModelAt(const ValidationEngines& engines, const ScaledParams& p,
     run.report.final_row = run.envelope.back();
   if (run.report.complete)
     run.verdict = classifyRegime(run.envelope, tau_end, epsilon, p.theta_c, p.locked);
-  if (p.friction.is(coulombLaw()) && sink.window_rows > 0) {
+  if (p.friction.setValued() && sink.window_rows > 0) {
     run.platform_stuck_fraction =
         static_cast<double>(sink.stuck_rows) / static_cast<double>(sink.window_rows);
     // the share of the window the platform spends at rest: "stuck" and "slipping" allow 1% for

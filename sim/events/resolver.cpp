@@ -8,7 +8,7 @@ EventResolver::EventResolver(std::vector<Escapement> escapements, const Platform
                              double period, const std::vector<double>& theta0)
     : esc_(std::move(escapements)),
       set_valued_(friction.setValued()),
-      law_(friction.dry),
+      friction_(friction),
       period_(period) {
   armed_.assign(2 * esc_.size(), 0);
   // a witness that starts below zero can cross; one already past it waits for the next swing
@@ -49,7 +49,7 @@ PlatformMode EventResolver::settleAtStart(EventSystem& sys) const {
   }
   sys.snapshotBefore();
   sys.setMode(PlatformMode::Stuck);
-  const PlatformMode m = law_.modeAtRest(sys.holdingForce());
+  const PlatformMode m = law().modeAtRest(sys.holdingForce());
   if (m != PlatformMode::Stuck) {
     sys.setMode(m);
     sys.eventRow("slip");
@@ -96,7 +96,7 @@ void EventResolver::modeAfterImpulse(EventSystem& sys, PlatformMode before, Wind
   }
   const PlatformMode m = v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative;
   sys.setMode(m);
-  if (microSlip(sys)) {
+  if (microSlip(sys, v, m)) {
     // a slip friction ends at once: counted by where it ends, against the mode before the
     // window (a stuck platform that stays stuck has not switched; nearly cancelling ticks)
     stopAndSettle(sys, before, out);
@@ -114,7 +114,7 @@ void EventResolver::coulombRule(EventSystem& sys, WindowOutcome& out) {
   const PlatformMode m = sys.mode();
   if (m == PlatformMode::Stuck) {
     const double h = sys.holdingForce();
-    if (!law_.breaksFree(h)) return;
+    if (!law().breaksFree(h)) return;
     const PlatformMode to = SetValuedLaw::slipDirection(h);
     sys.setMode(to);
     countSwitch(sys, m, to, out);
@@ -124,10 +124,10 @@ void EventResolver::coulombRule(EventSystem& sys, WindowOutcome& out) {
   stopAndSettle(sys, m, out);
 }
 
-bool EventResolver::microSlip(EventSystem& sys) const {
-  // kinetic friction alone decelerates the platform at bound * (M^-1)_xx
-  const double decel = law_.kineticBound() * sys.platformMobility();
-  return std::abs(sys.xdot()) < kPlasticStopPeriods * period_ * decel;
+bool EventResolver::microSlip(EventSystem& sys, double v, PlatformMode m) const {
+  // friction alone decelerates the platform at |F(v)| * (M^-1)_xx (Coulomb: the kinetic bound)
+  const double decel = std::abs(friction_.force(v, m)) * sys.platformMobility();
+  return std::abs(v) < kPlasticStopPeriods * period_ * decel;
 }
 
 void EventResolver::stopAndSettle(EventSystem& sys, PlatformMode before, WindowOutcome& out) {
@@ -139,7 +139,7 @@ void EventResolver::stopAndSettle(EventSystem& sys, PlatformMode before, WindowO
     out.friction_out -= sys.applyImpulse(impulse_, -v / sys.platformMobility());
   }
   sys.setMode(PlatformMode::Stuck);
-  const PlatformMode after = law_.modeAtRest(sys.holdingForce());
+  const PlatformMode after = law().modeAtRest(sys.holdingForce());
   if (after != PlatformMode::Stuck) sys.setMode(after);
   countSwitch(sys, before, after, out);
 }

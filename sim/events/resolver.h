@@ -78,15 +78,17 @@ class EventResolver {
   void applyTicks(EventSystem& sys, const std::vector<int>& due, WindowOutcome& out);
   void modeAfterImpulse(EventSystem& sys, PlatformMode before, WindowOutcome& out);
   void coulombRule(EventSystem& sys, WindowOutcome& out);
-  bool microSlip(EventSystem& sys) const;
+  // a slip at v in mode m (the platform's) that friction ends at once
+  bool microSlip(EventSystem& sys, double v, PlatformMode m) const;
+  const SetValuedLaw& law() const { return friction_.bounds(); }  // set_valued_ only
   // stops the platform (plastic impulse on x), then the law's mode at rest
   void stopAndSettle(EventSystem& sys, PlatformMode before, WindowOutcome& out);
   static void countSwitch(EventSystem& sys, PlatformMode before, PlatformMode after,
                           WindowOutcome& out);
 
   std::vector<Escapement> esc_;
-  bool set_valued_;   // the platform's law has stick and slip (else no platform rule applies)
-  SetValuedLaw law_;  // set_valued_ only
+  bool set_valued_;            // the platform's law has stick and slip (else no rule applies)
+  PlatformFriction friction_;  // the platform's law: its bounds (law()), its slip force
   double period_;
   std::vector<char> armed_;  // (2n x 1): [2j] side -1, [2j+1] side +1
   // scratch of one window, kept so that a window allocates nothing: the due ticks, (n x 1)

@@ -416,7 +416,7 @@ TEST(AveragedResponse, EachLawCarriesItsOwn) {
   EXPECT_EQ(equal.beta1, c.beta1);
   EXPECT_EQ(equal.beta2, c.beta2);
   const FrictionLaw above(staticCoulombLaw(), {0.4, 0.5});
-  EXPECT_EQ(above.slowResponse().kind, SlowResponse::Kind::None);
+  EXPECT_FALSE(above.slowResponse().available());
   EXPECT_THROW(at(above, 0.6), std::invalid_argument);
 }
 

@@ -39,10 +39,11 @@ TEST(SetValuedLaw, SlipsAgainstTheNeededHoldingForce) {
   EXPECT_EQ(law.modeAtRest(1.5), PlatformMode::SlipNegative);
   EXPECT_EQ(law.modeAtRest(-1.5), PlatformMode::SlipPositive);
   EXPECT_EQ(law.modeAtRest(0.3), PlatformMode::Stuck);
-  // the kinetic force opposes the slip
-  EXPECT_EQ(law.kineticForce(PlatformMode::SlipPositive), -1.0);
-  EXPECT_EQ(law.kineticForce(PlatformMode::SlipNegative), 1.0);
-  EXPECT_EQ(law.kineticForce(PlatformMode::Stuck), 0.0);
+  // Coulomb's slip force opposes the slip, whatever its speed; none while stuck
+  const PlatformFriction f = FrictionLaw::coulomb(1.0).platform(1.0);
+  EXPECT_EQ(f.force(0.3, PlatformMode::SlipPositive), -1.0);
+  EXPECT_EQ(f.force(-7.0, PlatformMode::SlipNegative), 1.0);
+  EXPECT_EQ(f.force(0.0, PlatformMode::Stuck), 0.0);
   EXPECT_DOUBLE_EQ(law.stickMargin(-0.25), 0.75);
 }
 
@@ -97,7 +98,7 @@ TEST(SetValuedLaw, OneRuleAtTheExactTies) {
 }
 
 TEST(SetValuedLaw, BoundIsTheCoefficientTimesTheNormalForce) {
-  const SetValuedLaw law = FrictionLaw::coulomb(0.25).platform(8.0).dry;
+  const SetValuedLaw law = FrictionLaw::coulomb(0.25).platform(8.0).bounds();
   EXPECT_DOUBLE_EQ(law.staticBound(), 2.0);
   EXPECT_DOUBLE_EQ(law.kineticBound(), 2.0);
 }
@@ -129,7 +130,10 @@ TEST(Escapement, DueExactlyFromTheSlackOutwards) {
   EXPECT_FALSE((Escapement{0.9, 0.0}.due(1.0, 1.0)));  // no escapement
 }
 
-TEST(PlatformFriction, EveryLawDissipatesAndOnlyTheCoulombLawsAreSetValued) {
+// Every registered law: dissipative, no force while stuck, set-valued exactly when a moving
+// platform is held by a small push (holdsDrive), its force at the constant-slip fast path equal
+// to its own function's.
+TEST(PlatformFriction, EveryLawDissipatesAndTheSetValuedOnesHold) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> v_dist(-10.0, 10.0), c_dist(0.0, 5.0);
   for (const LawKind* kind : lawRegistry()) {
@@ -137,13 +141,17 @@ TEST(PlatformFriction, EveryLawDissipatesAndOnlyTheCoulombLawsAreSetValued) {
     for (std::size_t k = 0; k < kind->parameters().size(); ++k) values.push_back(c_dist(rng));
     std::sort(values.begin(), values.end());  // mu_static >= mu
     const FrictionLaw law(*kind, values);
-    const PlatformFriction f = law.platform(c_dist(rng));
-    EXPECT_EQ(f.setValued(), law.name() == std::string("coulomb")) << law.name();
-    for (int k = 0; k < 1000; ++k) {
+    const double N = c_dist(rng);
+    const PlatformFriction f = law.platform(N);
+    const double small = values.empty() ? 1e-9 : 1e-9 * values.front();
+    EXPECT_EQ(f.setValued(), f.platformMoves() && law.holdsDrive(small)) << law.name();
+    const LawConstants k{f.constants().values, N};
+    for (int i = 0; i < 1000; ++i) {
       const double v = v_dist(rng);
       const PlatformMode m = v > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative;
       EXPECT_GE(f.power(v, m), 0.0) << law.name();
       EXPECT_EQ(f.power(v, m), -f.force(v, m) * v);
+      EXPECT_EQ(f.force(v, m), law.kind().force(k, v, m)) << law.name();
     }
     EXPECT_EQ(f.force(0.0, PlatformMode::Stuck), 0.0) << law.name();
   }

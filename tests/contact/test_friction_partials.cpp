@@ -24,7 +24,7 @@ double force(const FrictionLaw& law, double N, double v, PlatformMode mode) {
 }
 double staticBound(const FrictionLaw& law, double N) {
   const PlatformFriction f = law.platform(N);
-  return f.setValued() ? f.dry.staticBound() : 0.0;
+  return f.setValued() ? f.bounds().staticBound() : 0.0;
 }
 
 TEST(FrictionPartials, EveryLawsAreItsEngineFormsDifferences) {

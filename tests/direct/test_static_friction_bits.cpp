@@ -7,37 +7,19 @@
 #include <string>
 #include <vector>
 
-#include "sim/engines/direct/direct_engine.h"
+#include "tests/common/full_model_trial.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync {
 namespace {
 
-struct Trial {
-  RunReport report;
-  MemorySink sink;
-};
+using testing_support::expectSameBits;
+using testing_support::runOn;
+using testing_support::Trial;
 
 Trial run(const std::string& file, const std::vector<std::string>& sets) {
-  Trial r;
-  r.report = runDirectModel(
-      loadRigFile(std::string(METROSYNC_SOURCE_DIR) + "/yaml/rigs/" + file, sets), r.sink);
-  return r;
-}
-
-void expectSameBits(const Trial& a, const Trial& b) {
-  ASSERT_TRUE(a.report.complete && b.report.complete);
-  EXPECT_EQ(a.report.counts.steps, b.report.counts.steps);
-  EXPECT_EQ(a.report.counts.events, b.report.counts.events);
-  EXPECT_EQ(a.report.counts.stick_slip, b.report.counts.stick_slip);
-  EXPECT_EQ(a.report.counts.slip_reversals, b.report.counts.slip_reversals);
-  EXPECT_EQ(a.report.counts.escapements, b.report.counts.escapements);
-  EXPECT_EQ(a.sink.trajectory, b.sink.trajectory);  // every row, bit for bit
-  ASSERT_EQ(a.sink.events.size(), b.sink.events.size());
-  for (std::size_t k = 0; k < a.sink.events.size(); ++k) {
-    EXPECT_EQ(a.sink.events[k].first, b.sink.events[k].first);
-    EXPECT_EQ(a.sink.events[k].second, b.sink.events[k].second);
-  }
+  return runOn("direct",
+               loadRigFile(std::string(METROSYNC_SOURCE_DIR) + "/yaml/rigs/" + file, sets));
 }
 
 TEST(StaticFrictionBits, EqualCoefficientsRunAsCoulombsLaw) {

@@ -180,13 +180,13 @@ TEST(EventResolver, NearlyCancellingTicksEndInAPlasticStopWithItsReaction) {
 // push beyond the bound the other way reverses (counted apart from stick <-> slip).
 TEST(EventResolver, TheTieBreaksFreeAndReversalsAreCountedApart) {
   FakeSystem s;
-  s.holding = kLaw.dry.staticBound();
+  s.holding = kLaw.bounds().staticBound();
   EventResolver r = makeResolver(s);
   WindowOutcome out = r.resolve(s, true);
   EXPECT_EQ(s.m, PlatformMode::SlipNegative);
   EXPECT_EQ(out.stick_slip, 1);
   s.v = 1e-13;  // the slip's velocity has just passed zero (window end)
-  s.holding = -2 * kLaw.dry.staticBound();
+  s.holding = -2 * kLaw.bounds().staticBound();
   out = r.resolve(s, true);
   EXPECT_EQ(s.m, PlatformMode::SlipPositive);
   EXPECT_EQ(out.stick_slip, 0);
@@ -222,8 +222,8 @@ TEST(EventResolver, StaticFrictionHoldsBetweenTheKineticAndTheStaticBound) {
   EventResolver coulomb({{kThetaC, 0.1}, {kThetaC, 0.1}}, kLaw, kPeriod, {0.0, 0.0});
   coulomb.resolve(c, true);
   EXPECT_EQ(c.m, PlatformMode::SlipPositive);
-  // the kinetic bound sets the micro-slip rule: friction decelerates at 0.2 * (M^-1)_xx
-  EXPECT_EQ(stiction.dry.kineticForce(PlatformMode::SlipPositive), -0.2);
+  // the slip force sets the micro-slip rule: friction decelerates at 0.2 * (M^-1)_xx
+  EXPECT_EQ(stiction.force(1e-13, PlatformMode::SlipPositive), -0.2);
 }
 
 }  // namespace

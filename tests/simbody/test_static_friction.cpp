@@ -10,12 +10,14 @@
 #include <string>
 
 #include "contact/law_registry.h"
-#include "sim/engines/direct/direct_engine.h"
-#include "sim/engines/simbody/simbody_engine.h"
+#include "tests/common/full_model_trial.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync {
 namespace {
+
+using testing_support::runOn;
+using testing_support::Trial;
 
 constexpr double kPi = 3.141592653589793;
 constexpr double kMu = 4.6e-3, kMuStatic = 9.2e-3;  // the high-friction rollers; static twice
@@ -26,18 +28,6 @@ Rig springRig(const std::string& friction, double x0_over_static_x) {
   const double k = rig.platform.spring_N_m;
   rig.platform.start_x_m = x0_over_static_x * kMuStatic * rig.totalMass() * rig.gravity_m_s2 / k;
   return rig;
-}
-
-struct Trial {
-  RunReport report;
-  MemorySink sink;
-};
-
-Trial runOn(const std::string& engine, const Rig& rig) {
-  Trial r;
-  r.report =
-      engine == "direct" ? runDirectModel(rig, r.sink) : runSimbody(networkOfOne(rig), r.sink);
-  return r;
 }
 
 const std::string kStiction = "{law: coulomb, mu: 4.6e-3, mu_static: 9.2e-3}";

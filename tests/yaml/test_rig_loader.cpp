@@ -484,7 +484,7 @@ TEST(RigValidation, MissingRequiredKeys) {
   expectErrorAt(no_friction, 3, "mass", {"platform.friction: missing"});
   const std::string no_law = withLine(kPhysical, 4, "  friction: {mu: 0.1}");
   expectErrorAt(no_law, 4, "{",
-                {"platform.friction.law: missing", "coulomb, viscous, none or fixed"});
+                {"platform.friction.law: missing", "coulomb, viscous, none, fixed or stribeck"});
   const std::string no_mu = withLine(kPhysical, 4, "  friction: {law: coulomb}");
   expectErrorAt(no_mu, 4, "{", {"platform.friction.mu: missing"});
   const std::string no_c = withLine(kPhysical, 4, "  friction: {law: viscous}");

@@ -73,14 +73,14 @@ class Equations {
   static int th(int j) { return 2 + 2 * j; }
   static int om(int j) { return 3 + 2 * j; }
   const Pendulum& pendulum(int j) const { return pend_[j]; }
-  bool coulomb() const { return platform_ && law_ == PlatformFriction::Kind::SetValued; }
-  double bound() const { return bound_; }               // kinetic
-  double staticBound() const { return static_bound_; }  // holding
+  // the law has stick and slip (Coulomb's, and every set-valued law)
+  bool coulomb() const { return platform_ && friction_.setValued(); }
+  double staticBound() const { return friction_.bounds().staticBound(); }  // holding
 
   // dz/ds (s the scaled time) in the current platform mode.
   void rhs(const State& z, State& dz);
   // H: the force friction must supply to hold the platform still (N), with xdot = 0.
-  double holdingForce(const State& z) { return -push(z, 0.0); }
+  double holdingForce(const State& z) { return -push(z); }
   // The escapement impulses side * J-bar_j of `ticks` ((pendulum, side)), all at once.
   TickResult applyTicks(State& z, const std::vector<std::pair<int, int>>& ticks);
 
@@ -88,14 +88,14 @@ class Equations {
   long evals = 0;
 
  private:
-  // G of e1.1c reduced to the platform: everything but friction, with platform velocity v (SI);
+  // G of e1.1c reduced to the platform: everything but friction (SI);
   // fills c_, r_ and schur_.
-  double push(const State& z, double v);
+  double push(const State& z);
 
   std::vector<Pendulum> pend_;
   bool platform_;
-  PlatformFriction::Kind law_;
-  double mass_, spring_ = 0, viscous_ = 0, bound_ = 0, static_bound_ = 0;
+  PlatformFriction friction_;  // the law at the normal force M g (SI): its force, its bounds
+  double mass_, spring_ = 0;
   double a_, xs_, w0_;  // sqrt(eps), the platform's length scale (m), omega0 (1/s)
   std::vector<double> c_, r_;
   double schur_ = 0;
@@ -103,7 +103,7 @@ class Equations {
 
 Equations::Equations(const Rig& rig, const ScaledParams& sp)
     : platform_(rig.platform.friction.platformMoves()),
-      law_(rig.platform.friction.platform(1.0).kind),
+      friction_(rig.platform.friction.platform(rig.totalMass() * rig.gravity_m_s2)),
       mass_(rig.totalMass()),
       a_(sp.angle_scale),
       xs_(sp.x_scale_m),
@@ -117,18 +117,12 @@ Equations::Equations(const Rig& rig, const ScaledParams& sp)
                      m.impulse_Nms});
   }
   spring_ = rig.platform.spring_N_m;
-  const PlatformFriction f = rig.platform.friction.platform(mass_ * g);
-  if (law_ == PlatformFriction::Kind::Viscous) viscous_ = f.viscous.c;
-  if (law_ == PlatformFriction::Kind::SetValued) {
-    bound_ = f.dry.kineticBound();
-    static_bound_ = f.dry.staticBound();
-  }
   c_.resize(pend_.size());
   r_.resize(pend_.size());
 }
 
-double Equations::push(const State& z, double v) {
-  double G = -spring_ * xs_ * z[0] - viscous_ * v;
+double Equations::push(const State& z) {
+  double G = -spring_ * xs_ * z[0];
   schur_ = 0;
   for (int j = 0; j < n(); ++j) {
     const Pendulum& p = pend_[j];
@@ -147,10 +141,11 @@ double Equations::push(const State& z, double v) {
 void Equations::rhs(const State& z, State& dz) {
   ++evals;
   const bool moves = platform_ && !(coulomb() && mode == PlatformMode::Stuck);
-  const double G = push(z, xs_ * w0_ * z[1]);
+  const double v = xs_ * w0_ * z[1];  // SI
+  const double G = push(z);
   double xdd = 0;  // SI
   if (moves) {
-    const double F = coulomb() ? -bound_ * static_cast<int>(mode) : 0.0;
+    const double F = friction_.force(v, mode);  // the law's (contact/platform_friction.h)
     xdd = (G + F) / (mass_ - schur_);
   }
   const double w0sq = w0_ * w0_;
@@ -169,7 +164,7 @@ TickResult Equations::applyTicks(State& z, const std::vector<std::pair<int, int>
   double dv = 0;  // SI
   if (platform_) {
     // [[M, c^T], [c, diag(I)]] [dv; dw] = [0; p]: the platform first (Schur complement)
-    push(z, 0.0);
+    push(z);
     const double meff = mass_ - schur_;
     double sum = 0;
     for (const auto& [j, side] : ticks) {

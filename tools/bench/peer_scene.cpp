@@ -15,6 +15,21 @@ std::string exactList(const std::vector<double>& v) {
   return s;
 }
 
+// What the peer lacks of the law (it has Coulomb's law, or none on a moving platform), asked of
+// the law's traits, never its name: "" when it has everything.
+std::string peerLacksLaw(const FrictionLaw& law) {
+  const std::string named = " ({law: " + std::string(law.name()) + "})";
+  if (!law.platformMoves()) return "a fixed platform" + named + ": the peer's platform moves";
+  if (!law.exertsForce() || law.coulombCoefficient()) return "";
+  if (!law.setValued())
+    return "a smooth friction force" + named +
+           ", e.g. viscous: the peer has Coulomb friction or none";
+  const SetValuedLaw bounds = law.platform(1.0).bounds();
+  if (bounds.staticBound() != bounds.kineticBound())
+    return "static friction above kinetic" + named + ": the peer has Coulomb's law";
+  return "a slip force that changes with the speed" + named + ": the peer has Coulomb's law";
+}
+
 }  // namespace
 
 std::string peerUnsupported(const Scene& scene) {
@@ -26,12 +41,7 @@ std::string peerUnsupported(const Scene& scene) {
            std::to_string(kPeerMaxMetronomes) + " metronomes";
   for (const MetronomeSpec& m : rig.metronomes)
     if (m.locked) return "metronome " + m.name + " is locked: the peer has no locked pendulum";
-  const PlatformFriction f = rig.platform.friction.platform(1.0);
-  if (f.kind == PlatformFriction::Kind::Viscous)
-    return "viscous friction: the peer has Coulomb friction or none";
-  if (f.kind == PlatformFriction::Kind::Fixed) return "a fixed platform: the peer's platform moves";
-  if (f.setValued() && f.dry.staticBound() != f.dry.kineticBound())
-    return "static friction above kinetic: the peer has Coulomb's law";
+  if (const std::string why = peerLacksLaw(rig.platform.friction); !why.empty()) return why;
   if (rig.platform.spring_N_m != 0) return "a platform spring: the peer has none";
   return "";
 }
@@ -44,8 +54,8 @@ std::vector<std::string> peerSceneArguments(const Scene& scene) {
   y0.insert(y0.end(), sp.thetadot0.begin(), sp.thetadot0.end());
   y0.push_back(sp.x0);
   y0.push_back(sp.xdot0);
-  // a law without mu (none) is the peer's free platform, mu = 0
-  const double mu = sp.friction.valueOr("mu", 0.0);
+  // a law without friction (none) is the peer's free platform, mu = 0
+  const double mu = sp.friction.coulombCoefficient().value_or(0.0);
   return {"--eps",   numberText(sp.epsilon, 17),
           "--mu",    numberText(mu, 17),
           "--nu",    exactList(sp.nu),

@@ -23,7 +23,7 @@ bool siconosAvailable() {
 }
 
 std::string siconosUnsupported(const Rig& rig) {
-  if (rig.platform.friction != FrictionLaw::coulomb(rig.platform.friction.valueOr("mu", 0.0)))
+  if (!rig.platform.friction.coulombCoefficient())
     return "platform friction law is not coulomb with one mu (the peer models Coulomb friction as "
            "a relay)";
   if (rig.platform.spring_N_m != 0) return "platform spring (not modelled by the peer)";
@@ -151,7 +151,7 @@ RunReport PeerRun::run() {
   const double t_end = rig_.sim.t_end_s;
   const double g = rig_.gravity_m_s2;
   const double bound =
-      rig_.platform.friction.valueOr("mu", 0.0) * rig_.totalMass() * g * h;  // impulse per step
+      *rig_.platform.friction.coulombCoefficient() * rig_.totalMass() * g * h;  // impulse per step
   g_fint_evals = 0;
 
   // --- 3. the Siconos objects ---------------------------------------------------------------

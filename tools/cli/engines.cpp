@@ -45,7 +45,7 @@ LoadOptions engineLoadOptions(double max_output_bytes) {
 
 void requireSlowFlow(const Rig& rig, const std::string& rig_name) {
   const SlowResponse r = rig.platform.friction.slowResponse();
-  if (r.kind == SlowResponse::Kind::None) throw RigError(rig_name + ": the slow flow: " + r.why);
+  if (!r.available()) throw RigError(rig_name + ": the slow flow: " + r.why());
 }
 
 std::string fullEngineHelp() {

@@ -39,14 +39,13 @@ std::string scaleText(const Rig& rig, const ScaledParams& p) {
   if (physical) os << ", M = " << numberText(rig.totalMass(), 4) << " kg";
   os << ")\n";
   os << "  friction    " << p.friction.name();
-  const std::vector<LawParameter>& keys = p.friction.kind().parameters();
+  const std::vector<LawParameter>& keys = p.friction.parameters();
   for (std::size_t k = 0; k < keys.size(); ++k) {
-    const std::string key = keys[k].key;
+    const std::string key = keys[k].key, unit = keys[k].unit.text;
     os << "  " << key << " = " << numberText(p.friction.values()[k], 4);
     if (!physical) continue;
-    const bool viscous = keys[k].scale == LawScale::Viscous;
     os << "  (" << key << "-bar = " << numberText(rig.platform.friction.values()[k], 4)
-       << (viscous ? " N s/m)" : ")");
+       << (unit.empty() ? "" : " " + unit) << ")";
   }
   if (rig.platform.spring_N_m > 0)
     os << "  spring k = " << numberText(rig.platform.spring_N_m, 4) << " N/m";

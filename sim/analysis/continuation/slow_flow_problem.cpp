@@ -8,7 +8,6 @@
 
 #include "base/constants.h"
 #include "base/number_text.h"
-#include "contact/law_registry.h"
 #include "sim/analysis/continuation/border_stability.h"
 #include "sim/analysis/continuation/branch.h"
 #include "sim/analysis/continuation/derivatives.h"
@@ -35,11 +34,11 @@ SlowFlowProblem::SlowFlowProblem(ParamsAt params_at, double p0, int reference)
     if (!sp.locked[i]) unlocked_.push_back(i);
   if (reference < 0 || reference >= n_ || sp.locked[reference])
     throw std::invalid_argument("the reference metronome must be an unlocked one");
-  // the s borders exist for every Coulomb platform, also at mu = 0 (there the platform slips:
-  // |Z| > mu), so that a continuation in mu starts from 0 or reaches it; the slow flow refuses
-  // a static coefficient above the kinetic one before this (requireSlowFlow)
-  coulomb_ = sp.friction.is(coulombLaw()) || sp.friction.is(staticCoulombLaw());
-  fixed_ = sp.friction.is(fixedPlatformLaw());
+  // the s borders exist for every dry law's response, also at mu = 0 (there the platform slips:
+  // |Z| > mu), so that a continuation in mu starts from 0 or reaches it; the slow flow refuses a
+  // law without an averaged response before this (requireSlowFlow)
+  coulomb_ = sp.friction.slowResponse().hasBorders();
+  fixed_ = !sp.friction.platformMoves();
   const int m = static_cast<int>(unlocked_.size());
   sys_.n = 2 * m;
   sys_.residual = [this](const Vec& x, double p, const Region& r) { return residual(x, p, r); };
@@ -145,7 +144,7 @@ double SlowFlowProblem::s(const Vec& x, double p) const {
   const ScaledParams& sp = params(p);
   Cd Z = 0;
   for (const Cd& zi : unpack(x)) Z += zi;
-  const double mu = sp.friction.slowResponse().mu;  // 0 for a law without s
+  const double mu = sp.friction.slowResponse().mu();  // 0 for a law without s
   return mu > 0 ? std::abs(Z) / mu : std::numeric_limits<double>::infinity();
 }
 
@@ -159,7 +158,7 @@ Vec SlowFlowProblem::borders(const Vec& x, double p) const {
     // |Z| - mu and |Z| - s_b mu: the signs of s - 1 and s - s_b, smooth through mu = 0
     Cd Z = 0;
     for (const Cd& zi : z) Z += zi;
-    const double mu = sp.friction.valueOr("mu", 0.0);  // at this parameter value
+    const double mu = sp.friction.slowResponse().mu();  // at this parameter value
     b(m) = std::abs(Z) - mu;
     b(m + 1) = std::abs(Z) - kCoulombSlipThreshold * mu;
   }

@@ -104,7 +104,7 @@ class SlowFlowProblem {
   int n_ = 0;                  // metronomes
   std::vector<int> unlocked_;  // indices of the unlocked metronomes
   int ref_ = 0;                // the reference metronome
-  bool coulomb_ = false;       // Coulomb platform: the s borders exist
+  bool coulomb_ = false;       // a dry law (SlowResponse::hasBorders): the s borders exist
   bool fixed_ = false;         // a fixed platform: the metronomes are uncoupled
   ContinuationSystem sys_;
 };

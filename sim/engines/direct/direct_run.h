@@ -112,7 +112,7 @@ class DirectRun {
   // a stuck contact's witness made rising: -stickMargin = |H| - static bound, and its rate
   double stuckMargin(int p, const double* y) const {
     return risingSign(PlatformWitness::kDirection) *
-           PlatformWitness::value(m_.contact(p).dry, PlatformMode::Stuck, 0.0,
+           PlatformWitness::value(m_.contact(p).bounds(), PlatformMode::Stuck, 0.0,
                                   m_.holdingForce(p, y));
   }
   double stuckMarginRate(int p, const double* y) const {
@@ -257,7 +257,7 @@ void DirectRun<Model>::resolveWindow(double t_e, double th_e) {
       const double g = mode == PlatformMode::Stuck
                            ? margin_[p]
                            : risingSign(PlatformWitness::kDirection) *
-                                 PlatformWitness::value(m_.contact(p).dry, mode,
+                                 PlatformWitness::value(m_.contact(p).bounds(), mode,
                                                         m_.slipVelocity(p, ev_.data()), 0.0);
       reported = reported || g >= 0;
     }
@@ -285,9 +285,10 @@ void DirectRun<Model>::settleSupports(double t_e) {
       if (!hasContact(p)) continue;
       const double u = m_.slipVelocity(p, ev_.data());
       const PlatformMode mode = m_.mode(p);
-      const bool off = mode == PlatformMode::Stuck
-                           ? u != 0 || m_.contact(p).dry.breaksFree(m_.holdingForce(p, ev_.data()))
-                           : static_cast<int>(mode) * u <= 0;
+      const bool off =
+          mode == PlatformMode::Stuck
+              ? u != 0 || m_.contact(p).bounds().breaksFree(m_.holdingForce(p, ev_.data()))
+              : static_cast<int>(mode) * u <= 0;
       if (!off) continue;
       absorb(resolvers_[p].settleAfterSupportImpulse(m_.view(p, ev_.data(), t_e)), p);
       changed = true;
