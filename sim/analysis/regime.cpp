@@ -214,7 +214,8 @@ ClusterAnalysis findClusters(const RegimeWindow& w, const std::vector<size_t>& a
   };
   for (size_t a = 0; a < alive.size(); ++a)
     for (size_t b = a + 1; b < alive.size(); ++b) {
-      const bool settled = w.pairSettleRange(alive[a], alive[b]) < r.settled_rad;
+      const bool settled =
+          r.settled(w.pairRange(alive[a], alive[b]), w.pairSettleRange(alive[a], alive[b]));
       c.all_settled = c.all_settled && settled;
       // drift: moved by more than drift_rad over the window and still moving at its end
       c.any_drift = c.any_drift || (!settled && w.pairRange(alive[a], alive[b]) > r.drift_rad);
@@ -282,7 +283,8 @@ std::string aliveName(const ClusterAnalysis& c, bool splay) {
 namespace {
 // The phase rules on the judged psi_j (every metronome alive): drift, in-phase, antiphase,
 // phase-locked, or unsettled with the reason.
-// settled: every judged psi_j varies by < settled_rad over the window's settling part; drift:
+// settled: every judged psi_j RegimeRules::settled (still over the window, or over its settling
+// part after a transient that ended); drift:
 // not settled, some psi_j moved by more than drift_rad over the whole window and still moves.
 // range, settle: (N-1 x 1) the ranges over the window and over its settling part.
 Regime phaseRegime(const RegimeRules& r, const EnvelopeRow& last, const std::vector<double>& range,
@@ -291,8 +293,9 @@ Regime phaseRegime(const RegimeRules& r, const EnvelopeRow& last, const std::vec
   bool moved = false, settled = true, in_phase = true, antiphase = true;
   double widest = 0.0;
   for (size_t k : judged) {
-    moved = moved || (range[k] > r.drift_rad && settle[k] >= r.settled_rad);
-    settled = settled && settle[k] < r.settled_rad;
+    const bool still = r.settled(range[k], settle[k]);
+    moved = moved || (range[k] > r.drift_rad && !still);
+    settled = settled && still;
     widest = std::max(widest, settle[k]);
     in_phase = in_phase && std::fabs(wrapToPi(last.psi[k])) <= r.in_phase_rad;
     antiphase = antiphase && std::fabs(wrapToPi(last.psi[k] - kPi)) <= r.antiphase_rad;
@@ -303,7 +306,9 @@ Regime phaseRegime(const RegimeRules& r, const EnvelopeRow& last, const std::vec
   if (moved) return Regime::Drift;
   reason = "the phase differences still move over the window's last part (range up to " +
            numberText(widest, 4) + " rad; settled needs < " + numberText(r.settled_rad, 4) +
-           ", drift > " + numberText(r.drift_rad, 4) + " over the window)";
+           " there and at most " + numberText(r.ended_ratio, 4) + " of the window's range, or < " +
+           numberText(r.settled_rad, 4) + " over the window; drift > " +
+           numberText(r.drift_rad, 4) + " over the window)";
   return Regime::Unsettled;
 }
 
