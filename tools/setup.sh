@@ -1,18 +1,27 @@
 #!/usr/bin/env bash
 # One-command set-up on a fresh Debian 12: installs what is missing (apt-get), builds Release,
 # then either runs the default rig (`run`, the main job, with its plots) or every test (`test`).
+# `run` installs and builds only what `metrosync run` needs (the packages of run_packages, the
+# target metrosync with the Simbody plugin it loads for --engine simbody); `test` adds
+# test_packages and builds everything (tests, benches, the Python module, the man page).
 #   bash tools/setup.sh run   [extra metrosync run arguments]
 #   bash tools/setup.sh test
 #   bash tools/setup.sh sanitize   (CI's second stage, .ci/run: the `fast` tests under
 #                                   AddressSanitizer + UndefinedBehaviorSanitizer in build-asan)
+#   bash tools/setup.sh fuzz [S]   (the fuzz stage, also the end of `test`: libFuzzer's targets
+#                                   in build-fuzz, S seconds each; tools/fuzz/run.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 mode="${1:-run}"
 shift || true
 
-packages=(cmake g++ make libsimbody-dev libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev
-          libcli11-dev libgtest-dev libbenchmark-dev gnuplot-nox
+# what `metrosync run` needs to build and to draw its plot
+run_packages=(cmake g++ make libsimbody-dev libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev
+              libfmt-dev  # base/number_text.cpp: the rows' text (header-only use)
+              libcli11-dev zlib1g-dev gnuplot-nox)  # zlib: sweep's envelopes.csv.gz
+# what the tests, benches, the Python module, fit, animate and metrosync-mpi add
+test_packages=(libgtest-dev libbenchmark-dev
           libceres-dev  # metrosync fit (sim/analysis/fit)
           libboost-dev  # bench-only (tools/bench's Boost.Odeint peer, header-only)
           help2man dpkg-dev man-db  # the man page, the .deb's dependencies, and their tests
@@ -23,7 +32,9 @@ packages=(cmake g++ make libsimbody-dev libeigen3-dev libyaml-cpp-dev nlohmann-j
           jupyter-nbconvert python3-ipykernel python3-matplotlib python3-pandas  # the notebooks
           libcairo2-dev pkg-config ffmpeg  # `metrosync animate`: Cairo draws, ffmpeg encodes
           libopenmpi-dev openmpi-bin  # metrosync-mpi: a sweep over MPI ranks (docs/cluster.md)
-          zlib1g-dev)  # sweep --keep envelope: envelopes.csv.gz
+          clang libclang-rt-14-dev)  # the fuzz stage: libFuzzer, ASan, UBSan (tools/fuzz)
+packages=("${run_packages[@]}")
+if [ "$mode" != run ]; then packages+=("${test_packages[@]}"); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -46,7 +57,7 @@ command -v ccache >/dev/null 2>&1 && launcher="-DCMAKE_CXX_COMPILER_LAUNCHER=cca
 # -O1: a third of -O3's compile time, and what the sanitizers' documentation recommends for
 # readable reports at a small run-time cost.
 if [ "$mode" = sanitize ]; then
-  fast_tests=(test_contact test_models test_sim test_yaml test_layout test_bench_fast)
+  fast_tests=(test_contact test_models test_sim test_yaml test_layout test_bench_fast test_fuzz)
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
         -DMETROSYNC_SANITIZE=ON $launcher >/dev/null
   cmake --build build-asan -j"$jobs" --target "${fast_tests[@]}"
@@ -55,18 +66,34 @@ if [ "$mode" = sanitize ]; then
   exit $?
 fi
 
+# The fuzz stage: its own build directory (clang, every object instrumented), only the fuzz
+# targets and the libraries they link built; each target then runs for S seconds (default
+# $METROSYNC_FUZZ_SECONDS, else 30), failing on a crash, leak, slow input or memory limit.
+fuzz_stage() {
+  CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
+        -DMETROSYNC_FUZZ=ON $launcher >/dev/null
+  cmake --build build-fuzz -j"$jobs" --target fuzz_targets
+  bash tools/fuzz/run.sh "$@"
+}
+if [ "$mode" = fuzz ]; then
+  fuzz_stage "$@"
+  exit $?
+fi
+
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release $launcher >/dev/null
-cmake --build build -j"$jobs"
 
 case "$mode" in
   run)
+    cmake --build build -j"$jobs" --target metrosync  # with the plugins it loads
     ./build/metrosync run "$@"
     ;;
   test)
+    cmake --build build -j"$jobs"
     ctest --test-dir build --output-on-failure -j"$jobs" --timeout 900
+    fuzz_stage
     ;;
   *)
-    echo "usage: bash tools/setup.sh run|test|sanitize" >&2
+    echo "usage: bash tools/setup.sh run|test|sanitize|fuzz" >&2
     exit 2
     ;;
 esac

@@ -112,6 +112,27 @@ void resolveOn(Network& net, const Node& list, const RigSource& src,
   }
 }
 
+// A network whose every metronome is locked, refused at the `locked` that locked the last one: a
+// --set's when one wrote any (the culprit the user typed), else the file's last.
+[[noreturn]] void refuseAllLocked(const Node& list, const RigSource& src) {
+  const Node* culprit = nullptr;
+  std::string path = "platforms";
+  for (std::size_t i = 0; i < list.seq.size(); ++i) {
+    const Node* metronomes = list.seq[i].find("metronomes");
+    for (std::size_t m = 0; metronomes && m < metronomes->seq.size(); ++m) {
+      const Node* locked = metronomes->seq[m].find("locked");
+      if (!locked || (culprit && culprit->at.origin > 0 && locked->at.origin == 0)) continue;
+      culprit = locked;
+      path = "platforms." + std::to_string(i) + ".metronomes." + std::to_string(m) +
+             ".locked = " + printable(locked->scalar);
+    }
+  }
+  failAt(src, culprit ? culprit->at : list.at,
+         path +
+             ": every metronome of the network is locked: nothing swings to simulate "
+             "(unlock one: locked: false)");
+}
+
 // Every platform's metronomes together within kMaxMetronomes (the engines couple them all), and
 // in a network of several platforms at least one of them swinging.
 void checkNetworkSize(const Network& net, const Node& list, const RigSource& src) {
@@ -127,10 +148,7 @@ void checkNetworkSize(const Network& net, const Node& list, const RigSource& src
   }
   // one platform with its metronomes locked is today's rig, a board on its springs (section 3A);
   // a network of several needs a swinging pendulum for its time scale
-  if (swinging == 0 && net.platforms.size() > 1)
-    failAt(src, list.at,
-           "platforms: every metronome of the network is locked: nothing swings to simulate "
-           "(unlock one: locked: false)");
+  if (swinging == 0 && net.platforms.size() > 1) refuseAllLocked(list, src);
 }
 
 void readCouplings(Network& net, const Node& root, const RigSource& src,

@@ -24,6 +24,9 @@ struct RigSource {
 // The rig's tree after the overrides, its units and its keys checked (unknown keys, maps, lists
 // and single values where they belong); no value read yet.
 Node checkedRigTree(const std::string& yaml_text, const RigSource& src);
+// The rig of a tree checkedRigTree gave (with the same src): every value read, range-checked and
+// built, the plan checked (loadRigText is the two in turn).
+Rig rigFromCheckedTree(const Node& root, const RigSource& src, const LoadOptions& options);
 // The rig's name when it has no `name` key: the file's stem.
 std::string rigStem(const std::string& display_name);
 

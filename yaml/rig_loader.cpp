@@ -44,8 +44,14 @@ using namespace rigfile;
 
 Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
                 const std::vector<std::string>& overrides, const LoadOptions& options) {
+  const RigSource rs{display_name, overrides};
+  return rigFromCheckedTree(checkedRigTree(yaml_text, rs), rs, options);
+}
+
+Rig rigFromCheckedTree(const Node& root, const RigSource& rs, const LoadOptions& options) {
+  const std::string& display_name = rs.display_name;
+  const std::vector<std::string>& overrides = rs.overrides;
   const Source src(display_name, overrides);
-  const Node root = checkedRigTree(yaml_text, RigSource{display_name, overrides});
   const std::optional<Units> units = unitsOf(root);  // checked: units decide the schema
   const std::string stem = stemOf(display_name);
   if (const Node* couplings = root.find("couplings"); couplings && !root.find("platforms"))

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -31,6 +32,27 @@ std::string readRigFile(const std::string& path);
 // The same for YAML text; display_name stands for the file in messages (and gives the name).
 Rig loadRigText(const std::string& yaml_text, const std::string& display_name,
                 const std::vector<std::string>& overrides = {}, const LoadOptions& options = {});
+
+// A rig loaded once, then again with keys set to numbers (a continuation's parameter, tried at
+// thousands of values): at(values) is loadRigText(yaml_text, display_name, overrides + {keys[k] +
+// "=" + roundTripText(values[k])}) -- the same Rig or the same RigError -- without parsing the
+// text and checking its keys again (yaml/rig_at_values.cpp says why that is exact). const and
+// safe to call from several threads at once.
+class RigAtValues {
+ public:
+  RigAtValues(std::string yaml_text, std::string display_name, std::vector<std::string> overrides,
+              std::vector<std::string> keys, LoadOptions options = {});
+  ~RigAtValues();
+  Rig at(const std::vector<double>& values) const;
+
+ private:
+  struct Tree;
+  std::vector<std::string> withValues(const std::vector<double>& values) const;
+  std::string text_, display_name_;
+  std::vector<std::string> overrides_, keys_;
+  LoadOptions options_;
+  std::shared_ptr<const Tree> tree_;  // null: at() loads the text each time
+};
 
 // The number at `key` (docs/keys.md; a key with '*': its first element) in the rig after the
 // overrides, e.g. for the value a continuation starts from; nullopt when the key is absent (its

@@ -21,7 +21,7 @@ std::string schemaPathError(const Schema& s0, const Schema* other, Units units,
         return here + ": '*' stands for every element of a list, and " +
                (done.empty() ? std::string("the rig") : done) + " is a map of keys";
       const Schema* child = s->key(seg.text);
-      if (!child) return here + ": " + unknownKeyMessage(seg.text, *s, other, otherUnits(units));
+      if (!child) return here + ": " + unknownKeyMessage(done, seg.text, *s, other, units);
       s = child;
       other = other ? other->key(seg.text) : nullptr;
     } else if (s->kind == Schema::Kind::List) {
@@ -89,9 +89,13 @@ void setAt(Node& root, const KeyPath& path, const Node& value, Units units, cons
         cur->map.push_back(Entry{seg, here, fresh});
         next = &cur->map.back().value;
       }
-    } else {  // a list: resolveIn checked the index against this very tree
+    } else {  // a list: resolveIn checked an index against this very tree
+      // a name kept past the tree's end (a list the rig does not have, made just above)
+      if (path[i].kind != KeyPath::Segment::Kind::Index || path[i].index >= cur->seq.size())
+        src.fail(here, printable(at) + ": " + done + " has no entries (none is named '" +
+                           printable(seg) + "')");
       s = s->item.get();
-      next = &cur->seq.at(path[i].index);
+      next = &cur->seq[path[i].index];
     }
     cur = next;
   }
@@ -144,9 +148,13 @@ Node rootWithOverrides(const std::string& yaml_text, const Source& src) {
   if (root.kind != Node::Kind::Map)
     src.fail(root.at, std::string("the rig is ") + kindName(root) +
                           "; expected a map of keys starting with units: physical or scaled");
-  for (std::size_t k = 1; k <= src.overrides().size(); ++k)
-    applyOverride(root, static_cast<int>(k), src);
+  applyOverrides(root, src, 1);
   return root;
+}
+
+void applyOverrides(Node& root, const Source& src, std::size_t first) {
+  for (std::size_t k = first; k <= src.overrides().size(); ++k)
+    applyOverride(root, static_cast<int>(k), src);
 }
 
 }  // namespace metrosync::rigfile

@@ -19,5 +19,8 @@ std::vector<KeyPath> resolveIn(const Node& root, const KeyPath& key, Units& unit
 // The rig's tree with src's overrides applied in order (not yet checked against the schema):
 // text, one YAML document, bounded size and depth, no aliases (yaml/rig_tree.h).
 Node rootWithOverrides(const std::string& yaml_text, const Source& src);
+// src's overrides from the first-th (1-based) on, applied in order to a tree that has the ones
+// before (rootWithOverrides is the text's tree and every override from the first).
+void applyOverrides(Node& root, const Source& src, std::size_t first);
 
 }  // namespace metrosync::rigfile

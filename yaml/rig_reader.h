@@ -21,6 +21,8 @@ class Reader {
 
   std::string path(const std::string& key) const { return joinPath(path_, key); }
   const std::string& path() const { return path_; }
+  // The same node named `path` in messages (a network platform's keys in the single form).
+  Reader withPath(std::string path) const { return Reader(*node_, std::move(path), *src_); }
   const Node* find(const std::string& key) const { return node_->find(key); }
   bool has(const std::string& key) const { return find(key) != nullptr; }
   const Where& at() const { return node_->at; }

@@ -47,7 +47,11 @@ void readSimulation(const Reader& top, const char* duration_key, const std::stri
   }
 }
 
-const Node& readMetronomeList(const Reader& top, const std::string& what) {
+// `top` holds the list; `list_path` names it in messages (platforms.1.metronomes in a network).
+const Node& readMetronomeList(const Reader& holder, const std::string& list_path,
+                              const std::string& what) {
+  const std::size_t dot = list_path.rfind('.');
+  const Reader top = holder.withPath(dot == std::string::npos ? "" : list_path.substr(0, dot));
   if (!top.has("metronomes")) top.missing("metronomes", what);
   const Node& list = *top.find("metronomes");
   if (list.seq.empty()) top.bad("metronomes", "must hold at least one metronome");
@@ -156,7 +160,8 @@ Rig buildPhysical(const Node& root, const Source& src, const std::string& fallba
   readPlatformStart(top, rig.platform.start_x_m, rig.platform.start_v_m_s);
 
   // metronomes; a steady_amplitude becomes an impulse once the scaled parameters are known
-  const Node& list = readMetronomeList(top, "a list of metronomes, each with box_mass, pendulum");
+  const Node& list =
+      readMetronomeList(top, metronomes_path, "a list of metronomes, each with box_mass, pendulum");
   std::vector<std::optional<Reader>> amplitude_of(list.seq.size());
   for (std::size_t i = 0; i < list.seq.size(); ++i) {
     const Reader m(list.seq[i], metronomes_path + "." + std::to_string(i), src);
@@ -195,7 +200,8 @@ Rig buildScaled(const Node& root, const Source& src, const std::string& fallback
   in.friction = readFriction(platform, Units::Scaled);
   readPlatformStart(top, in.x0, in.xdot0);
 
-  const Node& list = readMetronomeList(top, "a list of metronomes, each with nu, J, theta_c");
+  const Node& list =
+      readMetronomeList(top, "metronomes", "a list of metronomes, each with nu, J, theta_c");
   // the escapement angle theta-bar_c = sqrt(eps) theta_c must be a physical angle in (0, pi)
   const double theta_c_max = kPi / std::sqrt(eps);
   for (std::size_t i = 0; i < list.seq.size(); ++i) {

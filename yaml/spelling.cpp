@@ -33,9 +33,13 @@ std::optional<std::string> closest(const std::string& word, const std::vector<st
   std::optional<std::string> best;
   std::size_t best_d = 0;
   for (const std::string& c : cands) {
-    std::size_t d = editDistance(word, c);
     const std::size_t allowed = 1 + std::max(word.size(), c.size()) / 4;
     const bool prefix = word.size() >= 3 && c.compare(0, word.size(), word) == 0;
+    // the distance is at least the difference in length: a word far longer than any key (a
+    // 100 kB --set, found by the fuzz targets) is no typo, and costs no n x m table
+    const std::size_t longer = std::max(word.size(), c.size());
+    if (longer - std::min(word.size(), c.size()) > allowed && !prefix) continue;
+    std::size_t d = editDistance(word, c);
     if (d > allowed && !prefix) continue;
     if (prefix) d = std::min<std::size_t>(d, allowed);
     if (!best || d < best_d) best = c, best_d = d;

@@ -62,8 +62,8 @@ std::optional<long> plainInteger(const std::string& text) {
   return std::stol(t);
 }
 
-// "KEY=V1,V2,...": the values as listed (at least two, in any order), for the paper's runs
-// (mu = 0.2, 0.3, 0.4) and the Python module's vary=[...]. `a` holds the key and spec.
+// "KEY=V1,V2,..." or "KEY=V": the values as listed (one or more, in any order), for the paper's
+// runs (mu = 0.2, 0.3, 0.4) and the Python module's vary=[...]. `a` holds the key and spec.
 SweepAxis listAxis(SweepAxis a, const std::string& text) {
   for (const auto& item : split(a.spec, ',')) {
     double v = 0.0;
@@ -72,15 +72,14 @@ SweepAxis listAxis(SweepAxis a, const std::string& text) {
     } catch (const SweepInputError& e) {
       throw SweepInputError("--vary " + text + ": " + e.what());
     }
-    a.texts.push_back(sweepValueText(v));
-    a.values.push_back(std::strtod(a.texts.back().c_str(), nullptr));
+    a.listed.push_back(sweepValueText(v));
   }
-  if (a.values.size() < 2 || static_cast<long>(a.values.size()) > kMaxAxisCount)
-    throw SweepInputError("--vary " + text + ": a list needs 2 to " +
-                          std::to_string(kMaxAxisCount) + " values (one value: V:V:1)");
-  a.count = static_cast<long>(a.values.size());
-  a.from = a.values.front();
-  a.to = a.values.back();
+  if (static_cast<long>(a.listed.size()) > kMaxAxisCount)
+    throw SweepInputError("--vary " + text + ": a list takes at most " +
+                          std::to_string(kMaxAxisCount) + " values");
+  a.count = static_cast<long>(a.listed.size());
+  a.from = a.value(0);
+  a.to = a.value(a.count - 1);
   return a;
 }
 
@@ -127,23 +126,16 @@ std::string sweepValueText(double v) {
 
 namespace {
 
-// The COUNT values of a range axis: even steps in the value, or in log(value) for ":log"; the
-// ends exactly FROM and TO (when included).
-void rangeValues(SweepAxis& a) {
+// Value k of a range axis: even steps in the value, or in log(value) for ":log"; the ends
+// exactly FROM and TO (when included).
+double rangeValue(const SweepAxis& a, long k) {
+  if (k == 0) return a.from;
+  if (!a.open && k == a.count - 1) return a.to;
   const double lo = a.log ? std::log(a.from) : a.from;
   const double hi = a.log ? std::log(a.to) : a.to;
-  for (long k = 0; k < a.count; ++k) {
-    const long steps = a.open ? a.count : a.count - 1;
-    double v = a.from;
-    if (k > 0 && !a.open && k == a.count - 1) {
-      v = a.to;
-    } else if (k > 0) {
-      const double x = lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(steps);
-      v = a.log ? std::exp(x) : x;
-    }
-    a.texts.push_back(sweepValueText(v));
-    a.values.push_back(std::strtod(a.texts.back().c_str(), nullptr));
-  }
+  const long steps = a.open ? a.count : a.count - 1;
+  const double x = lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(steps);
+  return a.log ? std::exp(x) : x;
 }
 
 // The flags after COUNT: "open" and/or "log", each at most once.
@@ -180,7 +172,9 @@ SweepAxis parseVary(const std::string& text) {
   if (a.key.empty() || a.key.find_first_of(" \t:=") != std::string::npos)
     throw SweepInputError(usage + ": no key before '='");
   if (trim(a.spec).empty()) throw SweepInputError("--vary " + text + ": no values after '='");
-  if (a.spec.find(',') != std::string::npos) return listAxis(a, text);
+  // a list, or one value alone (no ':')
+  if (a.spec.find(',') != std::string::npos || a.spec.find(':') == std::string::npos)
+    return listAxis(a, text);
   const std::vector<std::string> f = split(a.spec, ':');
   if (f.size() < 3 || f.size() > 5) throw SweepInputError(usage);
   try {
@@ -195,8 +189,22 @@ SweepAxis parseVary(const std::string& text) {
                           "' must be a whole number from 1 to " + std::to_string(kMaxAxisCount));
   a.count = *count;
   rangeFlags(a, f, text);
-  rangeValues(a);
   return a;
+}
+
+std::string SweepAxis::text(long k) const {
+  return listed.empty() ? sweepValueText(rangeValue(*this, k))
+                        : listed[static_cast<std::size_t>(k)];
+}
+
+double SweepAxis::value(long k) const {
+  return std::strtod(text(k).c_str(), nullptr);  // the number the text denotes
+}
+
+bool SweepAxis::sameValues(const SweepAxis& o) const {
+  if (count != o.count || listed.empty() != o.listed.empty()) return false;
+  if (!listed.empty()) return listed == o.listed;
+  return from == o.from && to == o.to && open == o.open && log == o.log;
 }
 
 SweepGrid::SweepGrid(std::vector<SweepAxis> axes, long max_points) : axes_(std::move(axes)) {
@@ -208,7 +216,7 @@ SweepGrid::SweepGrid(std::vector<SweepAxis> axes, long max_points) : axes_(std::
   const long cap = std::min(max_points, kMaxForcedGridPoints);
   size_ = 1;
   for (const auto& a : axes_) {
-    if (a.count < 1 || a.texts.size() != static_cast<size_t>(a.count))
+    if (a.count < 1 || (!a.listed.empty() && a.listed.size() != static_cast<size_t>(a.count)))
       throw SweepInputError("sweep: axis " + a.key + " has no values");
     if (size_ > cap / a.count) {
       std::string counts;
@@ -233,21 +241,22 @@ std::vector<long> SweepGrid::coordinates(long index) const {
 std::vector<std::string> SweepGrid::overrides(long index) const {
   const std::vector<long> c = coordinates(index);
   std::vector<std::string> o;
-  for (size_t a = 0; a < axes_.size(); ++a) o.push_back(axes_[a].key + "=" + axes_[a].texts[c[a]]);
+  for (size_t a = 0; a < axes_.size(); ++a) o.push_back(axes_[a].key + "=" + axes_[a].text(c[a]));
   return o;
 }
 
 nlohmann::json SweepGrid::toJson() const {
   nlohmann::json axes = nlohmann::json::array();
-  for (const auto& a : axes_)
-    axes.push_back({{"key", a.key},
-                    {"spec", a.spec},
-                    {"from", a.from},
-                    {"to", a.to},
-                    {"count", a.count},
-                    {"open", a.open},
-                    {"log", a.log},
-                    {"values", a.texts}});
+  for (const auto& a : axes_) {
+    nlohmann::json ja = {{"key", a.key},     {"spec", a.spec}, {"from", a.from}, {"to", a.to},
+                         {"count", a.count}, {"open", a.open}, {"log", a.log}};
+    if (a.count <= kMaxListedAxisValues) {
+      std::vector<std::string> texts;
+      for (long k = 0; k < a.count; ++k) texts.push_back(a.text(k));
+      ja["values"] = texts;
+    }
+    axes.push_back(ja);
+  }
   nlohmann::json j = {{"axes", axes}, {"points", size_}};
   if (basin_.samples > 0)
     j["basin"] = {{"samples", basin_.samples}, {"seed", basin_.seed}, {"random", basin_.random}};
@@ -258,16 +267,17 @@ SweepGrid SweepGrid::fromJson(const nlohmann::json& j) {
   try {
     std::vector<SweepAxis> axes;
     for (const auto& ja : j.at("axes")) {
-      SweepAxis a;
-      a.key = ja.at("key").get<std::string>();
-      a.spec = ja.at("spec").get<std::string>();
-      a.from = ja.at("from").get<double>();
-      a.to = ja.at("to").get<double>();
-      a.count = ja.at("count").get<long>();
-      a.open = ja.at("open").get<bool>();
-      a.log = ja.value("log", false);  // written since axes could be log-spaced
-      a.texts = ja.at("values").get<std::vector<std::string>>();
-      for (const auto& t : a.texts) a.values.push_back(parseSweepNumber(t));
+      // the axis as its --vary described it; the listed values (every one before issue 39) must
+      // be the ones it describes
+      SweepAxis a =
+          parseVary(ja.at("key").get<std::string>() + "=" + ja.at("spec").get<std::string>());
+      if (ja.contains("values")) {
+        const auto texts = ja.at("values").get<std::vector<std::string>>();
+        bool same = static_cast<long>(texts.size()) == a.count;
+        for (long k = 0; same && k < a.count; ++k) same = texts[k] == a.text(k);
+        if (!same)
+          throw SweepInputError("--vary " + a.key + "=" + a.spec + ": other values listed");
+      }
       axes.push_back(std::move(a));
     }
     SweepGrid grid(std::move(axes), kMaxForcedGridPoints);

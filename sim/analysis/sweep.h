@@ -7,7 +7,7 @@
 //   grid       --vary KEY=FROM:TO:COUNT, COUNT values from FROM to TO, both included (":open"
 //              after COUNT leaves TO out: [FROM, TO), for angles; ":log" spaces them evenly in
 //              log(value), 0 < FROM <= TO); FROM and TO may be written with pi ("2pi", "pi/2",
-//              "-0.5*pi"); --vary KEY=V1,V2,... lists the values (two or more, as given). A key
+//              "-0.5*pi"); --vary KEY=V1,V2,... lists the values (one or more, as given). A key
 //              "metronomes.*.REST" sets metronomes.i.REST of every metronome to the point's value.
 //              Any number of --vary (an N-D grid, at most kMaxGridPoints points unless forced).
 //              Grid index g = ((i_1 * COUNT_2 + i_2) * COUNT_3 + i_3) ...: the first --vary is
@@ -15,10 +15,11 @@
 //   shards     --shard K/N runs the points with g mod N == K - 1.
 //   regimes.csv  one line per point (SPEC 3): the varied keys' values as given to the rig, regime,
 //              A_1..A_N, psi_2..psi_N (final, psi wrapped to [0, 2 pi)), then r (order parameter),
-//              s (drive strength |Z| / mu of a Coulomb platform), clusters ("3+2"), tau (of the
-//              final row), [in_phase_fraction (with --basin-samples, SweepGrid::Basin),]
-//              complete (1/0), index (g), message (why a failed point failed; CSV-quoted when
-//              it must be).
+//              s (drive strength |Z| / mu of a Coulomb platform, mu the kinetic coefficient;
+//              empty for another law and for mu = 0), clusters ("3+2"), tau (of the final row),
+//              [in_phase_fraction (with --basin-samples, SweepGrid::Basin),] complete (1/0),
+//              index (g), message (why a failed point failed; CSV-quoted when it must be). A
+//              failed point's numbers that it did not reach are empty.
 //   sweep.json the manifest: what was swept (rig text, --set, model, grid), so that --resume and
 //              merge can check they continue or join the same sweep, and how far it got.
 //
@@ -47,16 +48,27 @@ struct SweepInputError : std::runtime_error {
 
 // ---- the grid -----------------------------------------------------------------------------------
 
+// One --vary, described rather than listed (issue 39): a range's value k is computed when it is
+// asked for, so that an axis of a million values costs its description, not a million texts.
 struct SweepAxis {
   std::string key;   // rig key path, e.g. platform.friction.mu
   std::string spec;  // FROM:TO:COUNT[:open] or V1,V2,... as given
   double from = 0.0, to = 0.0;
   long count = 0;
-  bool open = false;               // TO left out
-  bool log = false;                // values evenly spaced in log(value)
-  std::vector<double> values;      // (count x 1), exactly the numbers the texts below denote
-  std::vector<std::string> texts;  // (count x 1) the values as written to the rig and regimes.csv
+  bool open = false;                // TO left out
+  bool log = false;                 // values evenly spaced in log(value)
+  std::vector<std::string> listed;  // a list's values as written (V1,V2,...); empty for a range
+
+  // Value k (0 <= k < count) as written to the rig and regimes.csv, and the number it denotes.
+  std::string text(long k) const;
+  double value(long k) const;
+  // Do both axes hold the same values (whatever their specs' spelling)?
+  bool sameValues(const SweepAxis& o) const;
 };
+
+// An axis's values are listed in sweep.json up to this many (a larger range is described by its
+// spec, from, to, count, open and log alone): sweep.json stays small whatever the grid.
+constexpr long kMaxListedAxisValues = 1000;
 
 // "KEY=FROM:TO:COUNT[:open][:log]" or "KEY=V1,V2,..."; throws SweepInputError saying what is
 // wrong with the values. KEY is kept as written: the command resolves it against the rig
@@ -104,10 +116,12 @@ class SweepGrid {
   // "KEY=VALUE" for point g, one per axis, for the rig loader
   std::vector<std::string> overrides(long index) const;
 
-  // {"axes": [{key, spec, from, to, count, open, log, values: [texts]}], "points": size,
-  //  "basin": {samples, seed, random} when samples > 0}
+  // {"axes": [{key, spec, from, to, count, open, log, values: [texts] (at most
+  //  kMaxListedAxisValues of them, else left out)}], "points": size, "basin": {samples, seed,
+  //  random} when samples > 0}
   nlohmann::json toJson() const;
-  // throws SweepInputError; any size up to kMaxForcedGridPoints (it was checked when run)
+  // The axes from their key and spec (values, when listed, must be theirs); throws
+  // SweepInputError; any size up to kMaxForcedGridPoints (it was checked when run)
   static SweepGrid fromJson(const nlohmann::json& j);
 
  private:
@@ -145,7 +159,7 @@ struct SweepPoint {
   std::vector<double> psi;  // (N-1 x 1) final phase differences, wrapped to [0, 2 pi)
   double r = std::numeric_limits<double>::quiet_NaN();  // final order parameter
   // final drive strength of a Coulomb platform, s = |sum_j A_j e^{i phi_j}| / mu (e3.1): s <= 1
-  // the platform is stuck and couples nothing; inf for mu = 0, NaN for the other laws
+  // the platform is stuck and couples nothing; NaN (no value) for mu = 0 and the other laws
   double s = std::numeric_limits<double>::quiet_NaN();
   std::string clusters;                                   // "3+2": clusters of the alive metronomes
   double tau = std::numeric_limits<double>::quiet_NaN();  // tau of the final row

@@ -1,9 +1,10 @@
-// When trajectory rows and envelope samples are taken, for both engines: rows every `row_dt`
-// (simulation.sample, default period/20), envelope samples every period/64 (the envelope
-// recorder's quadrature, sim/record/envelope_recorder.h), both strictly before t_end (the run's
-// last state is recorded by the run itself), and samples on both sides of every event (the
-// engines call their envelope recorder just before and just after each resolved window). The
-// engines take samples from their interpolants: a sample never forces the integrator to stop.
+// When trajectory rows and envelope samples are taken: rows every `row_dt` (simulation.sample,
+// default period/20) and envelope samples every period/64, both strictly before t_end (the run's
+// last state is recorded by the run itself). The engines take samples from their interpolants: a
+// sample never forces the integrator to stop. The direct engine schedules rows only (its envelope
+// integrates each step's interpolant: sim/record/envelope_quadrature.h); the Simbody engine keeps
+// both kinds as its report times, which bound its steps, so that its runs are stepped as before
+// (its envelope too comes from the steps' interpolants).
 #pragma once
 
 #include <algorithm>

@@ -136,6 +136,12 @@ class RkStepperT {
   double attempt(double h);
   // Moves to the end of the attempted step.
   void advance();
+  // Makes this stepper hold a step another stepper of the same tableau and right-hand side took
+  // (its t, h, y, y1 and its first tableau().stages stages, stagesData()): its dense output is
+  // then that step's to the bit (a recorder interpolating a run's steps on another thread).
+  void load(double t, double h, const double* y, const double* y1, const double* stages);
+  // The attempted step's stages k_0 .. k_{stages-1}, stage-major (stages x dim)
+  const double* stagesData() const { return k_.data(); }
 
   // The step size to try next after an attempt with error norm `err` (Hairer's PI control).
   double nextStepSize(double h, double err, bool accepted) {
@@ -159,6 +165,18 @@ class RkStepperT {
   void interpolate(double th, double* __restrict out) { interpolateRange(th, 0, dim(), out); }
   // components [first, first + count) only, into out[first ...] (the same bits as interpolate)
   void interpolateRange(double th, int first, int count, double* __restrict out);
+  // The interpolant's stage weights at th for a step of size h (DenseTable::kPadRows values: what
+  // interpolateRange computes for its th), and the interpolant from weights given so: a caller
+  // that interpolates many steps at the same fractions computes their weights once (h = 1) and
+  // scales them by each step's h.
+  void denseWeights(double th, double h, double* w) const { dense_.weights(th, h, false, w); }
+  void interpolateWith(const double* w, int first, int count, double* __restrict out);
+  // The interpolant at Q points at once from their weights w[q] (as denseWeights gives them):
+  // components [first, first + count) of point q into out[q * count ...]. The same sums as
+  // interpolateWith, point by point, in the same order.
+  template <int Q>
+  void interpolateMany(const double (&w)[Q][detail::DenseTable::kPadRows], int first, int count,
+                       double* __restrict out);
   double component(int k, double th);
   double componentRate(int k, double th);
 
@@ -349,6 +367,18 @@ void RkStepperT<Rhs, Dim, Quad>::advance() {
 }
 
 template <class Rhs, int Dim, int Quad>
+void RkStepperT<Rhs, Dim, Quad>::load(double t, double h, const double* y, const double* y1,
+                                      const double* stages) {
+  w_th_ = -1.0;
+  extra_stages_ = false;
+  t_ = t;
+  h_ = h;
+  std::copy(y, y + dim(), y_.data());
+  std::copy(y1, y1 + dim(), y1_.data());
+  std::copy(stages, stages + static_cast<size_t>(tab_.stages) * dim(), k_.data());
+}
+
+template <class Rhs, int Dim, int Quad>
 double RkStepperT<Rhs, Dim, Quad>::initialStepSize(double h_max) {
   // d0 = ||y0||, d1 = ||f(y0)||, d2 = ||f'|| estimated by a trial Euler step; RMS norms in the
   // units of the error target
@@ -460,12 +490,40 @@ void RkStepperT<Rhs, Dim, Quad>::interpolateRange(double th, int first, int coun
     return;
   }
   stageWeights(th, false);
+  interpolateWith(w_.data(), first, count, out);
+}
+
+template <class Rhs, int Dim, int Quad>
+void RkStepperT<Rhs, Dim, Quad>::interpolateWith(const double* w, int first, int count,
+                                                 double* __restrict out) {
+  ensureStages();
+  const double* __restrict y = y_.data() + first;
+  double* __restrict o = out + first;
   for (int k = 0; k < count; ++k) o[k] = y[k];
   const int rows = static_cast<int>(dense_.stage.size());
   for (int r = 0; r < rows; ++r) {
-    const double w = w_[r];
+    const double wr = w[r];
     const double* __restrict kj = stage(dense_.stage[r]) + first;
-    for (int k = 0; k < count; ++k) o[k] += w * kj[k];
+    for (int k = 0; k < count; ++k) o[k] += wr * kj[k];
+  }
+}
+
+template <class Rhs, int Dim, int Quad>
+template <int Q>
+void RkStepperT<Rhs, Dim, Quad>::interpolateMany(const double (&w)[Q][detail::DenseTable::kPadRows],
+                                                 int first, int count, double* __restrict out) {
+  ensureStages();
+  const int rows = static_cast<int>(dense_.stage.size());
+  const double* y = y_.data() + first;
+  for (int k = 0; k < count; ++k) {
+    // the Q points' sums for one component, side by side (one vector of Q lanes)
+    double acc[Q];
+    for (int q = 0; q < Q; ++q) acc[q] = y[k];
+    for (int r = 0; r < rows; ++r) {
+      const double kv = stage(dense_.stage[r])[first + k];
+      for (int q = 0; q < Q; ++q) acc[q] += w[q][r] * kv;
+    }
+    for (int q = 0; q < Q; ++q) out[q * count + k] = acc[q];
   }
 }
 

@@ -105,22 +105,41 @@ AtomicFile::AtomicFile(std::string final_path) : final_path_(std::move(final_pat
   // a large buffer: rows are small and many
   std::setvbuf(file_, nullptr, _IOFBF, 1 << 16);
   last_flush_ = std::chrono::steady_clock::now();
+  const std::string name = fs::path(final_path_).filename().string();
+  if (name.size() > 4 && name.compare(name.size() - 4, 4, ".csv") == 0)
+    check_ = std::make_unique<CsvCheck>(final_path_);
 }
 
 AtomicFile::~AtomicFile() {
   discard();
 }
 
-void AtomicFile::write(const std::string& text) {
+void AtomicFile::put(const std::string& text) {
   if (!file_) throw std::logic_error("write to a closed file " + final_path_);
   if (std::fwrite(text.data(), 1, text.size(), file_) != text.size())
     throw std::runtime_error("cannot write " + temp_path_ + ": " + errnoText());
 }
 
+void AtomicFile::write(const std::string& text) {
+  if (check_) check_->text(text);
+  put(text);
+}
+
 void AtomicFile::writeLine(const std::string& line) {
-  write(line);
-  write("\n");
-  // flush about once a second (the clock costs far less than formatting the line)
+  if (check_) check_->line(line);
+  put(line);
+  if (std::fputc('\n', file_) == EOF)
+    throw std::runtime_error("cannot write " + temp_path_ + ": " + errnoText());
+  flushNowAndThen();
+}
+
+void AtomicFile::writeLines(const std::string& lines) {
+  write(lines);  // each whole line checked (CsvCheck::text)
+  flushNowAndThen();
+}
+
+// flush about once a second (the clock costs far less than formatting the lines)
+void AtomicFile::flushNowAndThen() {
   const auto now = std::chrono::steady_clock::now();
   if (now - last_flush_ >= std::chrono::seconds(1)) {
     if (std::fflush(file_) != 0)

@@ -6,8 +6,11 @@
 
 #include <chrono>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "sim/record/finite_check.h"
 
 namespace metrosync {
 
@@ -16,7 +19,10 @@ namespace metrosync {
 const char* metrosyncVersion();
 
 // One output file. Rows are appended to the temporary file; commit() renames it to its final
-// name; destroyed (or discarded) without commit, the temporary file is removed.
+// name; destroyed (or discarded) without commit, the temporary file is removed. A CSV file (a
+// final name ending in ".csv") has every row checked as it is written (CsvCheck,
+// sim/record/finite_check.h): a non-finite number throws NonFiniteOutput and nothing of it
+// reaches the file.
 class AtomicFile {
  public:
   // Opens the temporary file next to `final_path`; throws std::runtime_error when it cannot.
@@ -28,6 +34,8 @@ class AtomicFile {
   void write(const std::string& text);
   // text + '\n'; flushes to disk about once a second, so a long run shows progress on disk
   void writeLine(const std::string& line);
+  // lines already ending in '\n' (a block of rows at once); flushes as writeLine does
+  void writeLines(const std::string& lines);
   // flush, sync, close and rename (inside a CommitBatch: flush, close and queue); throws
   // std::runtime_error on an I/O error (the temporary file is then removed)
   void commit();
@@ -38,9 +46,14 @@ class AtomicFile {
   bool open() const { return file_ != nullptr; }
 
  private:
+  void put(const std::string& text);
+
   std::string final_path_, temp_path_;
+  void flushNowAndThen();
+
   std::FILE* file_ = nullptr;
   std::chrono::steady_clock::time_point last_flush_;
+  std::unique_ptr<CsvCheck> check_;  // a CSV file's rows
 };
 
 // One sync for the output files of a run instead of one per file (docs/bench/process.md). While

@@ -108,6 +108,11 @@ struct RunSink {
   virtual bool wantsStates() const { return false; }
   virtual void stateSample(double t, const std::vector<double>& y,
                            const std::vector<PlatformMode>& modes) {}
+  // true: a run may make this sink's rows on a recording thread of its own and call the row
+  // methods above from there (never from two threads at once), while it integrates on; the
+  // report's fields come back on the caller's thread. For a run that has a core to itself (the
+  // `run` command), not for one of many running in parallel (a sweep's points). Asked once.
+  virtual bool recordsOnAnotherThread() const { return false; }
   // Called by an engine that can take many steps between two rows (Simbody, whose grazing guard
   // redoes steps smaller and smaller) after each of its steps, t in the unit of the rows' t (a
   // network's: seconds). A sink may throw from it to stop the run, as from a row (FileSink: after

@@ -69,10 +69,15 @@ TEST(Diagram, StabilityChangesAtTheLocatedPoint) {
   h.type = "hopf";
   h.lyapunov = 0.5;
   r.special.push_back(h);
+  // A_1's curve (its datablock: KEY, A_1, A_1 where stable, A_1 where unstable)
   const std::string data = continuationDiagramData(r);
-  EXPECT_NE(data.find("0.15 1.5 1.5 0.1 1\n"), std::string::npos) << data;
-  EXPECT_NE(data.find("0.15 1.5 1.5 0.1 0\n"), std::string::npos) << data;
-  EXPECT_EQ(data.find("0.2 2 2 0.1 1\n"), std::string::npos) << data;  // no solid line to 0.2
+  const size_t from = data.find("$b0c2 << EOD\n"), to = data.find("EOD\n", from + 12);
+  ASSERT_NE(from, std::string::npos) << data;
+  const std::string a1 = data.substr(from, to - from);
+  EXPECT_NE(a1.find("0.15 1.5 1.5 nan\n"), std::string::npos) << a1;
+  EXPECT_NE(a1.find("0.15 1.5 nan 1.5\n"), std::string::npos) << a1;
+  EXPECT_EQ(a1.find("0.2 2 2 nan\n"), std::string::npos) << a1;  // no solid line to 0.2
+  EXPECT_NE(a1.find("0.2 2 nan 2\n"), std::string::npos) << a1;
 }
 
 TEST(Diagram, BoundaryCurvesInColoursNoRegimeUses) {

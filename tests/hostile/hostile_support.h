@@ -22,6 +22,11 @@ inline std::string sourceDir() {
   return METROSYNC_SOURCE_DIR;
 }
 
+// A shipped rig's path (yaml/rigs/NAME), quoted for the shell.
+inline std::string rigPath(const std::string& name) {
+  return shellQuote(sourceDir() + "/yaml/rigs/" + name);
+}
+
 // `metrosync ARGS --out OUT` under 200 MB of address space and 5 s (killed after: exit 137).
 inline CommandResult runLimited(const std::string& args, const std::string& out) {
   testing_support::RunIn in;

@@ -12,16 +12,8 @@
 #include <vector>
 
 #include "tests/hostile/hostile_support.h"
-#include "tools/cli/animate.h"
-#include "tools/cli/basin.h"
-#include "tools/cli/command_line.h"
-#include "tools/cli/continue.h"
-#include "tools/cli/figures.h"
-#include "tools/cli/fit.h"
 #include "tools/cli/number_option.h"
-#include "tools/cli/sweep.h"
-#include "tools/cli/sweep_point.h"
-#include "tools/cli/validate.h"
+#include "tools/fuzz/command_line_parser.h"
 #include "yaml/utf8.h"
 
 namespace metrosync::hostile {
@@ -62,7 +54,7 @@ TEST(NumberOptions, TheIssuesCasesAreRefusedQuotingTheValueAsTyped) {
       {"continue --param platform.friction.mu --to 0.5 --max-points 1",
        "--max-points 1: must be an integer from 2"},
       {"measure --metronome 0", "--metronome 0: must be an integer from 1"},
-      {"validate --jobs -1", "--jobs -1: must be an integer from 0"},
+      {"validate --jobs -1", "--jobs -1: must be an integer from 1"},
   };
   for (const Case& c : cases) {
     const std::string out = scratchDir("numbers", "case", false);
@@ -86,42 +78,7 @@ TEST(NumberOptions, ControlCharactersInAValueAreEscaped) {
 // ---- the fuzz pass -------------------------------------------------------------------------
 
 // metrosync's whole command line (as tools/metrosync.cpp builds it), parsed without running.
-struct CommandLine {
-  CLI::App app;
-  cli::Options opt;
-  cli::SweepOptions sweep;
-  cli::ValidateOptions validate;
-  cli::FitOptions fit;
-  cli::MeasureOptions measure;
-  cli::FiguresOptions figures;
-  cli::AnimateOptions animate;
-  cli::BasinOptions basin;
-  cli::SweepPointOptions point;
-  CommandLine() {
-    cli::configureApp(app);
-    cli::addRigCommands(app, opt);
-    cli::addSweepCommands(app, sweep);
-    cli::addValidateCommand(app, validate);
-    cli::addContinueCommand(app);
-    cli::addFitCommand(app, fit);
-    cli::addMeasureCommand(app, measure);
-    cli::addFiguresCommand(app, figures);
-    cli::addAnimateCommand(app, animate);
-    cli::addBasinCommand(app, basin);
-    cli::addSweepPointCommand(app, point);
-  }
-  // "" when the command line parses, else the parser's message
-  std::string parse(std::vector<std::string> args) {
-    std::vector<char*> argv = {const_cast<char*>("metrosync")};
-    for (auto& a : args) argv.push_back(a.data());
-    try {
-      app.parse(static_cast<int>(argv.size()), argv.data());
-    } catch (const CLI::ParseError& e) {
-      return e.what();
-    }
-    return "";
-  }
-};
+using CommandLine = fuzz::CommandLineParser;
 
 // A hostile number: special words, signs, exponents at and beyond double's range, integers at
 // and beyond 2^63 and 2^64, junk and control characters around digits.

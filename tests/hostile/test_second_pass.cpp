@@ -18,10 +18,6 @@ namespace fs = std::filesystem;
 using testing_support::scratchDir;
 using testing_support::slurp;
 
-std::string rigPath(const std::string& name) {
-  return shellQuote(sourceDir() + "/yaml/rigs/" + name);
-}
-
 // main: accepted, the wildcard and metronome 0 drawn as two columns of one key
 TEST(SecondPass, BasinRefusesAWildcardAndAConcreteRandomOfOneKey) {
   const std::string out = scratchDir("second", "basin", false);

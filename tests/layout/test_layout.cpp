@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 constexpr int kAnything = 1000;
 const std::map<std::string, int>& levels() {
   static const std::map<std::string, int> m = {
-      {"base", -1},  // header-only: the constants and number text every library may use
+      {"base", -1},  // the constants and number text every library may use
       {"contact", 0},
       {"contact/simbody", 1},
       {"models", 2},

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -71,6 +73,42 @@ TEST(NumberText, IsPrintfForEveryPrecisionAndNotation) {
   EXPECT_EQ(numberText(0.1), "0.1");  // the default: %g
   EXPECT_EQ(numberText(1.7976931348623157e308, 2, Notation::Fixed),
             printed("f", 2, 1.7976931348623157e308));  // the longest fixed text fits
+}
+
+// writeGeneral (Dragonbox's shortest digits rounded, with std::to_chars where the digits dropped
+// lie near a half) against printf over every bit pattern's kind: random bits (every exponent,
+// subnormals), the rows' usual magnitudes, and values built to sit on or a few ulps beside a
+// halfway point of the precision's last digit, where rounding the shortest digits could go wrong.
+TEST(NumberText, WriteGeneralIsPrintfOnRandomBitsAndNearHalves) {
+  std::mt19937_64 rng(11);
+  std::vector<double> v;
+  for (int k = 0; k < 20000; ++k) {
+    double x;
+    const std::uint64_t bits = rng();
+    std::memcpy(&x, &bits, sizeof x);
+    if (std::isfinite(x)) v.push_back(x);
+  }
+  std::normal_distribution<double> row(0.0, 3.0);
+  for (int k = 0; k < 20000; ++k) v.push_back(row(rng));
+  std::uniform_int_distribution<long long> digits(100000000000LL, 999999999999LL);
+  std::uniform_int_distribution<int> exponent(-20, 20);
+  for (int k = 0; k < 20000; ++k) {  // d.ddddddddddd5 x 10^e and its neighbours
+    const double half = (static_cast<double>(digits(rng)) + 0.5) * std::pow(10.0, exponent(rng));
+    for (double x : {half, std::nextafter(half, 0.0), std::nextafter(half, 1e300)}) {
+      v.push_back(x);
+      v.push_back(-x);
+    }
+  }
+  char buf[kMaxGeneralChars];
+  long checked = 0;
+  for (double x : v) {
+    for (int p : {1, 3, 6, 10, 12, 14, 15, 16, 17}) {
+      const std::string got(buf, writeGeneral(x, p, buf));
+      ASSERT_EQ(got, printed("g", p, x)) << "p = " << p << ", bits of " << roundTripText(x);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 1000000);
 }
 
 TEST(NumberText, NonFiniteValues) {

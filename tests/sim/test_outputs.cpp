@@ -8,6 +8,7 @@
 #include <sstream>
 #include <thread>
 
+#include "sim/record/finite_check.h"
 #include "tools/report/outputs.h"
 #include "tools/report/run_columns.h"
 
@@ -307,11 +308,15 @@ TEST(Summary, HasTheSpecKeysAndFailureOnlyWhenIncomplete) {
 
 TEST(Summary, WrittenAtomicallyAndParses) {
   OutputDir dir(freshDir("summary"));
-  writeSummary(dir, {{"model", "slow"}, {"x", NAN}});
+  // a non-finite number in a run that completed is a failure, and nothing is written (issue 39)
+  EXPECT_THROW(writeSummary(dir, {{"model", "slow"}, {"x", NAN}}), NonFiniteOutput);
+  EXPECT_FALSE(fs::exists(dir.file("summary.json")));
+  // a failed run (exit 3 already) keeps its summary, the number it never reached null
+  writeSummary(dir, {{"model", "slow"}, {"complete", false}, {"x", NAN}});
   std::ifstream in(dir.file("summary.json"));
   const nlohmann::json j = nlohmann::json::parse(in);
   EXPECT_EQ(j["model"], "slow");
-  EXPECT_TRUE(j["x"].is_null());  // a non-finite number is written as null, still valid JSON
+  EXPECT_TRUE(j["x"].is_null());  // still valid JSON
 }
 
 // Without a folder (the Python module's run without out=): nothing is written, every row goes to

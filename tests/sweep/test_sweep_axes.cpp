@@ -11,9 +11,13 @@
 
 #include "sim/analysis/sweep.h"
 #include "tests/common/run_metrosync.h"
+#include "tests/common/sweep_axis_values.h"
 
 namespace metrosync {
 namespace {
+
+using testing_support::axisTexts;
+using testing_support::axisValues;
 
 namespace fs = std::filesystem;
 using Result = testing_support::CommandResult;
@@ -39,25 +43,25 @@ std::string pairRig(const std::string& dir) {
 TEST(SweepAxes, LogSpacingIsGeometricWithExactEnds) {
   const SweepAxis a = parseVary("platform.friction.mu=0.001:10:5:log");
   EXPECT_TRUE(a.log);
-  EXPECT_EQ(a.texts, (std::vector<std::string>{"0.001", "0.01", "0.1", "1", "10"}));
+  EXPECT_EQ(axisTexts(a), (std::vector<std::string>{"0.001", "0.01", "0.1", "1", "10"}));
   // every value is the number its text denotes, and the ratios are equal (closed form
   // FROM * (TO/FROM)^(k/(COUNT-1)))
   const SweepAxis b = parseVary("k=2:50:7:log");
-  ASSERT_EQ(b.values.size(), 7u);
-  EXPECT_EQ(b.values.front(), 2.0);
-  EXPECT_EQ(b.values.back(), 50.0);
-  for (size_t k = 0; k < b.values.size(); ++k) {
+  ASSERT_EQ(axisValues(b).size(), 7u);
+  EXPECT_EQ(axisValues(b).front(), 2.0);
+  EXPECT_EQ(axisValues(b).back(), 50.0);
+  for (size_t k = 0; k < axisValues(b).size(); ++k) {
     const double exact = 2.0 * std::pow(25.0, static_cast<double>(k) / 6.0);
-    EXPECT_NEAR(b.values[k], exact, 1e-13 * exact) << k;
+    EXPECT_NEAR(axisValues(b)[k], exact, 1e-13 * exact) << k;
   }
   // open and log together: [FROM, TO) in log steps of (TO/FROM)^(1/COUNT)
   const SweepAxis c = parseVary("k=1:16:4:log:open");
-  EXPECT_EQ(c.texts, (std::vector<std::string>{"1", "2", "4", "8"}));
-  EXPECT_EQ(parseVary("k=1:16:4:open:log").texts, c.texts);
+  EXPECT_EQ(axisTexts(c), (std::vector<std::string>{"1", "2", "4", "8"}));
+  EXPECT_EQ(axisTexts(parseVary("k=1:16:4:open:log")), axisTexts(c));
   // the manifest keeps the flag
   const SweepGrid g = SweepGrid::fromJson(SweepGrid({a}).toJson());
   EXPECT_TRUE(g.axes()[0].log);
-  EXPECT_EQ(g.axes()[0].texts, a.texts);
+  EXPECT_EQ(axisTexts(g.axes()[0]), axisTexts(a));
 }
 
 TEST(SweepAxes, BadAxesAreRejectedSayingWhy) {

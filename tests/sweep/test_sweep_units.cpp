@@ -19,11 +19,15 @@
 #include "sim/analysis/sweep.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 #include "sim/record/envelope.h"
+#include "tests/common/sweep_axis_values.h"
 #include "tools/report/sweep_files.h"
 #include "tools/report/sweep_maps.h"
 
 namespace metrosync {
 namespace {
+
+using testing_support::axisTexts;
+using testing_support::axisValues;
 
 namespace fs = std::filesystem;
 
@@ -38,32 +42,32 @@ TEST(SweepVary, ParsesBothEndsIncludedAndTheOpenForm) {
   const SweepAxis a = parseVary("platform.friction.mu=0:1:5");
   EXPECT_EQ(a.key, "platform.friction.mu");
   ASSERT_EQ(a.count, 5);
-  EXPECT_EQ(a.texts, (std::vector<std::string>{"0", "0.25", "0.5", "0.75", "1"}));
+  EXPECT_EQ(axisTexts(a), (std::vector<std::string>{"0", "0.25", "0.5", "0.75", "1"}));
   // [0, 2 pi): TO left out, values 2 pi k / 4, written so that they read back exactly
   const SweepAxis b = parseVary("metronomes.0.start.phi=0:2pi:4:open");
-  ASSERT_EQ(b.values.size(), 4u);
+  ASSERT_EQ(axisValues(b).size(), 4u);
   EXPECT_TRUE(b.open);
-  EXPECT_EQ(b.values[0], 0.0);
-  EXPECT_NEAR(b.values[2], kPi, 1e-14);
-  EXPECT_NEAR(b.values[3], 1.5 * kPi, 1e-14);
-  EXPECT_EQ(parseVary("x=0:8e-4:33").texts[3], "7.5e-05");  // not 7.500000000000001e-05
-  for (size_t k = 0; k < b.texts.size(); ++k)
-    EXPECT_EQ(std::strtod(b.texts[k].c_str(), nullptr), b.values[k]) << b.texts[k];
+  EXPECT_EQ(axisValues(b)[0], 0.0);
+  EXPECT_NEAR(axisValues(b)[2], kPi, 1e-14);
+  EXPECT_NEAR(axisValues(b)[3], 1.5 * kPi, 1e-14);
+  EXPECT_EQ(axisTexts(parseVary("x=0:8e-4:33"))[3], "7.5e-05");  // not 7.500000000000001e-05
+  for (size_t k = 0; k < axisTexts(b).size(); ++k)
+    EXPECT_EQ(std::strtod(axisTexts(b)[k].c_str(), nullptr), axisValues(b)[k]) << axisTexts(b)[k];
   // one value; negative and decreasing ranges
-  EXPECT_EQ(parseVary("metronomes.1.alpha=0.3:9:1").texts, (std::vector<std::string>{"0.3"}));
-  EXPECT_EQ(parseVary("k=1:-1:3").texts, (std::vector<std::string>{"1", "0", "-1"}));
+  EXPECT_EQ(axisTexts(parseVary("metronomes.1.alpha=0.3:9:1")), (std::vector<std::string>{"0.3"}));
+  EXPECT_EQ(axisTexts(parseVary("k=1:-1:3")), (std::vector<std::string>{"1", "0", "-1"}));
 }
 
 TEST(SweepVary, ReadsAListOfValuesAsGiven) {
   // the paper's three frictions, in the order given, and pi as in a range
   const SweepAxis a = parseVary("platform.friction.mu=0.4,0.2,0.3");
   EXPECT_EQ(a.count, 3);
-  EXPECT_EQ(a.texts, (std::vector<std::string>{"0.4", "0.2", "0.3"}));
-  EXPECT_EQ(a.values, (std::vector<double>{0.4, 0.2, 0.3}));
-  EXPECT_EQ(parseVary("x=0,pi").values[1], std::strtod(sweepValueText(kPi).c_str(), nullptr));
+  EXPECT_EQ(axisTexts(a), (std::vector<std::string>{"0.4", "0.2", "0.3"}));
+  EXPECT_EQ(axisValues(a), (std::vector<double>{0.4, 0.2, 0.3}));
+  EXPECT_EQ(axisValues(parseVary("x=0,pi"))[1], std::strtod(sweepValueText(kPi).c_str(), nullptr));
   // the manifest keeps a list axis's values
   const SweepGrid g = SweepGrid::fromJson(SweepGrid({a}).toJson());
-  EXPECT_EQ(g.axes()[0].texts, a.texts);
+  EXPECT_EQ(axisTexts(g.axes()[0]), axisTexts(a));
   for (const char* bad : {"x=0.3,", "x=,1", "x=1,a", "x=1,2:3"})
     EXPECT_THROW(parseVary(bad), SweepInputError) << bad;
 }
@@ -102,7 +106,7 @@ TEST(SweepGrid, FirstAxisIsTheOuterOneAndOverridesNameThePoint) {
   // round trip through sweep.json
   const SweepGrid back = SweepGrid::fromJson(grid.toJson());
   EXPECT_EQ(back.size(), 12);
-  EXPECT_EQ(back.axes()[1].texts, grid.axes()[1].texts);
+  EXPECT_EQ(axisTexts(back.axes()[1]), axisTexts(grid.axes()[1]));
   EXPECT_THROW(SweepGrid(std::vector<SweepAxis>{}), SweepInputError);
   EXPECT_THROW(SweepGrid({parseVary("a=0:1:2"), parseVary("a=0:1:3")}), SweepInputError);
   // a third axis is an N-D grid (tests/sweep/test_sweep_axes.cpp); a key twice is still an error
@@ -134,7 +138,7 @@ SweepPoint samplePoint(long index) {
   p.A = {2.5, 0.3, 2.5, 2.4};
   p.psi = {3.1, 0.01, 6.2};
   p.r = 0.5;
-  p.s = std::numeric_limits<double>::infinity();
+  p.s = 1.75;  // (no value, NaN, is an empty cell: a Coulomb platform at mu > 0 has one)
   p.clusters = "2+1";
   p.tau = 305.6;
   return p;

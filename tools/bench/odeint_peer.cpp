@@ -18,7 +18,7 @@
 
 #include "base/constants.h"
 #include "models/scaling.h"
-#include "sim/record/envelope_recorder.h"
+#include "tools/bench/sampled_envelope.h"
 
 namespace metrosync::bench {
 

@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "models/scaling.h"
-#include "sim/record/envelope_recorder.h"
+#include "tools/bench/sampled_envelope.h"
 
 namespace metrosync::bench {
 

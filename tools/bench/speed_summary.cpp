@@ -164,8 +164,9 @@ std::string ratioSentence(const SpeedFacts& f) {
     return "The careful peer was not measured in this run (it was missing: see the folder's "
            "README), so there is no ratio at equal error. ";
   std::ostringstream os;
-  os << "Against a careful C++17 program on Boost.Odeint (`../shared/peer`: dopri5 and Fehlberg "
-        "7(8), fixed-size state, the same equations and events), at equal final-state error "
+  os << "Against a careful C++17 program on Boost.Odeint (the project's independent peer, not "
+        "part of this repository: dopri5 and Fehlberg 7(8), fixed-size state, the same equations "
+        "and events), at equal final-state error "
         "from "
      << errorLabel(f.err_hi) << " to " << errorLabel(f.err_lo)
      << " (CPU medians, integration and events only on both sides), the direct engine is ";

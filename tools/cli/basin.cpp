@@ -19,10 +19,12 @@
 #include "tools/cli/network_sweep.h"
 #include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
+#include "tools/cli/range_warnings.h"
 #include "tools/cli/sweep_point_run.h"
 #include "tools/cli/sweep_summary.h"
 #include "tools/report/basin_files.h"
 #include "tools/report/folder_lock.h"
+#include "tools/report/json_file.h"
 #include "tools/report/outputs.h"
 #include "yaml/network_loader.h"
 #include "yaml/rig_loader.h"
@@ -105,6 +107,7 @@ BasinPlan planBasin(const BasinOptions& opt) {
   const std::optional<Network> net =
       loadPlatformsNetwork(plan.text, name, opt.run.sets, engineLoadOptions(HUGE_VAL));
   const Rig base = net ? networkSweepRig(*net) : loadRigText(plan.text, name, opt.run.sets);
+  checkSensibleRanges(plan.text, name, opt.run.sets, opt.run.strict);  // the base rig only
   // the keys resolved against the rig (docs/keys.md), no two setting one rig key
   std::vector<OptionKey> keys;
   for (const auto& r : opt.random)
@@ -203,8 +206,7 @@ int basinImpl(const BasinOptions& opt, const SweepScheduler& schedule, int ranks
   files.push_back("basin.json");
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  writeFileAtomically(dir.file("basin.json"),
-                      basinJson(opt, plan, fractions, files, wall_s).dump(2) + "\n");
+  writeJsonFile(dir.file("basin.json"), basinJson(opt, plan, fractions, files, wall_s));
   if (!opt.run.quiet) {
     std::cout << "basin stability of " << plan.rig_name << " (" << modelTitle(plan.model) << ", "
               << plan.n << (plan.n == 1 ? " metronome" : " metronomes") << "), seed " << opt.seed
@@ -229,7 +231,7 @@ CLI::App* addBasinCommand(CLI::App& app, BasinOptions& opt) {
       "basin stability: the fraction of random starts ending in each regime, with 95% "
       "Wilson intervals");
   c->add_option("RIG", opt.run.rig_path,
-                "rig file (YAML, SPEC section 1); default: the built-in rig");
+                "rig file (YAML, docs/contract.md section 1); default: the built-in rig");
   c->add_option("--random", opt.random,
                 "a rig key drawn uniformly from FROM to TO for each sample; a phase (a key "
                 "ending in phi or psi) on the circle, wrapped to [0, 2 pi). "
@@ -254,6 +256,7 @@ CLI::App* addBasinCommand(CLI::App& app, BasinOptions& opt) {
              "worker threads (default: the number of cores; never more than the samples)");
   c->add_option("--out", opt.run.out, "output directory (default: runs/<rig name>-basin)")
       ->type_name("DIR");
+  addStrictFlag(c, opt.run.strict);
   c->add_flag("--no-plot", opt.no_plot, "no basin.png");
   c->add_flag("-q,--quiet", opt.run.quiet, "no table on stdout");
   c->footer(

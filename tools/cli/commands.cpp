@@ -16,7 +16,9 @@
 #include "sim/analysis/regime.h"
 #include "sim/record/atomic_file.h"
 #include "tools/cli/engines.h"
+#include "tools/cli/range_warnings.h"
 #include "tools/report/comparison_csv.h"
+#include "tools/report/json_file.h"
 #include "tools/report/network_files.h"
 #include "tools/report/network_plot.h"
 #include "tools/report/outputs.h"
@@ -78,6 +80,7 @@ LoadedRig loadAndCheck(const Options& opt, const std::string& model) {
   const LoadOptions lo = engineLoadOptions(opt.max_output);
   r.text = rigText(opt);
   r.rig = loadRigText(r.text, rigDisplayName(opt), opt.sets, lo);
+  checkSensibleRanges(r.text, rigDisplayName(opt), opt.sets, opt.strict);
 
   // the integrator is the engine's business, so the loader leaves its name to us
   r.engine = &chooseEngine(opt.engine, model, r.rig, rigDisplayName(opt));
@@ -132,6 +135,7 @@ RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::stri
   o.envelope_platform = !trajectory;  // the slow flow's `uncoupled` rule (sim/analysis/regime.h)
   o.x_unit = r.rig.units == Units::Physical ? r.scaled.x_scale_m : 1.0;
   o.law = r.scaled.friction;
+  o.recording_thread = true;  // one run at a time: its rows made beside its integration
   return o;
 }
 
@@ -258,9 +262,9 @@ void reportFailure(const std::string& model, const std::string& failure,
 }
 
 // summary.json's "files" (and the file itself, last: a summary.json means the run's files are
-// all there), with a folder; without one an empty list.
+// all there), with a folder, summary.json added to `files`; without one an empty list.
 void finishSummary(nlohmann::json& summary, const std::optional<OutputDir>& dir,
-                   std::vector<std::string> files) {
+                   std::vector<std::string>& files) {
   if (!dir) {
     summary["files"] = nlohmann::json::array();
     return;
@@ -326,14 +330,17 @@ RunOutcome runNetwork(const Options& opt, const Network& net, const std::string&
 RunOutcome runImpl(const Options& opt, bool keep) {
   const std::string text = rigText(opt);
   if (const std::optional<Network> net = loadPlatformsNetwork(text, rigDisplayName(opt), opt.sets,
-                                                              engineLoadOptions(opt.max_output)))
+                                                              engineLoadOptions(opt.max_output))) {
+    checkSensibleRanges(text, rigDisplayName(opt), opt.sets, opt.strict);
     return runNetwork(opt, *net, text);
+  }
   RunOutcome out;
   LoadedRig r = loadAndCheck(opt, opt.model);
   const std::string model = r.engine->model();
   installStopHandlers();  // before any file exists, so that no signal can leave a bare .part
-  const std::optional<OutputDir> dir = openOutputDir(opt, r.rig.name, "run");
   const bool full = model == "full";
+  // each model its own default folder: `run` then `run --model slow` keep both runs' files
+  const std::optional<OutputDir> dir = openOutputDir(opt, r.rig.name, full ? "run" : "run-slow");
 
   // the run's files made durable with one sync (sim/record/atomic_file.h): all of them and
   // summary.json with --no-plot; else the result files, then the plot and summary.json
@@ -518,6 +525,7 @@ LoadedRig loadForScale(const Options& opt) {
 
 int scaleCommand(const Options& opt) {
   const LoadedRig r = loadForScale(opt);
+  checkFiniteJson("scale --json", r.scaled_json);
   if (opt.json)
     std::cout << r.scaled_json.dump(2) << "\n";
   else

@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <sstream>
 
 #include "base/constants.h"
@@ -19,6 +23,7 @@
 #include "tools/cli/engines.h"
 #include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
+#include "tools/cli/range_warnings.h"
 #include "tools/report/continuation_report.h"
 #include "yaml/rig_loader.h"
 
@@ -60,27 +65,30 @@ bool sameSlowFlow(const ScaledParams& a, const ScaledParams& b) {
          a.alpha == b.alpha && a.locked == b.locked;
 }
 
-// The rig with KEY_k = p_k, scaled; values the rig refuses give NaN parameters, so the corrector
-// fails there and the step control stays out.
-ScaledParams scaledAt(const ContinueOptions& opt, const std::vector<std::string>& keys,
-                      const std::vector<double>& values) {
-  std::vector<std::string> o;
-  for (size_t k = 0; k < keys.size(); ++k) o.push_back(keys[k] + "=" + roundTripText(values[k]));
-  try {
-    return computeScaled(loadContinueRig(opt, o));
-  } catch (const std::exception&) {
-    ScaledParams bad = computeScaled(loadContinueRig(opt, {}));
-    for (double& v : bad.nu) v = std::nan("");
-    return bad;
-  }
+// The rig with KEYS = values, scaled (the rig parsed once); values the rig refuses give NaN
+// parameters, so the corrector fails there and the step control stays out.
+std::function<ScaledParams(const std::vector<double>&)> scaledAt(
+    const ContinueOptions& opt, const std::vector<std::string>& keys) {
+  const ContinueRigAt rig = continueRigAt(opt, keys);
+  ScaledParams bad = computeScaled(loadContinueRig(opt, {}));
+  for (double& v : bad.nu) v = std::nan("");
+  return [rig, bad](const std::vector<double>& values) {
+    try {
+      return computeScaled(rig(values));
+    } catch (const std::exception&) {
+      return bad;
+    }
+  };
 }
 
 ParamsAt paramsAt(const ContinueOptions& opt) {
-  return [opt](double p) { return scaledAt(opt, {opt.param}, {p}); };
+  const auto at = scaledAt(opt, {opt.param});
+  return [at](double p) { return at({p}); };
 }
 
 ParamsAt2 paramsAt2(const ContinueOptions& opt) {
-  return [opt](double p1, double p2) { return scaledAt(opt, {opt.param, opt.fold_key}, {p1, p2}); };
+  const auto at = scaledAt(opt, {opt.param, opt.fold_key});
+  return [at](double p1, double p2) { return at({p1, p2}); };
 }
 
 // The scaled parameters with KEY = value; a value that makes one of them infinite or NaN (e.g.
@@ -110,10 +118,11 @@ ScaledParams finiteScaledAt(const ContinueOptions& opt, double value, const std:
 // input (exit 2), not a branch whose corrector fails at the first step.
 void checkRangeInside(const ContinueOptions& opt, double from, const std::string& option) {
   constexpr int kRangeSamples = 8;  // the continuation's steps are ~1/100 of the range
+  const ParamsAt params = paramsAt(opt);
   for (int k = 1; k < kRangeSamples; ++k) {
     const double v = from + (opt.to - from) * k / kRangeSamples;
     try {
-      SlowFlow flow(scaledAt(opt, {opt.param}, {v}));
+      SlowFlow flow(params(v));
     } catch (const std::invalid_argument& e) {
       throw UsageError(option + " " + opt.param + " from " + roundTripText(from) + " to " +
                        roundTripText(opt.to) + ": " + e.what() +
@@ -136,7 +145,7 @@ double startValue(const ContinueOptions& opt, const std::string& option = "--par
   // a key with '*': the rig's value at its first element (metronome 1 for metronomes.*.X)
   const std::optional<double> in_rig = rigNumber(text, display, opt.sets, key.paths[0].text());
   if (!opt.from && !in_rig)
-    throw UsageError(option + " " + opt.param +
+    throw UsageError(display + ": " + option + " " + opt.param +
                      ": the key is not set in the rig (its default applies); give --from VALUE");
   const double from = opt.from ? *opt.from : *in_rig;  // both finite (tools/cli/number_option.h)
   if (opt.to == from)
@@ -152,20 +161,20 @@ double startValue(const ContinueOptions& opt, const std::string& option = "--par
   return from;
 }
 
+// --start's numbers, each whole and finite (nan, inf and 1e999 refused quoting the item).
 std::vector<double> parseList(const std::string& text) {
   std::vector<double> v;
   std::stringstream ss(text);
   std::string item;
   while (std::getline(ss, item, ',')) {
-    size_t used = 0;
-    double x = 0;
-    try {
-      x = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos)
+    const char* begin = item.c_str();
+    char* end = nullptr;
+    const double x = std::strtod(begin, &end);
+    if (end == begin ||
+        item.find_first_not_of(" \t", static_cast<size_t>(end - begin)) != std::string::npos)
       throw UsageError("--start " + text + ": '" + item + "' is not a number");
+    if (!std::isfinite(x))
+      throw UsageError("--start " + text + ": '" + item + "' is not a finite number");
     v.push_back(x);
   }
   return v;
@@ -179,7 +188,8 @@ SettledState settledRigStart(const ScaledParams& sp, std::string& how) {
 }
 
 // The start state (rotated z, N x 1) and how it was found.
-std::vector<Cd> startState(const ContinueOptions& opt, const ScaledParams& sp, std::string& how) {
+std::vector<Cd> startState(const ContinueOptions& opt, const ScaledParams& sp, double from,
+                           std::string& how) {
   const int n = static_cast<int>(sp.nu.size());
   if (!opt.start.empty()) {
     const std::vector<double> v = parseList(opt.start);
@@ -187,23 +197,27 @@ std::vector<Cd> startState(const ContinueOptions& opt, const ScaledParams& sp, s
       throw UsageError("--start " + opt.start + ": expected " + std::to_string(2 * n - 1) +
                        " numbers A_1..A_" + std::to_string(n) + ",psi_2..psi_" + std::to_string(n));
     for (int i = 0; i < n; ++i)
-      if (!(v[i] >= 0)) throw UsageError("--start: A_" + std::to_string(i + 1) + " must be >= 0");
+      if (!(v[i] >= 0))
+        throw UsageError("--start " + opt.start + ": A_" + std::to_string(i + 1) + " = " +
+                         roundTripText(v[i]) + ": must be >= 0");
     how = "--start " + opt.start;
     return stateFrom({v.begin(), v.begin() + n}, {v.begin() + n, v.end()});
   }
   const SettledState st = settledRigStart(sp, how);
   if (!st.settled)
-    throw UsageError("the rig's start does not settle to a locked state (slow flow up to tau = " +
+    throw UsageError("--param " + opt.param + " = " + roundTripText(from) +
+                     ": the rig's start does not settle to a locked state (slow flow up to tau = " +
                      roundTripText(st.tau) + "): " + st.why + "; give --start A_1,..,psi_N");
   return st.z;
 }
 
 // --all: the grid's states and, first, --start or the rig's start settled by the slow flow (a
 // grid of seeds can miss the rig's own attractor: issue 37); none when the start does not settle.
-std::vector<Cd> allStart(const ContinueOptions& opt, const ScaledParams& sp, std::string& how) {
+std::vector<Cd> allStart(const ContinueOptions& opt, const ScaledParams& sp, double from,
+                         std::string& how) {
   const std::string grid = "--all: every locked state Newton finds from a grid of seeds";
   if (!opt.start.empty()) {
-    std::vector<Cd> z = startState(opt, sp, how);
+    std::vector<Cd> z = startState(opt, sp, from, how);
     how = grid + ", and " + how;
     return z;
   }
@@ -271,12 +285,13 @@ SlowFlowContinuationSpec slowFlowSpec(const ContinueOptions& opt, double from, s
   spec.from = from, spec.to = opt.to;
   spec.settings = settingsFor(opt, from);
   if (!opt.all)
-    spec.start = startState(opt, sp, how);
+    spec.start = startState(opt, sp, from, how);
   else
-    spec.start = allStart(opt, sp, how);
+    spec.start = allStart(opt, sp, from, how);
   spec.all = opt.all;
   spec.cycles = !opt.no_cycles;
   spec.cycle_points = opt.cycle_points;
+  spec.jobs = opt.jobs;
   if (!opt.fold_key.empty()) {
     spec.params2 = paramsAt2(opt);
     spec.from2 = secondStart(opt), spec.to2 = opt.to2;
@@ -406,8 +421,12 @@ CLI::App* addContinueCommand(CLI::App& app) {
   c->add_flag("--all", opt.all,
               "every locked state Newton finds at the start value from a grid of seeds, and the "
               "rig's own (--start, or the rig's start integrated until it settles) first");
+  addInteger(c, "--jobs", opt.jobs, 0, kMaxJobs,
+             "threads for --all's seeds and branches (default and 0: one per hardware thread; "
+             "the files do not depend on it)");
   c->add_option("--out", opt.out, "output directory (default runs/<rig name>-continue)");
   c->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
+  addStrictFlag(c, opt.strict);
   c->add_flag("--no-cycles", opt.no_cycles,
               "do not follow the limit cycle born at each Hopf point (cycles.csv)");
   addInteger(c, "--cycle-points", opt.cycle_points, 2, kMaxContinuationPoints,
@@ -455,8 +474,26 @@ ContinuationResult slowFlowContinuation(const ContinueOptions& opt) {
   return result;
 }
 
+namespace {
+
+// The slow flow's continuation frees memory at the top of the heap at every step and allocates it
+// again; glibc hands it back to the kernel each time and it is faulted in again (n32 --all: 3.1 of
+// 18.9 s of CPU in the kernel, docs/bench/slow-continuation.md). The process keeps up to
+// kKeptHeap of freed memory instead.
+void keepFreedHeap() {
+#if defined(__GLIBC__)
+  constexpr int kKeptHeap = 256 << 20;
+  mallopt(M_TRIM_THRESHOLD, kKeptHeap);
+#endif
+}
+
+}  // namespace
+
 int continueCommand(const ContinueOptions& opt) {
+  loadContinueRig(opt, {});  // a bad rig is said as such before its ranges are judged
+  checkSensibleRanges(rigText(opt), rigDisplay(opt), opt.sets, opt.strict);
   if (opt.model == "full") return continueFullCommand(opt);
+  keepFreedHeap();
   const ContinuationResult result = slowFlowContinuation(opt);
   const Rig rig = loadContinueRig(opt, {opt.param + "=" + roundTripText(result.from)});
   const OutputDir dir(outDir(opt, rig));

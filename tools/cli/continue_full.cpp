@@ -60,7 +60,7 @@ double startValue(const ContinueOptions& opt) {
   const std::optional<double> in_rig = rigNumber(text, display, opt.sets, key.paths[0].text());
   if (!opt.from && !in_rig) {
     rigAt(opt, opt.to);  // an unknown key, or a value the rig refuses, says so here
-    throw UsageError("--param " + opt.param +
+    throw UsageError(display + ": --param " + opt.param +
                      ": the key is not set in the rig (its default applies); give --from VALUE");
   }
   const double from = opt.from ? *opt.from : *in_rig;

@@ -2,6 +2,7 @@
 // slow flow's continuation, tools/cli/continue_full.h the full model's).
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,14 +24,22 @@ struct ContinueOptions {
   bool all = false;               // --all: every locked state at the start value
   std::string out;                // --out DIR; empty: runs/<rig name>-continue
   bool quiet = false;
+  bool strict = false;     // --strict: sensible ranges (docs/sensible-ranges.md)
   bool no_cycles = false;  // --no-cycles
   int cycle_points = 100;  // --cycle-points: each limit cycle's point budget
   std::string fold_key;    // --fold KEY2: continue each fold in KEY and KEY2
   double to2 = 0.0;        // --to2 VALUE: KEY2's other end (it starts at the rig's value)
+  int jobs = 0;            // --jobs: threads for --all (0: one per hardware thread)
 };
 
 // The rig with --set, then `extra` (the parameter's KEY=VALUE, named --param in messages; keys
 // as in docs/keys.md: metronomes.*.X sets X of every metronome). Throws RigError.
 Rig loadContinueRig(const ContinueOptions& opt, const std::vector<std::string>& extra);
+
+// loadContinueRig(opt, {keys_k=values_k}) as a function of the values, the rig read and parsed
+// once (RigAtValues, yaml/rig_loader.h): a continuation loads it at thousands of parameter
+// values. Safe to call from several threads at once.
+using ContinueRigAt = std::function<Rig(const std::vector<double>& values)>;
+ContinueRigAt continueRigAt(const ContinueOptions& opt, const std::vector<std::string>& keys);
 
 }  // namespace metrosync::cli

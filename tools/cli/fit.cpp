@@ -14,6 +14,8 @@
 #include "tools/cli/fit_inputs.h"
 #include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
+#include "tools/cli/range_warnings.h"
+#include "tools/report/json_file.h"
 #include "yaml/key_path.h"
 #include "yaml/rig_loader.h"
 #include "yaml/rig_writer.h"
@@ -166,6 +168,7 @@ std::string fittedRig(const FitOptions& opt, const std::string& text, const FitR
 FitReport runFit(const FitOptions& opt) {
   const std::string text = readRigFile(opt.rig_path);
   const Rig rig = loadPhysicalRig(text, opt.rig_path, opt.sets);
+  checkSensibleRanges(text, opt.rig_path, opt.sets, opt.strict);
   const MeasuredData data = loadData(opt.data_path, rig);
   const Engine& engine = chooseEngine("", opt.model, rig, opt.rig_path);
   if (opt.noise && !(*opt.noise > 0)) throw UsageError("--noise must be > 0");
@@ -200,7 +203,9 @@ void printFit(const FitReport& rep, const OutputDir& dir, const std::vector<std:
   const FitOutcome& r = rep.outcome;
   const bool metres = r.quantity_names.size() == 1 && r.quantity_names[0] == "x";
   std::cout << "fit (" << rep.model << " model, " << r.observations.size() << " observations, "
-            << r.evaluations << " model runs" << (r.converged ? "" : ", NOT CONVERGED") << "):\n";
+            << r.evaluations << " model runs"
+            << (r.jacobians > 0 ? ", " + std::to_string(r.jacobians) + " with derivatives" : "")
+            << (r.converged ? "" : ", NOT CONVERGED") << "):\n";
   for (std::size_t j = 0; j < rep.free.size(); ++j) {
     std::cout << "  " << rep.free[j].name << " = ";
     if (r.values[j])
@@ -242,7 +247,7 @@ void writeFitFiles(const FitOptions& opt, const Rig& rig, const FitReport& rep) 
                               rig.name + " - " + opt.model + " model fitted to " + opt.data_path))
     files.push_back("fit.png");
   files.push_back("fit.json");
-  writeFileAtomically(dir.file("fit.json"), fitJson(rep).dump(2) + "\n");
+  writeJsonFile(dir.file("fit.json"), fitJson(rep));
   if (!opt.quiet) printFit(rep, dir, files);
 }
 
@@ -290,6 +295,7 @@ CLI::App* addFitOptions(CLI::App* cmd, FitOptions& opt) {
       ->type_name("DIR");
   cmd->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
   cmd->add_flag("--no-plot", opt.no_plot, "write no fit.png");
+  addStrictFlag(cmd, opt.strict);
   return cmd;
 }
 

@@ -2,11 +2,13 @@
 
 #include <set>
 
+#include "base/number_text.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/continue.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/network_sweep.h"
 #include "tools/cli/option_keys.h"
+#include "tools/cli/range_warnings.h"
 #include "tools/cli/sweep_point_run.h"
 #include "tools/report/outputs.h"
 #include "yaml/network_loader.h"
@@ -18,6 +20,23 @@ namespace {
 
 // Up to this many axes every corner of the grid is loaded before the sweep (2^axes rigs).
 constexpr size_t kMaxCornerAxes = 8;
+
+// --resume holds two bits a grid point (which are done, which were seen in regimes.csv): at most
+// this many bytes, 2^30 points (docs/rig-limits.md).
+constexpr double kMaxResumeBytes = 256.0 * 1024 * 1024;
+
+// --resume: the memory it will need, stated and refused before anything is read or written.
+void checkResumeMemory(const SweepOptions& opt, const SweepGrid& grid) {
+  const double bytes = static_cast<double>(grid.size()) / 4.0;  // two bits a point
+  if (!opt.resume || bytes <= kMaxResumeBytes) return;
+  throw UsageError("--resume: the grid's " + std::to_string(grid.size()) + " points need about " +
+                   numberText(bytes) +
+                   " bytes of memory to know which are done (two bits a point), above the limit "
+                   "of " +
+                   numberText(kMaxResumeBytes) +
+                   " bytes (docs/rig-limits.md): resume a smaller grid, or run it afresh "
+                   "without --resume");
+}
 
 // The grid checked in bounded time, before any file: the point at every corner of the grid and
 // at each axis's every end (the rig loader's checks are ranges, so a value inside an axis that
@@ -65,16 +84,16 @@ void checkBoundaries(const SweepOptions& opt, const SweepPlan& plan) {
   if (plan.manifest.model != "slow")
     throw UsageError(
         "--boundaries: the fold and Hopf curves are the slow flow's; use --model slow");
-  if (axes.size() != 2 || !axes[0].values.size() || axes[0].count < 2 || axes[1].count < 2)
+  if (axes.size() != 2 || axes[0].count < 2 || axes[1].count < 2)
     throw UsageError("--boundaries: needs a map over two keys (two --vary of 2 or more values)");
   for (const SweepAxis& a : axes)
     if (a.spec.find(':') == std::string::npos)
       throw UsageError("--boundaries: --vary " + a.key + "=" + a.spec +
                        ": give a range FROM:TO:COUNT (the curves are continuous in both keys)");
   try {
-    checkBoundaryKeys(opt.rig_path, opt.sets, axes[0].key, axes[0].values.front(),
-                      axes[0].values.back(), axes[1].key, axes[1].values.front(),
-                      axes[1].values.back());
+    checkBoundaryKeys(opt.rig_path, opt.sets, axes[0].key, axes[0].value(0),
+                      axes[0].value(axes[0].count - 1), axes[1].key, axes[1].value(0),
+                      axes[1].value(axes[1].count - 1));
   } catch (const UsageError& e) {
     throw UsageError(std::string("--boundaries: ") + e.what());
   }
@@ -114,8 +133,8 @@ std::vector<RandomKey> planPointBasin(const SweepOptions& opt, SweepGrid& grid,
 // The fold and Hopf curves over the map's two ranges (boundaryCurves, tools/cli/continue.h).
 std::vector<continuation::FoldCurve> mapBoundaries(const SweepOptions& opt, const SweepPlan& plan) {
   const SweepAxis &x = plan.grid.axes()[0], &y = plan.grid.axes()[1];
-  return boundaryCurves(opt.rig_path, opt.sets, x.key, x.values.front(), x.values.back(), y.key,
-                        y.values.front(), y.values.back());
+  return boundaryCurves(opt.rig_path, opt.sets, x.key, x.value(0), x.value(x.count - 1), y.key,
+                        y.value(0), y.value(y.count - 1));
 }
 
 // The overrides of grid point g's basin sample k: the point's, then the draws of (seed, k).
@@ -133,6 +152,7 @@ SweepPlan planSweep(const SweepOptions& opt) {
   for (const auto& v : opt.vary) axes.push_back(parseVary(v));
   SweepPlan plan;
   plan.grid = SweepGrid(std::move(axes), opt.force ? kMaxForcedGridPoints : kMaxGridPoints);
+  checkResumeMemory(opt, plan.grid);
   plan.map_axes = mapAxes(plan.grid, opt.map);
   plan.shard = opt.shard.empty() ? SweepShard{} : parseShard(opt.shard);
   // the rig, its keys, and every grid point's rig: a bad key or value stops here, before any file
@@ -140,6 +160,7 @@ SweepPlan planSweep(const SweepOptions& opt) {
   const std::optional<Network> net =
       loadPlatformsNetwork(plan.text, displayName(opt), opt.sets, engineLoadOptions(HUGE_VAL));
   plan.base = net ? networkSweepRig(*net) : loadRigText(plan.text, displayName(opt), opt.sets);
+  checkSensibleRanges(plan.text, displayName(opt), opt.sets, opt.strict);  // the base rig only
   plan.random = planPointBasin(opt, plan.grid, sweepKeys(opt, plan.text));
   plan.n = static_cast<int>(plan.base.metronomes.size());
   if (net && !opt.keep.empty())

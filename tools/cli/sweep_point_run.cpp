@@ -4,7 +4,6 @@
 #include <limits>
 
 #include "base/number_text.h"
-#include "contact/law_registry.h"
 #include "sim/analysis/network_verdict.h"
 #include "sim/analysis/regime.h"
 #include "tools/cli/commands.h"
@@ -140,13 +139,14 @@ std::optional<PointOutcome> runRigPoint(const PointInput& in, long g, PointSink&
   return o;
 }
 
-// s = |Z| / mu = r sum_j A_j / mu of a Coulomb platform (inf at mu = 0), else NaN
+// s = |Z| / mu = r sum_j A_j / mu of a Coulomb platform (mu the kinetic coefficient, with or
+// without mu_static); NaN, no value, for another law and for mu = 0 (no threshold)
 double driveStrength(const FrictionLaw& law, const EnvelopeRow& last, double r) {
-  if (!law.is(coulombLaw())) return std::numeric_limits<double>::quiet_NaN();
+  const std::optional<double> mu = law.value("mu");
+  if (!mu || !(*mu > 0.0)) return std::numeric_limits<double>::quiet_NaN();
   double sum = 0.0;
   for (double a : last.A) sum += a;
-  const double mu = law.valueOr("mu", 0.0);
-  return mu > 0 ? r * sum / mu : std::numeric_limits<double>::infinity();
+  return r * sum / *mu;
 }
 
 }  // namespace

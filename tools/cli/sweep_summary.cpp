@@ -6,6 +6,7 @@
 
 #include "base/number_text.h"
 #include "sim/record/atomic_file.h"
+#include "tools/report/json_file.h"
 #include "tools/report/sweep_maps.h"
 
 namespace metrosync::cli {
@@ -65,7 +66,7 @@ std::string mapTitle(const SweepManifest& m) {
 }
 
 void writeSweepJson(const OutputDir& dir, const nlohmann::json& j) {
-  writeFileAtomically(dir.file("sweep.json"), j.dump(2) + "\n");
+  writeJsonFile(dir.file("sweep.json"), j);
 }
 
 nlohmann::json statusJson(const SweepManifest& m, long shard_points, const SweepTally& tally,

@@ -147,6 +147,14 @@ py::dict sweep(const RigSource& rig, const std::vector<std::string>& vary, const
   nlohmann::json status = cli::statusJson(m, m.grid.size(), cli::tallyOf(points),
                                           static_cast<long>(points.size()) == m.grid.size());
   status["jobs"] = o.jobs;
+  // every axis's values, also those sweep.json leaves out (kMaxListedAxisValues): the result's
+  // .values (the points are in memory already)
+  for (std::size_t a = 0; a < m.grid.axes().size(); ++a) {
+    const SweepAxis& axis = m.grid.axes()[a];
+    std::vector<std::string> texts;
+    for (long k = 0; k < axis.count; ++k) texts.push_back(axis.text(k));
+    status["grid"]["axes"][a]["values"] = texts;
+  }
   py::dict d;
   d["points"] = pointsToPython(points, m.metronomes);
   d["summary"] = status.dump();

@@ -68,23 +68,50 @@ const ResultPoint* specialOnStep(const ContinuationResult& r, int b, const Resul
   return nullptr;
 }
 
-// A branch's rows; where stability changes, the solid and the dashed line meet at the special
-// point located on that step (a Hopf point, a fold...), else at the new point: it is written
-// once with the old stability, then with the new.
-void branchBlock(const ContinuationResult& r, int b, std::ostringstream& d) {
+// A branch's rows in order, each a point and the stability it is written with: where stability
+// changes, the solid and the dashed line meet at the special point located on that step (a Hopf
+// point, a fold...), else at the new point: it is written once with the old stability, then with
+// the new.
+std::vector<std::pair<const ResultPoint*, bool>> branchRows(const ContinuationResult& r, int b) {
+  std::vector<std::pair<const ResultPoint*, bool>> rows;
   const ResultPoint* prev = nullptr;
   for (const ResultPoint& q : r.points) {
     if (q.branch != b) continue;
     if (prev && prev->stable != q.stable) {
       const ResultPoint* at = specialOnStep(r, b, *prev, q);
-      d << row(at ? *at : q, prev->stable);
-      if (at) d << row(*at, q.stable);
+      rows.push_back({at ? at : &q, prev->stable});
+      if (at) rows.push_back({at, q.stable});
     }
-    d << row(q, q.stable);
+    rows.push_back({&q, q.stable});
     prev = &q;
   }
-  if (!prev) d << "nan\n";
-  d << "\n\n";
+  return rows;
+}
+
+// The datablock of branch b's column col of row() (2..N+1: A_i, N+2..2N: psi_j): its rows as
+// KEY, the value, the value where stable (else NaN), the value where unstable. One small block
+// per curve, no expression in `using`: gnuplot reads every column of each row it draws from and
+// sets up its signal handlers for every expression it evaluates, and 32 metronomes on 34
+// branches make 6400 curves.
+std::string branchBlock(size_t b, int col) {
+  return "$b" + std::to_string(b) + "c" + std::to_string(col);
+}
+
+std::string branchColumn(const std::vector<std::pair<const ResultPoint*, bool>>& rows, int col) {
+  std::ostringstream d;
+  for (const auto& [q, stable] : rows) {
+    const size_t k = static_cast<size_t>(col - 2);
+    const std::string v = num(k < q->A.size() ? q->A[k] : q->psi[k - q->A.size()]);
+    d << num(q->value) << " " << v << " " << (stable ? v : "nan") << " " << (stable ? "nan" : v)
+      << "\n";
+  }
+  return d.str();
+}
+
+// `rows` as the datablock `name` ("nan" when empty: one column, as gnuplot 5.4 crashes on a
+// datablock of NaN points drawn as labels).
+void datablock(std::ostringstream& d, const std::string& name, const std::string& rows) {
+  d << name << " << EOD\n" << (rows.empty() ? "nan\n" : rows) << "EOD\n";
 }
 
 std::string label(const ResultSpecial& s) {
@@ -95,46 +122,46 @@ std::string label(const ResultSpecial& s) {
   return s.lyapunov > 0 ? "H(sub)" : "H(sup)";
 }
 
-void specialBlock(const ContinuationResult& r, std::ostringstream& d) {
+std::string specialRows(const ContinuationResult& r) {
+  std::ostringstream d;
   for (const ResultSpecial& s : r.special) {
     std::string line = row(s.at, true);
     line.pop_back();
     d << line << " " << label(s) << " " << num(*std::max_element(s.at.A.begin(), s.at.A.end()))
       << "\n";
   }
-  if (r.special.empty()) d << "nan\n";
-  d << "\n\n";
+  return d.str();
 }
 
-void familyBlocks(const ContinuationResult& r, std::ostringstream& d) {
-  for (const auto& f : r.families) {
-    for (const auto& q : f.points) {
-      d << num(q.value);
-      for (size_t j = 0; j < q.psi_min.size(); ++j)
-        d << " " << num(q.psi_min[j]) << " " << num(q.psi_max[j]);
-      d << "\n";
-    }
-    d << "\n\n";
-  }
+// KEY, then lo_k hi_k for each k.
+std::string rangeRow(double value, const std::vector<double>& lo, const std::vector<double>& hi) {
+  std::string d = num(value);
+  for (size_t k = 0; k < lo.size(); ++k) d += " " + num(lo[k]) + " " + num(hi[k]);
+  return d;
 }
 
-void cycleBlocks(const ContinuationResult& r, std::ostringstream& d) {
-  std::ostringstream folds;
-  for (const auto& c : r.cycles) {
-    for (const auto& q : c.points) {
-      d << num(q.value);
-      for (size_t i = 0; i < q.A_min.size(); ++i)
-        d << " " << num(q.A_min[i]) << " " << num(q.A_max[i]);
-      d << " " << (q.stable ? 1 : 0) << "\n";
-    }
-    if (c.points.empty()) d << "nan\n";
-    d << "\n\n";
+std::string familyRows(const continuation::ResultFamily& f) {
+  std::string d;
+  for (const auto& q : f.points) d += rangeRow(q.value, q.psi_min, q.psi_max) + "\n";
+  return d;
+}
+
+std::string cycleRows(const continuation::ResultCycle& c) {
+  std::string d;
+  for (const auto& q : c.points)
+    d += rangeRow(q.value, q.A_min, q.A_max) + " " + (q.stable ? "1" : "0") + "\n";
+  return d;
+}
+
+// The confirmed folds of cycles: KEY, the largest A_max.
+std::string cycleFoldRows(const ContinuationResult& r) {
+  std::ostringstream d;
+  for (const auto& c : r.cycles)
     for (const auto& f : c.folds)
       if (f.confirmed)
-        folds << num(f.at.value) << " "
-              << num(*std::max_element(f.at.A_max.begin(), f.at.A_max.end())) << "\n";
-  }
-  d << (folds.str().empty() ? "nan nan\n" : folds.str()) << "\n\n";
+        d << num(f.at.value) << " " << num(*std::max_element(f.at.A_max.begin(), f.at.A_max.end()))
+          << "\n";
+  return d.str();
 }
 
 // The branch a cycle's Hopf point lies on (its colour).
@@ -154,30 +181,27 @@ long branchPoints(const ContinuationResult& r, int b) {
 // its markers shifted along the branch by i / N of their interval, so that coinciding curves
 // show every metronome's.
 void branchCurves(const ContinuationResult& r, int col, int i, int count, std::ostringstream& p) {
-  const int stable = 2 * r.metronomes + 1;
   for (size_t b = 0; b < r.branches.size(); ++b) {
     const long every = std::max(1L, branchPoints(r, static_cast<int>(b)) / kMarkersPerBranch);
     for (int s : {1, 0})
-      p << "data index " << b << " using 1:(column(" << stable << ")==" << s << " ? column(" << col
-        << ") : NaN) with lines lc rgb '" << colour(static_cast<int>(b)) << "' lw " << width(i)
-        << " dt " << (s ? 1 : 2) << " notitle, \\\n  ";
-    p << "data index " << b << " every " << every << "::" << i * every / std::max(1, count)
-      << " using 1:" << col << " with points lc rgb '" << colour(static_cast<int>(b)) << "' pt "
-      << marker(i) << " ps 0.8 notitle, \\\n  ";
+      p << branchBlock(b, col) << " using 1:" << (s ? 3 : 4) << " with lines lc rgb '"
+        << colour(static_cast<int>(b)) << "' lw " << width(i) << " dt " << (s ? 1 : 2)
+        << " notitle, \\\n  ";
+    p << branchBlock(b, col) << " every " << every << "::" << i * every / std::max(1, count)
+      << " using 1:2 with points lc rgb '" << colour(static_cast<int>(b)) << "' pt " << marker(i)
+      << " ps 0.8 notitle, \\\n  ";
   }
 }
 
-// The cycles' max and min of A_i (index after the branches, specials and families).
+// The cycles' max and min of A_i.
 void cycleCurves(const ContinuationResult& r, int i, std::ostringstream& p) {
-  const int first = static_cast<int>(r.branches.size() + 1 + r.families.size());
   const int stable = 2 * r.metronomes + 2;
   for (size_t c = 0; c < r.cycles.size(); ++c)
     for (int col : {2 + 2 * i, 3 + 2 * i})
       for (int s : {1, 0})
-        p << "data index " << first + c << " using 1:(column(" << stable << ")==" << s
-          << " ? column(" << col << ") : NaN) with lines lc rgb '"
-          << colour(cycleBranch(r, r.cycles[c].hopf_value)) << "' lw 1 dt " << (s ? 1 : 2)
-          << " notitle, \\\n  ";
+        p << "$cycle" << c << " using 1:(column(" << stable << ")==" << s << " ? column(" << col
+          << ") : NaN) with lines lc rgb '" << colour(cycleBranch(r, r.cycles[c].hopf_value))
+          << "' lw 1 dt " << (s ? 1 : 2) << " notitle, \\\n  ";
 }
 
 void legend(const ContinuationResult& r, const std::string& name, int count, std::ostringstream& p,
@@ -196,37 +220,34 @@ void legend(const ContinuationResult& r, const std::string& name, int count, std
 }
 
 std::string amplitudePanel(const ContinuationResult& r) {
-  const int n = r.metronomes, special = static_cast<int>(r.branches.size());
-  const int folds = static_cast<int>(r.branches.size() + 1 + r.families.size() + r.cycles.size());
+  const int n = r.metronomes;
   std::ostringstream p;
   p << "set ylabel 'A_i'\nplot ";
   for (int i = 0; i < n; ++i) branchCurves(r, 2 + i, i, n, p);
   for (int i = 0; i < n; ++i) cycleCurves(r, i, p);
   for (int i = 0; i < n; ++i)
-    p << "data index " << special << " using 1:" << 2 + i
-      << " with points pt 7 ps 1.0 lc rgb 'black' notitle, \\\n  ";
-  p << "data index " << special << " using 1:" << 2 * n + 3 << ":" << 2 * n + 2
+    p << "$special using 1:" << 2 + i << " with points pt 7 ps 1.0 lc rgb 'black' notitle, \\\n  ";
+  p << "$special using 1:" << 2 * n + 3 << ":" << 2 * n + 2
     << " with labels offset 0,0.8 font ',9' notitle, \\\n  "
-    << "data index " << folds << " using 1:2 with points pt 6 ps 1.4 lc rgb 'black' notitle, \\\n  "
-    << "data index " << folds
-    << " using 1:2:('LPC') with labels offset 0,0.8 font ',9' notitle, "
+    << "$lpc using 1:2 with points pt 6 ps 1.4 lc rgb 'black' notitle, \\\n  "
+    << "$lpc using 1:2:('LPC') with labels offset 0,0.8 font ',9' notitle, "
        "\\\n  ";
   legend(r, "A", n, p, true);
   return p.str();
 }
 
 std::string phasePanel(const ContinuationResult& r) {
-  const int n = r.metronomes, special = static_cast<int>(r.branches.size());
+  const int n = r.metronomes;
   std::ostringstream p;
   p << "set ylabel 'psi_j = phi_1 - phi_j'\nplot ";
   for (size_t f = 0; f < r.families.size(); ++f)
     for (int j = 0; j < n - 1; ++j)
-      p << "data index " << special + 1 + f << " using 1:" << 2 + 2 * j << ":" << 3 + 2 * j
+      p << "$family" << f << " using 1:" << 2 + 2 * j << ":" << 3 + 2 * j
         << " with filledcurves lc rgb '" << colour(r.families[f].branch)
         << "' fs transparent solid 0.25 noborder notitle, \\\n  ";
   for (int j = 0; j < n - 1; ++j) branchCurves(r, 2 + n + j, j, n - 1, p);
   for (int j = 0; j < n - 1; ++j)
-    p << "data index " << special << " using 1:" << 2 + n + j
+    p << "$special using 1:" << 2 + n + j
       << " with points pt 7 ps 1.0 lc rgb 'black' notitle, \\\n  ";
   legend(r, "psi", n - 1, p, false);
   return p.str();
@@ -236,10 +257,17 @@ std::string phasePanel(const ContinuationResult& r) {
 
 std::string continuationDiagramData(const ContinuationResult& r) {
   std::ostringstream d;
-  for (size_t b = 0; b < r.branches.size(); ++b) branchBlock(r, static_cast<int>(b), d);
-  specialBlock(r, d);
-  familyBlocks(r, d);
-  cycleBlocks(r, d);
+  for (size_t b = 0; b < r.branches.size(); ++b) {
+    const auto rows = branchRows(r, static_cast<int>(b));
+    for (int col = 2; col <= 2 * r.metronomes; ++col)
+      datablock(d, branchBlock(b, col), branchColumn(rows, col));
+  }
+  datablock(d, "$special", specialRows(r));
+  for (size_t f = 0; f < r.families.size(); ++f)
+    datablock(d, "$family" + std::to_string(f), familyRows(r.families[f]));
+  for (size_t c = 0; c < r.cycles.size(); ++c)
+    datablock(d, "$cycle" + std::to_string(c), cycleRows(r.cycles[c]));
+  datablock(d, "$lpc", cycleFoldRows(r));
   return d.str();
 }
 
@@ -249,7 +277,7 @@ std::string continuationDiagramScript(const ContinuationResult& r, const std::st
   std::ostringstream g;
   g << "set terminal pngcairo size 1100," << (n > 1 ? 950 : 520) << " font ',11'\n"
     << "set output '" << png << "'\n"
-    << "data = '" << data << "'\n"
+    << "load '" << data << "'\n"
     << "set key outside right top\nset grid\n"
     // the same margins on both panels, so that their parameter axes line up whatever the keys
     << "set lmargin at screen 0.08\nset rmargin at screen 0.78\n"

@@ -17,9 +17,12 @@
 
 namespace metrosync {
 
-// The gnuplot data: one index per branch (KEY, A_1..A_N, psi_2..psi_N, stable), then the special
-// points (the same columns, then the label), then one per family (KEY, psi_min_j, psi_max_j), then
-// one per cycle (KEY, A_min_i, A_max_i, stable), then the confirmed folds of cycles (KEY, A_max).
+// The gnuplot data as datablocks (the script loads them): $b<branch>c<column> for each branch
+// and column of A_1..A_N, psi_2..psi_N (2..2N: KEY, the value, the value where stable and where
+// unstable, else nan), $special (KEY,
+// A_1..A_N, psi_2..psi_N, stable, the label, the largest A), $family<f> (KEY, psi_min_j,
+// psi_max_j), $cycle<c> (KEY, A_min_i, A_max_i, stable) and $lpc, the confirmed folds of cycles
+// (KEY, A_max).
 std::string continuationDiagramData(const continuation::ContinuationResult& r);
 std::string continuationDiagramScript(const continuation::ContinuationResult& r,
                                       const std::string& data, const std::string& png);

@@ -8,7 +8,9 @@
 #include "base/number_text.h"
 #include "sim/record/atomic_file.h"
 #include "tools/report/continuation_diagram.h"
+#include "tools/report/json_file.h"
 #include "tools/report/plot.h"
+#include "tools/report/report_numbers.h"
 
 namespace metrosync {
 
@@ -110,8 +112,9 @@ std::string branchesCsv(const ContinuationResult& r) {
     c << q.branch << "," << numberText(q.value, 12);
     for (double a : q.A) c << "," << numberText(a, 12);
     for (double p : q.psi) c << "," << numberText(p, 12);
-    c << "," << (q.stable ? 1 : 0) << "," << numberText(q.max_real, 12) << "," << q.ticking << ","
-      << q.platform << "," << numberText(q.s, 12) << "," << numberText(q.weight, 12) << "\n";
+    // max_real, s and weight may have no value (a border state, mu = 0, an inner state)
+    c << "," << (q.stable ? 1 : 0) << "," << optionalCell(q.max_real) << "," << q.ticking << ","
+      << q.platform << "," << optionalCell(q.s) << "," << optionalCell(q.weight) << "\n";
   }
   return c.str();
 }
@@ -241,7 +244,7 @@ std::string familiesCsv(const ContinuationResult& r) {
 std::vector<std::string> writeContinuation(const OutputDir& dir, const ContinuationResult& r,
                                            const std::string& rig_name) {
   writeFileAtomically(dir.file("branches.csv"), branchesCsv(r));
-  writeFileAtomically(dir.file("bifurcations.json"), bifurcationsJson(r).dump(2) + "\n");
+  writeJsonFile(dir.file("bifurcations.json"), bifurcationsJson(r));
   writeFileAtomically(dir.file("cycles.csv"), cyclesCsv(r));
   writeFileAtomically(dir.file("families.csv"), familiesCsv(r));
   std::vector<std::string> written = {"branches.csv", "bifurcations.json", "cycles.csv",

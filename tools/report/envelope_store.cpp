@@ -96,7 +96,8 @@ std::map<long, std::vector<std::string>> readEnvelopeStore(const std::string& pa
 
 EnvelopeStore::EnvelopeStore(const std::string& path, int n, bool fresh,
                              const std::function<bool(long)>& keep)
-    : path_(path) {
+    : path_(path), check_(path) {
+  check_.line(envelopeStoreHeader(n));
   // a new file (or the old one without its damaged tail and the points not kept), written as one
   // member point by point (one point's rows in memory at a time), then appended to
   const std::string tmp = path + ".new";
@@ -133,6 +134,7 @@ void EnvelopeStore::append(long g, const std::vector<std::string>& rows) {
   for (const auto& row : rows) text += prefix + row + "\n";
   text += "#end," + std::to_string(g) + "," + std::to_string(rows.size()) + "\n";
   std::lock_guard<std::mutex> lock(mutex_);
+  check_.text(text);  // no non-finite number (sim/record/finite_check.h)
   appendGzipMember(path_, text);
 }
 

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/record/finite_check.h"
+
 namespace metrosync {
 
 constexpr const char* kEnvelopeStoreName = "envelopes.csv.gz";
@@ -44,6 +46,7 @@ class EnvelopeStore {
  private:
   std::string path_;
   std::mutex mutex_;
+  CsvCheck check_;  // every row appended
 };
 
 }  // namespace metrosync

@@ -7,6 +7,7 @@
 
 #include "base/constants.h"
 #include "sim/record/atomic_file.h"
+#include "tools/report/json_file.h"
 #include "tools/report/plot.h"
 #include "tools/report/sweep_maps.h"
 #include "tools/report/validation_report.h"
@@ -159,7 +160,7 @@ std::string mapData(const RegimeMapResult& m, const std::vector<std::string>& le
           it == m.points.end()
               ? 0xffffff
               : std::stol(regimeColour(it->second.regime, legend).substr(1), nullptr, 16);
-      d << gnuplotNumber(axes[0].values[i]) << ' ' << gnuplotNumber(axes[1].values[j]) << ' '
+      d << gnuplotNumber(axes[0].value(i)) << ' ' << gnuplotNumber(axes[1].value(j)) << ' '
         << ((rgb >> 16) & 255) << ' ' << ((rgb >> 8) & 255) << ' ' << (rgb & 255) << '\n';
     }
     d << '\n';
@@ -168,8 +169,10 @@ std::string mapData(const RegimeMapResult& m, const std::vector<std::string>& le
 }
 
 double cellOf(const SweepAxis& a) {
-  return a.count > 1 ? (a.values.back() - a.values.front()) / (a.count - 1) : 1.0;
+  return a.count > 1 ? (a.value(a.count - 1) - a.value(0)) / (a.count - 1) : 1.0;
 }
+
+}  // namespace
 
 std::string mapScript(const RegimeMapResult& m, const FiguresContext& ctx,
                       const std::vector<std::string>& legend, const std::string& data_path,
@@ -185,17 +188,17 @@ std::string mapScript(const RegimeMapResult& m, const FiguresContext& ctx,
     << "set title "
     << gnuplotQuote(m.spec.title + " (" + (m.model == "full" ? "full model" : "slow flow") + ")")
     << " noenhanced font 'sans,13'\n"
-    << "set xlabel 'platform friction μ (scaled)'\nset ylabel 'initial phase difference ψ_0'\n"
-    << "set xrange [" << gnuplotNumber(x.values.front() - cx / 2) << ":"
-    << gnuplotNumber(x.values.back() + cx / 2) << "]\nset yrange ["
-    << gnuplotNumber(y.values.front() - cy / 2) << ":" << gnuplotNumber(y.values.back() + cy / 2)
+    << "set xlabel 'platform friction μ (scaled)'\nset ylabel 'initial phase difference ψ₀'\n"
+    << "set xrange [" << gnuplotNumber(x.value(0) - cx / 2) << ":"
+    << gnuplotNumber(x.value(x.count - 1) + cx / 2) << "]\nset yrange ["
+    << gnuplotNumber(y.value(0) - cy / 2) << ":" << gnuplotNumber(y.value(y.count - 1) + cy / 2)
     << "]\n"
     << piTics("y", 0.0, 2 * kPi) << "set rmargin at screen 0.74\n"
     << "set key at screen 0.76, graph 1 left top Left reverse noenhanced title 'regime' samplen "
        "1.5\n"
     << arrows << "plot " << gnuplotQuote(data_path) << " using 1:2:3:4:5 with rgbimage notitle";
   // exp1's two panels: psi0 = 0 (in-phase start) and psi0 = pi (antiphase start)
-  s << ", \\\n     0 with lines dt 2 lw 2 lc rgb '#000000' title 'exp1 panels: ψ_0 = 0, π'"
+  s << ", \\\n     0 with lines dt 2 lw 2 lc rgb '#000000' title 'exp1 panels: ψ₀ = 0, π'"
     << ", \\\n     pi with lines dt 2 lw 2 lc rgb '#000000' notitle";
   if (!ctx.mu_experiment.empty())
     s << ", \\\n     keyentry with lines dt 3 lw 2 lc rgb '#000000' title 'the experiment''s "
@@ -206,6 +209,8 @@ std::string mapScript(const RegimeMapResult& m, const FiguresContext& ctx,
   s << "\nset output\n";
   return s.str();
 }
+
+namespace {
 
 std::string commandFor(const std::string& id, const FiguresContext& ctx) {
   return "metrosync figures --only " + id + " --model " + ctx.models + ctx.options;
@@ -322,7 +327,7 @@ std::vector<std::string> writeFigures(const OutputDir& dir,
       files.push_back(name);
   }
   writeFileAtomically(dir.file("figures.md"), figuresMarkdown(figures, maps, ctx));
-  writeFileAtomically(dir.file("figures.json"), figuresJson(figures, maps, ctx).dump(2) + "\n");
+  writeJsonFile(dir.file("figures.json"), figuresJson(figures, maps, ctx));
   files.push_back("figures.md");
   files.push_back("figures.json");
   return files;

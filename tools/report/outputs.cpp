@@ -16,6 +16,7 @@
 #include "base/number_text.h"
 #include "sim/record/private_dir.h"
 #include "tools/report/build_info.h"
+#include "tools/report/json_file.h"
 #include "tools/report/network_files.h"
 
 namespace metrosync {
@@ -74,11 +75,33 @@ double eventKindIndex(const char* kind) {
   throw std::logic_error(std::string("unknown event kind ") + kind);
 }
 
-void appendNumbers(const double* v, size_t n, std::string& line) {
-  for (size_t k = 0; k < n; ++k) {
-    if (k) line += ',';
-    line += numberText(v[k], 12);
+// %.12g of v at the line's end (numberText's text, written in place)
+void appendNumber(double v, std::string& line) {
+  if (v != v) {
+    line += "nan";
+    return;
   }
+  char buf[kMaxGeneralChars];
+  line.append(buf, static_cast<size_t>(writeGeneral(v, 12, buf) - buf));
+}
+
+// the n numbers, comma-separated, written in place at the line's end (room made once)
+void appendNumbers(const double* v, size_t n, std::string& line) {
+  if (n == 0) return;
+  const size_t at = line.size();
+  line.resize(at + n * (kMaxGeneralChars + 1));
+  char* const begin = line.data();
+  char* out = begin + at;
+  for (size_t k = 0; k < n; ++k) {
+    if (k) *out++ = ',';
+    if (v[k] != v[k]) {
+      std::memcpy(out, "nan", 3);
+      out += 3;
+    } else {
+      out = writeGeneral(v[k], 12, out);
+    }
+  }
+  line.resize(static_cast<size_t>(out - begin));
 }
 
 }  // namespace
@@ -117,11 +140,19 @@ DeferredRows::Format FileSink::eventFormat() const {
              const double* v, std::string& line) {
     const double t = v[2];
     const int who = static_cast<int>(v[1]);
-    line += numberText(t, 12) + "," + numberText(eps * t / unit, 12) + "," +
-            kEventKinds[static_cast<size_t>(v[0])] + "," +
-            (who < 0 ? std::string("platform") : std::to_string(who + 1)) + ",";
+    appendNumber(t, line);
+    line += ',';
+    appendNumber(eps * t / unit, line);
+    line += ',';
+    line += kEventKinds[static_cast<size_t>(v[0])];
+    line += ',';
+    line += who < 0 ? std::string("platform") : std::to_string(who + 1);
+    line += ',';
     appendNumbers(v + 3, 2 * width, line);
-    if (seconds) line += "," + numberText(t, 12);
+    if (seconds) {
+      line += ',';
+      appendNumber(t, line);
+    }
   };
 }
 
@@ -358,7 +389,9 @@ void addProvenance(nlohmann::json& summary, const std::string& resolved_rig_json
 }
 
 void writeSummary(const OutputDir& dir, const nlohmann::json& j) {
-  writeFileAtomically(dir.file("summary.json"), j.dump(2) + "\n");
+  // a failed run (exit 3) keeps its summary, a number it never reached null (docs/outputs.md)
+  const bool failed = j.is_object() && j.value("complete", true) == false;
+  writeJsonFile(dir.file("summary.json"), failed ? nullingNonFinite(j) : j);
 }
 
 }  // namespace metrosync

@@ -17,6 +17,13 @@ inline std::string reportNumber(double v, int digits = 12, const char* missing =
   return std::isfinite(v) ? numberText(v, digits) : std::string(missing);
 }
 
+// A CSV cell that may have no value (issue 39): NaN, the producers' "no value", is an empty cell;
+// every other number is written, an infinity too, for the writers' check to refuse
+// (sim/record/finite_check.h).
+inline std::string optionalCell(double v, int digits = 12) {
+  return std::isnan(v) ? std::string() : numberText(v, digits);
+}
+
 inline nlohmann::json jsonNumber(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }

@@ -24,6 +24,7 @@
 #include "sim/record/safe_open.h"
 #include "tools/report/external_sort.h"
 #include "tools/report/progress_log.h"
+#include "tools/report/report_numbers.h"
 
 namespace metrosync {
 
@@ -71,8 +72,9 @@ std::vector<std::string> csvCells(const std::string& line) {
   return cells;
 }
 
+// A number cell; empty (no value; "nan" in files written before issue 39) is NaN.
 double cellNumber(const std::string& cell, const std::string& column) {
-  if (cell == "nan") return std::numeric_limits<double>::quiet_NaN();
+  if (cell.empty() || cell == "nan") return std::numeric_limits<double>::quiet_NaN();
   char* end = nullptr;
   const double v = std::strtod(cell.c_str(), &end);
   if (cell.empty() || end != cell.c_str() + cell.size())
@@ -112,15 +114,19 @@ std::string regimesHeader(const SweepGrid& grid, int n) {
 std::string formatRegimesRow(const SweepGrid& grid, const SweepPoint& p) {
   const std::vector<long> c = grid.coordinates(p.index);
   std::string s;
-  for (size_t a = 0; a < c.size(); ++a) s += (a ? "," : "") + grid.axes()[a].texts[c[a]];
+  for (size_t a = 0; a < c.size(); ++a) s += (a ? "," : "") + grid.axes()[a].text(c[a]);
   s += "," + csvCell(p.regime);
-  for (double v : p.A) s += "," + numberText(v, 12);
-  for (double v : p.psi) s += "," + numberText(v, 12);
-  s += "," + numberText(p.r, 12);
-  s += "," + numberText(p.s, 12);
+  // a complete point has every number but s; a failed one those it reached (the others empty)
+  const auto number = [&](double v, int digits) {
+    return p.complete ? numberText(v, digits) : optionalCell(v, digits);
+  };
+  for (double v : p.A) s += "," + number(v, 12);
+  for (double v : p.psi) s += "," + number(v, 12);
+  s += "," + number(p.r, 12);
+  s += "," + optionalCell(p.s, 12);
   s += "," + csvCell(p.clusters);
-  s += "," + numberText(p.tau, 10);
-  if (grid.basin().samples > 0) s += "," + numberText(p.in_phase_fraction, 12);
+  s += "," + number(p.tau, 10);
+  if (grid.basin().samples > 0) s += "," + number(p.in_phase_fraction, 12);
   s += p.complete ? ",1" : ",0";
   s += "," + std::to_string(p.index);
   s += "," + csvCell(p.message);
@@ -197,9 +203,9 @@ SweepPoint parseRegimesRow(const SweepGrid& grid, int n, const std::string& line
   p.message = cells[k];
   const std::vector<long> c = grid.coordinates(p.index);
   for (size_t a = 0; a < nkeys; ++a)
-    if (keys[a] != grid.axes()[a].texts[c[a]])
+    if (keys[a] != grid.axes()[a].text(c[a]))
       throw SweepInputError(grid.axes()[a].key + " = " + keys[a] + " is not the value of point " +
-                            std::to_string(p.index) + " (" + grid.axes()[a].texts[c[a]] + ")");
+                            std::to_string(p.index) + " (" + grid.axes()[a].text(c[a]) + ")");
   return p;
 }
 
@@ -356,10 +362,11 @@ void forEachRegimesRow(const std::string& path, const SweepGrid& grid, int n,
 
 RegimesAppender::RegimesAppender(const std::string& path, const std::string& header, bool fresh,
                                  size_t keep_bytes)
-    : path_(path) {
+    : path_(path), check_(path) {
+  check_.line(header);                      // the columns of the rows' messages
   fd_ = openOutputFile(path, fresh, true);  // never through a planted link or FIFO
   if (fresh) {
-    append(header);
+    put(header);
   } else if (::ftruncate(fd_, static_cast<off_t>(keep_bytes)) != 0) {
     const std::string why = std::strerror(errno);
     close();
@@ -372,6 +379,11 @@ RegimesAppender::~RegimesAppender() {
 }
 
 void RegimesAppender::append(const std::string& line) {
+  check_.line(line);  // no non-finite number (sim/record/finite_check.h)
+  put(line);
+}
+
+void RegimesAppender::put(const std::string& line) {
   if (fd_ < 0) throw std::logic_error("append to a closed " + path_);
   const std::string text = line + "\n";
   size_t done = 0;
@@ -434,7 +446,7 @@ std::string sweepDifference(const SweepManifest& a, const SweepManifest& b) {
   if (x.size() != y.size()) return "the number of --vary differs";
   for (size_t k = 0; k < x.size(); ++k) {
     if (x[k].key != y[k].key) return "--vary " + x[k].key + " / --vary " + y[k].key;
-    if (x[k].texts != y[k].texts)
+    if (!x[k].sameValues(y[k]))
       return "--vary " + x[k].key + "=" + x[k].spec + " / " + y[k].spec + ": other values";
   }
   if (!(a.grid.basin() == b.grid.basin())) return "--basin-samples, --random or --seed differ";

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sim/analysis/sweep.h"
+#include "sim/record/finite_check.h"
 #include "tools/report/external_sort.h"
 
 namespace metrosync {
@@ -96,11 +97,15 @@ class RegimesAppender {
   RegimesAppender(const RegimesAppender&) = delete;
   RegimesAppender& operator=(const RegimesAppender&) = delete;
   ~RegimesAppender();
-  void append(const std::string& line);  // line + '\n'; throws std::runtime_error
+  // line + '\n'; throws std::runtime_error, NonFiniteOutput for a non-finite number in it
+  void append(const std::string& line);
   void close();
 
  private:
+  void put(const std::string& line);
+
   std::string path_;
+  CsvCheck check_;
   int fd_ = -1;
 };
 

@@ -89,8 +89,8 @@ struct AxisRange {
   double lo, hi, cell;
 };
 AxisRange axisRange(const SweepAxis& a) {
-  const double front = mapCoordinate(a, a.values.front());
-  const double back = mapCoordinate(a, a.values.back());
+  const double front = mapCoordinate(a, a.value(0));
+  const double back = mapCoordinate(a, a.value(a.count - 1));
   const double lo = std::min(front, back);
   const double hi = std::max(front, back);
   double cell = a.count > 1 ? (hi - lo) / (a.count - 1) : 0.0;
@@ -142,8 +142,8 @@ std::vector<long> scanOrder(const SweepGrid& grid, const std::vector<size_t>& ax
 std::string cellPosition(const SweepGrid& grid, const std::vector<size_t>& axes, long g) {
   const std::vector<long> c = grid.coordinates(g);
   const SweepAxis &x = grid.axes()[axes[0]], &y = grid.axes()[axes.size() > 1 ? axes[1] : 0];
-  std::string s = gnuplotNumber(mapCoordinate(x, x.values[c[axes[0]]]));
-  if (axes.size() > 1) s += " " + gnuplotNumber(mapCoordinate(y, y.values[c[axes[1]]]));
+  std::string s = gnuplotNumber(mapCoordinate(x, x.value(c[axes[0]])));
+  if (axes.size() > 1) s += " " + gnuplotNumber(mapCoordinate(y, y.value(c[axes[1]])));
   return s;
 }
 
@@ -219,10 +219,12 @@ std::vector<std::string> regimeLegendOrder(const std::map<std::string, long>& co
   for (const auto& [name, colour] : fixedColours())
     if (count.count(name)) legend.push_back(name);
   std::vector<std::pair<long, std::string>> others;
-  for (const auto& [name, k] : count)
+  for (const auto& [name, k] : count) {
+    const std::string& regime = name;  // a lambda captures no structured binding (C++17, clang)
     if (std::none_of(fixedColours().begin(), fixedColours().end(),
-                     [&](const auto& f) { return f.first == name; }))
+                     [&](const auto& f) { return f.first == regime; }))
       others.emplace_back(-k, name);
+  }
   std::sort(others.begin(), others.end());  // most frequent first, then by name
   for (const auto& o : others) legend.push_back(o.second);
   return legend;
@@ -390,7 +392,7 @@ std::vector<MapCell> sliceCells(const MapFrame& f, const MapSummary& m,
   for (std::size_t a = 0; a < f.grid.axes().size(); ++a)
     keys.push_back(a == f.axes[0] || (f.map2d && a == f.axes[1])
                        ? std::string()
-                       : f.grid.axes()[a].texts[static_cast<std::size_t>(f.fixed[a])] + ",");
+                       : f.grid.axes()[a].text(f.fixed[a]) + ",");
   const auto inSlice = [&](const std::string& line) {
     std::size_t at = 0;
     for (const std::string& key : keys) {
@@ -597,8 +599,8 @@ std::pair<std::string, std::string> sliceNames(const SweepGrid& grid,
   std::string file, title;
   for (size_t k : sliced) {
     const SweepAxis& a = grid.axes()[k];
-    std::string part = a.key + "=" + a.texts[c[k]];
-    title += (title.empty() ? "" : ", ") + a.key + " = " + a.texts[c[k]];
+    std::string part = a.key + "=" + a.text(c[k]);
+    title += (title.empty() ? "" : ", ") + a.key + " = " + a.text(c[k]);
     for (char& ch : part)
       if (ch == '/' || ch == ' ') ch = '_';
     for (size_t at = part.find('*'); at != std::string::npos; at = part.find('*'))

@@ -9,6 +9,7 @@
 #include "base/number_text.h"
 #include "contact/averaged_response.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
+#include "tools/report/json_file.h"
 #include "tools/report/plot.h"
 #include "tools/report/validation_bifurcations_report.h"
 #include "tools/report/validation_full_orbits_report.h"
@@ -441,8 +442,8 @@ void mdScenarios(std::ostream& md, const ValidationResults& r) {
   md << "## 2. The paper's eight simulations, from the slow flow\n\n"
      << "Each shipped `paper/` rig run with the slow flow to its own τ ("
      << (r.scenarios.empty() ? std::string("–") : numberText(r.scenarios.front().slow.tau_end))
-     << "), regime by the SPEC's "
-        "rules on the last 10%, then the paper's statements about it checked (ψ = φ₁ − φ₂; "
+     << "), regime by the contract's rules (docs/contract.md section 4) "
+        "on the last 10%, then the paper's statements about it checked (ψ = φ₁ − φ₂; "
         "α > 0 makes metronome 2 the faster one).\n\n"
      << "| scenario | the paper | slow flow | final state | checks |\n"
      << "| --- | --- | --- | --- | --- |\n";
@@ -497,7 +498,8 @@ void mdConvergence(std::ostream& md, const ValidationResults& r,
 void mdRegimeTable(std::ostream& md, const ValidationResults& r) {
   const ValidationPlan& plan = r.plan;
   md << "## 4. Where the asymptotics fail\n\n"
-     << "The final regime (SPEC rules on the last 10% of the run) of each scenario from the "
+     << "The final regime (the contract's rules on the last 10% of the run) of each scenario "
+        "from the "
         "full model at the rig's own ε (";
   {
     std::vector<std::string> own;
@@ -799,7 +801,7 @@ std::vector<std::string> writeValidationReport(const OutputDir& dir, const Valid
   std::vector<std::string> files = plots;
   writeFileAtomically(dir.file("report.md"), validationReportMarkdown(r, ctx, plots));
   files.push_back("report.md");
-  writeFileAtomically(dir.file("summary.json"), validationJson(r, ctx).dump(2) + "\n");
+  writeJsonFile(dir.file("summary.json"), validationJson(r, ctx));
   files.push_back("summary.json");
   return files;
 }

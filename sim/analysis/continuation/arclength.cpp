@@ -292,7 +292,8 @@ Walk walkFrom(const ContinuationSystem& sys, const BranchPoint& start,
     }
     const auto cut = truncation(sys, cur, st->point, st->h, s);
     const BranchPoint& reached = cut ? cut->point : st->point;
-    smoothEvents(sys, cur, reached, cut ? cut->h : st->h, w.special, w.switches);
+    if (sys.special_points)
+      smoothEvents(sys, cur, reached, cut ? cut->h : st->h, w.special, w.switches);
     w.points.push_back(reached);
     if ((cut && cut->border < 0) || (!cut && st->at_end)) {
       reachedEnd(sys, s, w);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,14 @@ struct BranchPoint {
   // weight F_+ + (1 - weight) F_-, F_+ the formulas of the border's positive side.
   int on_border = -1;
   double weight = std::numeric_limits<double>::quiet_NaN();
+  // The branch test det [F_x F_p; t^T] as computed with the Jacobian of the tangent (null: not
+  // yet): valid while y, tangent and region are those it was computed with.
+  struct BranchTestValue {
+    Vec y, tangent;
+    Region region;
+    double value = 0.0;
+  };
+  std::shared_ptr<const BranchTestValue> branch_test;
   double p() const { return y(y.size() - 1); }
 };
 

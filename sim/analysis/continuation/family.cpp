@@ -59,6 +59,7 @@ ContinuationSystem unfolded(const ContinuationSystem& sys, const NeutralDirectio
   u.exits = [](int) { return true; };
   u.eigenvalues = [](const Vec&, double, const Region&) { return CVec(); };
   u.tolerance = sys.tolerance;
+  u.special_points = false;  // its walks trace the members only
   return u;
 }
 

@@ -49,20 +49,40 @@ double segmentDistance(const std::vector<double>& q, const std::vector<double>& 
   return std::sqrt(d);
 }
 
-// Distance of the state to branch b's polyline (its points in r.points, in order).
-double toBranch(const ContinuationResult& r, int branch, double p, const std::vector<double>& A,
-                const std::vector<double>& psi, double span) {
-  double best = std::numeric_limits<double>::infinity();
+// A segment whose parameter alone is farther than `within` by this much (relative to the
+// numbers' size) is skipped: its computed distance cannot come out below `within` by rounding.
+constexpr double kSkipMargin = 1e-9;
+
+// Each branch's points (by id), in order.
+using BranchPoints = std::vector<std::vector<const ResultPoint*>>;
+BranchPoints pointsByBranch(const ContinuationResult& r) {
+  BranchPoints by(r.branches.size());
+  for (const ResultPoint& q : r.points) by.at(q.branch).push_back(&q);
+  return by;
+}
+
+// Whether the state lies within `within` of a branch's polyline (its points, in order): the
+// distance to one of its segments below it. Segments whose parameter alone puts them farther are
+// not measured.
+bool onBranch(const std::vector<const ResultPoint*>& points, double p, const std::vector<double>& A,
+              const std::vector<double>& psi, double span, double within) {
+  const double x0 = p / span;
   const ResultPoint* prev = nullptr;
-  for (const ResultPoint& q : r.points) {
-    if (q.branch != branch) continue;
+  for (const ResultPoint* at : points) {
+    const ResultPoint& q = *at;
+    const ResultPoint& from = prev ? *prev : q;
+    prev = &q;
+    const double lo = std::min(from.value, q.value) / span,
+                 hi = std::max(from.value, q.value) / span;
+    const double gap = x0 < lo ? lo - x0 : x0 > hi ? x0 - hi : 0.0;
+    if (gap - within > kSkipMargin * (within + std::abs(x0) + std::abs(lo) + std::abs(hi)))
+      continue;
     const std::vector<double> x = coords(p, A, psi, span, &q.psi);
     const std::vector<double> b = coords(q.value, q.A, q.psi, span, &q.psi);
-    const std::vector<double> a = prev ? coords(prev->value, prev->A, prev->psi, span, &q.psi) : b;
-    best = std::min(best, segmentDistance(x, a, b));
-    prev = &q;
+    const std::vector<double> a = coords(from.value, from.A, from.psi, span, &q.psi);
+    if (segmentDistance(x, a, b) < within) return true;
   }
-  return best;
+  return false;
 }
 
 bool inFamily(const ResultFamily& f, double p, const std::vector<double>& A,
@@ -97,6 +117,7 @@ bool knownFamily(const ContinuationResult& r, const ResultBranch& b, const std::
 // branch a branch (a family's representative may lie beside a branch leaving its edge).
 std::vector<int> keptBranches(const ContinuationResult& r) {
   const double span = std::max(std::abs(r.to - r.from), 1e-300);
+  const BranchPoints by_branch = pointsByBranch(r);
   std::vector<int> kept;
   for (const ResultBranch& b : r.branches) {
     if (b.neutral > 0) {
@@ -104,11 +125,12 @@ std::vector<int> keptBranches(const ContinuationResult& r) {
       continue;
     }
     long on = 0, all = 0;
-    for (const ResultPoint& q : r.points) {
-      if (q.branch != b.id) continue;
+    for (const ResultPoint* at : by_branch[b.id]) {
+      const ResultPoint& q = *at;
       ++all;
       for (int k : kept)
-        if (r.branches[k].neutral == 0 && toBranch(r, k, q.value, q.A, q.psi, span) < kOnPolyline) {
+        if (r.branches[k].neutral == 0 &&
+            onBranch(by_branch[k], q.value, q.A, q.psi, span, kOnPolyline)) {
           ++on;
           break;
         }
@@ -169,8 +191,9 @@ double toCurve(const FoldCurve& c, double p1, double p2, double span1, double sp
 
 bool alreadyFollowed(const ContinuationResult& r, double p, const std::vector<double>& A,
                      const std::vector<double>& psi, double span) {
+  const BranchPoints by_branch = pointsByBranch(r);
   for (const ResultBranch& b : r.branches)
-    if (toBranch(r, b.id, p, A, psi, span) < kSameState) return true;
+    if (onBranch(by_branch[b.id], p, A, psi, span, kSameState)) return true;
   for (const ResultFamily& f : r.families)
     if (inFamily(f, p, A, psi)) return true;
   return false;

@@ -22,6 +22,7 @@ ResultPoint resultPoint(const SlowFlowProblem& prob, const BranchPoint& q, int b
   r.ticking = prob.ticking(q.region, q.weight);
   r.platform = prob.platform(q.region);
   r.s = prob.s(x, q.p());
+  if (!std::isfinite(r.s)) r.s = std::nan("");  // mu = 0: no threshold, no value
   for (int i = 0; i < q.eigenvalues.size(); ++i) r.eigenvalues.push_back(q.eigenvalues(i));
   if (q.on_border >= 0) {
     r.on_threshold = prob.metronomeOf(q.on_border) + 1;

@@ -7,6 +7,8 @@
 #include "sim/analysis/continuation/arclength.h"
 #include "sim/analysis/continuation/merge.h"
 #include "sim/analysis/continuation/start_states.h"
+#include "sim/analysis/continuation/state_traces.h"
+#include "sim/parallel/ordered_tasks.h"
 
 namespace metrosync::continuation {
 
@@ -24,32 +26,15 @@ struct Seed {
   CurveKind kind;
 };
 
-int largest(const std::vector<Cd>& z) {
-  int r = 0;
-  for (size_t i = 1; i < z.size(); ++i)
-    if (std::abs(z[i]) > std::abs(z[r])) r = static_cast<int>(i);
-  return r;
-}
-
-// The branches through x (a locked state of prob at from), appended to r; their folds and Hopf
-// points to seeds.
-void follow(const std::shared_ptr<const SlowFlowProblem>& prob, const Vec& x,
-            const SlowFlowContinuationSpec& spec, ContinuationResult& r, std::vector<Seed>& seeds) {
-  const std::vector<Branch> branches = continueFrom(prob->system(), x, spec.from, spec.settings);
-  appendBranches(*prob, branches, r);
-  for (const Branch& b : branches)
+// The branches appended to r; their folds and Hopf points to seeds.
+void commit(const Traced& t, ContinuationResult& r, std::vector<Seed>& seeds) {
+  appendBranches(*t.prob, t.branches, r);
+  for (const Branch& b : t.branches)
     for (const Bifurcation& e : b.special) {
       if (e.type == BifurcationType::Fold && e.point.on_border < 0)
-        seeds.push_back({prob, e.point, CurveKind::Fold});
-      if (e.type == BifurcationType::Hopf) seeds.push_back({prob, e.point, CurveKind::Hopf});
+        seeds.push_back({t.prob, e.point, CurveKind::Fold});
+      if (e.type == BifurcationType::Hopf) seeds.push_back({t.prob, e.point, CurveKind::Hopf});
     }
-}
-
-// A problem with the state's largest amplitude as its reference (z_r real stays regular while
-// z_r does not vanish).
-std::shared_ptr<const SlowFlowProblem> problemFor(const SlowFlowContinuationSpec& spec,
-                                                  const std::vector<Cd>& z) {
-  return std::make_shared<const SlowFlowProblem>(spec.params, spec.from, largest(z));
 }
 
 void fromStart(const SlowFlowContinuationSpec& spec, ContinuationResult& r,
@@ -58,9 +43,13 @@ void fromStart(const SlowFlowContinuationSpec& spec, ContinuationResult& r,
   const auto x = solveLocked(*prob, prob->pack(spec.start, prob->omegaGuess(spec.from, spec.start)),
                              spec.from);
   if (!x) throw NoLockedState("Newton does not converge to a locked state from the start");
-  follow(prob, *x, spec, r, seeds);
+  commit(traceState(prob, *x, spec), r, seeds);
 }
 
+// Every locked state Newton finds at `from`, each followed unless a branch followed before it
+// passes through it: in order, as one loop, the states followed ahead on spec.jobs threads
+// (orderedTasks: the branches and their order are the sequential loop's), a copy of an earlier
+// state with identical metronomes exchanged mapped from that state's branches (state_traces.h).
 void fromEveryState(const SlowFlowContinuationSpec& spec, ContinuationResult& r,
                     std::vector<Seed>& seeds) {
   const ScaledParams sp = spec.params(spec.from);
@@ -69,15 +58,22 @@ void fromEveryState(const SlowFlowContinuationSpec& spec, ContinuationResult& r,
   if (ref == static_cast<int>(sp.locked.size())) throw NoLockedState("every metronome is locked");
   if (!spec.start.empty()) fromStart(spec, r, seeds);  // the rig's own state first: branch 0
   const SlowFlowProblem grid(spec.params, spec.from, ref);
-  const std::vector<Vec> states = allLockedStates(grid, spec.from);
+  const std::vector<Vec> states = allLockedStates(grid, spec.from, spec.jobs);
   if (states.empty() && r.branches.empty()) throw NoLockedState("Newton finds no locked state");
   const double span = std::abs(spec.to - spec.from);
-  for (const Vec& x : states) {
-    if (alreadyFollowed(r, spec.from, grid.amplitudes(x), grid.phaseDifferences(x), span)) continue;
-    const std::vector<Cd> z = grid.unpack(x);
-    const auto prob = problemFor(spec, z);
-    follow(prob, prob->pack(z, grid.omega(x)), spec, r, seeds);
-  }
+  StateTraces traces(spec, grid, states);
+  std::vector<Traced> traced(states.size());
+  orderedTasks(
+      static_cast<long>(states.size()), spec.jobs,
+      [&](long k) {
+        return alreadyFollowed(r, spec.from, grid.amplitudes(states[k]),
+                               grid.phaseDifferences(states[k]), span);
+      },
+      [&](long k) { traced[k] = traces.of(k); },
+      [&](long k) {
+        commit(traced[k], r, seeds);
+        traced[k] = Traced();
+      });
 }
 
 // The seeds whose point is still a special point of r (after merging), one per point.

@@ -33,6 +33,9 @@ struct SlowFlowContinuationSpec {
   P1Range range1;                  // KEY's range for the curves (sweep --boundaries: the map's)
   // curves already found (another row of a map): a seed on one of them is not followed again
   std::vector<FoldCurve> known_curves;
+  // threads for --all's seeds and branches (0: one per hardware thread); the result is the same
+  // on any number
+  int jobs = 0;
 };
 
 // Bad input (a start Newton cannot converge from, no locked state at all for --all) throws this.

@@ -24,8 +24,11 @@ constexpr size_t kCacheSize = 256;
 
 }  // namespace
 
+SlowFlowProblem::SlowFlowProblem(const SlowFlowProblem& other)
+    : SlowFlowProblem(other.params_at_, other.p0_, other.ref_) {}
+
 SlowFlowProblem::SlowFlowProblem(ParamsAt params_at, double p0, int reference)
-    : params_at_(std::move(params_at)), ref_(reference) {
+    : params_at_(std::move(params_at)), p0_(p0), ref_(reference) {
   const ScaledParams& sp = params(p0);
   n_ = static_cast<int>(sp.nu.size());
   for (int i = 0; i < n_; ++i)
@@ -82,12 +85,16 @@ std::vector<Cd> SlowFlowProblem::rhs(double p, const Region& r, const std::vecto
 Vec SlowFlowProblem::pack(std::vector<Cd> z, double omega) const {
   const double a = std::abs(z[ref_]);
   const Cd rot = a > 0 ? std::conj(z[ref_]) / a : Cd(1.0);
+  for (int i : unlocked_) z[i] *= rot;
+  return packAsIs(z, omega);
+}
+
+Vec SlowFlowProblem::packAsIs(const std::vector<Cd>& z, double omega) const {
   Vec x(sys_.n);
   int k = 0;
   for (int i : unlocked_) {
-    const Cd zi = z[i] * rot;
-    x(k++) = zi.real();
-    if (i != ref_) x(k++) = zi.imag();
+    x(k++) = z[i].real();
+    if (i != ref_) x(k++) = z[i].imag();
   }
   x(k) = omega;
   return x;

@@ -34,6 +34,9 @@ class SlowFlowProblem {
  public:
   // reference: the (unlocked, 0-based) metronome whose z is kept real.
   SlowFlowProblem(ParamsAt params_at, double p0, int reference);
+  // The same problem with a cache of its own (one per thread: a problem is not thread-safe).
+  SlowFlowProblem(const SlowFlowProblem& other);
+  SlowFlowProblem& operator=(const SlowFlowProblem&) = delete;
 
   const ContinuationSystem& system() const { return sys_; }
   int metronomes() const { return n_; }
@@ -41,6 +44,8 @@ class SlowFlowProblem {
 
   // x from z (N x 1, rotated so that z_r is real and > 0) and Omega.
   Vec pack(std::vector<std::complex<double>> z, double omega) const;
+  // x from z as it is (Im z_r dropped): unpack's inverse, also for a tangent's dz.
+  Vec packAsIs(const std::vector<std::complex<double>>& z, double omega) const;
   std::vector<std::complex<double>> unpack(const Vec& x) const;  // (N x 1), 0 for locked
   double omega(const Vec& x) const { return x(x.size() - 1); }
   // Omega estimated from dz/dtau at a state close to a locked one: Im (f_r / z_r).
@@ -94,6 +99,7 @@ class SlowFlowProblem {
   const AtParameter& at(double p) const;
 
   ParamsAt params_at_;
+  double p0_ = 0.0;
   mutable std::map<double, AtParameter> cache_;
   int n_ = 0;                  // metronomes
   std::vector<int> unlocked_;  // indices of the unlocked metronomes

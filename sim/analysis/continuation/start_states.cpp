@@ -1,12 +1,15 @@
 #include "sim/analysis/continuation/start_states.h"
 
+#include <atomic>
 #include <cmath>
+#include <exception>
 
 #include "base/constants.h"
 #include "base/number_text.h"
 #include "sim/analysis/continuation/family.h"
 #include "sim/analysis/continuation/newton.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
+#include "sim/parallel/worker_pool.h"
 
 namespace metrosync::continuation {
 
@@ -183,7 +186,7 @@ std::vector<Seed> patterns(int n, const std::vector<double>& levels) {
 
 }  // namespace
 
-std::vector<Vec> allLockedStates(const SlowFlowProblem& prob, double p) {
+std::vector<Vec> allLockedStates(const SlowFlowProblem& prob, double p, int jobs) {
   const ScaledParams& sp = prob.params(p);
   const int n = prob.metronomes();
   double tc = 0, astar = 0;
@@ -197,13 +200,33 @@ std::vector<Vec> allLockedStates(const SlowFlowProblem& prob, double p) {
       n <= 2 ? std::vector<double>{0, kPi / 2, kPi, 3 * kPi / 2} : std::vector<double>{0, kPi};
   const std::vector<Seed> seeds =
       n <= kFullGridUpTo ? fullGrid(n, levels, phases) : patterns(n, levels);
-  std::vector<Vec> found;
-  for (Seed seed : seeds) {
+  // each seed solved on its own (a problem per thread: its cache is not shared), the first
+  // failure in the seeds' order rethrown as the loop over them would have
+  std::vector<std::optional<Vec>> solved(seeds.size());
+  std::vector<std::exception_ptr> failed(seeds.size());
+  auto solve = [&](const SlowFlowProblem& mine, size_t k) {
+    Seed seed = seeds[k];
     for (int i = 0; i < n; ++i)
       if (sp.locked[i]) seed.first[i] = 0;
     const std::vector<Cd> z = stateFrom(seed.first, seed.second);
-    if (std::abs(z[prob.reference()]) == 0) continue;
-    const auto x = solveLocked(prob, prob.pack(z, prob.omegaGuess(p, z)), p);
+    if (std::abs(z[mine.reference()]) == 0) return;
+    solved[k] = solveLocked(mine, mine.pack(z, mine.omegaGuess(p, z)), p);
+  };
+  std::atomic<size_t> next{0};
+  runWorkers(workerCount(jobs, static_cast<long>(seeds.size())), [&] {
+    const SlowFlowProblem mine(prob);
+    for (size_t k; (k = next++) < seeds.size();) {
+      try {
+        solve(mine, k);
+      } catch (...) {
+        failed[k] = std::current_exception();
+      }
+    }
+  });
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
+  std::vector<Vec> found;
+  for (const std::optional<Vec>& x : solved) {
     if (!x) continue;
     double amax = 0;
     for (double a : prob.amplitudes(*x)) amax = std::max(amax, a);

@@ -35,7 +35,9 @@ std::optional<Vec> solveLocked(const SlowFlowProblem& prob, const Vec& x0, doubl
 
 // Every locked state Newton finds at p from a grid of seeds (amplitudes around theta_c and
 // A_star, phase differences around the circle; for more than three metronomes the symmetric
-// patterns of them only), duplicates merged, the state at rest excepted.
-std::vector<Vec> allLockedStates(const SlowFlowProblem& prob, double p);
+// patterns of them only), duplicates merged, the state at rest excepted. The seeds are solved on
+// up to `jobs` threads (0: one per hardware thread); the states and their order do not depend on
+// it.
+std::vector<Vec> allLockedStates(const SlowFlowProblem& prob, double p, int jobs = 1);
 
 }  // namespace metrosync::continuation

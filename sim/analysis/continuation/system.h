@@ -33,6 +33,9 @@ struct ContinuationSystem {
   std::function<Mat(const Vec& x, double p, const Region& region)> jacobian;
   // Whether to watch for branch points (det [F_x F_p; t^T], a Jacobian per step).
   bool branch_points = true;
+  // Whether to watch for special points at all (folds, branch and Hopf points): a walk that only
+  // traces its points (a neutral family's members, family.h) needs none.
+  bool special_points = true;
   // A stop rule on each step from y (accepted) to y_next (not yet): a reason ends the walk at y
   // (e.g. a limit cycle shrinking through zero amplitude within the step). Empty: none.
   std::function<std::string(const Vec& y, const Vec& y_next)> stop;

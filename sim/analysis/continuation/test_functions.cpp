@@ -21,11 +21,24 @@ double foldTest(const BranchPoint& q) {
   return q.tangent(q.tangent.size() - 1);
 }
 
-double branchTest(const ContinuationSystem& sys, const BranchPoint& q) {
-  Mat M(sys.n + 1, sys.n + 1);
-  M.topRows(sys.n) = extendedJacobian(sys, q.y, q.region);
-  M.row(sys.n) = q.tangent.transpose();
+namespace {
+
+// det [E; t^T], E = [F_x F_p] at the point.
+double branchTestOf(const Mat& extended, const Vec& t) {
+  const Eigen::Index n = extended.rows();
+  Mat M(n + 1, n + 1);
+  M.topRows(n) = extended;
+  M.row(n) = t.transpose();
   return M.determinant();
+}
+
+}  // namespace
+
+double branchTest(const ContinuationSystem& sys, const BranchPoint& q) {
+  const auto& known = q.branch_test;
+  if (known && known->y == q.y && known->tangent == q.tangent && known->region == q.region)
+    return known->value;
+  return branchTestOf(extendedJacobian(sys, q.y, q.region), q.tangent);
 }
 
 // Re prod_{i<j} (lambda_i + lambda_j) without forming the product, whose 1953 factors for 32
@@ -54,10 +67,17 @@ std::optional<BranchPoint> pointAlong(const ContinuationSystem& sys, const Branc
   if (iterations) *iterations = c->iterations;
   // an expensive Jacobian (multiple shooting): the corrector's last one gives the tangent (its
   // error, O(the last Newton step), is far below what the predictor needs)
-  const Vec t = sys.jacobian && c->extended.size() > 0
-                    ? tangentOf(c->extended, from.tangent)
-                    : tangentAt(sys, c->y, from.tangent, from.region);
-  return makePoint(sys, c->y, t, from.region);
+  if (sys.jacobian && c->extended.size() > 0)
+    return makePoint(sys, c->y, tangentOf(c->extended, from.tangent), from.region);
+  // else the Jacobian at the point gives the tangent and the branch test (smoothEvents asks for
+  // it at both ends of each step)
+  const Mat extended = extendedJacobian(sys, c->y, from.region);
+  const Vec t = tangentOf(extended, from.tangent);
+  BranchPoint q = makePoint(sys, c->y, t, from.region);
+  if (sys.special_points && sys.branch_points)
+    q.branch_test = std::make_shared<const BranchPoint::BranchTestValue>(
+        BranchPoint::BranchTestValue{q.y, q.tangent, q.region, branchTestOf(extended, t)});
+  return q;
 }
 
 std::optional<BranchPoint> locateOnStep(const ContinuationSystem& sys, const BranchPoint& from,

@@ -1,5 +1,6 @@
 #include "sim/analysis/fit/data_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -156,6 +157,25 @@ void readRow(const std::string& line, int lineno, std::size_t n_cells, const Hea
   }
 }
 
+// A file over kMaxDataFileBytes, refused at the line where it crosses the limit (its first
+// kMaxDataFileBytes read to count the lines, a fraction of a second).
+[[noreturn]] void failOversized(const std::string& path, std::uintmax_t size, std::istream& in) {
+  std::vector<char> chunk(std::size_t(1) << 20);
+  std::uintmax_t read = 0;
+  int line = 1;
+  while (read < kMaxDataFileBytes && in) {
+    const auto want = std::min<std::uintmax_t>(chunk.size(), kMaxDataFileBytes - read);
+    in.read(chunk.data(), static_cast<std::streamsize>(want));
+    const std::streamsize got = in.gcount();
+    line += static_cast<int>(std::count(chunk.data(), chunk.data() + got, '\n'));
+    read += static_cast<std::uintmax_t>(got);
+  }
+  fail(path, line,
+       "the file passes " + std::to_string(kMaxDataFileBytes) +
+           " bytes (64 MiB) on this line; it has " + std::to_string(size) +
+           ": not a data file of samples (docs/rig-limits.md)");
+}
+
 }  // namespace
 
 int DataColumn::present() const {
@@ -180,6 +200,7 @@ MeasuredData parseDataText(const std::string& text, const std::string& display_n
   Header header;
   std::size_t n_cells = 0;
   bool have_header = false;
+  int header_line = 0;
   while (std::getline(in, line)) {
     ++lineno;
     if (line.size() > kMaxDataLineBytes)
@@ -192,6 +213,7 @@ MeasuredData parseDataText(const std::string& text, const std::string& display_n
       header = readHeader(line, display_name, n_metronomes, data);
       n_cells = cells(line).size();
       have_header = true;
+      header_line = lineno;
       continue;
     }
     readRow(line, lineno, n_cells, header, display_name, data);
@@ -203,7 +225,7 @@ MeasuredData parseDataText(const std::string& text, const std::string& display_n
              " are needed");
   for (const DataColumn& c : data.columns)
     if (c.present() == 0)
-      fail(display_name, 0, "column " + c.name + " has no values (every cell is empty)");
+      fail(display_name, header_line, "column " + c.name + " has no values (every cell is empty)");
   if (data.t_s.back() - data.t_s.front() > kMaxRecordSeconds)
     fail(display_name, lineno,
          "the record runs from t = " + numberText(data.t_s.front()) + " to " +
@@ -218,10 +240,10 @@ MeasuredData readDataFile(const std::string& path, int n_metronomes) {
   const auto status = std::filesystem::status(path, ec);
   if (ec || !std::filesystem::exists(status)) fail(path, 0, "no such file");
   if (!std::filesystem::is_regular_file(status)) fail(path, 0, "not a regular file");
-  if (std::filesystem::file_size(path, ec) > kMaxDataFileBytes)
-    fail(path, 0, "larger than 64 MiB: not a data file of samples (docs/rig-limits.md)");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, 0, "cannot be read");
+  if (size > kMaxDataFileBytes) failOversized(path, size, in);
   std::ostringstream text;
   text << in.rdbuf();
   return parseDataText(text.str(), path, n_metronomes);

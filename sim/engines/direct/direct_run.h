@@ -384,7 +384,11 @@ void DirectRun<Model>::finish() {
   } catch (const std::exception& e) {
     fail(t_fin, e.what());
   }
-  m_.close(report_);
+  try {
+    m_.close(report_);
+  } catch (const std::exception& e) {
+    fail(t_fin, e.what());
+  }
   report_.counts.rhs_evals = s.evaluations();
   report_.ledger.final_J = m_.energy(y.data());
   report_.ledger.damping_out_J = m_.dampingOut(y.data());

@@ -408,6 +408,10 @@ bool PlatformRun::checkNewStep(Integrator& integ, Integrator::SuccessfulStepStat
     redoStep(integ);
     return true;
   }
+  {
+    RecordingScope rec(timer_);
+    rec_.stretchTo(adv);  // the step is kept: the trajectory up to its end
+  }
   // still inconsistent at the finest step: the slip ended inside this step; stop it at its end
   if (!event_step && slipAgainstMode(adv)) stopInsideStep(integ);
   if (guard_depth_ > 0 && cur_.t >= guard_until_) {
@@ -428,6 +432,10 @@ void PlatformRun::stopInsideStep(Integrator& integ) {
   noteDiscontinuity(cur_.t);
   const Stage lowest = resolveWindow(integ.updAdvancedState());
   integ.reinitialize(lowest < Stage::Infinity ? lowest : Stage::Report, false);
+  {
+    RecordingScope rec(timer_);
+    rec_.restartAt(integ.getAdvancedState());
+  }
   captureStepEnd(integ.getAdvancedState(), cur_);
 }
 
@@ -478,15 +486,11 @@ void PlatformRun::handleTrigger(Integrator& integ) {
   if (debug_)
     std::fprintf(stderr, "event at %.9g mode %d\n", adv.getTime(),
                  ps_.contact(0) ? static_cast<int>(ps_.contact(0)->mode(adv)) : 9);
-  {
-    RecordingScope rec(timer_);
-    rec_.aroundEvent(integ.getState(), integ.getTime());  // the last state before the event
-  }
   const Stage lowest = resolveWindow(adv);
   integ.reinitialize(lowest < Stage::Infinity ? lowest : Stage::Report, false);
   {
     RecordingScope rec(timer_);
-    rec_.aroundEvent(integ.getAdvancedState(), integ.getAdvancedTime());  // the first after it
+    rec_.restartAt(integ.getAdvancedState());  // the first state after the event
   }
   captureStepEnd(integ.getAdvancedState(), prev_);
   prev_y_ = integ.getAdvancedState().getY();
@@ -600,6 +604,7 @@ PlatformRunResult PlatformRun::run() {
   {
     RecordingScope rec(timer_);
     rec_.sample(integ->getState(), 0.0, true, true);
+    rec_.restartAt(integ->getState());
   }
   captureStepEnd(integ->getAdvancedState(), prev_);
   prev_y_ = integ->getAdvancedState().getY();

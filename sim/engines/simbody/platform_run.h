@@ -25,12 +25,16 @@ class RunRecorder {
   // simulation.sample (<= 0: the schedule's default)
   virtual double sampleInterval() const = 0;
   // a scheduled sample at t (the state is the integrator's interpolant there), with which kinds
-  // are due: a row (simulation.sample) and an envelope sample (64 per period). Every run has both
-  // on its schedule whatever its recorder keeps: the report times bound Simbody's steps, so that
-  // a network of one is stepped exactly as the single rig.
+  // are due: a row (simulation.sample) and an envelope sample (64 per period, kept on the schedule
+  // though the envelope now comes from stretchTo: the report times bound Simbody's steps, and
+  // every run is stepped as it was, a network of one exactly as the single rig).
   virtual void sample(const SimTK::State& s, double t, bool row, bool envelope) = 0;
-  // the states just before and just after every resolved window
-  virtual void aroundEvent(const SimTK::State& s, double t) {}
+  // The trajectory's smooth stretches, as Simbody interpolates them (cubic Hermite between two
+  // states and their derivatives, Integrator's interpolant): restartAt(s) where one starts (the
+  // first state, and the state after every event's impulses), stretchTo(s) at the end of every
+  // step kept (s realized to accelerations), each ending the stretch since the last.
+  virtual void restartAt(const SimTK::State& s) {}
+  virtual void stretchTo(const SimTK::State& s) {}
   // event rows and the event record (sim/record/run_report.h RunSink)
   virtual bool wantsEventRecords() const { return false; }
   virtual void eventRow(const char* kind, const SimTK::State& s) {}

@@ -4,13 +4,14 @@
 // single rig, the network's states (network::Layout) when the sink wants them.
 #include "sim/engines/simbody/simbody_engine.h"
 
+#include <algorithm>
 #include <memory>
 
 #include "base/constants.h"
 #include "models/scaling.h"
 #include "models/simbody/platform_system.h"
 #include "sim/engines/simbody/platform_run.h"
-#include "sim/record/envelope_recorder.h"
+#include "sim/record/envelope_quadrature.h"
 #include "sim/record/failure_text.h"
 
 namespace metrosync {
@@ -32,19 +33,22 @@ class RigRows {
         ps_(ps),
         sink_(sink),
         n_(static_cast<int>(rig_.metronomes.size())),
-        env_(sp_.epsilon, activeMask(rig_), sink),
+        omega0_(1.0 / sp_.time_scale_s),
+        env_(sp_.epsilon, activeMask(rig_), rig_.sim.t_end_s * omega0_, sink),
+        want_envelope_(sink.wantsEnvelope()),
         pendulum_(n_, -1) {
-    omega0_ = 1.0 / sp_.time_scale_s;
     for (int j = 0; j < ps.numPendulums(); ++j) pendulum_[ps.equations().pendulum(j).rig_index] = j;
   }
   double timeScale() const { return sp_.time_scale_s; }
   // t (seconds) in the unit of the rows' t: the rig's (seconds, or scaled time)
   double rowTime(double t) const { return rig_.units == Units::Scaled ? t * omega0_ : t; }
 
-  void sample(const SimTK::State& s, double t, bool row, bool envelope) {
+  // (the envelope's samples: not needed, the stretches give it)
+  void sample(const SimTK::State& s, double t, bool row, bool) {
     if (row) recordTrajectory(s, t);
-    if (envelope) recordEnvelope(s, t);
   }
+  void restartAt(const SimTK::State& s);
+  void stretchTo(const SimTK::State& s);
   void eventRow(const char* kind, const SimTK::State& s) {
     sink_.eventRow(kind, makeRow(s, s.getTime()));
   }
@@ -55,14 +59,12 @@ class RigRows {
   // the last trajectory row and the period it closes (SPEC 3 final)
   void finish(const SimTK::State& s, RunReport& report) {
     recordTrajectory(s, s.getTime());
-    recordEnvelope(s, s.getTime());
     report.final_trajectory_row = std::move(last_row_);
-    report.final_row = env_.finish();
+    if (want_envelope_) report.final_row = env_.finish();
   }
   std::string failureText(double t, const std::string& why) const {
     return rigFailureText(t, sp_, rig_.units == Units::Scaled, why);
   }
-  void recordEnvelope(const SimTK::State& s, double t);
 
  private:
   double theta(const SimTK::State& s, int i) const {
@@ -83,17 +85,24 @@ class RigRows {
     last_row_ = std::move(row);
   }
 
+  void envelopeState(const SimTK::State& s, double* th, double* w) const;
+
   const Rig rig_;
   ScaledParams sp_;
   const PlatformSystem& ps_;
   RunSink& sink_;
   int n_;
-  EnvelopeRecorder env_;
-  std::vector<int> pendulum_;  // (metronomes) its swinging pendulum in the system, or -1
   double omega0_ = 1;
+  EnvelopeQuadrature env_;
+  bool want_envelope_;
+  std::vector<int> pendulum_;     // (metronomes) its swinging pendulum in the system, or -1
   std::vector<double> before_;    // the state before the event being recorded (events.csv)
   std::vector<double> last_row_;  // the last trajectory row (RunReport::final_trajectory_row)
-  std::vector<double> scratch_th_, scratch_w_;
+  // the current stretch's start: t, the state and its derivative; a state to interpolate into
+  double seg_t_ = 0.0;
+  SimTK::Vector seg_y_, seg_yd_;
+  std::unique_ptr<SimTK::State> scratch_;
+  bool started_ = false;
 };
 
 std::vector<double> RigRows::makeRow(const SimTK::State& s, double t) const {
@@ -114,14 +123,48 @@ std::vector<double> RigRows::makeRow(const SimTK::State& s, double t) const {
   return row;
 }
 
-void RigRows::recordEnvelope(const SimTK::State& s, double t) {
-  scratch_th_.resize(n_);
-  scratch_w_.resize(n_);
+// The envelope's view of a state: every metronome's scaled angle and rate (a locked one 0).
+void RigRows::envelopeState(const SimTK::State& s, double* th, double* w) const {
   for (int i = 0; i < n_; ++i) {
-    scratch_th_[i] = theta(s, i) / sp_.angle_scale;
-    scratch_w_[i] = thetadot(s, i) / (sp_.angle_scale * omega0_);
+    th[i] = theta(s, i) / sp_.angle_scale;
+    w[i] = thetadot(s, i) / (sp_.angle_scale * omega0_);
   }
-  env_.sample(t * omega0_, scratch_th_.data(), scratch_w_.data());
+}
+
+void RigRows::restartAt(const SimTK::State& s) {
+  if (!want_envelope_) return;
+  ps_.system().realize(s, SimTK::Stage::Acceleration);  // its derivative, for the interpolant
+  if (!started_) {                                      // the start's envelope row
+    std::vector<double> th(n_), w(n_);
+    envelopeState(s, th.data(), w.data());
+    env_.start(th.data(), w.data());
+    scratch_ = std::make_unique<SimTK::State>(s);
+    started_ = true;
+  }
+  seg_t_ = s.getTime();
+  seg_y_ = s.getY();
+  seg_yd_ = s.getYDot();
+}
+
+// The stretch from the last start to s on Simbody's own interpolant between the two (cubic
+// Hermite: Hairer, Norsett, Wanner, "Solving ODEs I", II.6, as Integrator interpolates).
+void RigRows::stretchTo(const SimTK::State& s) {
+  if (!want_envelope_ || !(s.getTime() > seg_t_)) return;
+  const double t0 = seg_t_, h = s.getTime() - seg_t_;
+  const SimTK::Vector &y1 = s.getY(), &yd1 = s.getYDot();
+  SimTK::Vector& y = scratch_->updY();
+  env_.stretchAt(t0 * omega0_, s.getTime() * omega0_, [&](double tau_t, double* th, double* w) {
+    const double u = std::clamp((tau_t / omega0_ - t0) / h, 0.0, 1.0);
+    for (int k = 0; k < y.size(); ++k) {
+      const double y0 = seg_y_[k], d = y1[k] - y0;
+      y[k] = (1 - u) * y0 + u * y1[k] +
+             u * (u - 1) * ((1 - 2 * u) * d + (u - 1) * h * seg_yd_[k] + u * h * yd1[k]);
+    }
+    envelopeState(*scratch_, th, w);
+  });
+  seg_t_ = s.getTime();
+  seg_y_ = y1;
+  seg_yd_ = yd1;
 }
 
 // The one recorder: a single rig's rows (when the network is one), the network's states (when the
@@ -145,8 +188,11 @@ class Recorder : public RunRecorder {
     if (states_ && row) recordState(s, t);
   }
   void poll(double t) override { sink_.poll(rows_ ? rows_->rowTime(t) : t); }
-  void aroundEvent(const SimTK::State& s, double t) override {
-    if (rows_) rows_->recordEnvelope(s, t);
+  void restartAt(const SimTK::State& s) override {
+    if (rows_) rows_->restartAt(s);
+  }
+  void stretchTo(const SimTK::State& s) override {
+    if (rows_) rows_->stretchTo(s);
   }
   bool wantsEventRecords() const override { return rows_ && sink_.wantsEventRecords(); }
   void eventRow(const char* kind, const SimTK::State& s) override {

@@ -1,4 +1,4 @@
-#include "sim/record/envelope_recorder.h"
+#include "tools/bench/sampled_envelope.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,10 +1,15 @@
+// The benchmark's peers' envelope (tools/bench/odeint_peer.cpp, siconos_peer.cpp): integrators
+// without an interpolant the project's quadrature (sim/record/envelope_quadrature.h) could
+// integrate give samples instead, and this turns them into the same rows by the trapezoid rule,
+// as the engines' recorder did before issue 36 (its error, up to 2e-5 in A where an impulse bends
+// A(t), is part of the peers' envelope error; their verdicts go by the final state).
+//
 // Turns a sampled full-model trajectory into envelope rows (SPEC section 3): for each fast period
 // [2 pi k, 2 pi (k+1)] of scaled time, the time average of A_i = sqrt(theta_i^2 + thetadot_i^2)
 // and of exp(i phi_i), phi_i = atan2(theta_i, thetadot_i) - t (phases averaged as unit complex
 // numbers), by the trapezoid rule over the samples. Samples come in non-decreasing t; two samples
 // at the same t (just before and just after an impulse) make the jump exact, and the caller puts
 // a sample on every period boundary (nextBoundary()) so no trapezoid straddles two periods.
-// Engine-independent: any full-model engine feeds it scaled samples.
 //
 // Besides the period rows (tau at the middle of each period, the grid the slow flow shares):
 //   - the first sample emits the start's row: tau of that sample (0), A_i = sqrt(theta_i^2 +
