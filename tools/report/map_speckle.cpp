@@ -33,7 +33,7 @@ std::string speckleText(const MapSpeckle& m, bool list) {
   for (const auto& c : m.cells) {
     s << "  index " << c.index << ":";
     const std::vector<long> at = grid.coordinates(c.index);
-    for (size_t a : m.axes) s << " " << grid.axes()[a].key << "=" << grid.axes()[a].texts[at[a]];
+    for (size_t a : m.axes) s << " " << grid.axes()[a].key << "=" << grid.axes()[a].text(at[a]);
     s << "  " << c.label << " in " << c.neighbours << "\n";
   }
   return s.str();
