@@ -7,6 +7,13 @@
 
 namespace metrosync {
 
+RegimeRules networkPlatformRules() {
+  RegimeRules r;
+  r.settled_rad = NetworkRules::kLocked;
+  r.settle_fraction = 1.0;
+  return r;
+}
+
 GroupLocking groupLocking(const RegimeWindow& w, const std::vector<int>& alive) {
   std::vector<size_t> idx;
   for (size_t i = 0; i < alive.size(); ++i)
@@ -79,8 +86,12 @@ PlatformsVerdict classifyPlatforms(const NetworkWindow& w, const std::vector<Reg
                                              : classifyRegime(windows[p], theta_c[p]));
     locking.push_back(groupLocking(windows[p], v.platforms.back().alive));
   }
+  const bool undecided = std::any_of(v.platforms.begin(), v.platforms.end(),
+                                     [](const RegimeVerdict& p) { return p.undecided; });
   if (v.platforms.size() == 1)  // a single rig: SPEC 4's name (unknown when never judged)
     v.label = w.rows() == 0 ? "unknown" : regimeName(v.platforms[0]);
+  else if (undecided && w.rows() > 0)  // too short, or dying: a longer run decides
+    v.label = toString(Regime::Unsettled);
   else
     v.label = classifyNetwork(w, locking);
   return v;

@@ -22,7 +22,14 @@
 //   coherent-groups   every group coherent with at least two alive metronomes, not as above (one
 //                     board in phase and one in antiphase; coherent boards drifting apart)
 //   disordered        none of these
+//   unsettled         (first of all) some platform's verdict is undecided: the run is shorter
+//                     than 5 fast periods, or a metronome is dying in the window
 // A network of one group is a single rig: classifyPlatforms names it by its platform's verdict.
+//
+// A platform's own verdict in a network is judged on the same samples with the same tolerance as
+// its group's locking (networkPlatformRules): phases sampled within the period wobble (above), so
+// the single rig's 0.1 rad, made for period-averaged envelopes, would call a locked platform
+// `unsettled` beside a network label that calls it coherent.
 #pragma once
 
 #include <string>
@@ -48,6 +55,11 @@ struct NetworkRules {
   // majority do not make a group incoherent)
   static constexpr double kIncoherentShare = 0.5;
 };
+
+// The rules of a platform's own verdict in a network (NetworkVerdict's windows): settled means
+// varying by less than NetworkRules::kLocked over the whole window (settle_fraction 1), so that
+// a platform is settled exactly when its group's alive metronomes are all locked.
+RegimeRules networkPlatformRules();
 
 // How one group's alive metronomes hold together over the window.
 struct GroupLocking {
@@ -85,7 +97,8 @@ class NetworkWindow {
 };
 
 // "synchronized", "antiphase-groups", "chimera", "coherent-groups" or "disordered" ("unknown":
-// no row in the window). locking: one per group, in the window's group order.
+// no row in the window). locking: one per group, in the window's group order. (The run's
+// `unsettled` is classifyPlatforms', from the platforms' verdicts.)
 std::string classifyNetwork(const NetworkWindow& w, const std::vector<GroupLocking>& locking);
 
 // The regime of a run of platforms: each platform's verdict (classifyRegime on its own swinging

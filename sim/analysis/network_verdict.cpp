@@ -45,7 +45,8 @@ struct NetworkVerdict::Impl {
     unwrap.resize(std::max(0, n.numMetronomes() - 1));
     platform_unwrap.resize(lay.n);
     const double tau_end = n.sim.t_end_s * omega0 * sp.epsilon;
-    for (std::size_t p = 0; p < n.platforms.size(); ++p) regimes.emplace_back(tau_end, sp.epsilon);
+    for (std::size_t p = 0; p < n.platforms.size(); ++p)
+      regimes.emplace_back(tau_end, sp.epsilon, networkPlatformRules());
   }
   PlatformsVerdict verdicts() const;
   double amplitude(const std::vector<double>& y, int j) const {

@@ -52,6 +52,20 @@ RegimeWindow::RegimeWindow(double tau_end, double epsilon, RegimeRules rules)
     throw std::invalid_argument("RegimeWindow: epsilon must be > 0");
   too_short_ = tau_end < min_tau_;
   tau_start_ = std::max(0.0, std::min((1.0 - rules.window_fraction) * tau_end, tau_end - min_tau_));
+  settle_start_ = std::max(
+      tau_start_,
+      std::min(tau_end - rules.settle_fraction * (tau_end - tau_start_), tau_end - min_tau_));
+}
+
+void ValueRanges::add(const std::vector<double>& v) {
+  if (lo.empty()) {
+    lo = hi = v;
+    return;
+  }
+  for (size_t k = 0; k < v.size() && k < lo.size(); ++k) {
+    lo[k] = std::min(lo[k], v[k]);
+    hi[k] = std::max(hi[k], v[k]);
+  }
 }
 
 namespace {
@@ -67,6 +81,8 @@ double pairDifference(const std::vector<double>& psi, size_t i, size_t j) {
 }  // namespace
 
 void RegimeWindow::platformMode(int mode, double x) {
+  run_x_min_ = std::min(run_x_min_, x);
+  run_x_max_ = std::max(run_x_max_, x);
   if (in_window_) {
     x_min_ = std::min(x_min_, x);
     x_max_ = std::max(x_max_, x);
@@ -113,52 +129,42 @@ void RegimeWindow::add(const EnvelopeRow& row) {
     known = true;
     slipped = envelopeSlips(row, law_);
   }
+  run_slip_rows_ += known && slipped;
   if (row.tau < tau_start_) return;
   in_window_ = true;
   platform_rows_ += known;
   slip_rows_ += known && slipped;
   const size_t n = row.psi.size() + 1;
-  const bool pairs = n >= 3;
   if (rows_in_window_ == 0) a_max_ = a_min_ = row.A, a_min_tau_.assign(row.A.size(), row.tau);
   for (size_t i = 0; i < row.A.size() && i < a_max_.size(); ++i) {
     a_max_[i] = std::max(a_max_[i], row.A[i]);
     if (row.A[i] <= a_min_[i]) a_min_[i] = row.A[i], a_min_tau_[i] = row.tau;
   }
-  if (rows_in_window_ == 0) {
-    psi_min_ = row.psi;
-    psi_max_ = row.psi;
-    if (pairs) {
-      pair_min_.clear();
-      for (size_t i = 0; i < n; ++i)
-        for (size_t j = i + 1; j < n; ++j) pair_min_.push_back(pairDifference(row.psi, i, j));
-      pair_max_ = pair_min_;
-    }
-  } else {
-    const size_t m = std::min(row.psi.size(), psi_min_.size());
-    for (size_t j = 0; j < m; ++j) {
-      psi_min_[j] = std::min(psi_min_[j], row.psi[j]);
-      psi_max_[j] = std::max(psi_max_[j], row.psi[j]);
-    }
-    if (pairs && pair_min_.size() == n * (n - 1) / 2) {
-      size_t k = 0;
-      for (size_t i = 0; i < n; ++i)
-        for (size_t j = i + 1; j < n; ++j, ++k) {
-          const double d = pairDifference(row.psi, i, j);
-          pair_min_[k] = std::min(pair_min_[k], d);
-          pair_max_[k] = std::max(pair_max_[k], d);
-        }
-    }
+  const bool settling = row.tau >= settle_start_;
+  psi_.add(row.psi);
+  if (settling) psi_settle_.add(row.psi);
+  if (n >= 2) {  // every pair (for N = 2 the one pair is psi_2)
+    std::vector<double> d;
+    d.reserve(n * (n - 1) / 2);
+    for (size_t i = 0; i < n; ++i)
+      for (size_t j = i + 1; j < n; ++j) d.push_back(pairDifference(row.psi, i, j));
+    pairs_.add(d);
+    if (settling) pairs_settle_.add(d);
   }
   ++rows_in_window_;
 }
 
-double RegimeWindow::pairRange(size_t i, size_t j) const {
+double RegimeWindow::pairRangeIn(const ValueRanges& r, size_t i, size_t j) const {
   if (i == j || rows_in_window_ == 0) return 0.0;
   if (i > j) std::swap(i, j);
-  const size_t n = last_.psi.size() + 1;
-  if (n == 2) return psiRange()[0];
-  const size_t k = pairIndex(i, j, n);
-  return k < pair_min_.size() ? pair_max_[k] - pair_min_[k] : 0.0;
+  return r.range(pairIndex(i, j, last_.psi.size() + 1));
+}
+
+std::vector<double> RegimeWindow::rangesOf(const ValueRanges& r) const {
+  std::vector<double> range(last_.psi.size(), 0.0);
+  if (rows_in_window_ == 0) return range;  // judged on the last row alone
+  for (size_t j = 0; j < range.size(); ++j) range[j] = r.range(j);
+  return range;
 }
 
 std::string regimeName(const RegimeVerdict& v) {
@@ -208,10 +214,11 @@ ClusterAnalysis findClusters(const RegimeWindow& w, const std::vector<size_t>& a
   };
   for (size_t a = 0; a < alive.size(); ++a)
     for (size_t b = a + 1; b < alive.size(); ++b) {
-      const double range = w.pairRange(alive[a], alive[b]);
-      const bool settled = range < r.settled_rad;
+      const bool settled =
+          r.settled(w.pairRange(alive[a], alive[b]), w.pairSettleRange(alive[a], alive[b]));
       c.all_settled = c.all_settled && settled;
-      c.any_drift = c.any_drift || range > r.drift_rad;
+      // drift: moved by more than drift_rad over the window and still moving at its end
+      c.any_drift = c.any_drift || (!settled && w.pairRange(alive[a], alive[b]) > r.drift_rad);
       const bool close =
           std::fabs(wrapToPi(pairDifference(psi, alive[a], alive[b]))) <= r.in_phase_rad;
       c.all_close = c.all_close && close;
@@ -273,34 +280,52 @@ std::string aliveName(const ClusterAnalysis& c, bool splay) {
 
 }  // namespace
 
-std::vector<double> RegimeWindow::psiRange() const {
-  std::vector<double> range(last_.psi.size(), 0.0);
-  if (rows_in_window_ == 0) return range;  // judged on the last row alone
-  for (size_t j = 0; j < range.size() && j < psi_min_.size(); ++j)
-    range[j] = psi_max_[j] - psi_min_[j];
-  return range;
-}
-
 namespace {
 // The phase rules on the judged psi_j (every metronome alive): drift, in-phase, antiphase,
 // phase-locked, or unsettled with the reason.
+// settled: every judged psi_j RegimeRules::settled (still over the window, or over its settling
+// part after a transient that ended); drift:
+// not settled, some psi_j moved by more than drift_rad over the whole window and still moves.
+// range, settle: (N-1 x 1) the ranges over the window and over its settling part.
 Regime phaseRegime(const RegimeRules& r, const EnvelopeRow& last, const std::vector<double>& range,
-                   const std::vector<size_t>& judged, std::string& reason) {
-  bool drift = false, settled = true, in_phase = true, antiphase = true;
+                   const std::vector<double>& settle, const std::vector<size_t>& judged,
+                   std::string& reason) {
+  bool moved = false, settled = true, in_phase = true, antiphase = true;
+  double widest = 0.0;
   for (size_t k : judged) {
-    drift = drift || range[k] > r.drift_rad;
-    settled = settled && range[k] < r.settled_rad;
+    const bool still = r.settled(range[k], settle[k]);
+    moved = moved || (range[k] > r.drift_rad && !still);
+    settled = settled && still;
+    widest = std::max(widest, settle[k]);
     in_phase = in_phase && std::fabs(wrapToPi(last.psi[k])) <= r.in_phase_rad;
     antiphase = antiphase && std::fabs(wrapToPi(last.psi[k] - kPi)) <= r.antiphase_rad;
   }
-  if (drift) return Regime::Drift;
   if (settled && in_phase) return Regime::InPhase;
   if (settled && antiphase) return Regime::Antiphase;
   if (settled) return Regime::PhaseLocked;
-  reason = "the phase differences still move over the window (range up to " +
-           numberText(*std::max_element(range.begin(), range.end()), 4) + " rad; settled needs < " +
-           numberText(r.settled_rad, 4) + ", drift > " + numberText(r.drift_rad, 4) + ")";
+  if (moved) return Regime::Drift;
+  reason = "the phase differences still move over the window's last part (range up to " +
+           numberText(widest, 4) + " rad; settled needs < " + numberText(r.settled_rad, 4) +
+           " there and at most " + numberText(r.ended_ratio, 4) + " of the window's range, or < " +
+           numberText(r.settled_rad, 4) + " over the window; drift > " +
+           numberText(r.drift_rad, 4) + " over the window)";
   return Regime::Unsettled;
+}
+
+// The platform over the window and, when it never slipped there, over the run before it
+// (v.platform_*): `uncoupled` is a platform that never slipped in the run. A platform that the
+// metronomes' drive moved and that stuck later (the slow flow near antiphase sticks once the drive
+// falls below friction, psi frozen near pi) is judged by the phase rules, whether it stuck before
+// the window or within it (docs/regimes.md).
+void judgePlatform(const RegimeWindow& w, RegimeVerdict& v) {
+  if (w.platformRows() == 0 || w.platformRows() != w.rowsInWindow()) return;
+  // full model: slips that leave the platform where it was (micro-slips) do not count
+  auto moved = [&](double travel) { return travel < 0 || travel > w.rules().still_platform; };
+  v.platform_slipped = w.slipRows() > 0 && moved(w.platformTravel()) ? 1 : 0;
+  v.platform_slip_rows = w.platformTravel() < 0 ? -1 : w.slipRows();
+  v.platform_travel = w.platformTravel();
+  if (v.platform_slipped == 0)
+    v.platform_slipped_before = w.runSlipRows() > w.slipRows() && moved(w.runTravel()) ? 1 : 0;
 }
 
 std::string tooShortReason(const RegimeWindow& w) {
@@ -327,6 +352,8 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
   v.window_rows = window.rowsInWindow();
   v.window_tau_start = window.tauStart();
   v.psi_range = window.psiRange();
+  v.psi_settle_range = window.psiSettleRange();
+  v.settle_tau_start = window.settleTauStart();
   for (double p : last.psi) v.psi_final.push_back(wrapToPi(p));
 
   // a non-finite state has no regime (only a failed run ends like that)
@@ -345,14 +372,7 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
     v.alive[i] = a_max[i] >= theta_c[i] ? 1 : 0;
     dead += v.alive[i] == 0;
   }
-  if (window.platformRows() > 0 && window.platformRows() == window.rowsInWindow()) {
-    // full model: slips that leave the platform where it was (micro-slips) do not count
-    const bool moved =
-        window.platformTravel() < 0 || window.platformTravel() > window.rules().still_platform;
-    v.platform_slipped = window.slipRows() > 0 && moved ? 1 : 0;
-    v.platform_slip_rows = window.platformTravel() < 0 ? -1 : window.slipRows();
-    v.platform_travel = window.platformTravel();
-  }
+  judgePlatform(window, v);
   const RegimeRules& r = window.rules();
   v.dead = dead;
   std::vector<size_t> alive_idx;
@@ -365,7 +385,7 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
     for (size_t i : g) v.cluster_members.back().push_back(static_cast<int>(i) + 1);
   }
   if (!clusters.members.empty()) v.cluster_phase = clusterPhases(clusters, last.psi);
-  const bool uncoupled = v.platform_slipped == 0;
+  const bool uncoupled = v.platform_slipped == 0 && v.platform_slipped_before == 0;
   // the name: the enum's, or for three or more swinging metronomes the clusters'
   auto named = [&](Regime regime) {
     v.regime = regime;
@@ -383,6 +403,7 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
   if (swinging == 0) return named(Regime::None);
   if (window.tooShort()) {
     v.reason = tooShortReason(window);
+    v.undecided = true;
     v.regime = Regime::Unsettled;
     v.name = toString(Regime::Unsettled);
     return v;
@@ -396,6 +417,7 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
     if (v.alive[i] == 1 && last.A[i] < theta_c[i] && lowest_at[i] >= last.tau) {
       v.reason = "metronome " + std::to_string(i + 1) +
                  " falls below theta_c within the window (dying): a longer run decides";
+      v.undecided = true;
       v.regime = Regime::Unsettled;
       v.name = toString(Regime::Unsettled);
       return v;
@@ -410,7 +432,7 @@ RegimeVerdict classifyRegime(const RegimeWindow& window, const std::vector<doubl
       if (!isLocked(j) && j - 1 < last.psi.size()) judged.push_back(j - 1);
   if (judged.empty()) return named(Regime::Alive);
   if (uncoupled) return named(Regime::Uncoupled);
-  const Regime phase = phaseRegime(r, last, v.psi_range, judged, v.reason);
+  const Regime phase = phaseRegime(r, last, v.psi_range, v.psi_settle_range, judged, v.reason);
   return named(phase);
 }
 

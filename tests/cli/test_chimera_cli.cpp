@@ -49,5 +49,24 @@ TEST(ChimeraLabel, ShippedChimeraSwingsStayAChimeraAtOneAndAHalfTheirLength) {
   }
 }
 
+// Issue 37: a network whose platforms each said `unsettled` was labelled `coherent-groups`
+// (two-swings.yaml as shipped) or `chimera` (two-boards-rollers.yaml stopped after 0.5 s, shorter
+// than 5 fast periods). A platform's verdict and its group's locking now agree, and a run too
+// short to judge is `unsettled` as a network too.
+TEST(ChimeraLabel, APlatformsVerdictAgreesWithTheNetworkLabel) {
+  const nlohmann::json swings = runSummary("two-swings.yaml", "two-swings");
+  EXPECT_EQ(swings["network"]["regime"], "coherent-groups");
+  for (const auto& [name, p] : swings["platforms"].items()) {
+    const std::string regime = p["regime"];
+    EXPECT_EQ(regime.find("unsettled"), std::string::npos) << name << ": " << regime;
+    EXPECT_EQ(regime.find("drift"), std::string::npos) << name << ": " << regime;
+  }
+  const nlohmann::json short_run =
+      runSummary("two-boards-rollers.yaml", "short", "--set simulation.duration=0.5");
+  for (const auto& [name, p] : short_run["platforms"].items())
+    EXPECT_EQ(p["regime"], "unsettled") << name;
+  EXPECT_EQ(short_run["network"]["regime"], "unsettled");
+}
+
 }  // namespace
 }  // namespace metrosync

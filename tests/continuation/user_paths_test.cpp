@@ -188,6 +188,36 @@ TEST(ContinueUserPaths, AllWithoutDuplicates) {
   EXPECT_EQ(on_it.size(), 1u);
 }
 
+// Issue 37: --all promises every locked state at the start value, but its grid of seeds missed
+// the experiment's own attractor (the stick-slip state near antiphase at mu = 0.00065, A = 2.911 /
+// 2.892, psi = 3.125) that the default call starts from and `run --model slow` ends on. --all now
+// follows the rig's start, settled, first. Checked against the slow flow's own run.
+TEST(ContinueUserPaths, AllFindsTheRigsOwnAttractor) {
+  const std::string dir = scratchDir("continue", "all-own", true);
+  const auto run = runMetrosync("run " + shellQuote(rig("experiment.yaml")) +
+                                " --model slow -q --no-plot --out " + shellQuote(dir + "/run"));
+  ASSERT_EQ(run.code, 0) << run.err;
+  const nlohmann::json fin = summaryOf(dir + "/run")["final"];
+  const double a1 = fin["A"][0], a2 = fin["A"][1], psi = fin["psi"][0];
+  EXPECT_NEAR(a1, 2.911, 2e-3);
+  EXPECT_NEAR(a2, 2.892, 2e-3);
+  EXPECT_NEAR(std::remainder(psi, kTwoPi), 3.125, 2e-3);
+  const auto all = runMetrosync("continue " + shellQuote(rig("experiment.yaml")) +
+                                " --param platform.friction.mu --to 0.01 --all -q --out " +
+                                shellQuote(dir + "/all"));
+  ASSERT_EQ(all.code, 0) << all.err;
+  int found = 0;
+  for (const auto& q : csv(dir + "/all/branches.csv")) {
+    if (num(q, "platform.friction.mu") != 0.00065) continue;
+    found += std::abs(num(q, "A_1") - a1) < 1e-3 && std::abs(num(q, "A_2") - a2) < 1e-3 &&
+             std::abs(std::remainder(num(q, "psi_2") - psi, kTwoPi)) < 1e-3 &&
+             q.at("stable") == "1";
+  }
+  EXPECT_EQ(found, 1) << slurp(dir + "/all/branches.csv").substr(0, 2000);
+  EXPECT_NE(summaryOf(dir + "/all")["start"].get<std::string>().find("the rig's start, settled"),
+            std::string::npos);
+}
+
 // The experiment's detuning with --all: the identical pair's antiphase states at alpha = 0 lie on
 // a family that exists there only; nothing is reported at alpha ~ 1e-15 (no spurious folds), and
 // a second key gives distinct fold curves.

@@ -53,13 +53,13 @@ TEST(OrderParameter, PendulumPhaseInvertsTheEnvelope) {
 // Groups of metronomes over 50 fast periods (the window: the last 5), every metronome alive
 // (A = 1 > theta_c = 0.5) unless `dead(g, i)`: the phases come from `phase(g, i, t)` (unwrapped),
 // the groups' order parameters feed the network window and each group's phases its own regime
-// window, as NetworkVerdict does; the label is classifyPlatforms'.
+// window (with the network's platform rules), as NetworkVerdict does; classifyPlatforms judges.
 template <class F, class D>
-std::string label(F phase, D dead, const std::vector<int>& sizes = {15, 15}) {
-  const double period = 1.0, t_end = 50.0, epsilon = 1.0 / (2 * kPi);  // tau = t
+PlatformsVerdict judge(F phase, D dead, const std::vector<int>& sizes, double t_end = 50.0) {
+  const double period = 1.0, epsilon = 1.0 / (2 * kPi);  // tau = t
   const int groups = static_cast<int>(sizes.size());
   NetworkWindow w(groups, t_end, period);
-  std::vector<RegimeWindow> own(groups, RegimeWindow(t_end, epsilon));
+  std::vector<RegimeWindow> own(groups, RegimeWindow(t_end, epsilon, networkPlatformRules()));
   for (int k = 0; k <= 1000; ++k) {
     const double t = t_end * k / 1000;
     std::vector<Order> orders;
@@ -79,7 +79,12 @@ std::string label(F phase, D dead, const std::vector<int>& sizes = {15, 15}) {
   }
   std::vector<std::vector<double>> theta_c;
   for (int g = 0; g < groups; ++g) theta_c.emplace_back(sizes[g], 0.5);
-  return classifyPlatforms(w, own, theta_c).label;
+  return classifyPlatforms(w, own, theta_c);
+}
+
+template <class F, class D>
+std::string label(F phase, D dead, const std::vector<int>& sizes = {15, 15}) {
+  return judge(phase, dead, sizes).label;
 }
 
 template <class F>
@@ -179,5 +184,38 @@ TEST(NetworkLabel, ChimeraNeedsAnIncoherentGroupBesideALockedOne) {
             "chimera");
 }
 
+// Issue 37: a network whose platforms each say `unsettled` was labelled `coherent-groups` (the
+// platforms judged settled within 0.1 rad, their groups locked within 0.5 rad, on phases that
+// wobble within each period). A platform's verdict and its group's locking now say the same: for
+// two boards whose pairs wobble by 0.04 to 3 rad, a platform is settled exactly when its group is
+// coherent, and a label of coherent boards never stands beside an unsettled platform.
+TEST(NetworkLabel, APlatformsVerdictAgreesWithItsGroupsLocking) {
+  auto none = [](int, int) { return false; };
+  for (double wobble : {0.02, 0.05, 0.1, 0.2, 0.24, 0.26, 0.4, 0.8, 1.5}) {
+    SCOPED_TRACE("wobble " + std::to_string(2 * wobble) + " rad peak to peak");
+    auto phase = [&](int g, int i, double t) {
+      return w0 * t + i * (g * kPi + wobble * std::sin(3 * t + g));
+    };
+    const PlatformsVerdict v = judge(phase, none, {2, 2});
+    const bool locked = 2 * wobble < NetworkRules::kLocked;
+    for (const RegimeVerdict& p : v.platforms) {
+      const std::string name = regimeName(p);
+      EXPECT_EQ(name == "unsettled" || name == "drift", !locked) << name;
+    }
+    EXPECT_EQ(v.label == "coherent-groups", locked) << v.label;
+  }
+}
+
+// A run too short to judge (fewer than 5 fast periods) is `unsettled` as a network, as each of its
+// platforms is (main: coherent-groups for a run of 4 periods of boards in phase and in
+// antiphase); so is a run with a metronome dying in the window (RegimeVerdict::undecided).
+TEST(NetworkLabel, ARunTooShortOrDyingIsUnsettled) {
+  auto none = [](int, int) { return false; };
+  auto boards = [&](int g, int i, double t) { return w0 * t + g * i * kPi; };
+  const PlatformsVerdict short_run = judge(boards, none, {2, 2}, 4.0);
+  EXPECT_EQ(short_run.label, "unsettled");
+  for (const RegimeVerdict& p : short_run.platforms) EXPECT_TRUE(p.undecided);
+  EXPECT_EQ(judge(boards, none, {2, 2}, 50.0).label, "coherent-groups");
+}
 }  // namespace
 }  // namespace metrosync

@@ -180,6 +180,13 @@ std::vector<double> parseList(const std::string& text) {
   return v;
 }
 
+// The rig's start integrated by the slow flow until it settles (its run, then 3 and 10 times it).
+SettledState settledRigStart(const ScaledParams& sp, std::string& how) {
+  SettledState st = settleFromStart(sp, sp.tau_end > 0 ? sp.tau_end : 300.0);
+  how = "the rig's start, settled by the slow flow at tau = " + roundTripText(st.tau);
+  return st;
+}
+
 // The start state (rotated z, N x 1) and how it was found.
 std::vector<Cd> startState(const ContinueOptions& opt, const ScaledParams& sp, double from,
                            std::string& how) {
@@ -196,13 +203,29 @@ std::vector<Cd> startState(const ContinueOptions& opt, const ScaledParams& sp, d
     how = "--start " + opt.start;
     return stateFrom({v.begin(), v.begin() + n}, {v.begin() + n, v.end()});
   }
-  const SettledState st = settleFromStart(sp, sp.tau_end > 0 ? sp.tau_end : 300.0);
+  const SettledState st = settledRigStart(sp, how);
   if (!st.settled)
     throw UsageError("--param " + opt.param + " = " + roundTripText(from) +
                      ": the rig's start does not settle to a locked state (slow flow up to tau = " +
                      roundTripText(st.tau) + "): " + st.why + "; give --start A_1,..,psi_N");
-  how = "the rig's start, settled by the slow flow at tau = " + roundTripText(st.tau);
   return st.z;
+}
+
+// --all: the grid's states and, first, --start or the rig's start settled by the slow flow (a
+// grid of seeds can miss the rig's own attractor: issue 37); none when the start does not settle.
+std::vector<Cd> allStart(const ContinueOptions& opt, const ScaledParams& sp, double from,
+                         std::string& how) {
+  const std::string grid = "--all: every locked state Newton finds from a grid of seeds";
+  if (!opt.start.empty()) {
+    std::vector<Cd> z = startState(opt, sp, from, how);
+    how = grid + ", and " + how;
+    return z;
+  }
+  const SettledState st = settledRigStart(sp, how);
+  how = grid + (st.settled ? ", and " + how
+                           : " (the rig's start does not settle by tau = " + roundTripText(st.tau) +
+                                 ": " + st.why + ")");
+  return st.settled ? st.z : std::vector<Cd>{};
 }
 
 ContinuationSettings settingsFor(const ContinueOptions& opt, double from) {
@@ -261,7 +284,11 @@ SlowFlowContinuationSpec slowFlowSpec(const ContinueOptions& opt, double from, s
   spec.params = paramsAt(opt);
   spec.from = from, spec.to = opt.to;
   spec.settings = settingsFor(opt, from);
-  if (!opt.all) spec.start = startState(opt, sp, from, how);
+  if (!opt.all)
+    spec.start = startState(opt, sp, from, how);
+  else
+    spec.start = allStart(opt, sp, from, how);
+  spec.all = opt.all;
   spec.cycles = !opt.no_cycles;
   spec.cycle_points = opt.cycle_points;
   spec.jobs = opt.jobs;
@@ -391,7 +418,9 @@ CLI::App* addContinueCommand(CLI::App& app) {
   addInteger(c, "--max-points", opt.max_points, 2, kMaxContinuationPoints,
              "points per direction of each branch")
       ->default_str(std::to_string(opt.max_points));
-  c->add_flag("--all", opt.all, "every locked state at the start value (Newton from a grid)");
+  c->add_flag("--all", opt.all,
+              "every locked state Newton finds at the start value from a grid of seeds, and the "
+              "rig's own (--start, or the rig's start integrated until it settles) first");
   addInteger(c, "--jobs", opt.jobs, 0, kMaxJobs,
              "threads for --all's seeds and branches (default and 0: one per hardware thread; "
              "the files do not depend on it)");
@@ -432,7 +461,7 @@ ContinuationResult slowFlowContinuation(const ContinueOptions& opt) {
     result = continueSlowFlow(spec);
   } catch (const NoLockedState& e) {
     throw UsageError(std::string(e.what()) + " at " + opt.param + " = " + roundTripText(from) +
-                     (opt.all ? "" : " (" + how + ")"));
+                     " (" + how + ")");
   } catch (const std::invalid_argument& e) {  // the slow flow at a value on the way: not finite
     throw UsageError("--param " + opt.param + " from " + roundTripText(from) + " to " +
                      roundTripText(opt.to) + ": " + e.what() +
@@ -441,7 +470,7 @@ ContinuationResult slowFlowContinuation(const ContinueOptions& opt) {
   }
   result.param = opt.param;
   result.param2 = opt.fold_key;
-  result.start = opt.all ? "--all: every locked state Newton finds from a grid of seeds" : how;
+  result.start = how;
   return result;
 }
 

@@ -315,6 +315,8 @@ nlohmann::json verdictJson(const RunReport& report, const RegimeVerdict& verdict
   j["regime_window"] = {{"tau_start", verdict.window_tau_start},
                         {"rows", verdict.window_rows},
                         {"psi_range", verdict.psi_range},
+                        {"settle_tau_start", verdict.settle_tau_start},
+                        {"psi_settle_range", verdict.psi_settle_range},
                         {"alive", verdict.alive},
                         {"clusters", clusterText(verdict.cluster_sizes)},
                         {"cluster_members", verdict.cluster_members},
@@ -327,6 +329,10 @@ nlohmann::json verdictJson(const RunReport& report, const RegimeVerdict& verdict
   if (verdict.platform_slip_rows >= 0)  // the full model's own slips (docs/regimes.md)
     j["regime_window"]["platform_slip_rows"] = verdict.platform_slip_rows;
   if (verdict.platform_travel >= 0) j["regime_window"]["platform_travel"] = verdict.platform_travel;
+  // a platform still in the window: did it slip before (stuck after coupling moved it) or never
+  // (`uncoupled`)?
+  if (verdict.platform_slipped_before >= 0)
+    j["regime_window"]["platform_slipped_before"] = verdict.platform_slipped_before == 1;
   if (!verdict.reason.empty()) j["regime_reason"] = verdict.reason;
   j["final"] = {
       {"tau", report.final_row.tau}, {"A", report.final_row.A}, {"psi", report.final_row.psi}};

@@ -56,9 +56,10 @@ void fromEveryState(const SlowFlowContinuationSpec& spec, ContinuationResult& r,
   int ref = 0;
   while (ref < static_cast<int>(sp.locked.size()) && sp.locked[ref]) ++ref;
   if (ref == static_cast<int>(sp.locked.size())) throw NoLockedState("every metronome is locked");
+  if (!spec.start.empty()) fromStart(spec, r, seeds);  // the rig's own state first: branch 0
   const SlowFlowProblem grid(spec.params, spec.from, ref);
   const std::vector<Vec> states = allLockedStates(grid, spec.from, spec.jobs);
-  if (states.empty()) throw NoLockedState("Newton finds no locked state");
+  if (states.empty() && r.branches.empty()) throw NoLockedState("Newton finds no locked state");
   const double span = std::abs(spec.to - spec.from);
   StateTraces traces(spec, grid, states);
   std::vector<Traced> traced(states.size());
@@ -179,7 +180,7 @@ ContinuationResult continueSlowFlow(const SlowFlowContinuationSpec& spec) {
   r.metronomes = static_cast<int>(sp.nu.size());
   r.theta_c = sp.theta_c;
   std::vector<Seed> seeds;
-  if (spec.start.empty())
+  if (spec.all || spec.start.empty())
     fromEveryState(spec, r, seeds);
   else
     fromStart(spec, r, seeds);

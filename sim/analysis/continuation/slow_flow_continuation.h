@@ -1,6 +1,6 @@
 // The slow flow's continuation as `metrosync continue` runs it (and the Python module's
 // continue_, and sweep --boundaries): from one start state or from every locked state Newton
-// finds at the start value (--all), each branch once and each bifurcation once
+// finds at the start value and the start state (--all), each branch once and each bifurcation once
 // (sim/analysis/continuation/merge.h), the limit cycle born at each distinct Hopf point, and with a
 // second key the curve of each distinct fold and Hopf point in the plane of the two keys. Results
 // as values (result.h); the command line and the files are tools/.
@@ -21,6 +21,9 @@ struct SlowFlowContinuationSpec {
   ContinuationSettings settings;  // of the branches (range, p_scale, steps, max points)
   // The start state (N x 1 complex amplitudes at `from`); empty: every locked state (--all).
   std::vector<std::complex<double>> start;
+  // --all: every locked state Newton finds from a grid of seeds, and `start` first when it is
+  // given (the rig's own start settled: a grid of seeds can miss the rig's own attractor)
+  bool all = false;
   bool cycles = true;    // follow the limit cycle of each distinct Hopf point
   int cycle_points = 0;  // each cycle's point budget (0: settings.max_points)
   // The second key (--fold): its parameters at (KEY, KEY2) = (p1, p2); empty: no curves.
