@@ -1,4 +1,4 @@
-// What the fit tests share: two rigs, data made by an engine with a camera's noise, and running
+// What the fit tests share: three rigs, data made by an engine with a camera's noise, and running
 // `metrosync fit` in a scratch directory.
 #pragma once
 
@@ -39,6 +39,27 @@ metronomes:
     start: {angle: -0.785, rate: 0.25}
 simulation:
   duration: 6
+)";
+
+// The experiment's pair with the paper's keys: damping (kg/s) and impulse (N m s), 15 s.
+inline const char* kFiveKeyRig = R"(units: physical
+name: five
+platform:
+  mass: 0.1432
+  friction: {law: coulomb, mu: 6.5e-4}
+metronomes:
+  - name: A
+    box_mass: 0.0602
+    pendulum: {mass: 0.0226, length: 0.0225, damping: 0.0226}
+    escapement: {angle: 0.244, impulse: 1.4844e-5}
+    start: {angle: 0.785, rate: 0.0}
+  - name: B
+    box_mass: 0.0602
+    pendulum: {mass: 0.0226, length: 0.0225, damping: 0.0226}
+    escapement: {angle: 0.244, impulse: 1.4844e-5}
+    start: {angle: -0.785, rate: 0.25}
+simulation:
+  duration: 15
 )";
 
 // One metronome on a still table (the platform fixed), started below theta_c: a free decay.

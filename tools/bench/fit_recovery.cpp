@@ -6,7 +6,18 @@
 // phase difference, sampled at 100 Hz with Gaussian noise of 1e-3 rad on both angles. The fit
 // frees five keys (mu, both dampings, both impulses), each started at truth x (1 + U(-0.5, 0.5)).
 // A record is recovered when every key is identifiable and within 3 standard errors and 5% of
-// its truth. Writes the table and the summary (success rate, median time per fit) as markdown.
+// its truth. Writes the table and the summary (success rate, median time per fit) as markdown,
+// and what a fit costs against runs of the same rig, measured on each record's truth in the same
+// bench run (CPU of the record's thread, wall; medians of kRepeats):
+//   one `run`      `metrosync run RECORD.yaml --no-plot --quiet` in this process (its files in the
+//                  scratch directory, synced; no process start-up), the records one after another
+//                  after the fits (CPU of the process: the sync runs on a worker thread)
+//   the engine     the direct engine on the record's rig with `run`'s recording (rows at the
+//                  default sampling, envelope, events) into memory: no files
+//   a model run    what the fit runs per evaluation: the model to the record's end, rows at the
+//                  data's spacing, event records (sim/analysis/fit/model_samples.h)
+//   a derivatives  the exact derivatives of the samples in the five keys from that run (its
+//   run            variational equations, sim/analysis/fit/model_jacobian.h): k model runs
 //
 //   metrosync_fit_bench [--records N] [--seed S] [--duration SECONDS] [--data-engine
 //   simbody|direct] [--only I] [--jobs N] [--out FILE.md] [--keep DIR] [--csv FILE.csv]
@@ -31,10 +42,16 @@
 #include "base/constants.h"
 #include "base/number_text.h"
 #include "models/scaling.h"
+#include "sim/analysis/fit/data_file.h"
+#include "sim/analysis/fit/fit_observations.h"
+#include "sim/analysis/fit/model_jacobian.h"
+#include "sim/analysis/fit/model_samples.h"
 #include "sim/engines/engine.h"
 #include "sim/parallel/worker_pool.h"
+#include "tools/cli/commands.h"
 #include "tools/cli/fit.h"
 #include "yaml/rig_loader.h"
+#include "yaml/rig_writer.h"
 
 namespace {
 
@@ -45,6 +62,7 @@ constexpr double kSampleS = 0.01;   // 100 Hz
 constexpr double kStartOff = 0.5;   // starts within +-50% of the truth
 constexpr double kSigmas = 3.0;     // recovered: within 3 standard errors ...
 constexpr double kRelative = 0.05;  // ... and 5%
+constexpr int kRepeats = 5;         // timings of a run: the median of this many
 const char* kKeys[5] = {"platform.friction.mu", "metronomes.0.pendulum.damping",
                         "metronomes.1.pendulum.damping", "metronomes.0.escapement.impulse",
                         "metronomes.1.escapement.impulse"};
@@ -114,6 +132,14 @@ std::string measured(const std::string& rig_yaml, const std::string& engine, std
   return os.str();
 }
 
+// What runs of the record's rig cost, seconds (medians of kRepeats).
+struct Costs {
+  double run_cpu = 0, run_wall = 0;        // one `run` command
+  double engine_cpu = 0, engine_wall = 0;  // the engine's run with `run`'s recording
+  double model_cpu = 0;                    // one model run of the fit
+  double derivatives_cpu = 0;              // its derivatives in the five keys
+};
+
 struct Outcome {
   int index = 0;  // 0-based record number
   Truth truth;
@@ -121,6 +147,7 @@ struct Outcome {
   FitReport report;
   double rms_from_truth = 0.0;  // the same fit, --local from the truth: its optimum's rms
   double wall_s = 0.0, cpu_s = 0.0;
+  Costs costs;
   bool recovered = false;
   std::string error;
 };
@@ -146,6 +173,79 @@ double threadCpuSeconds() {
   timespec ts{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+double wallSeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double median(std::vector<double> v);
+
+double processCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+// The median CPU (of the thread, or of the process) and wall seconds of kRepeats calls of f.
+template <class F>
+std::pair<double, double> timed(F&& f, double (*cpu_seconds)() = threadCpuSeconds) {
+  std::vector<double> cpu, wall;
+  for (int r = 0; r < kRepeats; ++r) {
+    const double c0 = cpu_seconds(), w0 = wallSeconds();
+    f();
+    cpu.push_back(cpu_seconds() - c0);
+    wall.push_back(wallSeconds() - w0);
+  }
+  return {median(cpu), median(wall)};
+}
+
+// The costs of the record's rig at its truth (the header says which runs).
+Costs measureCosts(const std::string& rig_yaml, const std::string& data_csv, const Truth& truth) {
+  Costs c;
+  const Engine& direct = selectEngine("direct", "full", "");
+  const Rig rig = loadRigText(rig_yaml, "bench.yaml");
+  std::tie(c.engine_cpu, c.engine_wall) = timed([&] {
+    MemorySink sink;
+    direct.run(rig, sink);
+  });
+  const MeasuredData data = parseDataText(data_csv, "bench.csv", 2);
+  const FitData fd = fitData(
+      data, false, {rig.metronomes[0].theta_c_rad, rig.metronomes[1].theta_c_rad}, kNoiseRad);
+  FitProblem p;
+  p.data = &data;
+  p.engine = &direct;
+  for (int k = 0; k < 5; ++k) {
+    FreeParameter f;
+    f.name = kKeys[k];
+    f.keys = {kKeys[k]};
+    f.start = f.scale = truth.value[k];
+    p.free.push_back(f);
+  }
+  p.rig = [&](const std::vector<double>& v) {
+    std::vector<std::string> sets;
+    for (int k = 0; k < 5; ++k) sets.push_back(std::string(kKeys[k]) + "=" + exactNumberText(v[k]));
+    return loadRigText(rig_yaml, "bench.yaml", sets);
+  };
+  const std::vector<double> values(truth.value, truth.value + 5);
+  const int n = static_cast<int>(fd.observations.size());
+  const double t_end = fd.observations.back().t_s, row_dt = modelRowInterval(data.t_s, rig);
+  c.model_cpu = timed([&] { ModelTrajectory(direct, rig, t_end, row_dt); }).first;
+  const ModelTrajectory run(direct, rig, t_end, row_dt);
+  c.derivatives_cpu =
+      timed([&] { modelJacobian(p, values, run, fd, n, std::vector<bool>(5, true)); }).first;
+  return c;
+}
+
+// One `run` of record o's rig (its file in the scratch directory), into o.costs.
+void timeRunCommand(const Settings& set, Outcome& o) {
+  cli::Options run;
+  run.rig_path = set.dir + "/record" + std::to_string(o.index + 1) + ".yaml";
+  run.out = set.dir + "/run" + std::to_string(o.index + 1);
+  run.quiet = run.no_plot = true;
+  std::tie(o.costs.run_cpu, o.costs.run_wall) =
+      timed([&] { cli::runCommand(run); }, processCpuSeconds);
+  std::filesystem::remove_all(run.out);
 }
 
 // Record `index` (0-based): its rig and data in the scratch directory under its own names.
@@ -182,6 +282,7 @@ Outcome fitRecord(const Truth& truth, const Settings& set, int index, std::mt199
   o.cpu_s = threadCpuSeconds() - c0;
   o.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   o.recovered = o.error.empty() && recovered(o);
+  o.costs = measureCosts(rig, data, truth);
   // the optimum nearest the truth, for comparison: is the one found as good?
   opt.local = true;
   opt.starts = 1;
@@ -217,22 +318,61 @@ std::string row(int i, const Outcome& o) {
   if (!o.error.empty()) os << " " << o.error;
   os << " | " << numberText(r.rms, 4) << " | " << numberText(o.rms_from_truth, 4) << " | "
      << (r.converged ? "yes" : "no") << " | " << r.optima.size() << " | " << r.evaluations << " | "
-     << numberText(o.cpu_s, 1, Notation::Fixed) << " | " << (o.recovered ? "yes" : "**no**")
-     << " |\n";
+     << r.jacobians << " | " << numberText(o.cpu_s, 2, Notation::Fixed) << " | "
+     << (o.costs.run_cpu > 0 ? numberText(o.cpu_s / o.costs.run_cpu, 0, Notation::Fixed) : "-")
+     << " | " << (o.recovered ? "yes" : "**no**") << " |\n";
+  return os.str();
+}
+
+// The medians of the costs: per fit, and against one `run` and one model run of the same rig.
+std::string costLines(const std::vector<Outcome>& all) {
+  std::vector<double> cpu, wall, runs, derivatives, k, equivalent, run_cpu, run_wall, ratio_cpu,
+      ratio_wall, engine_cpu, engine_wall, engine_ratio;
+  for (const Outcome& o : all) {
+    const FitOutcome& r = o.report.outcome;
+    cpu.push_back(o.cpu_s);
+    wall.push_back(o.wall_s);
+    runs.push_back(r.evaluations);
+    derivatives.push_back(r.jacobians);
+    k.push_back(o.costs.derivatives_cpu / o.costs.model_cpu);
+    equivalent.push_back(r.evaluations + k.back() * r.jacobians);
+    run_cpu.push_back(o.costs.run_cpu);
+    run_wall.push_back(o.costs.run_wall);
+    ratio_cpu.push_back(o.cpu_s / o.costs.run_cpu);
+    ratio_wall.push_back(o.wall_s / o.costs.run_wall);
+    engine_cpu.push_back(o.costs.engine_cpu);
+    engine_wall.push_back(o.costs.engine_wall);
+    engine_ratio.push_back(o.cpu_s / o.costs.engine_cpu);
+  }
+  const auto fixed = [](double v, int d) { return numberText(v, d, Notation::Fixed); };
+  std::ostringstream os;
+  os << "| median CPU time per fit | " << fixed(median(cpu), 2) << " s |\n"
+     << "| median wall time per fit | " << fixed(median(wall), 2)
+     << " s (2 records at once, on a machine shared with other jobs) |\n"
+     << "| median model runs per fit | " << fixed(median(runs), 0) << ", and "
+     << fixed(median(derivatives), 0)
+     << " runs of its derivatives (one costs k = " << fixed(median(k), 2)
+     << " model runs: " << fixed(median(equivalent), 0)
+     << " model runs in all; a window's run is shorter than the record's) |\n"
+     << "| one `run` of the same rig (`run RIG --no-plot --quiet` in process, files synced) | "
+     << "CPU " << fixed(1e3 * median(run_cpu), 1) << " ms, wall "
+     << fixed(1e3 * median(run_wall), 1) << " ms |\n"
+     << "| a fit against one `run` of its rig | " << fixed(median(ratio_cpu), 0) << "x in CPU, "
+     << fixed(median(ratio_wall), 0) << "x in wall |\n"
+     << "| the engine alone (`run`'s recording into memory, no files) | CPU "
+     << fixed(1e3 * median(engine_cpu), 1) << " ms, wall " << fixed(1e3 * median(engine_wall), 1)
+     << " ms: a fit is " << fixed(median(engine_ratio), 0) << "x its CPU |\n";
   return os.str();
 }
 
 std::string report(const std::vector<Outcome>& all, unsigned seed, const Settings& set,
                    const std::string& command) {
   int ok = 0, honest = 0;
-  std::vector<double> cpu, wall;
   std::string rows;
   for (std::size_t i = 0; i < all.size(); ++i) {
     ok += all[i].recovered;
     // a failure the verdict owns up to: converged false
     honest += all[i].recovered || !all[i].report.outcome.converged;
-    cpu.push_back(all[i].cpu_s);
-    wall.push_back(all[i].wall_s);
     rows += row(all[i].index, all[i]);
   }
   std::ostringstream os;
@@ -247,17 +387,16 @@ std::string report(const std::vector<Outcome>& all, unsigned seed, const Setting
      << " (" << numberText(100.0 * ok / all.size(), 0, Notation::Fixed) << "%) |\n"
      << "| failures reported as not converged | " << honest - ok << " of " << all.size() - ok
      << " |\n"
-     << "| median CPU time per fit | " << numberText(median(cpu), 1, Notation::Fixed) << " s |\n"
-     << "| median wall time per fit | " << numberText(median(wall), 1, Notation::Fixed)
-     << " s (a machine shared with other jobs) |\n\n"
+     << costLines(all) << "\n"
      << "Columns: mu-bar of the truth; each start's offset from the truth in % (mu, damping 1, "
      << "damping 2, impulse 1, impulse 2); each fitted key's error in its standard errors "
      << "(n/i: not identifiable); the rms residual (rad); the rms of the optimum the same fit "
      << "reaches with --local from the truth (for comparison; not timed); the verdict; distinct "
-     << "optima found; model runs; CPU seconds.\n\n"
+     << "optima found; model runs; runs of the model's derivatives; CPU seconds; the fit's CPU "
+     << "against one `run` of its rig.\n\n"
      << "| # | mu-bar | start off (%) | error (std. errors) | rms | rms from the truth | "
-        "converged | optima | runs | CPU s | recovered |\n"
-        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n"
+        "converged | optima | runs | derivatives | CPU s | x run | recovered |\n"
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n"
      << rows;
   return os.str();
 }
@@ -313,6 +452,7 @@ int main(int argc, char** argv) {
     const std::lock_guard<std::mutex> lock(print);
     std::cerr << row(i, all[k]);
   });
+  for (Outcome& o : all) timeRunCommand(set, o);  // alone, after the fits
   std::string command = "metrosync_fit_bench";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
   std::ofstream(out) << report(all, seed, set, command);

@@ -200,7 +200,9 @@ void printFit(const FitReport& rep, const OutputDir& dir, const std::vector<std:
   const FitOutcome& r = rep.outcome;
   const bool metres = r.quantity_names.size() == 1 && r.quantity_names[0] == "x";
   std::cout << "fit (" << rep.model << " model, " << r.observations.size() << " observations, "
-            << r.evaluations << " model runs" << (r.converged ? "" : ", NOT CONVERGED") << "):\n";
+            << r.evaluations << " model runs"
+            << (r.jacobians > 0 ? ", " + std::to_string(r.jacobians) + " with derivatives" : "")
+            << (r.converged ? "" : ", NOT CONVERGED") << "):\n";
   for (std::size_t j = 0; j < rep.free.size(); ++j) {
     std::cout << "  " << rep.free[j].name << " = ";
     if (r.values[j])

@@ -177,6 +177,7 @@ nlohmann::json fitJson(const FitReport& rep) {
                       {"strategy", r.strategy},
                       {"observations", r.observations.size()},
                       {"evaluations", r.evaluations},
+                      {"jacobians", r.jacobians},
                       {"iterations", r.iterations},
                       {"version", metrosyncVersion()}};
   j.update(perKeyJson(rep));

@@ -9,7 +9,7 @@
 namespace metrosync {
 
 inline constexpr const char* kCeresPluginFile = "metrosync-ceres.so";
-constexpr int kCeresPluginAbi = 2;  // raised whenever the table changes
+constexpr int kCeresPluginAbi = 3;  // raised whenever the table changes
 
 struct CeresPlugin {
   int abi = kCeresPluginAbi;

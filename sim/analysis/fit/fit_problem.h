@@ -113,6 +113,7 @@ struct FitOutcome {
 
   std::vector<Optimum> optima;  // every distinct one found, best (lowest rms) first
   int evaluations = 0;          // model runs
+  int jacobians = 0;            // runs of its derivatives (model_jacobian.h)
   int iterations = 0;           // of the final solve
   bool solver_converged = false;
   bool converged = false;  // solver converged and the residual at the noise level (see note)

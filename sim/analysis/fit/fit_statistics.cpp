@@ -79,10 +79,48 @@ double linearStep(const ResidualFunction& f, const std::vector<double>& values,
   }
 }
 
+// The step the difference rule (difference_step.h) takes for a model linear in key j with the
+// exact column `col` (in units of the key's scale)
+double predictedStep(double x, const Eigen::VectorXd& col, double sigma2) {
+  const double h0 = firstDifferenceStep(x);
+  double h = h0;
+  for (double next;
+       sigma2 > 0 && (next = shrunkDifferenceStep(h, h0, (col * h).squaredNorm() / sigma2)) != 0.0;)
+    h = next;
+  return h;
+}
+
+// The model's own derivatives in units of the scales, and the prefix where each column agrees with
+// the secant over kStepRatio of its difference step.
+Linearization exactLinearization(const ResidualFunction& f, const JacobianFunction& jac, int m,
+                                 const std::vector<double>& values,
+                                 const std::vector<FreeParameter>& free, bool find_smooth) {
+  Linearization lin;
+  const int k = static_cast<int>(values.size());
+  lin.r.resize(m);
+  lin.J.resize(m, k);
+  if (!jac(values, lin.r.data(), lin.J.data()))
+    throw std::invalid_argument("the model fails at the optimum");
+  lin.smooth_rows = m;
+  const double sigma2 = lin.r.squaredNorm() / m;
+  Eigen::VectorXd secant(m);
+  for (int j = 0; j < k; ++j) {
+    lin.J.col(j) *= free[j].scale;
+    // a held key's column is not computed, an unseen one's is zero: no smoothness to check
+    if (!find_smooth || lin.J.col(j).squaredNorm() == 0) continue;
+    const double h = predictedStep(values[j] / free[j].scale, lin.J.col(j), sigma2);
+    if (difference(f, values, free, j, kStepRatio * h, lin.r, secant))
+      lin.smooth_rows = std::min(lin.smooth_rows, agreeingRows(lin.J.col(j), secant));
+  }
+  return lin;
+}
+
 }  // namespace
 
 Linearization linearize(const ResidualFunction& f, int m, const std::vector<double>& values,
-                        const std::vector<FreeParameter>& free, bool find_smooth) {
+                        const std::vector<FreeParameter>& free, bool find_smooth,
+                        const JacobianFunction& jac) {
+  if (jac) return exactLinearization(f, jac, m, values, free, find_smooth);
   Linearization lin;
   lin.r.resize(m);
   lin.J.resize(m, static_cast<int>(values.size()));

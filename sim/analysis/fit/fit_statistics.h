@@ -20,25 +20,30 @@ namespace metrosync {
 
 // Residuals at parameter values (not scaled); false when the model fails there.
 using ResidualFunction = std::function<bool(const std::vector<double>&, double*)>;
+// The residuals and their derivatives d r_i / d value_j (column-major, residuals x keys) at
+// parameter values (not scaled); false when the model fails there.
+using JacobianFunction = std::function<bool(const std::vector<double>&, double*, double*)>;
 
-// Residuals r at `values` (in time order) and J = dr / d(value / scale), by central differences
-// (one-sided where the model fails on one side, as at a bound) over 1e-4 of each key's scale.
-// Differences over tenfold smaller and larger steps find where the model is smooth and nearly
-// linear in every key: the longest prefix of the residuals over which all agree. Past it (an
-// escapement at grazing -- a tick there or not -- or a late phase so sensitive to the key that
-// the cost has local minima a few 1e-4 apart) the derivative says little of the uncertainty, and
-// the standard errors come from the prefix alone: upper bounds, the value being fitted to the
-// whole record. Throws std::invalid_argument when the model fails at `values`, or on both
-// sides of it.
+// Residuals r at `values` (in time order) and J = dr / d(value / scale): the model's own
+// derivatives where `jac` gives them (the full model's exact Jacobian), else central differences
+// (one-sided where the model fails on one side, as at a bound) over each key's difference step
+// (difference_step.h). The longest prefix of the residuals over which the model is smooth and
+// nearly linear in every key: where the exact derivative agrees with the secant over ten times
+// the difference step (without `jac`: where the differences over tenfold smaller and larger steps
+// agree). Past it (an escapement at grazing -- a tick there or not -- or a late phase so
+// sensitive to the key that the cost has local minima a few steps apart) the derivative says
+// little of the uncertainty, and the standard errors come from the prefix alone: upper bounds,
+// the value being fitted to the whole record. Throws std::invalid_argument when the model fails
+// at `values`, or on both sides of it.
 struct Linearization {
   Eigen::VectorXd r;
   Eigen::MatrixXd J;
   int smooth_rows = 0;  // the model is smooth in every key over the first smooth_rows residuals
 };
-// find_smooth = false: no second and third differences (smooth_rows = all).
+// find_smooth = false: no further differences (smooth_rows = all).
 Linearization linearize(const ResidualFunction& f, int residual_count,
                         const std::vector<double>& values, const std::vector<FreeParameter>& free,
-                        bool find_smooth = true);
+                        bool find_smooth = true, const JacobianFunction& jac = {});
 
 // Keys whose Jacobian column is (numerically) zero: the data do not see them.
 std::vector<bool> unseenKeys(const Eigen::MatrixXd& J);

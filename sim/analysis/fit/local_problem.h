@@ -13,6 +13,11 @@ struct LocalProblem {
   // The residuals at the given parameter values (not scaled) into `residuals`
   // (residual_count of them); false when the model fails there (the step is then rejected).
   std::function<bool(const std::vector<double>& values, double* residuals)> residuals;
+  // The residuals and their derivatives d residual_i / d value_j into `jacobian` (residual_count
+  // x parameters, column-major; the held parameters' columns are not read) at the values; false
+  // when the model fails there. Empty: the solver differences `residuals` (difference_step.h).
+  std::function<bool(const std::vector<double>& values, double* residuals, double* jacobian)>
+      jacobian;
   int residual_count = 0;
   std::vector<double> start;  // per parameter
   std::vector<double> scale;  // typical size (> 0): the solver works on value / scale

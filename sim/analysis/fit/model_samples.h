@@ -28,7 +28,13 @@ struct ModelFailure : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// A run of the full model, kept to be read at any time up to its end.
+// The interval of the model's rows for data sampled at `t_s` (seconds): dt / ceil(dt / (T / 100)),
+// dt the data's median spacing, T the small-angle period of metronome 1, so that rows fall on the
+// samples of a steady camera.
+double modelRowInterval(const std::vector<double>& t_s, const Rig& rig);
+
+// A run of the full model, kept to be read at any time up to its end, with its event records
+// (the windows its derivatives jump at: model_jacobian.h).
 class ModelTrajectory {
  public:
   // Runs `engine` on `rig` (physical units) to t_end_s, rows every row_dt_s. Throws ModelFailure
@@ -38,12 +44,18 @@ class ModelTrajectory {
   // theta_{i+1} (metronome = i >= 0) or x (metronome = -1) at t_s, interpolated
   double at(double t_s, int metronome) const;
 
+  const Rig& rig() const { return rig_; }  // as run (its duration and row interval set)
+  const std::vector<EventRecord>& events() const { return events_; }
+
  private:
-  struct Knot {
-    std::vector<double> row;  // trajectory format: t, x, xdot, theta_1, thetadot_1, ..., platform
-    bool after_event = false;
-  };
-  std::vector<Knot> knots_;
+  Rig rig_;
+  // the knots, in time order: rows in trajectory format (t, x, xdot, theta_1, thetadot_1, ...,
+  // platform), `width_` values each, one after another; whether each is the state after an event
+  std::vector<double> rows_;
+  std::vector<char> after_event_;
+  std::size_t width_ = 0;
+  std::vector<EventRecord> events_;
+  const double* row(std::size_t k) const { return rows_.data() + k * width_; }
 };
 
 // The slow flow's amplitude of each requested metronome (metronome >= 0), in rad. Throws

@@ -27,14 +27,16 @@ PlatformMode modeOf(const std::vector<double>& row) {
                : (p < 0 ? PlatformMode::SlipNegative : PlatformMode::Stuck);
 }
 
-int swingingIndex(const ScaledModel& m, int rig_index) {
+template <class Model>
+int swingingIndex(const Model& m, int rig_index) {
   for (int j = 0; j < m.n(); ++j)
     if (m.rigIndex(j) == rig_index) return j;
   return -1;
 }
 
 // The records of one window share its time: the first's state before, the last's after.
-std::vector<EngineWindow> windowsOf(const ScaledModel& m, const std::vector<EventRecord>& recs) {
+template <class Model>
+std::vector<EngineWindow> windowsOf(const Model& m, const std::vector<EventRecord>& recs) {
   std::vector<EngineWindow> out;
   for (size_t k = 0; k < recs.size();) {
     const double t_row = recs[k].before[0];
@@ -59,7 +61,34 @@ std::vector<EngineWindow> windowsOf(const ScaledModel& m, const std::vector<Even
   return out;
 }
 
+// The windows at t > 0; those at t <= 0 without a tick are the engine's settling at the start: a
+// platform that breaks free at once.
+template <class Model>
+EngineTrace traceOf(const Model& m, const std::vector<EventRecord>& records, double v0) {
+  EngineTrace trace;
+  trace.start_mode = v0 > 0 ? PlatformMode::SlipPositive
+                            : (v0 < 0 ? PlatformMode::SlipNegative : PlatformMode::Stuck);
+  for (EngineWindow& w : windowsOf(m, records)) {
+    if (w.t <= 0 && w.ticked.empty()) {
+      trace.start_mode = w.mode_after;
+      continue;
+    }
+    trace.windows.push_back(std::move(w));
+  }
+  return trace;
+}
+
 }  // namespace
+
+EngineTrace traceOfRecords(const ScaledModel& model, const std::vector<EventRecord>& records,
+                           double v0) {
+  return traceOf(model, records, v0);
+}
+
+EngineTrace traceOfRecords(const PhysicalModel& model, const std::vector<EventRecord>& records,
+                           double v0) {
+  return traceOf(model, records, v0);
+}
 
 EngineTrace traceFrom(const Rig& rig, const ScaledModel& model, const Vec& z0, double t_end,
                       double accuracy) {
@@ -71,22 +100,10 @@ EngineTrace traceFrom(const Rig& rig, const ScaledModel& model, const Vec& z0, d
   r.sim.sample_s = r.sim.t_end_s;  // no trajectory wanted: as few rows as the schedule allows
   RecordSink sink;
   const RunReport rep = runDirectModel(r, sink);
-  EngineTrace trace;
+  EngineTrace trace = traceOf(model, sink.records, z0(ScaledModel::kV));
   trace.complete = rep.complete;
   trace.failure = rep.failure;
   trace.steps = rep.counts.steps;
-  std::vector<EngineWindow> all = windowsOf(model, sink.records);
-  // the start: a platform that breaks free at once (the engine's settling at t = 0) or a slip
-  const double v0 = z0(ScaledModel::kV);
-  trace.start_mode = v0 > 0 ? PlatformMode::SlipPositive
-                            : (v0 < 0 ? PlatformMode::SlipNegative : PlatformMode::Stuck);
-  for (EngineWindow& w : all) {
-    if (w.t <= 0 && w.ticked.empty()) {
-      trace.start_mode = w.mode_after;
-      continue;
-    }
-    trace.windows.push_back(std::move(w));
-  }
   return trace;
 }
 

@@ -16,8 +16,8 @@
 namespace metrosync::orbit {
 
 struct EngineWindow {
-  double t = 0.0;     // scaled time
-  Vec before, after;  // scaled states (d x 1)
+  double t = 0.0;     // time, in the model's units (scaled; seconds for PhysicalModel)
+  Vec before, after;  // states (d x 1), likewise
   PlatformMode mode_before = PlatformMode::Stuck, mode_after = PlatformMode::Stuck;
   std::vector<int> ticked;       // swinging-pendulum indices, ascending
   bool platform_switch = false;  // a stick/slip record in the window
@@ -43,5 +43,12 @@ struct FinalStateSink : RunSink {
 // (scaled time) with the engine at `accuracy`.
 EngineTrace traceFrom(const Rig& rig, const ScaledModel& model, const Vec& z0, double t_end,
                       double accuracy);
+
+// A run's event records (RunSink::eventRecord's, in order) as its windows at t > 0 and its mode at
+// the start, whose xdot is v0: in scaled units, or in SI for a physical rig's records.
+EngineTrace traceOfRecords(const ScaledModel& model, const std::vector<EventRecord>& records,
+                           double v0);
+EngineTrace traceOfRecords(const PhysicalModel& model, const std::vector<EventRecord>& records,
+                           double v0);
 
 }  // namespace metrosync::orbit

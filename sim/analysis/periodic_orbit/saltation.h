@@ -12,13 +12,29 @@
 //                         the slip starts with zero acceleration, so S = I to rounding)
 // Simultaneous ticks (identical metronomes in phase) are taken one after the other, in index
 // order, with no time in between: the product of their saltations.
+//
+// With the rig's parameters p (physical_model.h) the state after the window moves by
+//     dy+ = S dy- + Sp dp,  Sp = Dg_p + (f+ - Dg f-) h_p^T / (dh . f-)
+// h_p the event function's derivative in p at a fixed state (a tick: -d theta_c; a break-free:
+// d|H| - d(static bound)), Dg_p the jump map's (an impulse's size, the masses it goes through).
+// Computed in physical units; the scaled model's saltation is D^-1 S D.
 #pragma once
 
 #include "sim/analysis/periodic_orbit/engine_trace.h"
+#include "sim/analysis/periodic_orbit/physical_model.h"
 #include "sim/analysis/periodic_orbit/scaled_model.h"
 
 namespace metrosync::orbit {
 
+// A window in physical units (its states SI): the state the jump maps compute from
+// window.before, S (d x d) and, when asked for, Sp (d x P; else empty).
+struct WindowJump {
+  Vec after;
+  Mat S, Sp;
+};
+WindowJump windowJump(const PhysicalModel& model, const EngineWindow& window, bool with_parameters);
+
+// A window of the scaled model (its states scaled): S of the scaled state.
 Mat saltation(const ScaledModel& model, const EngineWindow& window);
 
 // The state after `window` as the jump maps above compute it from window.before (for the check

@@ -2,8 +2,9 @@
 // with the derivatives a periodic orbit's linearization needs: the Jacobian of the right-hand side
 // in each platform mode, the gradient of the holding force, and the Jacobians of the two jump
 // maps the event resolver applies (a tick's impulse through the mass matrix, a plastic stop).
-// The engine's equations are evaluated as they are (MetronomeEquations); only their derivatives
-// are written here, in closed form, and checked against differences in the tests.
+// The model in physical units with its derivatives (physical_model.h), seen through the scales:
+// z = y / scale, t = omega0 t-bar, so that a Jacobian is D^-1 J D (D = diag(scale)) times the time
+// factor where it is a rate.
 //
 // State z, (d x 1), d = 2n + 2, scaled: x, xdot, theta_1..theta_n, thetadot_1..thetadot_n (the n
 // swinging pendulums in rig order; the engine's layout without its two energy quadratures).
@@ -13,14 +14,11 @@
 #include <Eigen/Dense>
 #include <vector>
 
-#include "models/minimal_equations.h"
 #include "models/rig.h"
 #include "models/scaling.h"
+#include "sim/analysis/periodic_orbit/physical_model.h"
 
 namespace metrosync::orbit {
-
-using Vec = Eigen::VectorXd;
-using Mat = Eigen::MatrixXd;
 
 class ScaledModel {
  public:
@@ -31,13 +29,19 @@ class ScaledModel {
   static constexpr int kX = 0, kV = 1;
   int theta(int j) const { return 2 + j; }
   int omega(int j) const { return 2 + n_ + j; }
-  bool hasPlatform() const { return eq_.hasPlatform(); }
-  bool coulomb() const { return eq_.friction().setValued(); }
+  bool hasPlatform() const { return pm_.hasPlatform(); }
+  bool coulomb() const { return pm_.coulomb(); }
   bool hasSpring() const { return spring_; }
-  int rigIndex(int j) const { return eq_.pendulum(j).rig_index; }
-  double thetaC(int j) const { return eq_.pendulum(j).theta_c / sp_.angle_scale; }
-  bool ticks(int j) const { return eq_.pendulum(j).impulse > 0; }
+  int rigIndex(int j) const { return pm_.rigIndex(j); }
+  double thetaC(int j) const { return pm_.equations().pendulum(j).theta_c / sp_.angle_scale; }
+  bool ticks(int j) const { return pm_.equations().pendulum(j).impulse > 0; }
   const ScaledParams& scaled() const { return sp_; }
+  // the same model in physical units, and the conversions of a state
+  const PhysicalModel& physicalModel() const { return pm_; }
+  Vec toPhysical(const Vec& z) const;
+  Vec fromPhysical(const Vec& y) const;
+  // a physical state's Jacobian as the scaled state's (D^-1 J D)
+  Mat scaledJacobian(const Mat& jac_physical) const;
 
   // dz/dt in `mode` (Coulomb: stuck holds x and xdot; other laws ignore the mode).
   Vec rhs(const Vec& z, PlatformMode mode) const;
@@ -71,25 +75,11 @@ class ScaledModel {
   double seconds(double t) const { return t * sp_.time_scale_s; }
 
  private:
-  // physical <-> scaled, per component of z: physical = scale_[k] * scaled
-  std::vector<double> physical(const Vec& z) const;
-  Mat physicalJacobian(const std::vector<double>& y, PlatformMode mode) const;
-  // the platform's sums at y: G (all forces on x but friction), S = sum c_j^2 / I_j and their
-  // gradients in y (d x 1)
-  struct PlatformSums {
-    double G = 0.0, S = 0.0;
-    Vec dG, dS;
-  };
-  PlatformSums platformSums(const std::vector<double>& y) const;
-  Mat toScaled(const Mat& jac_phys, double time_factor) const;
-  Vec deltaFromPhysical(const std::vector<double>& dy) const;
-
-  direct::MetronomeEquations eq_;
+  PhysicalModel pm_;
   ScaledParams sp_;
   int n_ = 0, d_ = 0;
   bool spring_ = false;
-  double k_spring_ = 0.0;      // N/m
-  std::vector<double> scale_;  // (d x 1)
+  Vec scale_;  // (d x 1): physical = scale_ * scaled, per component
   double omega0_ = 1.0;
   bool rows_scaled_ = false;  // the engine's rows are in scaled units (a scaled rig)
 };
