@@ -79,7 +79,7 @@ SpeedFigure peerFigure(const CsvTable& c, const std::string& what, const std::st
            std::to_string(k.filled) + " cells";
   if (k.filled < k.cells)
     f.by += (f.by.empty() ? "" : "; ") + std::to_string(k.cells - k.filled) +
-            " cells not measured on both sides";
+            (k.cells - k.filled == 1 ? " cell" : " cells") + " not measured on both sides";
   return f;
 }
 

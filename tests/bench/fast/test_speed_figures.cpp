@@ -82,7 +82,7 @@ TEST(SpeedFigures, EachFigureBesideItsTargetAndByHowMuchItIsMissed) {
   EXPECT_EQ(find(f, "`run` vs the peer, N = 8").verdict, "met");
   const mb::SpeedFigure& sup = find(f, "suppression");  // met where measured, one cell empty
   EXPECT_EQ(sup.verdict, "NOT met");
-  EXPECT_EQ(sup.by, "1 cells not measured on both sides");
+  EXPECT_EQ(sup.by, "1 cell not measured on both sides");
   // the engine alone: the peer's scenes only (n32 left out)
   const mb::SpeedFigure& cpu = find(f, "engine alone vs the peer, every scene the peer runs (CPU");
   EXPECT_EQ(cpu.measured, "1.25-2.50x (2 of 2 cells, errors 1e-05 to 1e-05)");
