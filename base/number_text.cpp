@@ -31,6 +31,48 @@ constexpr std::uint64_t kPow10[] = {1ull,
                                     100000000000000000ull,
                                     1000000000000000000ull};
 
+// v / 10^e for 0 < e <= 16 (the digits dropped from Dragonbox's at most 17): a constant divisor
+// in each case, which the compiler turns into a multiplication (a 64-bit division by a variable
+// costs tens of cycles, once per number written)
+std::uint64_t divPow10(std::uint64_t v, int e) {
+  switch (e) {
+    case 1:
+      return v / 10ull;
+    case 2:
+      return v / 100ull;
+    case 3:
+      return v / 1000ull;
+    case 4:
+      return v / 10000ull;
+    case 5:
+      return v / 100000ull;
+    case 6:
+      return v / 1000000ull;
+    case 7:
+      return v / 10000000ull;
+    case 8:
+      return v / 100000000ull;
+    case 9:
+      return v / 1000000000ull;
+    case 10:
+      return v / 10000000000ull;
+    case 11:
+      return v / 100000000000ull;
+    case 12:
+      return v / 1000000000000ull;
+    case 13:
+      return v / 10000000000000ull;
+    case 14:
+      return v / 100000000000000ull;
+    case 15:
+      return v / 1000000000000000ull;
+    case 16:
+      return v / 10000000000000000ull;
+    default:
+      return v / kPow10[e];
+  }
+}
+
 // decimal digits of v > 0: log10 from the bit length (1233 / 4096 ~ log10(2)), then one compare
 int digitCount(std::uint64_t v) {
   const int bits = 64 - __builtin_clzll(v);
@@ -56,15 +98,18 @@ void writeDigits(std::uint64_t s, int k, char* out) {
   if (i == 1) out[0] = static_cast<char>('0' + s);
 }
 
-// The digits of s (d of them, no trailing zero) laid out as printf's %.<p>g lays out a value
-// whose first digit has the decimal exponent x.
+// The digits (d <= 15 of them, no trailing zero; the buffer readable to 32 characters) laid out
+// as printf's %.<p>g lays out a value whose first digit has the decimal exponent x. The digits are
+// moved 16 at a time (copies of a constant size, inlined): out must have kMaxGeneralChars of room,
+// and what lies past the returned end is scratch.
 char* layoutGeneral(bool negative, const char* digits, int d, int x, int p, char* out) {
+  constexpr size_t kMove = 16;
   if (negative) *out++ = '-';
   if (x < -4 || x >= p) {  // %e
     *out++ = digits[0];
     if (d > 1) {
       *out++ = '.';
-      std::memcpy(out, digits + 1, static_cast<size_t>(d - 1));
+      std::memcpy(out, digits + 1, kMove);
       out += d - 1;
     }
     *out++ = 'e';
@@ -82,20 +127,18 @@ char* layoutGeneral(bool negative, const char* digits, int d, int x, int p, char
     *out++ = '0';
     *out++ = '.';
     for (int i = 0; i < -x - 1; ++i) *out++ = '0';
-    std::memcpy(out, digits, static_cast<size_t>(d));
+    std::memcpy(out, digits, kMove);
     return out + d;
   }
+  std::memcpy(out, digits, kMove);
   if (d <= x + 1) {  // an integer: ddd000
-    std::memcpy(out, digits, static_cast<size_t>(d));
     out += d;
     for (int i = d; i <= x; ++i) *out++ = '0';
     return out;
   }
-  std::memcpy(out, digits, static_cast<size_t>(x + 1));  // ddd.ddd
-  out += x + 1;
-  *out++ = '.';
-  std::memcpy(out, digits + x + 1, static_cast<size_t>(d - x - 1));
-  return out + d - x - 1;
+  out[x + 1] = '.';  // ddd.ddd
+  std::memcpy(out + x + 2, digits + x + 1, kMove);
+  return out + d + 1;
 }
 
 char* toCharsGeneral(double v, int precision, char* out, char* end) {
@@ -120,10 +163,11 @@ char* writeGeneral(double v, int precision, char* out) {
   int k = digitCount(s);
   int x = dec.exponent + k - 1;  // the first digit's exponent
   if (k > p) {
-    const std::uint64_t unit = kPow10[k - p], half = unit / 2, r = s % unit;
+    const std::uint64_t unit = kPow10[k - p], half = unit / 2, q = divPow10(s, k - p),
+                        r = s - q * unit;
     constexpr std::uint64_t kDoubt = 6;  // > 5 units of S's last digit
     if (r + kDoubt >= half && r <= half + kDoubt) return toCharsGeneral(v, p, out, end);
-    s = s / unit + (r > half ? 1 : 0);
+    s = q + (r > half ? 1 : 0);
     k = p;
     if (s == kPow10[p]) {  // 9.99.. rounded up to 10.0..
       s = kPow10[p - 1];
@@ -134,7 +178,7 @@ char* writeGeneral(double v, int precision, char* out) {
     s /= 10;
     --k;
   }
-  char digits[20];
+  char digits[32];
   writeDigits(s, k, digits);
   return layoutGeneral(v < 0, digits, k, x, p, out);
 }

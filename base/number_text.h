@@ -18,7 +18,8 @@ enum class Notation { General, Scientific, Fixed };
 constexpr int kMaxGeneralChars = 32;
 
 // printf("%.<precision>g", v) for a precision of at most 17, written at out (at most
-// kMaxGeneralChars characters, no NUL); returns the end. The same characters as
+// kMaxGeneralChars characters, no NUL); returns the end. out must have room for kMaxGeneralChars
+// characters: those past the returned end may be overwritten (scratch). The same characters as
 // std::to_chars(.., chars_format::general, precision), several times faster for the usual
 // precisions (base/number_text.cpp).
 char* writeGeneral(double v, int precision, char* out);

@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # One-command set-up on a fresh Debian 12: installs what is missing (apt-get), builds Release,
 # then either runs the default rig (`run`, the main job, with its plots) or every test (`test`).
+# `run` installs and builds only what `metrosync run` needs (the packages of run_packages, the
+# target metrosync with the Simbody plugin it loads for --engine simbody); `test` adds
+# test_packages and builds everything (tests, benches, the Python module, the man page).
 #   bash tools/setup.sh run   [extra metrosync run arguments]
 #   bash tools/setup.sh test
 #   bash tools/setup.sh sanitize   (CI's second stage, .ci/run: the `fast` tests under
@@ -11,9 +14,12 @@ cd "$(dirname "$0")/.."
 mode="${1:-run}"
 shift || true
 
-packages=(cmake g++ make libsimbody-dev libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev
-          libfmt-dev  # base/number_text.cpp: the rows' text (header-only use)
-          libcli11-dev libgtest-dev libbenchmark-dev gnuplot-nox
+# what `metrosync run` needs to build and to draw its plot
+run_packages=(cmake g++ make libsimbody-dev libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev
+              libfmt-dev  # base/number_text.cpp: the rows' text (header-only use)
+              libcli11-dev zlib1g-dev gnuplot-nox)  # zlib: sweep's envelopes.csv.gz
+# what the tests, benches, the Python module, fit, animate and metrosync-mpi add
+test_packages=(libgtest-dev libbenchmark-dev
           libceres-dev  # metrosync fit (sim/analysis/fit)
           libboost-dev  # bench-only (tools/bench's Boost.Odeint peer, header-only)
           help2man dpkg-dev man-db  # the man page, the .deb's dependencies, and their tests
@@ -23,8 +29,9 @@ packages=(cmake g++ make libsimbody-dev libeigen3-dev libyaml-cpp-dev nlohmann-j
           python3-setuptools python3-wheel python3-pip python3-venv  # pip install . (tests/pip)
           jupyter-nbconvert python3-ipykernel python3-matplotlib python3-pandas  # the notebooks
           libcairo2-dev pkg-config ffmpeg  # `metrosync animate`: Cairo draws, ffmpeg encodes
-          libopenmpi-dev openmpi-bin  # metrosync-mpi: a sweep over MPI ranks (docs/cluster.md)
-          zlib1g-dev)  # sweep --keep envelope: envelopes.csv.gz
+          libopenmpi-dev openmpi-bin)  # metrosync-mpi: a sweep over MPI ranks (docs/cluster.md)
+packages=("${run_packages[@]}")
+if [ "$mode" != run ]; then packages+=("${test_packages[@]}"); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -57,13 +64,14 @@ if [ "$mode" = sanitize ]; then
 fi
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release $launcher >/dev/null
-cmake --build build -j"$jobs"
 
 case "$mode" in
   run)
+    cmake --build build -j"$jobs" --target metrosync  # with the plugins it loads
     ./build/metrosync run "$@"
     ;;
   test)
+    cmake --build build -j"$jobs"
     ctest --test-dir build --output-on-failure -j"$jobs" --timeout 900
     ;;
   *)

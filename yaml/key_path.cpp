@@ -94,6 +94,13 @@ bool KeyPath::hasWildcard() const {
                      [](const Segment& s) { return s.kind == Segment::Kind::Every; });
 }
 
+std::string KeyPath::generic() const {
+  std::string g;
+  for (const Segment& s : segments_)
+    g += (g.empty() ? "" : ".") + (s.kind == Segment::Kind::Name ? s.text : std::string("*"));
+  return g;
+}
+
 KeyAssignment parseAssignment(const std::string& text) {
   const std::size_t eq = text.find('=');
   if (eq == std::string::npos || trimmed(text.substr(0, eq)).empty())

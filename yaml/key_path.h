@@ -54,6 +54,9 @@ class KeyPath {
   std::string parent() const;
   // Does a segment stand for every element of a list?
   bool hasWildcard() const;
+  // The key with every index written as '*' ("metronomes.*.pendulum.length" for
+  // metronomes.0.pendulum.length): the form a table of keys is written in.
+  std::string generic() const;
 
   bool operator==(const KeyPath& o) const { return text_ == o.text_; }
   bool operator!=(const KeyPath& o) const { return text_ != o.text_; }

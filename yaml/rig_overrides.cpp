@@ -21,7 +21,7 @@ std::string schemaPathError(const Schema& s0, const Schema* other, Units units,
         return here + ": '*' stands for every element of a list, and " +
                (done.empty() ? std::string("the rig") : done) + " is a map of keys";
       const Schema* child = s->key(seg.text);
-      if (!child) return here + ": " + unknownKeyMessage(seg.text, *s, other, otherUnits(units));
+      if (!child) return here + ": " + unknownKeyMessage(done, seg.text, *s, other, units);
       s = child;
       other = other ? other->key(seg.text) : nullptr;
     } else if (s->kind == Schema::Kind::List) {

@@ -4,6 +4,7 @@
 
 #include "contact/law_registry.h"
 #include "yaml/spelling.h"
+#include "yaml/units_advice.h"
 
 namespace metrosync::rigfile {
 
@@ -148,9 +149,13 @@ std::optional<Units> unitsOf(const Node& root) {
   return std::nullopt;
 }
 
-std::string unknownKeyMessage(const std::string& key, const Schema& here, const Schema* other,
-                              const char* other_units) {
-  if (other && other->key(key)) return std::string("only with units: ") + other_units;
+std::string unknownKeyMessage(const std::string& parent, const std::string& key, const Schema& here,
+                              const Schema* other, Units units) {
+  if (other && other->key(key)) {
+    const std::string advice = otherUnitsAdvice(parent, key, units);
+    return std::string("only with units: ") + otherUnits(units) +
+           (advice.empty() ? "" : " (" + advice + ")");
+  }
   std::vector<std::string> names;
   for (const auto& kv : here.keys) names.push_back(kv.first);
   if (auto c = closest(key, names)) return "unknown key (did you mean '" + *c + "'?)";
@@ -192,7 +197,7 @@ void checkShape(const Node& n, const Schema& s, const Schema* other, Units units
         const std::string value =
             e.value.kind == Node::Kind::Scalar ? " = " + shown(e.value) : std::string();
         src.fail(e.key_at,
-                 child_path + value + ": " + unknownKeyMessage(e.key, s, other, otherUnits(units)));
+                 child_path + value + ": " + unknownKeyMessage(path, e.key, s, other, units));
       }
       checkShape(e.value, *child, other ? other->key(e.key) : nullptr, units, child_path, src);
     }

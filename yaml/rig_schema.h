@@ -37,10 +37,11 @@ const char* otherUnits(Units u);
 // The rig's units if its `units` key says physical or scaled.
 std::optional<Units> unitsOf(const Node& root);
 
-// What is wrong with `key` in a map of schema `here` (`other`: the same place in the other
-// units' schema, if any).
-std::string unknownKeyMessage(const std::string& key, const Schema& here, const Schema* other,
-                              const char* other_units);
+// What is wrong with `key` in a map of schema `here` at `parent` (as typed; `other`: the same
+// place in the other units' schema, if any), in a rig of `units`: a key of the other units names
+// the key to write instead (yaml/units_advice.h).
+std::string unknownKeyMessage(const std::string& parent, const std::string& key, const Schema& here,
+                              const Schema* other, Units units);
 
 // Shape pass: unknown keys anywhere, and maps, lists and single values where they belong. Runs
 // before any value is read, so that a typo is reported as a typo and not as a missing key.

@@ -31,7 +31,8 @@ class Source {
   const std::string& name() const { return name_; }
   const std::vector<std::string>& overrides() const { return overrides_; }
 
-  [[noreturn]] void fail(const Where& at, const std::string& what) const {
+  // "NAME:LINE:COL: what", or "NAME: --set K=V: what" for a node a --set wrote
+  std::string message(const Where& at, const std::string& what) const {
     std::ostringstream os;
     os << printable(name_);
     if (at.origin > 0)
@@ -39,7 +40,10 @@ class Source {
     else if (at.line > 0)
       os << ':' << at.line << ':' << at.col;
     os << ": " << what;
-    throw RigError(os.str());
+    return os.str();
+  }
+  [[noreturn]] void fail(const Where& at, const std::string& what) const {
+    throw RigError(message(at, what));
   }
 
  private:

@@ -1,4 +1,4 @@
-// Internal to yaml/: "did you mean ...?" for a mistyped key or name.
+// "did you mean ...?" for a mistyped key or name (yaml/; and the command line's unknown command).
 #pragma once
 
 #include <optional>

@@ -62,8 +62,8 @@ std::optional<long> plainInteger(const std::string& text) {
   return std::stol(t);
 }
 
-// "KEY=V1,V2,...": the values as listed (at least two, in any order), for the paper's runs
-// (mu = 0.2, 0.3, 0.4) and the Python module's vary=[...]. `a` holds the key and spec.
+// "KEY=V1,V2,..." or "KEY=V": the values as listed (one or more, in any order), for the paper's
+// runs (mu = 0.2, 0.3, 0.4) and the Python module's vary=[...]. `a` holds the key and spec.
 SweepAxis listAxis(SweepAxis a, const std::string& text) {
   for (const auto& item : split(a.spec, ',')) {
     double v = 0.0;
@@ -75,9 +75,9 @@ SweepAxis listAxis(SweepAxis a, const std::string& text) {
     a.texts.push_back(sweepValueText(v));
     a.values.push_back(std::strtod(a.texts.back().c_str(), nullptr));
   }
-  if (a.values.size() < 2 || static_cast<long>(a.values.size()) > kMaxAxisCount)
-    throw SweepInputError("--vary " + text + ": a list needs 2 to " +
-                          std::to_string(kMaxAxisCount) + " values (one value: V:V:1)");
+  if (static_cast<long>(a.values.size()) > kMaxAxisCount)
+    throw SweepInputError("--vary " + text + ": a list takes at most " +
+                          std::to_string(kMaxAxisCount) + " values");
   a.count = static_cast<long>(a.values.size());
   a.from = a.values.front();
   a.to = a.values.back();
@@ -180,7 +180,9 @@ SweepAxis parseVary(const std::string& text) {
   if (a.key.empty() || a.key.find_first_of(" \t:=") != std::string::npos)
     throw SweepInputError(usage + ": no key before '='");
   if (trim(a.spec).empty()) throw SweepInputError("--vary " + text + ": no values after '='");
-  if (a.spec.find(',') != std::string::npos) return listAxis(a, text);
+  // a list, or one value alone (no ':')
+  if (a.spec.find(',') != std::string::npos || a.spec.find(':') == std::string::npos)
+    return listAxis(a, text);
   const std::vector<std::string> f = split(a.spec, ':');
   if (f.size() < 3 || f.size() > 5) throw SweepInputError(usage);
   try {

@@ -7,7 +7,7 @@
 //   grid       --vary KEY=FROM:TO:COUNT, COUNT values from FROM to TO, both included (":open"
 //              after COUNT leaves TO out: [FROM, TO), for angles; ":log" spaces them evenly in
 //              log(value), 0 < FROM <= TO); FROM and TO may be written with pi ("2pi", "pi/2",
-//              "-0.5*pi"); --vary KEY=V1,V2,... lists the values (two or more, as given). A key
+//              "-0.5*pi"); --vary KEY=V1,V2,... lists the values (one or more, as given). A key
 //              "metronomes.*.REST" sets metronomes.i.REST of every metronome to the point's value.
 //              Any number of --vary (an N-D grid, at most kMaxGridPoints points unless forced).
 //              Grid index g = ((i_1 * COUNT_2 + i_2) * COUNT_3 + i_3) ...: the first --vary is

@@ -119,8 +119,18 @@ void AtomicFile::write(const std::string& text) {
 
 void AtomicFile::writeLine(const std::string& line) {
   write(line);
-  write("\n");
-  // flush about once a second (the clock costs far less than formatting the line)
+  if (std::fputc('\n', file_) == EOF)
+    throw std::runtime_error("cannot write " + temp_path_ + ": " + errnoText());
+  flushNowAndThen();
+}
+
+void AtomicFile::writeLines(const std::string& lines) {
+  write(lines);
+  flushNowAndThen();
+}
+
+// flush about once a second (the clock costs far less than formatting the lines)
+void AtomicFile::flushNowAndThen() {
   const auto now = std::chrono::steady_clock::now();
   if (now - last_flush_ >= std::chrono::seconds(1)) {
     if (std::fflush(file_) != 0)

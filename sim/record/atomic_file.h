@@ -28,6 +28,8 @@ class AtomicFile {
   void write(const std::string& text);
   // text + '\n'; flushes to disk about once a second, so a long run shows progress on disk
   void writeLine(const std::string& line);
+  // lines already ending in '\n' (a block of rows at once); flushes as writeLine does
+  void writeLines(const std::string& lines);
   // flush, sync, close and rename (inside a CommitBatch: flush, close and queue); throws
   // std::runtime_error on an I/O error (the temporary file is then removed)
   void commit();
@@ -39,6 +41,8 @@ class AtomicFile {
 
  private:
   std::string final_path_, temp_path_;
+  void flushNowAndThen();
+
   std::FILE* file_ = nullptr;
   std::chrono::steady_clock::time_point last_flush_;
 };

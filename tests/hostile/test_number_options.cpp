@@ -62,7 +62,7 @@ TEST(NumberOptions, TheIssuesCasesAreRefusedQuotingTheValueAsTyped) {
       {"continue --param platform.friction.mu --to 0.5 --max-points 1",
        "--max-points 1: must be an integer from 2"},
       {"measure --metronome 0", "--metronome 0: must be an integer from 1"},
-      {"validate --jobs -1", "--jobs -1: must be an integer from 0"},
+      {"validate --jobs -1", "--jobs -1: must be an integer from 1"},
   };
   for (const Case& c : cases) {
     const std::string out = scratchDir("numbers", "case", false);

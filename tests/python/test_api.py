@@ -203,3 +203,25 @@ def test_a_failed_simulation_raises_with_the_partial_result():
     assert "event storm" in str(e.value)
     assert e.value.result.complete is False
     assert len(e.value.result.trajectory["t"]) >= 1
+
+
+# Issue 37, item 6: an argument a call does not take is said as such, with the way to do what
+# was meant; a slip of a simulation key is still the loader's "did you mean".
+def test_a_call_refuses_an_argument_it_does_not_take():
+    with pytest.raises(TypeError) as e:
+        metrosync.run(EXPERIMENT, overrides={"platform.friction.mu": 0.003})
+    said = str(e.value)
+    assert "run() got an unexpected keyword argument 'overrides'" in said
+    assert "load_rig(rig, overrides={KEY: value})" in said
+    for name in ("accuracy", "duration", "integrator", "sample", "tau"):
+        assert name in said
+    with pytest.raises(TypeError, match=r"^sweep\(\) got an unexpected keyword argument 'sets'"):
+        metrosync.sweep(MAP_RIG, vary={"platform.friction.mu": (0, 1, 2)}, sets=["x=1"])
+    with pytest.raises(metrosync.RigError, match="did you mean 'duration'"):
+        metrosync.run(EXPERIMENT, durration=3)
+
+
+def test_rig_error_says_what_it_is():
+    doc = metrosync.RigError.__doc__ or ""
+    assert "before anything runs" in doc and "SimulationError" in doc
+    assert issubclass(metrosync.RigError, ValueError)

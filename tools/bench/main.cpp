@@ -663,7 +663,8 @@ CLI::App* addPrecisionCommand(CLI::App& app, Args& a) {
                  "every scene)");
   pc->add_option("--peer", a.peer_path,
                  "the careful peer's binary (methods peer:dopri5, peer:rkf78); default: "
-                 "$METROSYNC_PEER, else what ../shared/peer/build.sh beside the source tree "
+                 "$METROSYNC_PEER, else what shared/peer/build.sh beside the source tree (not part "
+                 "of this repository) "
                  "builds");
   return pc;
 }

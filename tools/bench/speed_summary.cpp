@@ -115,8 +115,9 @@ std::string ratioSentence(const SpeedFacts& f, const SpeedInputs& in) {
            "README), so there is no ratio at equal error. ";
   std::ostringstream os;
   os << "Against the careful peer " << peerName(in)
-     << " (a C++17 program on Boost.Odeint: dopri5 and Fehlberg 7(8), fixed-size state, the same "
-        "equations and events), at equal final-state error from "
+     << " (a C++17 program on Boost.Odeint, the project's independent peer, not part of this "
+        "repository: dopri5 and Fehlberg 7(8), fixed-size state, the same equations and events), "
+        "at equal final-state error from "
      << errorLabel(f.err_hi) << " to " << errorLabel(f.err_lo)
      << " (CPU medians, integration and events only on both sides), the direct engine is ";
   int cells = 0, met = 0;

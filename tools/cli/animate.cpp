@@ -17,6 +17,7 @@
 #include "tools/cli/animation_track.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/number_option.h"
+#include "tools/cli/range_warnings.h"
 #include "tools/report/outputs.h"
 #include "tools/report/plot.h"
 #include "tools/report/video_pipe.h"
@@ -97,9 +98,10 @@ std::string speedText(double speed, bool physical) {
 CLI::App* addAnimateCommand(CLI::App& app, AnimateOptions& opt) {
   CLI::App* cmd = app.add_subcommand(
       "animate", "draw the rig in motion (full model) into an MP4 or GIF video through ffmpeg");
-  cmd->add_option("RIG", opt.rig.rig_path,
-                  "rig file (YAML, SPEC section 1, or a network of platforms); default: the "
-                  "built-in rig");
+  cmd->add_option(
+      "RIG", opt.rig.rig_path,
+      "rig file (YAML, docs/contract.md section 1, or a network of platforms); default: the "
+      "built-in rig");
   cmd->add_option("--set", opt.rig.sets, "override a rig key, e.g. --set platform.friction.mu=0.3")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
@@ -118,6 +120,7 @@ CLI::App* addAnimateCommand(CLI::App& app, AnimateOptions& opt) {
       ->type_name("WxH");
   cmd->add_option("--engine", opt.rig.engine, fullEngineHelp());
   cmd->add_flag("-q,--quiet", opt.rig.quiet, "no progress bar and no summary");
+  addStrictFlag(cmd, opt.rig.strict);
   cmd->footer(
       "Frames: fps * (to - from) / speed of them, at the instants k * speed / fps from --from "
       "(rounded to that grid): each is a row of the run's trajectory. Exit codes: 0 success; 2 bad "
@@ -133,11 +136,15 @@ bool animationAvailable() {
 namespace {
 
 // The run and its frames: one platform on the chosen full-model engine, or a network.
-AnimationTrack simulate(const AnimateOptions& opt, AnimationRequest& req, std::string& rig_name) {
+AnimationTrack simulate(const AnimateOptions& opt, AnimationRequest& req, std::string& rig_name,
+                        bool& physical) {
   const Options& o = opt.rig;
   const LoadOptions lo = engineLoadOptions(HUGE_VAL);  // animate writes no trajectory
   const std::string text = o.rig_path.empty() ? defaultRigYaml() : readRigFile(o.rig_path);
-  if (const std::optional<Network> net = loadPlatformsNetwork(text, displayName(opt), o.sets, lo)) {
+  const std::optional<Network> net = loadPlatformsNetwork(text, displayName(opt), o.sets, lo);
+  if (!net) loadRigText(text, displayName(opt), o.sets, lo);  // a bad rig said as such first
+  checkSensibleRanges(text, displayName(opt), o.sets, o.strict);
+  if (net) {
     if (!o.engine.empty() && o.engine != "direct")
       throw UsageError("--engine " + o.engine + ": a network runs on the direct engine only");
     rig_name = net->name;
@@ -150,7 +157,7 @@ AnimationTrack simulate(const AnimateOptions& opt, AnimationRequest& req, std::s
   const Engine& engine = chooseEngine(o.engine, "full", rig, displayName(opt));
   rig_name = rig.name;
   const ScaledParams sp = computeScaled(rig);
-  const bool physical = rig.units == Units::Physical;
+  physical = rig.units == Units::Physical;
   // a scaled rig's times are in tau: t = tau / epsilon (its time_scale is 1)
   setTimes(opt, physical ? rig.sim.t_end_s : sp.tau_end,
            physical ? 1.0 : sp.time_scale_s / sp.epsilon, req);
@@ -180,8 +187,9 @@ int animateCommand(const AnimateOptions& opt) {
   parseSize(opt, out.gif, req);
   if (animationAvailable()) animatePlugin();  // Cairo now: a missing plugin before the run
   std::string rig_name;
+  bool physical = true;
   const auto t0 = std::chrono::steady_clock::now();
-  const AnimationTrack tr = simulate(opt, req, rig_name);
+  const AnimationTrack tr = simulate(opt, req, rig_name, physical);
   out = checkOutput(opt, rig_name);
   if (!tr.complete) {
     std::cerr << "metrosync: error: full model: " << tr.failure
@@ -189,16 +197,18 @@ int animateCommand(const AnimateOptions& opt) {
     return kSimulationFailed;
   }
 #if METROSYNC_HAVE_CAIRO
-  const double sim_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   animatePlugin().render(tr, {out.path, ffmpeg, req.width, req.height, req.fps, out.gif},
                          opt.rig.quiet);
   const double all_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double video_s = static_cast<double>(tr.frames.size()) / req.fps;
+  // the motion shown, in the rig's time (seconds, or tau for a scaled rig), then the work's time
+  const std::string motion = physical ? numberText(video_s * opt.speed, 4) + " s of motion"
+                                      : "tau " + numberText(video_s * opt.speed, 4);
   if (!opt.rig.quiet)
     std::cout << out.path << ": " << tr.frames.size() << " frames, " << req.width << "x"
               << req.height << ", " << numberText(req.fps) << " fps, "
-              << numberText(static_cast<double>(tr.frames.size()) / req.fps, 2, Notation::Fixed)
-              << " s of video (simulation " << numberText(sim_s, 2, Notation::Fixed) << " s, total "
-              << numberText(all_s, 1, Notation::Fixed) << " s)\n";
+              << numberText(video_s, 2, Notation::Fixed) << " s of video showing " << motion
+              << " (run and drawn in " << numberText(all_s, 3) << " s)\n";
 #else
   (void)t0;  // not reached: animationAvailable() is false
 #endif

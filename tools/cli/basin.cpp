@@ -19,6 +19,7 @@
 #include "tools/cli/network_sweep.h"
 #include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
+#include "tools/cli/range_warnings.h"
 #include "tools/cli/sweep_point_run.h"
 #include "tools/cli/sweep_summary.h"
 #include "tools/report/basin_files.h"
@@ -105,6 +106,7 @@ BasinPlan planBasin(const BasinOptions& opt) {
   const std::optional<Network> net =
       loadPlatformsNetwork(plan.text, name, opt.run.sets, engineLoadOptions(HUGE_VAL));
   const Rig base = net ? networkSweepRig(*net) : loadRigText(plan.text, name, opt.run.sets);
+  checkSensibleRanges(plan.text, name, opt.run.sets, opt.run.strict);  // the base rig only
   // the keys resolved against the rig (docs/keys.md), no two setting one rig key
   std::vector<OptionKey> keys;
   for (const auto& r : opt.random)
@@ -229,7 +231,7 @@ CLI::App* addBasinCommand(CLI::App& app, BasinOptions& opt) {
       "basin stability: the fraction of random starts ending in each regime, with 95% "
       "Wilson intervals");
   c->add_option("RIG", opt.run.rig_path,
-                "rig file (YAML, SPEC section 1); default: the built-in rig");
+                "rig file (YAML, docs/contract.md section 1); default: the built-in rig");
   c->add_option("--random", opt.random,
                 "a rig key drawn uniformly from FROM to TO for each sample; a phase (a key "
                 "ending in phi or psi) on the circle, wrapped to [0, 2 pi). "
@@ -254,6 +256,7 @@ CLI::App* addBasinCommand(CLI::App& app, BasinOptions& opt) {
              "worker threads (default: the number of cores; never more than the samples)");
   c->add_option("--out", opt.run.out, "output directory (default: runs/<rig name>-basin)")
       ->type_name("DIR");
+  addStrictFlag(c, opt.run.strict);
   c->add_flag("--no-plot", opt.no_plot, "no basin.png");
   c->add_flag("-q,--quiet", opt.run.quiet, "no table on stdout");
   c->footer(

@@ -1,7 +1,9 @@
 #include "tools/cli/command_line.h"
 
+#include <algorithm>
 #include <exception>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include "sim/engines/plugin_loader.h"
@@ -9,9 +11,11 @@
 #include "sim/record/safe_open.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/number_option.h"
+#include "tools/cli/range_warnings.h"
 #include "tools/report/build_info.h"
 #include "tools/report/plot.h"
 #include "yaml/rig_loader.h"
+#include "yaml/spelling.h"
 #include "yaml/utf8.h"
 
 namespace metrosync::cli {
@@ -20,15 +24,17 @@ namespace {
 
 // RIG, --set, --out, --quiet: shared by run and compare (scale has no --out).
 void addRigOptions(CLI::App* cmd, Options& opt, bool with_out) {
-  cmd->add_option("RIG", opt.rig_path,
-                  "rig file (YAML, SPEC section 1); default: the built-in rig, the paper's "
-                  "experiment (two Wittner metronomes on low-friction rollers, started near "
-                  "antiphase)");
+  cmd->add_option(
+      "RIG", opt.rig_path,
+      "rig file (YAML, docs/contract.md section 1); default: the built-in rig, the paper's "
+      "experiment (two Wittner metronomes on low-friction rollers, started near "
+      "antiphase)");
   cmd->add_option("--set", opt.sets,
                   "override a rig key, e.g. --set platform.friction.mu=0.3, "
                   "--set metronomes.1.start.phi=3.54 (list indices from 0); repeatable")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
+  addStrictFlag(cmd, opt.strict);
   if (with_out) {
     cmd->add_option("--out", opt.out,
                     "output directory (default: runs/<rig name>-<command>, with -<hash of the "
@@ -162,8 +168,32 @@ std::vector<Command> addRigCommands(CLI::App& app, Options& opt) {
           {addScaleCommand(app, opt), [&opt] { return scaleCommand(opt); }}};
 }
 
+namespace {
+
+// `metrosync runn`: the first word names no command; what it is closest to, else every command.
+std::optional<std::string> unknownCommand(CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return std::nullopt;
+  const std::string word = argv[1];
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    names.push_back(sub->get_name());
+  if (std::find(names.begin(), names.end(), word) != names.end()) return std::nullopt;
+  if (const auto c = rigfile::closest(word, names))
+    return "unknown command '" + word + "' (did you mean '" + *c + "'?)";
+  std::string all;
+  for (const std::string& n : names) all += (all.empty() ? "" : ", ") + n;
+  return "unknown command '" + word + "' (the commands: " + all + ")";
+}
+
+}  // namespace
+
 int runCommandLine(CLI::App& app, const std::vector<Command>& commands, int argc, char** argv) {
   setCommandLine(argc, argv);  // summary.json's command_line
+  if (const auto unknown = unknownCommand(app, argc, argv)) {
+    std::cerr << "metrosync: error: " << terminalText(*unknown) << "\n"
+              << "Run 'metrosync --help' for usage.\n";
+    return kBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -17,6 +17,7 @@
 #include "sim/record/atomic_file.h"
 #include "tools/cli/engines.h"
 #include "tools/cli/phase_clock.h"
+#include "tools/cli/range_warnings.h"
 #include "tools/report/comparison_csv.h"
 #include "tools/report/network_files.h"
 #include "tools/report/network_plot.h"
@@ -79,6 +80,7 @@ LoadedRig loadAndCheck(const Options& opt, const std::string& model) {
   const LoadOptions lo = engineLoadOptions(opt.max_output);
   r.text = rigText(opt);
   r.rig = loadRigText(r.text, rigDisplayName(opt), opt.sets, lo);
+  checkSensibleRanges(r.text, rigDisplayName(opt), opt.sets, opt.strict);
 
   // the integrator is the engine's business, so the loader leaves its name to us
   r.engine = &chooseEngine(opt.engine, model, r.rig, rigDisplayName(opt));
@@ -260,9 +262,9 @@ void reportFailure(const std::string& model, const std::string& failure,
 }
 
 // summary.json's "files" (and the file itself, last: a summary.json means the run's files are
-// all there), with a folder; without one an empty list.
+// all there), with a folder, summary.json added to `files`; without one an empty list.
 void finishSummary(nlohmann::json& summary, const std::optional<OutputDir>& dir,
-                   std::vector<std::string> files) {
+                   std::vector<std::string>& files) {
   if (!dir) {
     summary["files"] = nlohmann::json::array();
     return;
@@ -330,15 +332,18 @@ RunOutcome runImpl(const Options& opt, bool keep) {
   markPhase("args");
   const std::string text = rigText(opt);
   if (const std::optional<Network> net = loadPlatformsNetwork(text, rigDisplayName(opt), opt.sets,
-                                                              engineLoadOptions(opt.max_output)))
+                                                              engineLoadOptions(opt.max_output))) {
+    checkSensibleRanges(text, rigDisplayName(opt), opt.sets, opt.strict);
     return runNetwork(opt, *net, text);
+  }
   RunOutcome out;
   LoadedRig r = loadAndCheck(opt, opt.model);
   markPhase("rig");
   const std::string model = r.engine->model();
   installStopHandlers();  // before any file exists, so that no signal can leave a bare .part
-  const std::optional<OutputDir> dir = openOutputDir(opt, r.rig.name, "run");
   const bool full = model == "full";
+  // each model its own default folder: `run` then `run --model slow` keep both runs' files
+  const std::optional<OutputDir> dir = openOutputDir(opt, r.rig.name, full ? "run" : "run-slow");
 
   // the run's files made durable with one sync (sim/record/atomic_file.h): all of them and
   // summary.json with --no-plot; else the result files, then the plot and summary.json

@@ -19,6 +19,7 @@
 #include "tools/cli/engines.h"
 #include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
+#include "tools/cli/range_warnings.h"
 #include "tools/report/continuation_report.h"
 #include "yaml/rig_loader.h"
 
@@ -380,6 +381,7 @@ CLI::App* addContinueCommand(CLI::App& app) {
   c->add_flag("--all", opt.all, "every locked state at the start value (Newton from a grid)");
   c->add_option("--out", opt.out, "output directory (default runs/<rig name>-continue)");
   c->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
+  addStrictFlag(c, opt.strict);
   c->add_flag("--no-cycles", opt.no_cycles,
               "do not follow the limit cycle born at each Hopf point (cycles.csv)");
   addInteger(c, "--cycle-points", opt.cycle_points, 2, kMaxContinuationPoints,
@@ -428,6 +430,8 @@ ContinuationResult slowFlowContinuation(const ContinueOptions& opt) {
 }
 
 int continueCommand(const ContinueOptions& opt) {
+  loadContinueRig(opt, {});  // a bad rig is said as such before its ranges are judged
+  checkSensibleRanges(rigText(opt), rigDisplay(opt), opt.sets, opt.strict);
   if (opt.model == "full") return continueFullCommand(opt);
   const ContinuationResult result = slowFlowContinuation(opt);
   const Rig rig = loadContinueRig(opt, {opt.param + "=" + roundTripText(result.from)});

@@ -23,6 +23,7 @@ struct ContinueOptions {
   bool all = false;               // --all: every locked state at the start value
   std::string out;                // --out DIR; empty: runs/<rig name>-continue
   bool quiet = false;
+  bool strict = false;     // --strict: sensible ranges (docs/sensible-ranges.md)
   bool no_cycles = false;  // --no-cycles
   int cycle_points = 100;  // --cycle-points: each limit cycle's point budget
   std::string fold_key;    // --fold KEY2: continue each fold in KEY and KEY2

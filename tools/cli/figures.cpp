@@ -107,8 +107,8 @@ CLI::App* addFiguresCommand(CLI::App& app, FiguresOptions& opt) {
   cmd->add_option("--rigs", opt.rigs,
                   "the shipped rigs' directory (default: as `validate` finds it)")
       ->type_name("DIR");
-  addInteger(cmd, "--jobs", opt.jobs, 0, kMaxJobs,
-             "runs at once (default and 0: one per hardware thread)");
+  addInteger(cmd, "--jobs", opt.jobs, 1, kMaxJobs,
+             "runs at once (default: one per hardware thread)");
   cmd->add_option("--engine", opt.engine, "the full model's engine")->capture_default_str();
   cmd->add_flag("-q,--quiet", opt.quiet, "no progress on stdout");
   cmd->footer(

@@ -16,7 +16,7 @@ struct FiguresOptions {
   std::vector<std::string> only;     // --only ID: f4.1 .. f4.4, exp1; empty: all
   bool quick = false;                // --quick: a 12 x 12 regime map instead of 40 x 40
   std::string rigs;                  // --rigs DIR; empty: found as validate finds them
-  int jobs = 0;                      // 0: one per hardware thread
+  int jobs = 0;                      // --jobs N; 0 (not given): one per hardware thread
   std::string engine = "direct";     // the full model's engine
   bool quiet = false;
 };

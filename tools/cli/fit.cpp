@@ -14,6 +14,7 @@
 #include "tools/cli/fit_inputs.h"
 #include "tools/cli/number_option.h"
 #include "tools/cli/option_keys.h"
+#include "tools/cli/range_warnings.h"
 #include "yaml/key_path.h"
 #include "yaml/rig_loader.h"
 #include "yaml/rig_writer.h"
@@ -166,6 +167,7 @@ std::string fittedRig(const FitOptions& opt, const std::string& text, const FitR
 FitReport runFit(const FitOptions& opt) {
   const std::string text = readRigFile(opt.rig_path);
   const Rig rig = loadPhysicalRig(text, opt.rig_path, opt.sets);
+  checkSensibleRanges(text, opt.rig_path, opt.sets, opt.strict);
   const MeasuredData data = loadData(opt.data_path, rig);
   const Engine& engine = chooseEngine("", opt.model, rig, opt.rig_path);
   if (opt.noise && !(*opt.noise > 0)) throw UsageError("--noise must be > 0");
@@ -292,6 +294,7 @@ CLI::App* addFitOptions(CLI::App* cmd, FitOptions& opt) {
       ->type_name("DIR");
   cmd->add_flag("-q,--quiet", opt.quiet, "no summary on stdout");
   cmd->add_flag("--no-plot", opt.no_plot, "write no fit.png");
+  addStrictFlag(cmd, opt.strict);
   return cmd;
 }
 

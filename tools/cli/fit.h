@@ -24,6 +24,7 @@ struct FitOptions {
   bool profile = false;           // --profile: profile every key (always with --model slow)
   std::string out;                // --out DIR; empty: runs/<rig name>-fit
   bool quiet = false, no_plot = false;
+  bool strict = false;  // --strict: sensible ranges (docs/sensible-ranges.md)
 };
 
 struct MeasureOptions {
@@ -33,6 +34,7 @@ struct MeasureOptions {
   int metronome = 1;                    // --metronome I: whose theta_I the decay and steady use
   std::string out;                      // --out DIR; empty: runs/<rig name>-measure
   bool quiet = false;
+  bool strict = false;  // --strict
 };
 
 CLI::App* addFitCommand(CLI::App& app, FitOptions& opt);

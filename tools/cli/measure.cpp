@@ -9,6 +9,7 @@
 #include "tools/cli/fit.h"
 #include "tools/cli/fit_inputs.h"
 #include "tools/cli/number_option.h"
+#include "tools/cli/range_warnings.h"
 #include "yaml/rig_limits.h"
 #include "yaml/rig_loader.h"
 #include "yaml/rig_writer.h"
@@ -80,6 +81,7 @@ CLI::App* addMeasureCommand(CLI::App& app, MeasureOptions& opt) {
   cmd->add_option("--out", opt.out, "output directory (default: runs/<rig name>-measure)")
       ->type_name("DIR");
   cmd->add_flag("-q,--quiet", opt.quiet, "no JSON on stdout");
+  addStrictFlag(cmd, opt.strict);
   cmd->footer(
       "Writes DIR/measure.json (each estimate with its standard error, and the --set lines that "
       "put them in the rig) and prints it. Exit codes: 0 measured; 2 bad command line, rig or data "
@@ -177,6 +179,7 @@ int measureCommand(const MeasureOptions& opt) {
   const std::string name = opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
   const std::string text = opt.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.rig_path);
   const Rig rig = loadPhysicalRig(text, name, opt.sets);
+  checkSensibleRanges(text, name, opt.sets, opt.strict);
   const int i = opt.metronome - 1;
   if (i >= static_cast<int>(rig.metronomes.size()))
     throw UsageError("--metronome " + std::to_string(opt.metronome) + ": the rig has " +

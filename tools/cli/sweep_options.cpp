@@ -3,6 +3,7 @@
 
 #include "tools/cli/engines.h"
 #include "tools/cli/number_option.h"
+#include "tools/cli/range_warnings.h"
 #include "tools/report/plot.h"
 
 namespace metrosync::cli {
@@ -39,15 +40,16 @@ namespace {
 // sweep's inputs and how it runs: RIG, --vary, --set, --model, --engine, --jobs, --resume,
 // --shard, --out, -q.
 void addSweepRunOptions(CLI::App& sweep, SweepOptions& opt) {
-  sweep.add_option("RIG", opt.rig_path,
-                   "rig file (YAML, SPEC section 1); default: the built-in rig (the paper's "
-                   "experiment)");
+  sweep.add_option(
+      "RIG", opt.rig_path,
+      "rig file (YAML, docs/contract.md section 1); default: the built-in rig (the paper's "
+      "experiment)");
   sweep
       .add_option(
           "--vary", opt.vary,
           "a key and its values: COUNT values from FROM to TO, both included; ':open' "
           "leaves TO out ([FROM, TO), for angles); ':log' spaces them evenly in log "
-          "(0 < FROM <= TO); or the values listed, V1,V2,... "
+          "(0 < FROM <= TO); or the values listed, V1,V2,... or one value V "
           "(e.g. platform.friction.mu=0.2,0.3,0.4). Values may use pi: "
           "--vary platform.friction.mu=0:0.8:41, --vary "
           "metronomes.0.start.phi=0:2pi:100:open, --vary platform.friction.mu=0.01:10:31:log. "
@@ -71,6 +73,7 @@ void addSweepRunOptions(CLI::App& sweep, SweepOptions& opt) {
   addInteger(&sweep, "--jobs", opt.jobs, 1, kMaxJobs,
              "worker threads (default: the number of cores; never more than the points); the "
              "results do not depend on it");
+  addStrictFlag(&sweep, opt.strict);
   sweep.add_flag("--resume", opt.resume,
                  "continue the sweep in --out DIR: points already in its regimes.csv are "
                  "kept, the others run (the command line must be the same)");

@@ -26,6 +26,7 @@ struct SweepOptions {
   std::string engine;       // a registry name (sim/engines/engine.h); empty: the model's default
   int jobs = 0;             // worker threads; 0: the number of cores
   bool resume = false;
+  bool strict = false;              // --strict: sensible ranges (docs/sensible-ranges.md)
   std::string shard;                // "K/N"; empty: the whole grid
   std::vector<std::string> dirs;    // merge: the sweep output directories to join
   std::string plot_format = "png";  // --plot-format png|svg|pdf (the maps)

@@ -7,6 +7,7 @@
 #include "tools/cli/engines.h"
 #include "tools/cli/network_sweep.h"
 #include "tools/cli/option_keys.h"
+#include "tools/cli/range_warnings.h"
 #include "tools/cli/sweep_point_run.h"
 #include "tools/report/outputs.h"
 #include "yaml/network_loader.h"
@@ -140,6 +141,7 @@ SweepPlan planSweep(const SweepOptions& opt) {
   const std::optional<Network> net =
       loadPlatformsNetwork(plan.text, displayName(opt), opt.sets, engineLoadOptions(HUGE_VAL));
   plan.base = net ? networkSweepRig(*net) : loadRigText(plan.text, displayName(opt), opt.sets);
+  checkSensibleRanges(plan.text, displayName(opt), opt.sets, opt.strict);  // the base rig only
   plan.random = planPointBasin(opt, plan.grid, sweepKeys(opt, plan.text));
   plan.n = static_cast<int>(plan.base.metronomes.size());
   if (net && !opt.keep.empty())

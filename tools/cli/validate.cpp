@@ -57,14 +57,15 @@ CLI::App* addValidateCommand(CLI::App& app, ValidateOptions& opt) {
   cmd->add_option("--out", opt.out, "output directory")->type_name("DIR")->capture_default_str();
   cmd->add_flag("--quick", opt.quick,
                 "the reduced plan (fewer drive strengths, two convergence scenarios, the rigs' "
-                "own epsilon only, six friction values): a few minutes instead of ~20");
+                "own epsilon only, six friction values): a fraction of the full plan's time "
+                "(both measured: README.md, Validation)");
   cmd->add_option("--rigs", opt.rigs,
                   "the shipped rigs' directory (default: yaml/rigs under the working directory, "
                   "else above the executable)")
       ->type_name("DIR");
-  addInteger(cmd, "--jobs", opt.jobs, 0, kMaxJobs,
-             "simulations run at once (default and 0: one per hardware thread); the results do "
-             "not depend on it");
+  addInteger(cmd, "--jobs", opt.jobs, 1, kMaxJobs,
+             "simulations run at once (default: one per hardware thread); the results do not "
+             "depend on it");
   cmd->add_option("--engine", opt.engine, fullEngineHelp() + "; validate's default: direct")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", opt.quiet, "no progress on stdout");

@@ -15,7 +15,7 @@ struct ValidateOptions {
   std::string out = "runs/validate";  // --out DIR
   bool quick = false;                 // --quick: the reduced plan
   std::string rigs;                   // --rigs DIR; empty: found (see validate.cpp)
-  int jobs = 0;                       // --jobs N; 0: one per hardware thread
+  int jobs = 0;                       // --jobs N; 0 (not given): one per hardware thread
   bool quiet = false;
   std::string engine = "direct";  // --engine: the full model's engine
 };

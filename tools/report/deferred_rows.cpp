@@ -94,11 +94,12 @@ void DeferredRows::writerLoop() {
 }
 
 void DeferredRows::writeBlock(const std::vector<double>& block, std::string& text) {
+  text.clear();
   for (size_t k = 0; k + width_ <= block.size(); k += width_) {
-    text.clear();
     format_(block.data() + k, text);
-    file_.writeLine(text);
+    text += '\n';
   }
+  file_.writeLines(text);
 }
 
 }  // namespace metrosync

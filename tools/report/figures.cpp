@@ -171,6 +171,8 @@ double cellOf(const SweepAxis& a) {
   return a.count > 1 ? (a.values.back() - a.values.front()) / (a.count - 1) : 1.0;
 }
 
+}  // namespace
+
 std::string mapScript(const RegimeMapResult& m, const FiguresContext& ctx,
                       const std::vector<std::string>& legend, const std::string& data_path,
                       const std::string& out_path, bool svg) {
@@ -185,7 +187,7 @@ std::string mapScript(const RegimeMapResult& m, const FiguresContext& ctx,
     << "set title "
     << gnuplotQuote(m.spec.title + " (" + (m.model == "full" ? "full model" : "slow flow") + ")")
     << " noenhanced font 'sans,13'\n"
-    << "set xlabel 'platform friction μ (scaled)'\nset ylabel 'initial phase difference ψ_0'\n"
+    << "set xlabel 'platform friction μ (scaled)'\nset ylabel 'initial phase difference ψ₀'\n"
     << "set xrange [" << gnuplotNumber(x.values.front() - cx / 2) << ":"
     << gnuplotNumber(x.values.back() + cx / 2) << "]\nset yrange ["
     << gnuplotNumber(y.values.front() - cy / 2) << ":" << gnuplotNumber(y.values.back() + cy / 2)
@@ -195,7 +197,7 @@ std::string mapScript(const RegimeMapResult& m, const FiguresContext& ctx,
        "1.5\n"
     << arrows << "plot " << gnuplotQuote(data_path) << " using 1:2:3:4:5 with rgbimage notitle";
   // exp1's two panels: psi0 = 0 (in-phase start) and psi0 = pi (antiphase start)
-  s << ", \\\n     0 with lines dt 2 lw 2 lc rgb '#000000' title 'exp1 panels: ψ_0 = 0, π'"
+  s << ", \\\n     0 with lines dt 2 lw 2 lc rgb '#000000' title 'exp1 panels: ψ₀ = 0, π'"
     << ", \\\n     pi with lines dt 2 lw 2 lc rgb '#000000' notitle";
   if (!ctx.mu_experiment.empty())
     s << ", \\\n     keyentry with lines dt 3 lw 2 lc rgb '#000000' title 'the experiment''s "
@@ -206,6 +208,8 @@ std::string mapScript(const RegimeMapResult& m, const FiguresContext& ctx,
   s << "\nset output\n";
   return s.str();
 }
+
+namespace {
 
 std::string commandFor(const std::string& id, const FiguresContext& ctx) {
   return "metrosync figures --only " + id + " --model " + ctx.models + ctx.options;

@@ -43,6 +43,13 @@ struct FiguresContext {
 std::string paperFigureScript(const FigureResult& f, const std::string& data_path,
                               const std::string& out_path, bool svg);
 
+// The gnuplot script of one regime map (exp1; exposed for tests): its cells from `data_path`,
+// `legend` the regimes in the key's order. Every text in the key is printed as written
+// (noenhanced), so ψ₀ is written with its subscript character.
+std::string mapScript(const RegimeMapResult& m, const FiguresContext& ctx,
+                      const std::vector<std::string>& legend, const std::string& data_path,
+                      const std::string& out_path, bool svg);
+
 // {figures: [{id, title, caption, erratum, command, files, runs: [{scenario, label, slow, full}]}],
 // maps: [{id, model, ...}]}
 nlohmann::json figuresJson(const std::vector<FigureResult>& figures,

@@ -64,26 +64,33 @@ std::string panel(int first, int count, const std::string& name, int first_index
   return s.substr(0, s.size() - 2) + "\n";
 }
 
-std::string diagramScript(const FullContinuation& r, const std::string& data,
-                          const std::string& png) {
+}  // namespace
+
+std::string fullDiagramScript(const FullContinuation& r, const std::string& data,
+                              const std::string& png) {
   const int n = r.metronomes;
   const int mu_col = 2 + 2 * n - 1, last = mu_col + 1;  // stable (family) or type (special)
   std::ostringstream g;
   g << "set terminal pngcairo size 1000," << (n > 1 ? 1100 : 800) << " font ',11'\n"
     << "set output '" << png << "'\n"
     << "data = '" << data << "'\n"
-    << "set key outside right\nset grid\n"
+    << "set key at screen 0.80, graph 1 left top noenhanced\nset grid\n"
+    // the same margins in every panel, whatever its key's width: the panels' axes line up
+    << "set lmargin at screen 0.10\nset rmargin at screen 0.78\n"
     << "set multiplot layout " << (n > 1 ? 3 : 2) << ",1 title 'periodic orbits of the full "
     << "model against " << r.param << " (section " << r.section_name << ")' noenhanced\n"
     << "set xlabel '" << r.param << "' noenhanced\nset ylabel 'A_i (orbit average)'\n"
     << panel(2, n, "A", 1, last, last);
   if (n > 1)
     g << "set ylabel 'psi_j = phi_1 - phi_j'\n" << panel(2 + n, n - 1, "psi", 2, last, last);
-  g << "set ylabel 'largest |multiplier|'\nset arrow 1 from graph 0, first 1 to graph 1, first 1 "
-    << "nohead dt 3 lc rgb 'gray30'\n"
-    << panel(mu_col, 1, "max |mu|", 0, last, last) << "unset arrow 1\nunset multiplot\n";
+  // |mu| = 1, the stability border, as a curve of the panel (clipped to it, in its key)
+  std::string mu_panel = panel(mu_col, 1, "max |mu|", 0, last, last);
+  mu_panel.insert(mu_panel.size() - 1, ", 1 with lines dt 3 lc rgb 'gray30' title '|mu| = 1'");
+  g << "set ylabel 'largest |multiplier|'\n" << mu_panel << "unset multiplot\n";
   return g.str();
 }
+
+namespace {
 
 nlohmann::json multipliersJson(const orbit::CVec& mu) {
   nlohmann::json m = nlohmann::json::array();
@@ -167,8 +174,9 @@ std::vector<std::string> writeFullContinuation(const OutputDir& dir, const FullC
   writeFileAtomically(dir.file("branches.csv"), fullBranchesCsv(r));
   writeFileAtomically(dir.file("bifurcations.json"), fullBifurcationsJson(r).dump(2) + "\n");
   std::vector<std::string> written = {"branches.csv", "bifurcations.json"};
-  if (drawPng(dir, "branches.png", plotData(r),
-              [&](const std::string& d, const std::string& p) { return diagramScript(r, d, p); }))
+  if (drawPng(dir, "branches.png", plotData(r), [&](const std::string& d, const std::string& p) {
+        return fullDiagramScript(r, d, p);
+      }))
     written.push_back("branches.png");
   writeSummary(dir, fullContinuationSummaryJson(r, rig_name));
   written.push_back("summary.json");

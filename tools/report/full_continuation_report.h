@@ -24,6 +24,10 @@
 namespace metrosync {
 
 std::string fullBranchesCsv(const orbit::FullContinuation& r);
+// branches.png's gnuplot script (exposed for tests): panels with one set of margins (their axes
+// aligned whatever the width of each key) and the |mu| = 1 border drawn as a clipped curve.
+std::string fullDiagramScript(const orbit::FullContinuation& r, const std::string& data,
+                              const std::string& png);
 nlohmann::json fullBifurcationsJson(const orbit::FullContinuation& r);
 nlohmann::json fullContinuationSummaryJson(const orbit::FullContinuation& r,
                                            const std::string& rig_name);

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "base/number_text.h"
+#include "models/scaling.h"
 #include "tools/report/plot.h"
 
 namespace metrosync {
@@ -27,37 +28,65 @@ std::string rasterText(const std::vector<std::vector<double>>& rows) {
   return os.str();
 }
 
+double lastTau(const std::vector<std::vector<double>>& rows) {
+  return rows.empty() || rows.back().empty() ? 0.0 : rows.back()[0];
+}
+
 }  // namespace
+
+NetworkPlotAxes networkPlotAxes(const Network& net, const NetworkFiles& files) {
+  const ScaledParams sp = computeScaled(net.scalesRig());
+  NetworkPlotAxes a;
+  a.style.seconds_per_tau = sp.time_scale_s / sp.epsilon;  // a network is physical
+  a.tau_end = lastTau(files.orderRows());
+  return a;
+}
+
+std::string networkOrderScript(const Network& net, const NetworkPlotAxes& axes,
+                               const std::string& title, const std::string& data,
+                               const std::string& png) {
+  const int groups = static_cast<int>(net.platforms.size());
+  std::ostringstream s;
+  s << "set terminal pngcairo size 1000,500\nset output " << gnuplotQuote(png) << "\n"
+    << "set title " << gnuplotQuote(title) << " noenhanced\n"
+    << timeAxis(axes.style, axes.tau_end) << "set ylabel 'r'\n"
+    << "set yrange [0:1.05]\nset key outside right\nplot ";
+  const std::string x = timeOf(axes.style, "$1");
+  for (int g = 0; g < groups; ++g)
+    s << gnuplotQuote(data) << " using " << x << ":" << g + 2 << " with lines title "
+      << gnuplotQuote("r " + net.platforms[g].name) << " noenhanced, ";
+  s << gnuplotQuote(data) << " using " << x << ":" << groups + 2
+    << " with lines lw 2 title 'r (all)'\n";
+  return s.str();
+}
+
+std::string networkRasterScript(const Network& net, const NetworkPlotAxes& axes,
+                                const std::string& title, const std::string& data,
+                                const std::string& png) {
+  std::ostringstream s;
+  s << "set terminal pngcairo size 1000,600\nset output " << gnuplotQuote(png) << "\n"
+    << "set title " << gnuplotQuote(title + " - phase relative to its platform") << " noenhanced\n"
+    << timeAxis(axes.style, axes.tau_end) << "set ylabel 'metronome'\nset cbrange [-pi:pi]\n"
+    << "set palette model HSV functions gray, 1, 0.9\nunset key\n"  // cyclic: -pi = pi
+    << "set yrange [0.5:" << net.numMetronomes() + 0.5 << "]\n"
+    << "plot " << gnuplotQuote(data) << " using " << timeOf(axes.style, "$1")
+    << ":2:3 with points pt 5 ps 0.4 palette\n";
+  return s.str();
+}
 
 std::vector<std::string> plotNetwork(const OutputDir& dir, const NetworkFiles& files,
                                      const Network& net, const std::string& title) {
   std::vector<std::string> made;
-  const int groups = static_cast<int>(net.platforms.size());
-  auto order_script = [&](const std::string& data, const std::string& png) {
-    std::ostringstream s;
-    s << "set terminal pngcairo size 1000,500\nset output " << gnuplotQuote(png) << "\n"
-      << "set title " << gnuplotQuote(title) << " noenhanced\nset xlabel 'tau'\nset ylabel 'r'\n"
-      << "set yrange [0:1.05]\nset key outside right\nplot ";
-    for (int g = 0; g < groups; ++g)
-      s << gnuplotQuote(data) << " using 1:" << g + 2 << " with lines title "
-        << gnuplotQuote("r " + net.platforms[g].name) << " noenhanced, ";
-    s << gnuplotQuote(data) << " using 1:" << groups + 2 << " with lines lw 2 title 'r (all)'\n";
-    return s.str();
-  };
-  if (drawPng(dir, "order.png", rowsText(files.orderRows()), order_script))
+  const NetworkPlotAxes axes = networkPlotAxes(net, files);
+  if (drawPng(dir, "order.png", rowsText(files.orderRows()),
+              [&](const std::string& data, const std::string& png) {
+                return networkOrderScript(net, axes, title, data, png);
+              }))
     made.push_back("order.png");
-  auto raster_script = [&](const std::string& data, const std::string& png) {
-    std::ostringstream s;
-    s << "set terminal pngcairo size 1000,600\nset output " << gnuplotQuote(png) << "\n"
-      << "set title " << gnuplotQuote(title + " - phase relative to its platform")
-      << " noenhanced\n"
-      << "set xlabel 'tau'\nset ylabel 'metronome'\nset cbrange [-pi:pi]\n"
-      << "set palette model HSV functions gray, 1, 0.9\nunset key\n"  // cyclic: -pi = pi
-      << "set yrange [0.5:" << net.numMetronomes() + 0.5 << "]\n"
-      << "plot " << gnuplotQuote(data) << " using 1:2:3 with points pt 5 ps 0.4 palette\n";
-    return s.str();
-  };
-  if (drawPng(dir, "raster.png", rasterText(files.rasterRows()), raster_script))
+  if (drawPng(dir, "raster.png", rasterText(files.rasterRows()),
+              [&](const std::string& data, const std::string& png) {
+                return networkRasterScript(net, axes, title, data, png);
+              }))
     made.push_back("raster.png");
   return made;
 }

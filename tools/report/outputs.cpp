@@ -81,14 +81,26 @@ void appendNumber(double v, std::string& line) {
     return;
   }
   char buf[kMaxGeneralChars];
-  line.append(buf, writeGeneral(v, 12, buf));
+  line.append(buf, static_cast<size_t>(writeGeneral(v, 12, buf) - buf));
 }
 
+// the n numbers, comma-separated, written in place at the line's end (room made once)
 void appendNumbers(const double* v, size_t n, std::string& line) {
+  if (n == 0) return;
+  const size_t at = line.size();
+  line.resize(at + n * (kMaxGeneralChars + 1));
+  char* const begin = line.data();
+  char* out = begin + at;
   for (size_t k = 0; k < n; ++k) {
-    if (k) line += ',';
-    appendNumber(v[k], line);
+    if (k) *out++ = ',';
+    if (v[k] != v[k]) {
+      std::memcpy(out, "nan", 3);
+      out += 3;
+    } else {
+      out = writeGeneral(v[k], 12, out);
+    }
   }
+  line.resize(static_cast<size_t>(out - begin));
 }
 
 }  // namespace

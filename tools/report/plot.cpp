@@ -256,10 +256,8 @@ std::string plotTerminal(const std::string& format, int width_px, int height_px)
   return s.str();
 }
 
-namespace {
-
 // The x axis: tau, or seconds with tau on the top axis (style.seconds_per_tau > 0).
-std::string xAxis(const PlotStyle& style, double tau_max) {
+std::string timeAxis(const PlotStyle& style, double tau_max) {
   const double k = style.seconds_per_tau;
   const double hi = tau_max > 0 ? tau_max : 1;
   std::ostringstream s;
@@ -276,10 +274,12 @@ std::string xAxis(const PlotStyle& style, double tau_max) {
 }
 
 // gnuplot's x value of a data row whose tau is `expr`
-std::string xOf(const PlotStyle& style, const std::string& expr) {
+std::string timeOf(const PlotStyle& style, const std::string& expr) {
   return style.seconds_per_tau > 0 ? "((" + expr + ")*" + gnuplotNumber(style.seconds_per_tau) + ")"
                                    : "(" + expr + ")";
 }
+
+namespace {
 
 // What a panel needs: the data, its shape, the style; `plot` collects one `plot` command.
 struct Panel {
@@ -294,8 +294,8 @@ struct Panel {
     return compare() ? std::string(" ") + names[b] : "";
   }
   std::string lines(int b, int column) const {
-    return gnuplotQuote(data) + " index " + std::to_string(b) + " using " + xOf(style, "$1") + ":" +
-           std::to_string(column) + " with lines lw " + (b == 0 ? "2" : "1.5") + " dt " +
+    return gnuplotQuote(data) + " index " + std::to_string(b) + " using " + timeOf(style, "$1") +
+           ":" + std::to_string(column) + " with lines lw " + (b == 0 ? "2" : "1.5") + " dt " +
            (b == 0 ? "1" : "2");
   }
 };
@@ -308,7 +308,7 @@ std::string heatmapPanel(Panel& p) {
     << "set cblabel 'amplitude A_i (scaled)'\n"
     << "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', 4 '#fde725')\n";
   p.add(gnuplotQuote(p.data) + " index " + std::to_string(p.blocks) + " using " +
-        xOf(p.style, "($1+$2)/2") + ":3:" + xOf(p.style, "$1") + ":" + xOf(p.style, "$2") +
+        timeOf(p.style, "($1+$2)/2") + ":3:" + timeOf(p.style, "$1") + ":" + timeOf(p.style, "$2") +
         ":($3-0.5):($3+0.5):4 with boxxyerror fs solid 1.0 noborder lc palette notitle");
   s << p.plot << "\nunset colorbox\nunset cblabel\n";
   return s.str();
@@ -372,7 +372,7 @@ std::string gnuplotScript(const std::string& data_path, const std::string& png_p
     << "set key outside right top samplen 3\n"
     // fixed margins, so that the panels' tau axes line up whatever their keys
     << "set lmargin at screen 0.09\nset rmargin at screen 0.84\n"
-    << xAxis(style, tau_max) << "set multiplot layout " << panels << ",1 title "
+    << timeAxis(style, tau_max) << "set multiplot layout " << panels << ",1 title "
     << gnuplotQuote(title) << " noenhanced font 'sans,13'\n";
   Panel top{data_path, n, blocks, style, {}};
   s << (n > kHeatmapAbove ? heatmapPanel(top) : amplitudePanel(top, theta_c));

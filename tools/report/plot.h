@@ -56,6 +56,12 @@ const std::vector<std::string>& plotFormats();
 // gnuplot's `set terminal` line for `format` at the size of a width x height pixel PNG.
 std::string plotTerminal(const std::string& format, int width_px, int height_px);
 
+// The x axis of a plot against time: from 0 to exactly tau_max (no axis past the data), in tau,
+// or with style.seconds_per_tau > 0 in seconds with tau on the top axis; and gnuplot's x of a
+// data column holding tau (`expr`, e.g. "$1").
+std::string timeAxis(const PlotStyle& style, double tau_max);
+std::string timeOf(const PlotStyle& style, const std::string& expr);
+
 // Returns true when DIR/png_name was written. theta_c: (N x 1) scaled critical angles.
 bool plotEnvelope(const OutputDir& dir, const std::string& png_name,
                   const std::vector<EnvelopeRow>& rows, const std::vector<double>& theta_c,

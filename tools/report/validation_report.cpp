@@ -441,8 +441,8 @@ void mdScenarios(std::ostream& md, const ValidationResults& r) {
   md << "## 2. The paper's eight simulations, from the slow flow\n\n"
      << "Each shipped `paper/` rig run with the slow flow to its own τ ("
      << (r.scenarios.empty() ? std::string("–") : numberText(r.scenarios.front().slow.tau_end))
-     << "), regime by the SPEC's "
-        "rules on the last 10%, then the paper's statements about it checked (ψ = φ₁ − φ₂; "
+     << "), regime by the contract's rules (docs/contract.md section 4) "
+        "on the last 10%, then the paper's statements about it checked (ψ = φ₁ − φ₂; "
         "α > 0 makes metronome 2 the faster one).\n\n"
      << "| scenario | the paper | slow flow | final state | checks |\n"
      << "| --- | --- | --- | --- | --- |\n";
@@ -497,7 +497,8 @@ void mdConvergence(std::ostream& md, const ValidationResults& r,
 void mdRegimeTable(std::ostream& md, const ValidationResults& r) {
   const ValidationPlan& plan = r.plan;
   md << "## 4. Where the asymptotics fail\n\n"
-     << "The final regime (SPEC rules on the last 10% of the run) of each scenario from the "
+     << "The final regime (the contract's rules on the last 10% of the run) of each scenario "
+        "from the "
         "full model at the rig's own ε (";
   {
     std::vector<std::string> own;

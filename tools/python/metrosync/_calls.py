@@ -2,6 +2,7 @@
 code in-process; keyword arguments set ``simulation.KEY``."""
 
 import contextlib
+import difflib
 import json
 import os
 import shutil
@@ -15,8 +16,21 @@ from ._results import (BasinResult, CompareResult, ContinuationResult, FitResult
 from ._rig import RigError, _Origin, _short_repr, as_rig, load_rig
 
 
-def _simulation(simulation):
-    """Keyword arguments as overrides of simulation.KEY, named as the caller wrote them."""
+# The keys under `simulation:` (yaml/rig_schema.cpp): what a call's keyword arguments set.
+_SIMULATION_KEYS = ("accuracy", "duration", "integrator", "sample", "tau")
+
+
+def _simulation(simulation, call):
+    """Keyword arguments as overrides of simulation.KEY, named as the caller wrote them. A name
+    that is no simulation key nor a slip of one (``overrides=``) is a TypeError saying so; a slip
+    (``durration=``) is left to the loader, whose message says "did you mean"."""
+    for k in simulation:
+        if k not in _SIMULATION_KEYS and not difflib.get_close_matches(k, _SIMULATION_KEYS):
+            raise TypeError(
+                "%s() got an unexpected keyword argument %r: its keyword arguments set "
+                "simulation.KEY (%s); other rig keys are set by load_rig(rig, overrides={KEY: "
+                "value}), whose Rig every call takes (docs/python.md)"
+                % (call, k, ", ".join(_SIMULATION_KEYS)))
     return [_Origin("simulation." + k, v, "%s=%s" % (k, _short_repr(v)))
             for k, v in simulation.items()]
 
@@ -99,7 +113,7 @@ def run(rig, model=None, engine=None, out=None, **simulation):
     >>> res.regime, res.envelope["psi_2"][-1], res.to_pandas().head()
     """
     rig = as_rig(rig)
-    extra = _simulation(simulation)
+    extra = _simulation(simulation, "run")
     if rig._is_network():
         return _network_run(rig, engine, out, extra)
     r = rig._call(_core.run, model or "", engine or "", _folder(out), extra=extra)
@@ -114,7 +128,8 @@ def compare(rig, engine=None, out=None, **simulation):
     >>> c.summary["comparison"]["max_abs_dA"], c.full.regime, c.slow.regime
     """
     rig = as_rig(rig)
-    r = rig._call(_core.compare, engine or "", _folder(out), extra=_simulation(simulation))
+    r = rig._call(_core.compare, engine or "", _folder(out),
+                  extra=_simulation(simulation, "compare"))
     return _checked(CompareResult(json.loads(r["summary"]), r, _folder(out)), r["code"])
 
 
@@ -161,7 +176,7 @@ def sweep(rig, vary, model=None, engine=None, jobs=None, out=None, **simulation)
         raise RigError("sweep: vary needs at least one key")
     texts = [_vary_text(k, v) for k, v in vary.items()]
     r = rig._call(_core.sweep, texts, model or "", engine or "", _jobs(jobs), _folder(out),
-                  extra=_simulation(simulation))
+                  extra=_simulation(simulation, "sweep"))
     return SweepResult(json.loads(r["summary"]), r["points"], _folder(out))
 
 
@@ -187,7 +202,7 @@ def basin(rig, random, samples, seed=1, model=None, engine=None, jobs=None, out=
         texts.append("%s=%s:%s" % (key, *(v if isinstance(v, str) else repr(float(v))
                                           for v in spec)))
     r = rig._call(_core.basin, texts, int(samples), int(seed), model or "", engine or "",
-                  _jobs(jobs), _folder(out), extra=_simulation(simulation))
+                  _jobs(jobs), _folder(out), extra=_simulation(simulation, "basin"))
     return BasinResult(json.loads(r["summary"]), r["points"], r["drawn"], _folder(out))
 
 

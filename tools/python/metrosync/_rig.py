@@ -8,6 +8,14 @@ from . import _metrosync as _core
 
 RigError = _core.RigError  # a bad rig, override or option (a ValueError)
 RigError.__module__ = "metrosync"  # tracebacks say metrosync.RigError, not the C++ module's name
+RigError.__doc__ = """A rig, an override or an option that metrosync refuses (a ValueError).
+
+Raised before anything runs or is written, as the command line exits with code 2. The message
+names what is wrong where the caller wrote it: a file's line and column, a dict's key
+(``rig['metronomes'][0]['pendulum']['mass'] = -0.02: must be > 0``), an override
+(``overrides['platform.friction.mu'] = -1: must be >= 0``) or an argument (``jobs=0: ...``).
+A failed simulation is :class:`SimulationError` instead.
+"""
 
 # What stands for a dict rig in the loader's messages (and names it when it has no `name` key).
 _DICT_NAME = "rig"
