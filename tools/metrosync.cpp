@@ -9,12 +9,14 @@
 #include "tools/cli/figures.h"
 #include "tools/cli/fit.h"
 #include "tools/cli/mpi_forward.h"
+#include "tools/cli/phase_clock.h"
 #include "tools/cli/sweep.h"
 #include "tools/cli/sweep_point.h"
 #include "tools/cli/validate.h"
 
 int main(int argc, char** argv) {
   namespace cli = metrosync::cli;
+  cli::markPhase("main");  // METROSYNC_PHASES=1: where the program's own code begins
   // `mpirun -np P metrosync sweep ...`: the ranks' sweep is metrosync-mpi's (docs/cluster.md)
   if (argc > 1 && std::string(argv[1]) == "sweep" && cli::mpiRanksFromEnvironment() > 1)
     return cli::forwardToMetrosyncMpi(argc, argv);

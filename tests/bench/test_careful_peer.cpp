@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "contact/law_registry.h"
+#include "tests/bench/bench_rig.h"
 #include "tests/common/run_metrosync.h"
 #include "tools/bench/bench_run.h"
 #include "tools/bench/careful_peer.h"
@@ -24,15 +26,13 @@
 #include "tools/bench/peer_scene.h"
 #include "tools/bench/wp_csv.h"
 
+using metrosync::testing_support::benchRig;
+
 namespace mb = metrosync::bench;
 namespace ts = metrosync::testing_support;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string benchRig(const std::string& name) {
-  return std::string(METROSYNC_SOURCE_DIR) + "/yaml/rigs/bench/" + name + ".yaml";
-}
 
 // The peer's arguments as flag -> list of numbers.
 std::map<std::string, std::vector<double>> argMap(const std::vector<std::string>& args) {
@@ -198,8 +198,15 @@ TEST(CarefulPeerMethod, RunsAStandInPeerAndReadsItsAnswer) {
   const size_t at = csv.find("peer-n2,2,65.4061,direct,dopri5,1e-08,");
   ASSERT_NE(at, std::string::npos) << csv;
   const auto f = mb::splitCsvLine(csv.substr(at, csv.find('\n', at) - at));
-  EXPECT_EQ(f.back(), "0") << "final_sampled_diff";
-  EXPECT_GT(std::stod(f.at(f.size() - 2)), 0.0) << "cpu_final_median_s";
+  const auto head = mb::splitCsvLine(csv.substr(0, csv.find('\n')));
+  ASSERT_EQ(f.size(), head.size()) << csv;
+  auto column = [&](const std::string& name) {
+    const auto k = std::find(head.begin(), head.end(), name);
+    return k == head.end() ? std::string("(no column " + name + ")") : f[k - head.begin()];
+  };
+  EXPECT_EQ(column("final_sampled_diff"), "0");
+  EXPECT_GT(std::stod(column("cpu_final_median_s")), 0.0);
+  EXPECT_EQ(column("engine_median_s"), "") << "the engine's own timing is `run`'s alone";
   const auto n32 =
       mb::parseWorkPrecisionCsv(ts::slurp((dir / "out" / "wp-n32.csv").string()), "wp-n32.csv");
   EXPECT_NE(n32.at(0).peer_skipped.find("N = 32"), std::string::npos);
@@ -244,24 +251,37 @@ TEST(RunCost, TimesRunAgainstItsEngine) {
   const auto r = ts::runCommand(
       ts::shellQuote(METROSYNC_BENCH_BINARY) + " runcost --metrosync " +
       ts::shellQuote(METROSYNC_BINARY) + " --scene " + ts::shellQuote(benchRig("peer-n2")) +
-      " --variant '' --variant 'simulation.sample=100 simulation.tau=3' --repeat 2 --max-load 0 "
-      "--quiet --tmp " +
+      " --scene default --variant '' --variant 'simulation.sample=100' "
+      "--repeat 2 --max-load 0 --quiet --tmp " +
       ts::shellQuote(dir.string()) + " --out " + ts::shellQuote(dir.string()));
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string csv = ts::slurp((dir / "run.csv").string());
   std::istringstream lines(csv);
   std::string line;
   std::getline(lines, line);
+  const std::vector<std::string> header = mb::splitCsvLine(line);
   int rows = 0;
   for (; std::getline(lines, line); ++rows) {
     const auto f = mb::splitCsvLine(line);
-    EXPECT_EQ(f.at(2), "2") << line;                    // runs
-    EXPECT_GT(std::stod(f.at(6)), std::stod(f.at(3)));  // the process holds the integration
-    EXPECT_EQ(f.at(12), "") << line;                    // no failure
-    if (f.at(4).empty()) continue;  // every run's split impossible (counted in f.at(11))
-    EXPECT_GE(std::stod(f.at(5)), 1.0) << line;  // wall_seconds / engine_seconds
+    ASSERT_EQ(f.size(), header.size()) << line;
+    std::map<std::string, std::string> c;
+    for (size_t k = 0; k < f.size(); ++k) c[header[k]] = f[k];
+    EXPECT_EQ(c["runs"], "2") << line;
+    // the process holds the integration
+    EXPECT_GT(std::stod(c["process_wall_s"]), std::stod(c["wall_seconds"]));
+    EXPECT_EQ(c["failure"], "") << line;
+    // the engine summary.json names, run again in the bench's process with recording off
+    EXPECT_EQ(c["engine"], "direct:verner76:1e-08") << line;
+    EXPECT_GT(std::stod(c["engine_alone_s"]), 0.0) << line;
+    EXPECT_NEAR(std::stod(c["wall_over_alone"]),
+                std::stod(c["wall_seconds"]) / std::stod(c["engine_alone_s"]),
+                1e-4 * std::stod(c["wall_over_alone"]));
+    if (c["engine_seconds"].empty()) continue;      // every run's split impossible (counted)
+    EXPECT_GE(std::stod(c["ratio"]), 1.0) << line;  // wall_seconds / engine_seconds
+    EXPECT_LE(std::stod(c["ratio_min"]), std::stod(c["ratio_max"])) << line;
   }
-  EXPECT_EQ(rows, 2) << csv;
+  EXPECT_EQ(rows, 4) << csv;  // two scenes (the default rig, the built-in one), two variants
+  EXPECT_NE(csv.find("\ndefault,simulation.sample=100,"), std::string::npos) << csv;
   EXPECT_NE(ts::slurp((dir / "run.md").string()).find("target <= 1.15"), std::string::npos);
   fs::remove_all(dir);
 }

@@ -15,10 +15,13 @@
 #include <string>
 
 #include "base/constants.h"
+#include "tests/bench/bench_rig.h"
 #include "tests/common/run_metrosync.h"
 #include "tools/bench/bench_run.h"
 #include "tools/bench/odeint_peer.h"
 #include "tools/bench/wp_csv.h"
+
+using metrosync::testing_support::benchRig;
 
 namespace mb = metrosync::bench;
 
@@ -32,10 +35,6 @@ constexpr double kAgree = 1e-8;
 // to this multiple of that self-difference, the reference's own uncertainty.
 constexpr double kSelfFactor = 3.0;
 constexpr double kTight = 1e-12;
-
-std::string benchRig(const std::string& name) {
-  return std::string(METROSYNC_SOURCE_DIR) + "/yaml/rigs/bench/" + name + ".yaml";
-}
 
 mb::RunResult run(const mb::Scene& scene, const std::string& spec) {
   mb::RunResult r = mb::runOnce(scene, mb::parseMethod(spec), 0);

@@ -11,6 +11,7 @@
 
 #include "base/number_text.h"
 #include "tools/bench/careful_peer.h"
+#include "tools/bench/run_method.h"
 #include "tools/report/outputs.h"
 
 namespace metrosync::bench {
@@ -42,16 +43,18 @@ void setCounts(Record& rec, const RunResult& r) {
 
 void progress(const Record& rec, const BenchOptions& c, bool with_error) {
   if (c.quiet) return;
-  const bool peer = rec.method.engine == "peer";
+  // the programs (the careful peer, `metrosync run`) give their own medians, and no envelope
+  const bool peer = rec.method.engine == "peer" || rec.method.engine == "run";
+  const std::string timing =
+      rec.method.engine == "run"
+          ? ", wall_seconds " + numberText(rec.wall_median_s, 3) + " s"
+          : ", CPU " +
+                numberText(peer || std::isnan(rec.cpu_final_median_s) ? rec.cpu_median_s
+                                                                      : rec.cpu_final_median_s,
+                           3) +
+                " s";
   std::cerr << "  " << rec.scene << " " << rec.method.label() << " " << rec.method.setting() << ": "
-            << rec.status
-            << (rec.runs ? ", CPU " +
-                               numberText(peer || std::isnan(rec.cpu_final_median_s)
-                                              ? rec.cpu_median_s
-                                              : rec.cpu_final_median_s,
-                                          3) +
-                               " s"
-                         : "")
+            << rec.status << (rec.runs ? timing : "")
             << (with_error ? ", final-state error " +
                                  numberText(rec.error.final_state, 2, Notation::Scientific)
                            : "")
@@ -72,12 +75,21 @@ void writeEnvelope(const Scene& scene, const Method& m, const RunResult& first,
   writeFileAtomically(c.envelopes + "/" + name + ".csv", text);
 }
 
-Record measurePeer(const Scene& scene, const Method& m, const RunResult* ref, const BenchOptions& c,
-                   double budget_s, int repeat, RunResult* keep) {
+// A method that is another program timed in its own way (the careful peer, `metrosync run`): one
+// call of `repeat` runs, its medians.
+Record measureProgram(const Scene& scene, const Method& m, const RunResult* ref,
+                      const BenchOptions& c, double budget_s, int repeat, RunResult* keep) {
   Record rec = baseRecord(scene, m);
   rec.load_min = rec.load_max = waitForLoad(c);
-  PeerCall call = runCarefulPeer(scene, m, repeat, budget_s * repeat + kPeerSlackS);
-  const RunResult& r = call.result;
+  RunResult r;
+  int runs = 0;
+  if (m.engine == "peer") {
+    PeerCall call = runCarefulPeer(scene, m, repeat, budget_s * repeat + kPeerSlackS);
+    r = std::move(call.result), runs = call.runs;
+  } else {  // each run of `metrosync run` within the budget
+    RunCall call = runMetrosyncCommand(scene, m, repeat, budget_s + kPeerSlackS);
+    r = std::move(call.result), runs = call.runs;
+  }
   setCounts(rec, r);
   if (ref) rec.error = compareRuns(r, *ref);
   if (r.over_budget) {
@@ -89,10 +101,12 @@ Record measurePeer(const Scene& scene, const Method& m, const RunResult* ref, co
     rec.note = r.failure;
   } else {
     rec.status = "ok";
-    rec.runs = call.runs;
+    rec.runs = runs;
     rec.wall_median_s = rec.wall_final_median_s = r.wall_s;
     rec.cpu_median_s = rec.cpu_final_median_s = r.cpu_s;
-    rec.wall_min_s = rec.wall_max_s = kNaN;  // the peer reports its median only
+    rec.wall_min_s = rec.wall_max_s = kNaN;  // the program reports its median only
+    rec.engine_median_s = r.engine_s;
+    rec.wall_over_engine = r.wall_over_engine;
   }
   rec.load_max = std::max(rec.load_max, loadAverage1());
   progress(rec, c, ref != nullptr);
@@ -150,7 +164,8 @@ double maxAbsDifference(const std::vector<double>& a, const std::vector<double>&
 
 Record measure(const Scene& scene, const Method& m, const RunResult* ref, const BenchOptions& c,
                double budget_s, int repeat, bool final_timings, RunResult* keep) {
-  if (m.engine == "peer") return measurePeer(scene, m, ref, c, budget_s, repeat, keep);
+  if (m.engine == "peer" || m.engine == "run")
+    return measureProgram(scene, m, ref, c, budget_s, repeat, keep);
   Record rec = baseRecord(scene, m);
   std::vector<double> walls, cpus, loads;
   loads.push_back(waitForLoad(c));

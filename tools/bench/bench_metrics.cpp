@@ -18,6 +18,13 @@ std::string benchNumber(double v, int precision, Notation notation) {
   return std::isfinite(v) ? numberText(v, precision, notation) : std::string();
 }
 
+std::string rowsVerdict(int met, int measured) {
+  if (measured <= 0) return "not measured";
+  if (met >= measured) return "met in all " + std::to_string(measured) + " rows";
+  return "NOT met in " + std::to_string(measured - met) + " of " + std::to_string(measured) +
+         " rows";
+}
+
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 bool usable(const WorkPoint& p) {

@@ -17,6 +17,10 @@ std::string csvField(const std::string& s);
 
 double median(std::vector<double> v);  // NaN for an empty vector
 
+// A target's verdict over `measured` rows of which `met` meet it: "met in all N rows", "NOT met
+// in K of N rows" (K the rows that miss it), "not measured" (no row).
+std::string rowsVerdict(int met, int measured);
+
 // One (error, time) point of a work-precision curve.
 struct WorkPoint {
   double error = 0.0;

@@ -63,7 +63,8 @@ std::string csvHeader() {
   return "scene,n,periods,engine,integrator,setting,accuracy,steps_per_period,status,note,runs,"
          "wall_median_s,wall_min_s,wall_max_s,cpu_median_s,load1_min,load1_max,err_envelope,"
          "max_abs_dA,max_abs_dpsi,err_final_state,rows_compared,steps,rhs_evals,events,ticks,"
-         "stick_slip,regime,wall_final_median_s,cpu_final_median_s,final_sampled_diff";
+         "stick_slip,regime,wall_final_median_s,cpu_final_median_s,final_sampled_diff,"
+         "engine_median_s,wall_over_engine";
 }
 
 std::string csvRow(const Record& r) {
@@ -81,7 +82,8 @@ std::string csvRow(const Record& r) {
      << benchNumber(r.error.final_state, 6) << ',' << r.error.rows << ',' << r.steps << ','
      << r.rhs_evals << ',' << r.events << ',' << r.ticks << ',' << r.stick_slip << ','
      << csvField(r.regime) << ',' << benchNumber(r.wall_final_median_s, 6) << ','
-     << benchNumber(r.cpu_final_median_s, 6) << ',' << benchNumber(r.final_sampled_diff, 6);
+     << benchNumber(r.cpu_final_median_s, 6) << ',' << benchNumber(r.final_sampled_diff, 6) << ','
+     << benchNumber(r.engine_median_s, 6) << ',' << benchNumber(r.wall_over_engine, 6);
   return os.str();
 }
 
@@ -105,7 +107,8 @@ std::string precisionTable(const std::vector<Record>& records) {
   };
   auto line = [&](const Record& r) {
     const bool ran = r.status != "skipped (predicted over budget)";
-    const bool peer = r.method.engine == "peer";  // one timing: its own medians
+    // the programs (the careful peer, `metrosync run`): one timing, their own medians
+    const bool peer = r.method.engine == "peer" || r.method.engine == "run";
     os << "| " << r.method.label() << " | " << r.method.setting() << " | "
        << err(r, r.error.final_state) << " | "
        << (r.timed() ? benchNumber(peer ? r.cpu_median_s : r.cpu_final_median_s, 3) : "") << " | "
@@ -116,7 +119,7 @@ std::string precisionTable(const std::vector<Record>& records) {
     if (r.timed() && !peer)
       os << benchNumber(r.wall_median_s, 3) << " (" << r.runs << ")";
     else if (r.timed())
-      os << "(" << r.runs << " in the peer)";
+      os << "(" << r.runs << (r.method.engine == "run" ? " runs of the command)" : " in the peer)");
     else if (r.status == "over budget")
       os << "> " << benchNumber(r.wall_median_s, 0, Notation::Fixed);
     os << " | ";
@@ -135,8 +138,10 @@ std::string precisionTable(const std::vector<Record>& records) {
 }
 
 double finalStateCpu(const Record& r) {
-  return r.method.engine == "peer" || !std::isfinite(r.cpu_final_median_s) ? r.cpu_median_s
-                                                                           : r.cpu_final_median_s;
+  return r.method.engine == "peer" || r.method.engine == "run" ||
+                 !std::isfinite(r.cpu_final_median_s)
+             ? r.cpu_median_s
+             : r.cpu_final_median_s;
 }
 
 std::vector<WorkPoint> frontOf(const std::vector<Record>& records, const std::string& who,

@@ -30,6 +30,10 @@ struct Record {
   // largest difference between the final states of the two kinds of run (the direct engine
   // promises 0: the same steps either way); NaN where not measured
   double final_sampled_diff = std::numeric_limits<double>::quiet_NaN();
+  // `metrosync run` (engine "run"): the medians of summary.json's engine_seconds and of each run's
+  // wall_seconds / engine_seconds (its wall_seconds is wall_median_s); NaN elsewhere
+  double engine_median_s = std::numeric_limits<double>::quiet_NaN();
+  double wall_over_engine = std::numeric_limits<double>::quiet_NaN();
   double load_min = 0.0, load_max = 0.0;  // 1-minute load average before the timed runs
   ErrorVsRef error;  // the envelope error of the recording run, the final-state error of the
                      // final-state run (the same state for the direct engine)

@@ -16,6 +16,8 @@
 #include "sim/engines/engine.h"
 #include "tools/bench/careful_peer.h"
 #include "tools/bench/odeint_peer.h"
+#include "tools/bench/run_method.h"
+#include "tools/bench/scaled_state.h"
 #include "tools/bench/siconos_peer.h"
 #include "yaml/rig_loader.h"
 
@@ -63,25 +65,6 @@ bool contains(const std::vector<std::string>& v, const std::string& s) {
   return std::find(v.begin(), v.end(), s) != v.end();
 }
 
-// The engines' final trajectory row (rig units: t, x, xdot, theta_i, thetadot_i, ..., platform)
-// as the scaled final state xdot, theta_1, thetadot_1, ...
-std::vector<double> scaledFinalState(const Scene& scene, const std::vector<double>& row) {
-  const int n = static_cast<int>(scene.rig.metronomes.size());
-  if (static_cast<int>(row.size()) < 3 + 2 * n) return {};
-  const ScaledParams& sp = scene.scaled;
-  const bool physical = scene.rig.units == Units::Physical;
-  const double omega0 = 1.0 / sp.time_scale_s;
-  const double vx = physical ? 1.0 / (sp.x_scale_m * omega0) : 1.0;
-  const double th = physical ? 1.0 / sp.angle_scale : 1.0;
-  const double w = physical ? 1.0 / (sp.angle_scale * omega0) : 1.0;
-  std::vector<double> s = {row[2] * vx};
-  for (int i = 0; i < n; ++i) {
-    s.push_back(row[3 + 2 * i] * th);
-    s.push_back(row[4 + 2 * i] * w);
-  }
-  return s;
-}
-
 }  // namespace
 
 Scene sceneFromRig(const std::string& name, const Rig& rig) {
@@ -114,6 +97,7 @@ bool engineAvailable(const std::string& engine) {
   if (engine == "siconos") return siconosAvailable();
   if (engine == "odeint") return odeintAvailable();
   if (engine == "peer") return !peerLocation().path.empty();
+  if (engine == "run") return runMethodMissing().empty();
   return false;
 }
 
@@ -122,6 +106,7 @@ std::vector<std::string> integratorsOf(const std::string& engine) {
   if (engine == "siconos") return {"moreau-jean"};
   if (engine == "odeint") return odeintIntegratorNames();
   if (engine == "peer") return peerIntegratorNames();
+  if (engine == "run") return runIntegratorNames();
   return {};
 }
 
@@ -131,11 +116,13 @@ Method parseMethod(const std::string& spec) {
   m.engine = spec.substr(0, a);
   if (m.engine == "peer" && !engineAvailable(m.engine))
     throw std::invalid_argument("'" + spec + "': " + peerLocation().missing);
+  if (m.engine == "run" && !engineAvailable(m.engine))
+    throw std::invalid_argument("'" + spec + "': " + runMethodMissing());
   if (!engineAvailable(m.engine))
     throw std::invalid_argument(
         "'" + spec + "': engine '" + m.engine + "' is not available (simbody, direct" +
         (siconosAvailable() ? ", siconos" : "; siconos: not built") +
-        (odeintAvailable() ? ", odeint" : "; odeint: not built") + ", peer)");
+        (odeintAvailable() ? ", odeint" : "; odeint: not built") + ", peer, run)");
   std::string rest = a == std::string::npos ? "" : spec.substr(a + 1);
   const size_t b = rest.find(':');
   m.integrator = rest.substr(0, b);
@@ -153,6 +140,7 @@ Method parseMethod(const std::string& spec) {
 
 RunResult runOnce(const Scene& scene, const Method& method, double budget_s, Sampling sampling) {
   if (method.engine == "peer") return runCarefulPeer(scene, method, 1, budget_s).result;
+  if (method.engine == "run") return runMetrosyncCommand(scene, method, 1, budget_s).result;
   RunResult r;
   r.method = method;
   Rig rig = scene.rig;

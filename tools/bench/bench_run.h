@@ -2,7 +2,8 @@
 //   engines: "simbody" (sim/engines/simbody/simbody_engine.h), "direct"
 //            (sim/engines/direct/direct_engine.h), "siconos" (tools/bench/siconos_peer.h, when
 //            built with Siconos), "odeint" (tools/bench/odeint_peer.h, when built with Boost),
-//            "peer" (the careful peer, a separate program: tools/bench/careful_peer.h)
+//            "peer" (the careful peer, a separate program: tools/bench/careful_peer.h), "run"
+//            (`metrosync run` itself, the built binary: tools/bench/run_method.h)
 //   sampling: a run either records the envelope (the envelope error's runs) or takes no samples
 //            at all (RunSink::wantsEnvelope and wantsTrajectory false: the integrator and its
 //            events only, what the final-state comparison times; the direct engine takes the

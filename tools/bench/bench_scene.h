@@ -3,6 +3,7 @@
 // (tools/bench/careful_peer.h, peer_scene.h) fill in.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -39,11 +40,25 @@ struct RunResult {
   bool over_budget = false;  // stopped by the benchmark's time budget
   double wall_s = 0.0;       // the whole call: building the system and running it
   double cpu_s = 0.0;        // process CPU time over the same interval
+  // `metrosync run` (tools/bench/run_method.h): the median of summary.json's engine_seconds and
+  // of each run's wall_seconds / engine_seconds; NaN for the other methods
+  double engine_s = std::numeric_limits<double>::quiet_NaN();
+  double wall_over_engine = std::numeric_limits<double>::quiet_NaN();
   RunCounts counts;
   long ticks = 0;  // sum of counts.escapements
   std::vector<EnvelopeRow> envelope;
   std::vector<double> final_state;  // scaled: xdot, theta_1, thetadot_1, ..., theta_N, thetadot_N
   std::string regime;
 };
+
+// A run that did not happen or did not finish: `why`, no regime.
+inline RunResult failedRun(const Method& m, const std::string& why) {
+  RunResult r;
+  r.method = m;
+  r.complete = false;
+  r.failure = why;
+  r.regime = "unknown";
+  return r;
+}
 
 }  // namespace metrosync::bench

@@ -77,25 +77,16 @@ PeerLocation locate() {
           ""};
 }
 
-RunResult failed(const Method& m, const std::string& why) {
-  RunResult r;
-  r.method = m;
-  r.complete = false;
-  r.failure = why;
-  r.regime = "unknown";
-  return r;
-}
-
 // The peer's answer as the bench's run result (its timings are medians of its repeats).
 RunResult fromPeer(const Scene& scene, const Method& m, const PeerOutput& p) {
   RunResult r;
   r.method = m;
   if (p.n != static_cast<int>(scene.rig.metronomes.size()))
-    return failed(m, "the peer ran " + std::to_string(p.n) + " metronomes, the scene has " +
-                         std::to_string(scene.rig.metronomes.size()));
+    return failedRun(m, "the peer ran " + std::to_string(p.n) + " metronomes, the scene has " +
+                            std::to_string(scene.rig.metronomes.size()));
   const double t_end = scene.rig.sim.t_end_s / scene.scaled.time_scale_s;
   if (!(std::abs(p.t - t_end) <= kEndTimeSlack * t_end))
-    return failed(
+    return failedRun(
         m, "the peer ended at t = " + std::to_string(p.t) + ", not at " + std::to_string(t_end));
   r.cpu_s = 1e-3 * p.cpu_ms;
   r.wall_s = 1e-3 * p.wall_ms;
@@ -137,7 +128,7 @@ PeerCall runCarefulPeer(const Scene& scene, const Method& method, int repeat, do
   PeerCall call;
   const PeerLocation& loc = peerLocation();
   if (loc.path.empty()) {
-    call.result = failed(method, loc.missing);
+    call.result = failedRun(method, loc.missing);
     return call;
   }
   const std::string tol = numberText(method.accuracy, 17);
@@ -145,7 +136,7 @@ PeerCall runCarefulPeer(const Scene& scene, const Method& method, int repeat, do
   try {
     for (std::string& a : peerSceneArguments(scene)) argv.push_back(std::move(a));
   } catch (const std::invalid_argument& e) {
-    call.result = failed(method, e.what());
+    call.result = failedRun(method, e.what());
     return call;
   }
   argv.insert(argv.end(), {"--method", method.integrator, "--rtol", tol, "--atol", tol, "--repeat",
@@ -157,7 +148,7 @@ PeerCall runCarefulPeer(const Scene& scene, const Method& method, int repeat, do
                             : !pr.started
                                 ? pr.error
                                 : "exit " + std::to_string(pr.exit_code) + ": " + firstLine(pr.err);
-    call.result = failed(method, "the peer failed (" + why + ")");
+    call.result = failedRun(method, "the peer failed (" + why + ")");
     call.result.over_budget = pr.timed_out;
     return call;
   }
@@ -165,7 +156,7 @@ PeerCall runCarefulPeer(const Scene& scene, const Method& method, int repeat, do
     call.result = fromPeer(scene, method, parsePeerOutput(pr.out));
     call.runs = std::max(1, repeat);
   } catch (const std::invalid_argument& e) {
-    call.result = failed(method, e.what());
+    call.result = failedRun(method, e.what());
   }
   return call;
 }

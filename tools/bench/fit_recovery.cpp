@@ -20,7 +20,7 @@
 //   run            variational equations, sim/analysis/fit/model_jacobian.h): k model runs
 //
 //   metrosync_fit_bench [--records N] [--seed S] [--duration SECONDS] [--data-engine
-//   simbody|direct] [--only I] [--jobs N] [--out FILE.md] [--keep DIR]
+//   simbody|direct] [--only I] [--jobs N] [--out FILE.md] [--keep DIR] [--csv FILE.csv]
 //
 // Records run on --jobs threads (each its own scratch files and random stream: the table does not
 // depend on N); the CPU seconds are each fit's own thread's.
@@ -401,6 +401,18 @@ std::string report(const std::vector<Outcome>& all, unsigned seed, const Setting
   return os.str();
 }
 
+// One line per record for the speed bench (tools/bench/fit_cost.h): its timings and verdict.
+std::string recordsCsv(const std::vector<Outcome>& all) {
+  std::ostringstream os;
+  os << "record,wall_s,cpu_s,model_runs,converged,recovered,error\n";
+  for (const Outcome& o : all)
+    os << o.index + 1 << "," << numberText(o.wall_s, 6) << "," << numberText(o.cpu_s, 6) << ","
+       << o.report.outcome.evaluations << "," << (o.report.outcome.converged ? 1 : 0) << ","
+       << (o.recovered ? 1 : 0) << ",\"" << o.error.substr(0, o.error.find_first_of("\"\n"))
+       << "\"\n";
+  return os.str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -408,7 +420,7 @@ int main(int argc, char** argv) {
   int records = 50, only = 0, jobs = 1;
   unsigned seed = 1;
   Settings set;
-  std::string out = "docs/bench/fit.md", keep;
+  std::string out = "docs/bench/fit.md", keep, csv;
   app.add_option("--records", records, "synthetic records (default 50)");
   app.add_option("--seed", seed, "random seed (default 1)");
   app.add_option("--duration", set.duration_s, "seconds per record (default 60)");
@@ -421,6 +433,7 @@ int main(int argc, char** argv) {
   app.add_option(
       "--keep", keep,
       "keep each record's rig, data and fit command (recordI.yaml, .csv, .command) in DIR");
+  app.add_option("--csv", csv, "also write each record's timings and verdict to FILE.csv");
   CLI11_PARSE(app, argc, argv);
   set.dir =
       !keep.empty()
@@ -443,6 +456,7 @@ int main(int argc, char** argv) {
   std::string command = "metrosync_fit_bench";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
   std::ofstream(out) << report(all, seed, set, command);
+  if (!csv.empty()) std::ofstream(csv) << recordsCsv(all);
   if (keep.empty()) std::filesystem::remove_all(set.dir);
   return 0;
 }

@@ -8,7 +8,13 @@
 //   ratios     the verdict recomputed from precision's CSV files
 //   peer       where the careful peer is, or why it is missing
 //   nscale     cost per fast period against the number of metronomes N, per engine
-//   runcost    `metrosync run` (the built binary) against its engine: wall_seconds / engine_seconds
+//   runcost    `metrosync run` (the built binary) against its engine: wall_seconds /
+//   engine_seconds,
+//              and wall_seconds against the same engine with recording off
+//   process    the whole `metrosync run` process against its wall_seconds, phase by phase
+//   eventcost  the direct engine's cost per step and per event against one RHS evaluation
+//   fitcost    one fit's wall and CPU time on the fit bench, against one run of the same rig
+//   continue   `metrosync continue ... --all`'s wall time
 //   maps       the wall time of the 64 x 64 full-model and 100 x 100 slow-flow regime maps
 //   summary    the summary of one run of tools/bench/speed.sh, and README.md's speed paragraph
 // Timings are medians of --repeat runs in this process (no process start-up in them; the careful
@@ -33,10 +39,16 @@
 #include "tools/bench/bench_report.h"
 #include "tools/bench/bench_run.h"
 #include "tools/bench/careful_peer.h"
+#include "tools/bench/continue_cost.h"
+#include "tools/bench/event_cost.h"
+#include "tools/bench/fit_cost.h"
 #include "tools/bench/map_timing.h"
 #include "tools/bench/peer_scene.h"
 #include "tools/bench/peer_verdict_report.h"
+#include "tools/bench/process_cost.h"
 #include "tools/bench/run_cost.h"
+#include "tools/bench/run_method.h"
+#include "tools/bench/run_verdict.h"
 #include "tools/bench/siconos_peer.h"
 #include "tools/bench/speed_summary.h"
 #include "tools/bench/wp_csv.h"
@@ -100,11 +112,24 @@ std::string loadRange(const std::vector<mb::Record>& recs) {
              : "n/a";
 }
 
+// c.out/NAME.csv (unless `csv` is empty) and c.out/NAME.md, the Markdown on stdout when `print`
+// and not quiet.
+void writeReport(const Common& c, const std::string& name, const std::string& csv,
+                 const std::string& md, bool print = true) {
+  std::filesystem::create_directories(c.out);
+  if (!csv.empty()) metrosync::writeFileAtomically(c.out + "/" + name + ".csv", csv);
+  metrosync::writeFileAtomically(c.out + "/" + name + ".md", md);
+  if (print && !c.quiet) std::cout << md << "\n";
+}
+
 // The verdict against the peer over `scenes`: ratios.md, ratios.csv, nslope.csv in c.out, the page
 // on stdout, its failed guards on stderr. Nothing (and a note) when no scene has both sides (or
 // the peer's reason for not running it) and fewer than two scenes of the N-slope were measured.
 void writeVerdict(const std::vector<mb::VerdictScene>& scenes, const mb::VerdictOptions& o,
                   const Common& c) {
+  // `run` against its engine at each of its points: runpoints.csv and .md, peer or no peer
+  if (const auto over = mb::runOverheads(scenes); !over.empty())
+    writeReport(c, "runpoints", mb::runPointsCsv(over), mb::runPointsMarkdown(over), false);
   // the ratio tables need both sides (or a scene the peer could not run); the N-slope only
   // metrosync's points on two or more of its scenes
   int both = 0, slope_scenes = 0;
@@ -135,7 +160,7 @@ std::string commandLine(int argc, char** argv) {
   std::string s;
   for (int k = 0; k < argc; ++k) {
     std::string a = argv[k];
-    if (a.find_first_of(" '\"$*?") != std::string::npos) {
+    if (a.empty() || a.find_first_of(" '\"$*?") != std::string::npos) {
       std::string q = "'";
       for (char ch : a) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
       a = q + "'";
@@ -148,7 +173,8 @@ std::string commandLine(int argc, char** argv) {
 // ---------------------------------------------------------------------------------------------
 struct PrecisionOptions {
   std::vector<std::string> scenes, sets;
-  std::string methods;  // "" = every integrator of every available engine
+  std::string methods;     // "" = every integrator of every available engine
+  std::string run_scenes;  // the scenes (names) the run methods are timed on ("" = all)
   std::string accuracies = "1e-3,1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10";
   std::string simbody_accuracies;  // "" = accuracies
   std::string siconos_steps = "64,128,256,512,1024,2048,4096,8192,16384";
@@ -318,6 +344,10 @@ int precisionScene(const mb::Scene& scene, const PrecisionPlan& plan, const Prec
       recs.push_back(notRun(scene, m, "not run", mb::peerUnsupported(scene)));
       continue;
     }
+    const std::vector<std::string> run_on = splitList(o.run_scenes);
+    if (m.engine == "run" && !run_on.empty() &&
+        std::find(run_on.begin(), run_on.end(), scene.name) == run_on.end())
+      continue;  // --run-scenes: `run` is timed elsewhere
     measureSettings(scene, m, plan.settingsOf(m), ref, c, recs, save);
   }
   save();
@@ -439,28 +469,67 @@ int nscale(const NScaleOptions& o, const Common& c) {
 }
 
 // ---------------------------------------------------------------------------------------------
-int runCost(const mb::RunCostOptions& o, const Common& c, const std::string& command) {
-  if (o.scenes.empty()) throw std::invalid_argument("runcost: no --scene");
-  const std::vector<mb::RunCostRow> rows = mb::measureRunCost(o, c);
-  std::filesystem::create_directories(c.out);
-  const std::string md = mb::runCostMarkdown(rows, command);
-  metrosync::writeFileAtomically(c.out + "/run.csv", mb::runCostCsv(rows));
-  metrosync::writeFileAtomically(c.out + "/run.md", md);
-  if (!c.quiet) std::cout << md << "\n";
+// 3 when a row failed, else 0
+template <class Rows>
+int failedRows(const Rows& rows) {
   for (const auto& r : rows)
     if (!r.failure.empty()) return 3;
   return 0;
 }
 
+int runCost(const mb::RunCostOptions& o, const Common& c, const std::string& command) {
+  if (o.scenes.empty()) throw std::invalid_argument("runcost: no --scene");
+  const std::vector<mb::RunCostRow> rows = mb::measureRunCost(o, c);
+  writeReport(c, "run", mb::runCostCsv(rows), mb::runCostMarkdown(rows, command));
+  return failedRows(rows);
+}
+
 int maps(const mb::MapOptions& o, const Common& c) {
   const std::vector<mb::MapRow> rows = mb::timeMaps(o, c);
-  std::filesystem::create_directories(c.out);
-  const std::string md = mb::mapsMarkdown(rows);
-  metrosync::writeFileAtomically(c.out + "/maps.csv", mb::mapsCsv(rows));
-  metrosync::writeFileAtomically(c.out + "/maps.md", md);
-  if (!c.quiet) std::cout << md << "\n";
+  writeReport(c, "maps", mb::mapsCsv(rows), mb::mapsMarkdown(rows));
+  return failedRows(rows);
+}
+
+int processCost(const mb::ProcessOptions& o, const Common& c, const std::string& command) {
+  const mb::ProcessMeasurement m = mb::measureProcess(o, c);
+  if (!m.failure.empty()) {
+    writeReport(c, "process", "", "**The whole process was not measured: " + m.failure + ".**\n");
+    return 3;
+  }
+  writeReport(c, "process", mb::processCsv(m.breakdown, o.scene, m.load_min, m.load_max),
+              mb::processMarkdown(m.breakdown, m.command) + "\nThe bench's command:\n\n    " +
+                  command + "\n");
+  return 0;
+}
+
+struct EventCostArgs {
+  std::vector<std::string> scenes;
+  std::string accuracies = "1e-6,1e-9";
+};
+
+int eventCost(const EventCostArgs& a, const Common& c, const std::string& command) {
+  if (a.scenes.empty()) throw std::invalid_argument("eventcost: no --scene");
+  const double load0 = mb::loadAverage1();
+  const std::vector<mb::EventCostRow> rows =
+      mb::measureEventCost({a.scenes, parseList(a.accuracies)}, c);
+  const double load1 = mb::loadAverage1();
+  writeReport(c, "eventcost",
+              mb::eventCostCsv(rows, std::fmin(load0, load1), std::fmax(load0, load1)),
+              mb::eventCostMarkdown(rows, command));
+  return failedRows(rows);
+}
+
+int fitCost(const mb::FitCostOptions& o, const Common& c) {
+  const mb::FitCost f = mb::measureFitCost(o, c);
+  writeReport(c, "fit", mb::fitCostCsv(f), mb::fitCostMarkdown(f, o));
+  return f.failure.empty() ? 0 : 3;
+}
+
+int continueCost(const mb::ContinueCostOptions& o, const Common& c) {
+  const std::vector<mb::ContinueCostRow> rows = mb::measureContinueCost(o, c);
+  writeReport(c, "continuation", mb::continueCostCsv(rows), mb::continueCostMarkdown(rows));
   for (const auto& r : rows)
-    if (!r.failure.empty()) return 3;
+    if (!r.failure.empty() && !r.timed_out) return 3;
   return 0;
 }
 
@@ -549,13 +618,17 @@ struct Args {
   Common common;
   PrecisionOptions po;
   VerdictArgs verdict;
-  std::string peer_path;
+  std::string peer_path, metrosync_path;
   std::vector<std::string> ratio_files;
   NScaleOptions no;
   mb::RunCostOptions ro;
   std::vector<std::string> variants;
   mb::MapOptions mo;
   SummaryOptions so;
+  mb::ProcessOptions process;
+  EventCostArgs event_cost;
+  mb::FitCostOptions fit;
+  mb::ContinueCostOptions cont;
 };
 
 CLI::App* addPrecisionCommand(CLI::App& app, Args& a) {
@@ -582,6 +655,12 @@ CLI::App* addPrecisionCommand(CLI::App& app, Args& a) {
       ->capture_default_str();
   addVerdictOptions(pc, a.verdict);
   addCommon(pc, a.common);
+  pc->add_option("--metrosync", a.metrosync_path,
+                 "the metrosync binary of the run methods (run:INTEGRATOR, `metrosync run` "
+                 "itself); default: metrosync beside this program");
+  pc->add_option("--run-scenes", po.run_scenes,
+                 "the scenes (names, comma-separated) the run methods are timed on (default: "
+                 "every scene)");
   pc->add_option("--peer", a.peer_path,
                  "the careful peer's binary (methods peer:dopri5, peer:rkf78); default: "
                  "$METROSYNC_PEER, else what shared/peer/build.sh beside the source tree (not part "
@@ -643,6 +722,51 @@ CLI::App* addMapsCommand(CLI::App& app, Args& a) {
   return mc;
 }
 
+CLI::App* addProcessCommand(CLI::App& app, Args& a) {
+  CLI::App* pc = app.add_subcommand(
+      "process", "the whole `metrosync run` process against its wall_seconds, phase by phase");
+  pc->add_option("--metrosync", a.process.metrosync, "the metrosync binary")->capture_default_str();
+  pc->add_option("--scene", a.process.scene, "the rig file")->capture_default_str();
+  addCommon(pc, a.common);
+  return pc;
+}
+
+CLI::App* addEventCostCommand(CLI::App& app, Args& a) {
+  CLI::App* ec = app.add_subcommand(
+      "eventcost", "the direct engine's cost per step and per event against one RHS evaluation");
+  ec->add_option("--scene", a.event_cost.scenes, "rig file (repeatable)")->required();
+  ec->add_option("--accuracies", a.event_cost.accuracies, "accuracies")->capture_default_str();
+  addCommon(ec, a.common);
+  return ec;
+}
+
+CLI::App* addFitCostCommand(CLI::App& app, Args& a) {
+  mb::FitCostOptions& f = a.fit;
+  CLI::App* fc = app.add_subcommand(
+      "fitcost", "one fit's wall and CPU time on the fit bench, against one run of the same rig");
+  fc->add_option("--fit-bench", f.fit_bench, "the fit bench's binary")->capture_default_str();
+  fc->add_option("--metrosync", f.metrosync, "the metrosync binary")->capture_default_str();
+  fc->add_option("--records", f.records, "records fitted (the full bench: 50)")
+      ->capture_default_str();
+  fc->add_option("--duration", f.duration_s, "seconds per record")->capture_default_str();
+  fc->add_option("--seed", f.seed, "the fit bench's seed")->capture_default_str();
+  fc->add_option("--run-repeat", f.run_repeat, "timed runs of each record's rig")
+      ->capture_default_str();
+  addCommon(fc, a.common);
+  return fc;
+}
+
+CLI::App* addContinueCommand(CLI::App& app, Args& a) {
+  mb::ContinueCostOptions& o = a.cont;
+  CLI::App* cc = app.add_subcommand("continue", "`metrosync continue ... --all`'s wall time");
+  cc->add_option("--metrosync", o.metrosync, "the metrosync binary")->capture_default_str();
+  cc->add_option("--rig", o.rigs, "rig file (repeatable)")->capture_default_str();
+  cc->add_option("--timeout", o.timeout_s, "stop a run after this many seconds (0: never)")
+      ->capture_default_str();
+  addCommon(cc, a.common);
+  return cc;
+}
+
 CLI::App* addSummaryCommand(CLI::App& app, Args& a) {
   CLI::App* sc = app.add_subcommand(
       "summary",
@@ -690,9 +814,14 @@ int main(int argc, char** argv) {
   CLI::App* uc = addRunCostCommand(app, a);
   CLI::App* mc = addMapsCommand(app, a);
   CLI::App* sc = addSummaryCommand(app, a);
+  CLI::App* process = addProcessCommand(app, a);
+  CLI::App* event_cost = addEventCostCommand(app, a);
+  CLI::App* fit = addFitCostCommand(app, a);
+  CLI::App* cont = addContinueCommand(app, a);
   CLI11_PARSE(app, argc, argv);
   try {
     if (!a.peer_path.empty()) mb::setPeerPath(a.peer_path);
+    if (!a.metrosync_path.empty()) mb::setMetrosyncPath(a.metrosync_path);
     if (lc->parsed()) return peerCommand();
     if (pc->parsed() || rc->parsed()) a.po.verdict = a.verdict.options(commandLine(argc, argv));
     if (pc->parsed()) return precision(a.po, a.common);
@@ -706,6 +835,16 @@ int main(int argc, char** argv) {
       return maps(a.mo, a.common);
     }
     if (sc->parsed()) return summary(a.so, a.common);
+    if (process->parsed()) {
+      a.process.repeat = process->count("--repeat") ? a.common.repeat : 21;
+      return processCost(a.process, a.common, commandLine(argc, argv));
+    }
+    if (event_cost->parsed()) return eventCost(a.event_cost, a.common, commandLine(argc, argv));
+    if (fit->parsed()) return fitCost(a.fit, a.common);
+    if (cont->parsed()) {
+      a.cont.repeat = cont->count("--repeat") ? a.common.repeat : 1;  // a run takes a minute
+      return continueCost(a.cont, a.common);
+    }
     if (rc->parsed()) {
       if (rc->count("--out") == 0)
         a.common.out = std::filesystem::path(a.ratio_files.front()).parent_path().string();

@@ -49,6 +49,9 @@ struct SidePoint {
   // medians of the runs without samples (NaN: not measured; cpu_s and wall_s stand in)
   double cpu_final_s = std::numeric_limits<double>::quiet_NaN();
   double wall_final_s = std::numeric_limits<double>::quiet_NaN();
+  // `metrosync run`'s points: the medians of engine_seconds and of wall_seconds / engine_seconds
+  double engine_s = std::numeric_limits<double>::quiet_NaN();
+  double wall_over_engine = std::numeric_limits<double>::quiet_NaN();
 };
 
 // A run at tight tolerance checked against the scene's reference.
@@ -64,8 +67,10 @@ struct VerdictScene {
   double periods = 0.0;  // fast periods in the run
   std::string reference_engine, reference;
   std::vector<SidePoint> ours, peer;  // metrosync's direct engine, the peer
+  std::vector<SidePoint> run;         // `metrosync run` itself (tools/bench/run_method.h)
   std::string peer_skipped;           // why the peer was not run on this scene ("" if it was)
-  std::vector<std::string> our_methods, peer_methods;  // engine:integrator, in order seen
+  // engine:integrator, in order seen
+  std::vector<std::string> our_methods, peer_methods, run_methods;
   std::vector<CrossCheck> cross_checks;
   // 1-minute load over the timed points of both sides (NaN: not recorded)
   double load_min = std::numeric_limits<double>::quiet_NaN();
@@ -75,6 +80,7 @@ struct VerdictScene {
 // The two sides' engine names.
 struct Sides {
   std::string ours = "direct", peer = "peer";
+  std::string run = "run";  // `metrosync run`, timed against the peer beside the engine
 };
 
 // A side's front on one error measure and clock.

@@ -67,19 +67,6 @@ std::string loadRange(const std::vector<VerdictScene>& scenes) {
              : "not recorded";
 }
 
-std::string ratiosCsvRows(const RatioTable& t) {
-  std::string s;
-  for (const RatioRow& row : t.rows)
-    for (const RatioCell& c : row.cells)
-      s += measureName(t.measure) + "," + clockName(t.clock) + "," + csvField(row.scene) + "," +
-           std::to_string(row.n) + "," + benchNumber(c.error, 6) + "," +
-           benchNumber(c.time_ours_s, 6) + "," + benchNumber(c.time_peer_s, 6) + "," +
-           benchNumber(c.ratio, 6) + "," +
-           (c.filled() ? (c.ratio < kTargetRatio ? "1" : "0") : "") + "," + csvField(c.reason) +
-           "\n";
-  return s;
-}
-
 std::string slopeCsvRows(const std::vector<SlopeRow>& rows, ErrorMeasure m, Clock c) {
   std::string s;
   for (const SlopeRow& r : rows)
@@ -248,6 +235,19 @@ std::string ratioTableMarkdown(const RatioTable& t) {
   return os.str();
 }
 
+std::string ratiosCsvRows(const RatioTable& t, const std::string& side) {
+  std::string s;
+  for (const RatioRow& row : t.rows)
+    for (const RatioCell& c : row.cells)
+      s += measureName(t.measure) + "," + clockName(t.clock) + "," + csvField(row.scene) + "," +
+           std::to_string(row.n) + "," + benchNumber(c.error, 6) + "," +
+           benchNumber(c.time_ours_s, 6) + "," + benchNumber(c.time_peer_s, 6) + "," +
+           benchNumber(c.ratio, 6) + "," +
+           (c.filled() ? (c.ratio < kTargetRatio ? "1" : "0") : "") + "," + csvField(c.reason) +
+           "," + side + "\n";
+  return s;
+}
+
 std::string sceneVerdictLine(const RatioRow& row) {
   std::ostringstream os;
   os << row.scene << " (N = " << row.n << "): ";
@@ -325,14 +325,67 @@ std::vector<std::string> guardWarnings(const std::vector<VerdictScene>& scenes,
   return w;
 }
 
+std::string cellText(const RatioCell& c) {
+  if (!c.filled()) return "-";
+  const std::string r = benchNumber(c.ratio, 2, Notation::Fixed);
+  return c.ratio < kTargetRatio ? "**" + r + "**" : r;
+}
+
+// Each scene's engine / peer and run / peer cells side by side (wall time).
+std::string sideBySide(const RatioTable& engine, const RatioTable& run) {
+  std::ostringstream os;
+  os << "| scene | N |";
+  for (double e : run.errors) os << " " << errorLabel(e) << " |";
+  os << "\n|---|---|";
+  for (size_t k = 0; k < run.errors.size(); ++k) os << "---|";
+  os << "\n";
+  for (const RatioRow& r : run.rows) {
+    const auto e = std::find_if(engine.rows.begin(), engine.rows.end(),
+                                [&](const RatioRow& x) { return x.scene == r.scene; });
+    os << "| " << r.scene << " | " << r.n << " |";
+    for (size_t k = 0; k < r.cells.size(); ++k)
+      os << " " << (e == engine.rows.end() ? "-" : cellText(e->cells[k])) << " / "
+         << cellText(r.cells[k]) << " |";
+    os << "\n";
+  }
+  return os.str();
+}
+
 }  // namespace
+
+RunVerdictText runVerdict(const std::vector<VerdictScene>& scenes,
+                          const std::vector<double>& errors) {
+  RunVerdictText v;
+  const std::vector<VerdictScene> run_scenes = runAsOurs(scenes);
+  if (run_scenes.empty()) return v;
+  std::vector<VerdictScene> engine_scenes;  // the same scenes, the engine's side
+  for (const VerdictScene& s : scenes)
+    if (!s.run.empty()) engine_scenes.push_back(s);
+  const RatioTable run = ratioTable(run_scenes, ErrorMeasure::FinalState, Clock::Wall, errors);
+  const RatioTable engine =
+      ratioTable(engine_scenes, ErrorMeasure::FinalState, Clock::Wall, errors);
+  v.line = "`metrosync run`: " + verdictLine(run, verdictOf(run));
+  v.csv_rows = ratiosCsvRows(run, "run");
+  std::ostringstream md;
+  md << "**" << v.line << "**\n\n";
+  for (const RatioRow& row : run.rows) md << "- `run` on " << sceneVerdictLine(row) << "\n";
+  md << "\nratio = peer time / metrosync time at equal final-state error, wall clock (the "
+        "peer's wall median inside its process; the engine's runs without samples; `run`'s "
+        "summary.json wall_seconds): engine / `run` in each cell (**bold**: below "
+     << benchNumber(kTargetRatio, 1, Notation::Fixed) << "; -: not measured on both sides).\n\n"
+     << sideBySide(engine, run) << "\n`run` / peer alone, with the reasons of its empty cells:\n\n"
+     << ratioTableMarkdown(run) << "\n### `run` against its engine at each point\n\n"
+     << runPointsMarkdown(runOverheads(scenes));
+  v.markdown = md.str();
+  return v;
+}
 
 VerdictPages verdictPages(const std::vector<VerdictScene>& scenes, const VerdictOptions& o) {
   VerdictPages p;
   const std::vector<Agreement> ag = peerAgreement(scenes, o.sides, agreementBound(o.errors));
   p.warnings = guardWarnings(scenes, ag);
   p.ratios_csv =
-      "measure,clock,scene,n,error,time_metrosync_s,time_peer_s,ratio,below_target,reason\n";
+      "measure,clock,scene,n,error,time_metrosync_s,time_peer_s,ratio,below_target,reason,side\n";
   p.slope_csv = "measure,clock,error,side,scene,n,time_per_period_s,slope\n";
   std::ostringstream body;
   for (ErrorMeasure m : {ErrorMeasure::FinalState, ErrorMeasure::Envelope}) {
@@ -357,15 +410,17 @@ VerdictPages verdictPages(const std::vector<VerdictScene>& scenes, const Verdict
         body << lines.str() << "\n";
       }
       body << ratioTableMarkdown(t) << "\n";
-      p.ratios_csv += ratiosCsvRows(t);
+      p.ratios_csv += ratiosCsvRows(t, "engine");
       const auto slope = nSlope(scenes, o.slope_scenes, o.slope_errors, m, c);
       p.slope_csv += slopeCsvRows(slope, m, c);
       if (headline) {
         p.slope_lines = slopeLines(slope, m);
         std::ostringstream v;
-        v << "**" << line << "**\n\n" << lines.str() << "\n" << ratioTableMarkdown(t) << "\n";
-        for (const std::string& l : p.slope_lines) v << l << "\n\n";
-        v << slopeMarkdown(slope, m, c) << "\n" << agreementMarkdown(ag, o.sides);
+        // issue 36 drops the N-slope's target: ratios.md keeps the slope, verdicts.md does not
+        v << "**" << line << "**\n\n"
+          << lines.str() << "\n"
+          << ratioTableMarkdown(t) << "\n"
+          << agreementMarkdown(ag, o.sides);
         p.verdicts_markdown = v.str();
       }
       if (c == Clock::Cpu)
@@ -373,8 +428,17 @@ VerdictPages verdictPages(const std::vector<VerdictScene>& scenes, const Verdict
              << slopeMarkdown(slope, m, c) << "\n";
     }
   }
+  const RunVerdictText run = runVerdict(scenes, o.errors);
+  p.ratios_csv += run.csv_rows;
+  p.run_verdict_line = run.line;
+  if (!run.markdown.empty()) {
+    const std::string section = "## `metrosync run` against the peer\n\n" + run.markdown + "\n";
+    body << section;
+    p.verdicts_markdown = section + "## The engine against the peer\n\n" + p.verdicts_markdown;
+  }
   std::ostringstream md;
   md << headerMarkdown(scenes, o) << "**" << p.verdict_line << "**\n\n";
+  if (!run.line.empty()) md << "**" << run.line << "**\n\n";
   for (const std::string& w : p.warnings) md << "**Warning: " << w << ".**\n\n";
   for (const std::string& l : p.slope_lines) md << l << "\n\n";
   md << body.str() << "## Validation of the peer\n\n" << agreementMarkdown(ag, o.sides);

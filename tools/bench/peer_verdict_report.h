@@ -1,13 +1,14 @@
 // The peer verdict (tools/bench/peer_verdict.h) as text: ratios.md (the ratio tables at equal
 // final-state error, and envelope error where the peer reports one, CPU and wall, the verdict
 // overall and per scene, the N-slope, the guards), ratios.csv (every cell) and nslope.csv (every
-// point of the N-slope).
+// point of the N-slope); and `metrosync run` against the peer beside the engine (runVerdict).
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "tools/bench/peer_verdict.h"
+#include "tools/bench/run_verdict.h"
 
 namespace metrosync::bench {
 
@@ -31,7 +32,21 @@ struct VerdictPages {
   std::vector<std::string> scene_lines;  // the headline verdict of each scene, one line each
   std::vector<std::string> slope_lines;  // metrosync's N-slope at each error against its target
   std::vector<std::string> warnings;     // the guards that failed, one line each
+  // `metrosync run` against the peer (tools/bench/run_verdict.h): its headline ("" when no scene
+  // has run points)
+  std::string run_verdict_line;
 };
+
+// `metrosync run` against the careful peer (its points: tools/bench/run_verdict.h): what the run
+// part of the verdict writes.
+struct RunVerdictText {
+  std::string line;      // the headline: `run` / peer at equal final-state error, wall time
+  std::string markdown;  // the verdict, the side-by-side table, the overhead table
+  std::string csv_rows;  // ratios.csv rows of the run side (side = run)
+};
+// Empty (every field "") when no scene has `run` points.
+RunVerdictText runVerdict(const std::vector<VerdictScene>& scenes,
+                          const std::vector<double>& errors);
 
 VerdictPages verdictPages(const std::vector<VerdictScene>& scenes, const VerdictOptions& o);
 
@@ -44,5 +59,8 @@ std::string sceneVerdictLine(const RatioRow& row);
 // The Markdown table of one measure and clock, cells below the target in bold, then the reason
 // of every empty cell.
 std::string ratioTableMarkdown(const RatioTable& t);
+
+// ratios.csv's rows of one table; `side`: "engine" (the direct engine) or "run" (`metrosync run`).
+std::string ratiosCsvRows(const RatioTable& t, const std::string& side);
 
 }  // namespace metrosync::bench

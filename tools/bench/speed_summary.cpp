@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -11,74 +9,19 @@
 
 #include "base/number_text.h"
 #include "tools/bench/bench_metrics.h"
+#include "tools/bench/csv_table.h"
 #include "tools/bench/peer_verdict.h"
+#include "tools/bench/speed_figures.h"
 #include "tools/bench/wp_csv.h"
 
 namespace metrosync::bench {
 
 const char* const kSpeedBegin = "<!-- speed:begin";
 const char* const kSpeedEnd = "<!-- speed:end";
-const char* const kDefaultRig = "yaml/rigs/experiment.yaml";
 
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  if (!in) return "";
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// A CSV as rows of named fields.
-struct Csv {
-  std::vector<std::map<std::string, std::string>> rows;
-  std::string source;
-  double number(size_t row, const std::string& key) const {
-    const auto it = rows[row].find(key);
-    if (it == rows[row].end()) throw std::invalid_argument(source + ": no column '" + key + "'");
-    if (it->second.empty()) return kNaN;
-    size_t used = 0;
-    double v = kNaN;
-    try {
-      v = std::stod(it->second, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != it->second.size())
-      throw std::invalid_argument(source + " line " + std::to_string(row + 2) + ", column " + key +
-                                  ": '" + it->second + "' is not a number");
-    return v;
-  }
-  const std::string& text(size_t row, const std::string& key) const {
-    const auto it = rows[row].find(key);
-    if (it == rows[row].end()) throw std::invalid_argument(source + ": no column '" + key + "'");
-    return it->second;
-  }
-};
-
-Csv parseCsv(const std::string& text, const std::string& source) {
-  Csv csv;
-  csv.source = source;
-  std::istringstream in(text);
-  std::string line;
-  if (!std::getline(in, line)) return csv;
-  const std::vector<std::string> header = splitCsvLine(line);
-  for (int lineno = 2; std::getline(in, line); ++lineno) {
-    if (line.empty()) continue;
-    const std::vector<std::string> f = splitCsvLine(line);
-    if (f.size() != header.size())
-      throw std::invalid_argument(source + " line " + std::to_string(lineno) + ": " +
-                                  std::to_string(f.size()) + " fields, the header has " +
-                                  std::to_string(header.size()));
-    std::map<std::string, std::string> row;
-    for (size_t k = 0; k < f.size(); ++k) row[header[k]] = f[k];
-    csv.rows.push_back(row);
-  }
-  return csv;
-}
 
 void widen(double v, double& lo, double& hi) {
   if (!std::isfinite(v)) return;
@@ -87,12 +30,13 @@ void widen(double v, double& lo, double& hi) {
 }
 
 // The headline cells (final-state error, CPU) grouped by N; the peer's skipped scenes left out.
-void ratioFacts(const Csv& c, SpeedFacts& f) {
+void ratioFacts(const CsvTable& c, SpeedFacts& f) {
   std::map<int, SpeedFacts::Group> groups;
   std::vector<std::string> scenes;
   for (size_t r = 0; r < c.rows.size(); ++r) {
     if (c.text(r, "measure") != "final-state" || c.text(r, "clock") != "CPU") continue;
     if (c.text(r, "reason").rfind(kPeerNotRun, 0) == 0) continue;
+    if (c.textOr(r, "side", "engine") != "engine") continue;  // `run`'s: speed_figures.h
     const int n = static_cast<int>(c.number(r, "n"));
     SpeedFacts::Group& g = groups[n];
     if (g.cells == 0) g.n = n, g.lo = g.hi = kNaN;
@@ -108,7 +52,7 @@ void ratioFacts(const Csv& c, SpeedFacts& f) {
   f.scenes = static_cast<int>(scenes.size());
 }
 
-void slopeFacts(const Csv& c, SpeedFacts& f) {
+void slopeFacts(const CsvTable& c, SpeedFacts& f) {
   for (size_t r = 0; r < c.rows.size(); ++r) {
     if (c.text(r, "measure") != "final-state" || c.text(r, "clock") != "CPU" ||
         c.text(r, "side") != "metrosync")
@@ -121,7 +65,7 @@ void slopeFacts(const Csv& c, SpeedFacts& f) {
   }
 }
 
-void runFacts(const Csv& c, SpeedFacts& f) {
+void runFacts(const CsvTable& c, SpeedFacts& f) {
   for (size_t r = 0; r < c.rows.size(); ++r) {
     if (!c.text(r, "failure").empty()) continue;
     ++f.run_rows;
@@ -133,7 +77,8 @@ void runFacts(const Csv& c, SpeedFacts& f) {
     widen(ratio, f.run_ratio_lo, f.run_ratio_hi);
     widen(c.number(r, "load1_min"), f.load_lo, f.load_hi);
     widen(c.number(r, "load1_max"), f.load_lo, f.load_hi);
-    if (c.text(r, "scene") == kDefaultRig && c.text(r, "variant").empty()) {
+    const std::string& scene = c.text(r, "scene");
+    if ((scene == kDefaultRig || scene == kDefaultRigFile) && c.text(r, "variant").empty()) {
       f.default_wall = c.number(r, "wall_seconds");
       f.default_engine = c.number(r, "engine_seconds");
       f.default_process = c.number(r, "process_wall_s");
@@ -141,7 +86,7 @@ void runFacts(const Csv& c, SpeedFacts& f) {
   }
 }
 
-void mapFacts(const Csv& c, SpeedFacts& f) {
+void mapFacts(const CsvTable& c, SpeedFacts& f) {
   for (size_t r = 0; r < c.rows.size(); ++r) {
     if (!c.text(r, "failure").empty()) continue;
     const bool full = c.text(r, "map") == "full";
@@ -159,15 +104,20 @@ std::string range(double lo, double hi, const std::string& unit = "x") {
   return (a == b ? a : a + "-" + b) + unit;
 }
 
-std::string ratioSentence(const SpeedFacts& f) {
+// The peer measured against, as speed.sh names it in peer.md (its source's hash, its binary).
+std::string peerName(const SpeedInputs& in) {
+  return in.peer.empty() ? std::string("`../shared/peer`") : in.peer;
+}
+
+std::string ratioSentence(const SpeedFacts& f, const SpeedInputs& in) {
   if (f.groups.empty())
     return "The careful peer was not measured in this run (it was missing: see the folder's "
            "README), so there is no ratio at equal error. ";
   std::ostringstream os;
-  os << "Against a careful C++17 program on Boost.Odeint (the project's independent peer, not "
-        "part of this repository: dopri5 and Fehlberg 7(8), fixed-size state, the same equations "
-        "and events), at equal final-state error "
-        "from "
+  os << "Against the careful peer " << peerName(in)
+     << " (a C++17 program on Boost.Odeint, the project's independent peer, not part of this "
+        "repository: dopri5 and Fehlberg 7(8), fixed-size state, the same equations and events), "
+        "at equal final-state error from "
      << errorLabel(f.err_hi) << " to " << errorLabel(f.err_lo)
      << " (CPU medians, integration and events only on both sides), the direct engine is ";
   int cells = 0, met = 0;
@@ -180,21 +130,16 @@ std::string ratioSentence(const SpeedFacts& f) {
        << " the peer's speed with " << g.n << " metronomes";
     cells += g.cells, met += g.met;
   }
-  os << " over " << f.scenes << " scenes: issue 23's target of "
+  os << " over " << f.scenes << " scenes: the target of "
      << benchNumber(kTargetRatio, 0, Notation::Fixed) << "x is "
      << (met == cells ? "met" : "not met") << " (" << met << " of " << cells << " cells). ";
   return os.str();
 }
 
 std::string otherSentences(const SpeedFacts& f) {
-  std::ostringstream os;
-  if (std::isfinite(f.slope_lo))
-    os << "Its cost per fast period grows as N^" << range(f.slope_lo, f.slope_hi, "")
-       << " from N = " << f.slope_n_lo << " to " << f.slope_n_hi << " (target N^"
-       << benchNumber(kSlopeTargetLow, 1, Notation::Fixed) << "-"
-       << benchNumber(kSlopeTargetHigh, 1, Notation::Fixed) << "). ";
+  std::ostringstream os;  // (issue 36 drops the N-slope's target: ratios.md keeps the slope)
   if (std::isfinite(f.default_wall))
-    os << "The default rig (`metrosync run " << kDefaultRig << " --quiet --no-plot`) integrates in "
+    os << "The default rig (`metrosync run --quiet --no-plot`) integrates in "
        << benchNumber(1e3 * f.default_wall, 3) << " ms (`wall_seconds`; "
        << benchNumber(1e3 * f.default_engine, 3)
        << " ms in the engine, `engine_seconds`), the whole "
@@ -238,29 +183,22 @@ std::string loadSentence(const SpeedFacts& f) {
          "the ratios at equal error are CPU medians, which carry much less of it.";
 }
 
-}  // namespace
-
-SpeedInputs readSpeedInputs(const std::string& dir) {
-  const std::filesystem::path d(dir);
-  SpeedInputs in;
-  in.ratios_csv = slurp(d / "ratios.csv");
-  in.nslope_csv = slurp(d / "nslope.csv");
-  in.verdicts_md = slurp(d / "verdicts.md");
-  in.run_csv = slurp(d / "run.csv");
-  in.maps_csv = slurp(d / "maps.csv");
-  in.run_md = slurp(d / "run.md");
-  if (std::filesystem::is_directory(d))
-    for (const auto& e : std::filesystem::directory_iterator(d)) {
-      const std::string name = e.path().filename().string();
-      if (name.rfind("wp-", 0) == 0 && name.size() > 4 &&
-          name.compare(name.size() - 4, 4, ".csv") == 0 &&
-          name.find("-equal-error.csv") == std::string::npos)
-        in.wp_csvs.push_back(slurp(e.path()));
-    }
-  in.maps_md = slurp(d / "maps.md");
-  in.provenance_md = slurp(d / "provenance.md");
-  return in;
+// Every judged figure of issue 36, "what: measured (verdict, by how much)".
+std::string figuresSentence(const std::vector<SpeedFigure>& figures) {
+  int judged = 0, met = 0;
+  std::string list;
+  for (const SpeedFigure& g : figures) {
+    if (!g.judged()) continue;
+    ++judged, met += g.verdict == "met";
+    list += std::string(list.empty() ? "" : "; ") + g.what + ": " + g.measured + " (" + g.verdict +
+            ", target " + g.target + ")";
+  }
+  if (judged == 0) return "";
+  return "Issue 36's targets: " + std::to_string(met) + " of " + std::to_string(judged) +
+         " met (by how much each is missed: the folder's table) -- " + list + ". ";
 }
+
+}  // namespace
 
 SpeedFacts speedFacts(const SpeedInputs& in) {
   SpeedFacts f;
@@ -269,12 +207,12 @@ SpeedFacts speedFacts(const SpeedInputs& in) {
   f.run_target = f.full_target_s = f.slow_target_s = kNaN;
   f.default_wall = f.default_engine = f.default_process = kNaN;
   f.load_lo = f.load_hi = kNaN;
-  ratioFacts(parseCsv(in.ratios_csv, "ratios.csv"), f);
-  slopeFacts(parseCsv(in.nslope_csv, "nslope.csv"), f);
-  runFacts(parseCsv(in.run_csv, "run.csv"), f);
-  mapFacts(parseCsv(in.maps_csv, "maps.csv"), f);
+  ratioFacts(parseCsvTable(in.ratios_csv, "ratios.csv"), f);
+  slopeFacts(parseCsvTable(in.nslope_csv, "nslope.csv"), f);
+  runFacts(parseCsvTable(in.run_csv, "run.csv"), f);
+  mapFacts(parseCsvTable(in.maps_csv, "maps.csv"), f);
   for (const std::string& text : in.wp_csvs) {  // the work-precision points' loads
-    const Csv c = parseCsv(text, "wp-*.csv");
+    const CsvTable c = parseCsvTable(text, "wp-*.csv");
     for (size_t r = 0; r < c.rows.size(); ++r) {
       if (c.number(r, "runs") <= 0) continue;
       widen(c.number(r, "load1_min"), f.load_lo, f.load_hi);
@@ -294,16 +232,19 @@ std::string speedParagraph(const SpeedFacts& f, const SpeedInputs& in) {
              ? " at 1-minute load " + benchNumber(f.load_lo, 1, Notation::Fixed) + "-" +
                    benchNumber(f.load_hi, 1, Notation::Fixed)
              : std::string())
-     << "). " << ratioSentence(f) << otherSentences(f) << loadSentence(f) << "\n";
+     << "). " << ratioSentence(f, in) << figuresSentence(speedFigures(in)) << otherSentences(f)
+     << loadSentence(f) << "\n";
   return os.str();
 }
 
 std::string speedPage(const SpeedFacts& f, const SpeedInputs& in) {
   std::ostringstream os;
-  os << "# Speed at equal error against a careful C++ program (issue 23)\n\n"
+  os << "# Speed against a careful C++ program (issues 23 and 36)\n\n"
      << "Everything in this folder comes from one run of `tools/bench/speed.sh`; README.md's "
-        "speed paragraph is this one, rewritten by the same run.\n\n"
-     << speedParagraph(f, in) << "\n";
+        "speed paragraph is this one, rewritten by the same run. The peer: "
+     << peerName(in) << ".\n\n"
+     << speedParagraph(f, in) << "\n## Every figure against its target\n\n"
+     << figuresMarkdown(speedFigures(in)) << "\n";
   if (!in.provenance_md.empty()) os << "## How it was made\n\n" << in.provenance_md << "\n";
   os << "## The verdicts against the careful peer\n\n"
      << (in.verdicts_md.empty() ? "Not measured in this run (the peer was missing).\n"
@@ -311,7 +252,14 @@ std::string speedPage(const SpeedFacts& f, const SpeedInputs& in) {
      << "\nEvery table, the wall-time tables, the reason of each empty cell and the peer's "
         "validation: [ratios.md](ratios.md); every point: `wp-<scene>.md` and `.csv`.\n\n";
   if (!in.run_md.empty()) os << "## `run` against its engine\n\n" << in.run_md << "\n";
-  if (!in.maps_md.empty()) os << "## The maps\n\n" << in.maps_md << "\n";
+  const std::pair<const char*, const std::string*> parts[] = {
+      {"The whole process, phase by phase", &in.process_md},
+      {"Cost per step and per event", &in.eventcost_md},
+      {"One fit", &in.fit_md},
+      {"`continue --all` at N = 32", &in.continuation_md},
+      {"The maps", &in.maps_md}};
+  for (const auto& [title, md] : parts)
+    if (!md->empty()) os << "## " << title << "\n\n" << *md << "\n";
   os << "## Files\n\n"
      << "- `provenance.md`: when, on what, and the commands (quoted above);\n"
      << "- `verdicts.md`: the headline verdicts and tables (quoted above); `ratios.md`: every "
@@ -320,7 +268,11 @@ std::string speedPage(const SpeedFacts& f, const SpeedInputs& in) {
      << "- `wp-<scene>.md`, `.csv`, `.png`: every measured point of every scene (errors, CPU "
         "and wall medians with and without samples, steps, evaluations, events); "
         "`wp-<scene>-equal-error.csv`: the engines' ratios on each scene;\n"
-     << "- `run.md`, `run.csv`: `run` against its engine; `maps.md`, `maps.csv`: the maps.\n";
+     << "- `runpoints.csv`: `run` against its engine at each point of the work-precision;\n"
+     << "- `run.md`, `run.csv`: `run` against its engine on every scene; `process.md`, "
+        "`process.csv`: the whole process; `eventcost.md`, `.csv`: cost per step and per event; "
+        "`fit.md`, `.csv`: one fit; `continuation.md`, `.csv`: `continue --all`; `maps.md`, "
+        "`maps.csv`: the maps; `peer.md`: the peer measured against.\n";
   return os.str();
 }
 

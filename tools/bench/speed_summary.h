@@ -10,26 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "tools/bench/speed_inputs.h"
+
 namespace metrosync::bench {
 
 // The marker comments around the generated paragraph in README.md.
 extern const char* const kSpeedBegin;
 extern const char* const kSpeedEnd;
-
-// What the summary reads, as text ("" = the file is absent).
-struct SpeedInputs {
-  std::string ratios_csv, nslope_csv, verdicts_md, run_csv, maps_csv, provenance_md;
-  std::string run_md, maps_md;
-  std::vector<std::string> wp_csvs;         // every wp-<scene>.csv (their loads)
-  std::string date, commit;                 // of the measurement, as the script gives them
-  std::string folder = "docs/bench/speed";  // the folder, as README.md links it
-};
-
-// The default rig's file, as run.csv names it.
-extern const char* const kDefaultRig;
-
-// Reads DIR's files into SpeedInputs (absent files stay "").
-SpeedInputs readSpeedInputs(const std::string& dir);
 
 // The numbers the paragraph quotes (NaN / 0 where the part is missing).
 struct SpeedFacts {

@@ -77,7 +77,8 @@ void waitFor(pid_t pid, double timeout_s, std::chrono::steady_clock::time_point 
 
 }  // namespace
 
-ProcessResult runProcess(const std::vector<std::string>& argv, double timeout_s) {
+ProcessResult runProcess(const std::vector<std::string>& argv, double timeout_s,
+                         const std::vector<std::string>& env) {
   ProcessResult r;
   if (argv.empty()) {
     r.error = "no program given";
@@ -96,9 +97,13 @@ ProcessResult runProcess(const std::vector<std::string>& argv, double timeout_s)
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
+  std::vector<char*> envp;  // `env` first: getenv() takes a name's first entry
+  for (const std::string& e : env) envp.push_back(const_cast<char*>(e.c_str()));
+  for (char** e = environ; *e; ++e) envp.push_back(*e);
+  envp.push_back(nullptr);
   pid_t pid = 0;
   const auto t0 = std::chrono::steady_clock::now();
-  const int rc = ::posix_spawnp(&pid, argv[0].c_str(), &fa, nullptr, args.data(), environ);
+  const int rc = ::posix_spawnp(&pid, argv[0].c_str(), &fa, nullptr, args.data(), envp.data());
   posix_spawn_file_actions_destroy(&fa);
   if (rc != 0) {
     r.error = "cannot run " + argv[0] + ": " + std::strerror(rc);
@@ -106,7 +111,10 @@ ProcessResult runProcess(const std::vector<std::string>& argv, double timeout_s)
   }
   r.started = true;
   waitFor(pid, timeout_s, t0, r);
-  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto t1 = std::chrono::steady_clock::now();
+  r.wall_s = std::chrono::duration<double>(t1 - t0).count();
+  r.start_s = std::chrono::duration<double>(t0.time_since_epoch()).count();
+  r.end_s = std::chrono::duration<double>(t1.time_since_epoch()).count();
   r.out = out.slurp();
   r.err = err.slurp();
   return r;

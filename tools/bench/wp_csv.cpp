@@ -24,18 +24,7 @@ struct Row {
   const std::string& text(const std::string& key) const { return f[col->at(key)]; }
   bool has(const std::string& key) const { return col->count(key) > 0; }
   double num(const std::string& key) const {
-    const std::string& s = text(key);
-    if (s.empty()) return std::numeric_limits<double>::quiet_NaN();
-    size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(s, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != s.size())
-      throw std::invalid_argument(where + ", column " + key + ": '" + s + "' is not a number");
-    return v;
+    return csvNumber(text(key), where + ", column " + key);
   }
 };
 
@@ -50,7 +39,8 @@ void addRow(VerdictScene& s, const Row& r, const Sides& sides) {
     s.cross_checks.push_back({engine, method, r.num("err_final_state"), r.num("err_envelope")});
   } else if (status == "not run" && engine == sides.peer) {
     s.peer_skipped = r.has("note") && !r.text("note").empty() ? r.text("note") : "not run";
-  } else if (status == "ok" && (engine == sides.ours || engine == sides.peer)) {
+  } else if (status == "ok" &&
+             (engine == sides.ours || engine == sides.peer || engine == sides.run)) {
     SidePoint p{method,
                 r.num("err_final_state"),
                 r.num("err_envelope"),
@@ -60,8 +50,12 @@ void addRow(VerdictScene& s, const Row& r, const Sides& sides) {
     // the runs without samples (columns absent from the files of earlier versions)
     if (r.has("cpu_final_median_s")) p.cpu_final_s = r.num("cpu_final_median_s");
     if (r.has("wall_final_median_s")) p.wall_final_s = r.num("wall_final_median_s");
-    auto& pts = engine == sides.ours ? s.ours : s.peer;
-    auto& labels = engine == sides.ours ? s.our_methods : s.peer_methods;
+    if (r.has("engine_median_s")) p.engine_s = r.num("engine_median_s");
+    if (r.has("wall_over_engine")) p.wall_over_engine = r.num("wall_over_engine");
+    auto& pts = engine == sides.ours ? s.ours : engine == sides.peer ? s.peer : s.run;
+    auto& labels = engine == sides.ours   ? s.our_methods
+                   : engine == sides.peer ? s.peer_methods
+                                          : s.run_methods;
     pts.push_back(p);
     if (std::find(labels.begin(), labels.end(), label) == labels.end()) labels.push_back(label);
     s.load_min = std::fmin(s.load_min, r.num("load1_min"));  // fmin, fmax: NaN is "none yet"
@@ -92,6 +86,19 @@ std::vector<std::string> splitCsvLine(const std::string& line) {
     }
   }
   return out;
+}
+
+double csvNumber(const std::string& s, const std::string& where) {
+  if (s.empty()) return std::numeric_limits<double>::quiet_NaN();
+  size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(s, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != s.size()) throw std::invalid_argument(where + ": '" + s + "' is not a number");
+  return v;
 }
 
 std::vector<VerdictScene> parseWorkPrecisionCsv(const std::string& text, const std::string& source,

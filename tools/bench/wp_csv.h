@@ -19,4 +19,8 @@ std::vector<VerdictScene> parseWorkPrecisionCsv(const std::string& text, const s
 // The fields of one CSV line (double quotes around a field that holds a comma or a quote).
 std::vector<std::string> splitCsvLine(const std::string& line);
 
+// A CSV field as a number: NaN when empty; throws std::invalid_argument "WHERE: 'S' is not a
+// number" when it is not one (WHERE: file, line and column).
+double csvNumber(const std::string& s, const std::string& where);
+
 }  // namespace metrosync::bench

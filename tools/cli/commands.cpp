@@ -16,6 +16,7 @@
 #include "sim/analysis/regime.h"
 #include "sim/record/atomic_file.h"
 #include "tools/cli/engines.h"
+#include "tools/cli/phase_clock.h"
 #include "tools/cli/range_warnings.h"
 #include "tools/report/comparison_csv.h"
 #include "tools/report/json_file.h"
@@ -327,7 +328,9 @@ RunOutcome runNetwork(const Options& opt, const Network& net, const std::string&
 }
 
 // `run`, its rows also kept when `keep` (a single rig's).
+// METROSYNC_PHASES=1: each phase's end on stderr (tools/cli/phase_clock.h)
 RunOutcome runImpl(const Options& opt, bool keep) {
+  markPhase("args");
   const std::string text = rigText(opt);
   if (const std::optional<Network> net = loadPlatformsNetwork(text, rigDisplayName(opt), opt.sets,
                                                               engineLoadOptions(opt.max_output))) {
@@ -336,6 +339,7 @@ RunOutcome runImpl(const Options& opt, bool keep) {
   }
   RunOutcome out;
   LoadedRig r = loadAndCheck(opt, opt.model);
+  markPhase("rig");
   const std::string model = r.engine->model();
   installStopHandlers();  // before any file exists, so that no signal can leave a bare .part
   const bool full = model == "full";
@@ -349,31 +353,43 @@ RunOutcome runImpl(const Options& opt, bool keep) {
   LinearDecay decay;
   observeSection3A(r, full, *sink, decay);
   const auto progress = attachProgress(opt, r, *sink, "run");
+  markPhase("folder");
   RunReport report = runModel(*r.engine, r, *sink);
+  markPhase("run");
   report.write_seconds = sink->commit();
+  markPhase("files");
   const RegimeVerdict verdict = judge(report, *sink, r);
 
   std::vector<std::string> files = sink->fileNames();
   const std::string plot = "envelope." + opt.plot_format;
   // the result files on disk before the plot (a gnuplot child, ~0.1 s); summary.json then
   // follows on its own
-  if (dir && !opt.no_plot) durable.finish();
+  if (dir && !opt.no_plot) {
+    durable.finish();
+    markPhase("sync");
+  }
   if (dir && !opt.no_plot &&
       plotEnvelope(*dir, plot, sink->plotRows(), r.scaled.theta_c,
                    r.rig.name + " - " + modelTitle(model) + " - " + regimeName(verdict),
                    plotStyle(opt, r)))
     files.push_back(plot);
+  if (dir && !opt.no_plot) markPhase("plot");
 
   out.summary = runSummaryJson(r.rig, r.scaled_json, report, verdict);
   addRunProvenance(out.summary, opt, r.text);
   addSection3A(out.summary, decay, r.rig);
   finishSummary(out.summary, dir, files);
-  if (durable.active()) durable.finish();  // --no-plot: renamed in order, summary.json last
+  markPhase("summary");
+  if (durable.active()) {
+    durable.finish();  // --no-plot: renamed in order, summary.json last
+    markPhase("sync");
+  }
 
   if (!opt.quiet) {
     printRunSummary(model, r, report, verdict, &decay);
     printFiles(dir, files);
   }
+  markPhase("print");
   out.code = report.complete ? kSuccess : kSimulationFailed;
   if (!report.complete) reportFailure(model, report.failure, dir);
   return out;

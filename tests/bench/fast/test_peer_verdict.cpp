@@ -294,3 +294,12 @@ TEST(PeerVerdict, ReadsTheWorkPrecisionCsvBack) {
         << e.what();
   }
 }
+
+// The headline of a target over rows counts the rows that miss it (it once printed "NOT met in 0
+// of 6 rows" when all 6 missed: the count of rows that met it after the words "NOT met in").
+TEST(PeerVerdict, RowsVerdictCountsTheRowsThatMiss) {
+  EXPECT_EQ(mb::rowsVerdict(0, 6), "NOT met in 6 of 6 rows");
+  EXPECT_EQ(mb::rowsVerdict(4, 6), "NOT met in 2 of 6 rows");
+  EXPECT_EQ(mb::rowsVerdict(6, 6), "met in all 6 rows");
+  EXPECT_EQ(mb::rowsVerdict(0, 0), "not measured");
+}
