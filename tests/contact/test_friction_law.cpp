@@ -93,9 +93,11 @@ TEST(FrictionLaw, HoldsADriveUpToItsStaticBound) {
 }
 
 TEST(LawRegistry, NamesKeysAndTheLawTheKeysChoose) {
-  EXPECT_EQ(lawNames(), (std::vector<std::string>{"coulomb", "viscous", "none", "fixed"}));
-  EXPECT_EQ(lawKeys(), (std::vector<std::string>{"mu", "mu_static", "c"}));
-  EXPECT_EQ(lawsWithKey("mu_static"), "coulomb");
+  EXPECT_EQ(lawNames(),
+            (std::vector<std::string>{"coulomb", "viscous", "none", "fixed", "stribeck"}));
+  EXPECT_EQ(lawKeys(),
+            (std::vector<std::string>{"mu", "mu_static", "c", "stribeck_velocity", "exponent"}));
+  EXPECT_EQ(lawsWithKey("mu_static"), "coulomb or stribeck");
   EXPECT_EQ(findLaw("coulomb", {"mu"}), &coulombLaw());
   EXPECT_EQ(findLaw("coulomb", {"mu_static", "mu"}), &staticCoulombLaw());
   EXPECT_EQ(findLaw("coulomb", {"c"}), nullptr);

@@ -18,7 +18,7 @@
 
 #include "base/constants.h"
 #include "models/scaling.h"
-#include "tools/bench/sampled_envelope.h"
+#include "sim/record/envelope_quadrature.h"
 
 namespace metrosync::bench {
 
@@ -343,9 +343,9 @@ class PeerRun {
     eq_.mode = m;
   }
   bool handleEvents();
-  void sample(double s, const State& z) {
-    if (record_) env_.sample(s, angles(z).data(), rates(z).data());
-  }
+  // the envelope: the exact average of the peer's own solution (sim/record/envelope_quadrature.h),
+  // each smooth stretch [env_s_, s] of the current step evaluated at the quadrature's nodes
+  void envelopeTo(double s);
   static double sampleTime(long k) { return static_cast<double>(k) * (kTwoPi / kSamplesPerPeriod); }
   void emitSamples(double s_limit, bool inclusive);
   // per rig metronome (locked: 0), scaled
@@ -360,7 +360,8 @@ class PeerRun {
   bool record_;
   ScaledParams sp_;
   Equations eq_;
-  EnvelopeRecorder env_;
+  EnvelopeQuadrature env_;
+  double env_s_ = 0;  // where the envelope's stretches have reached
   std::unique_ptr<Driver> drv_;
   RunReport report_;
   std::vector<Witness> witnesses_;
@@ -384,7 +385,7 @@ PeerRun::PeerRun(const Rig& rig, RunSink& sink, const OdeintOptions& opt)
       record_(sink.wantsEnvelope()),
       sp_(computeScaled(rig)),
       eq_(rig, sp_),
-      env_(sp_.epsilon, activeMetronomes(rig), sink) {
+      env_(sp_.epsilon, activeMetronomes(rig), rig.sim.t_end_s * (1.0 / sp_.time_scale_s), sink) {
   // the largest step: a tenth of the fastest pendulum's (or the platform spring's) period
   const double w0 = 1.0 / sp_.time_scale_s;
   double fastest = kTwoPi;
@@ -559,14 +560,27 @@ void PeerRun::resolve(State& z, const std::vector<std::pair<int, int>>& ticks, b
   }
 }
 
-// Envelope samples on the grid before s_limit (or at it, if inclusive).
+// The envelope up to s_limit, and the sample grid (where rkf78 ends its steps) past it (or past
+// it and at it, if inclusive).
 void PeerRun::emitSamples(double s_limit, bool inclusive) {
   if (!record_) return;
+  envelopeTo(s_limit);
   for (;; ++k_sample_) {
     const double s = sampleTime(k_sample_);
     if (!(s < s_end_ && (s < s_limit || (inclusive && s == s_limit)))) break;
-    sample(s, drv_->at(s));
   }
+}
+
+void PeerRun::envelopeTo(double s) {
+  if (!record_ || !(s > env_s_)) return;
+  env_.stretchAt(env_s_, s, [&](double t, double* theta, double* thetadot) {
+    const State& z = drv_->at(t);
+    for (int j = 0; j < eq_.n(); ++j) {
+      theta[eq_.pendulum(j).rig_index] = z[Equations::th(j)];
+      thetadot[eq_.pendulum(j).rig_index] = z[Equations::om(j)];
+    }
+  });
+  env_s_ = s;
 }
 
 // The step [s0, s1] just taken: its events, if any, resolved (the driver restarted after them).
@@ -593,9 +607,7 @@ bool PeerRun::handleEvents() {
       ticks.emplace_back(w.pendulum, theta > 0 ? 1 : -1);
   }
   ++report_.counts.events;
-  sample(s_e, z);  // the last state before the event
-  resolve(z, ticks, platform);
-  sample(s_e, z);  // and the first after it
+  resolve(z, ticks, platform);  // the envelope's stretch ended at s_e (emitSamples above)
   drv_->restart(z, s_e);
   if (s_e - burst_start_ > kStormWindow * kTwoPi) burst_start_ = s_e, burst_ = 0;
   if (++burst_ > kStormEvents) throw std::runtime_error("event storm");
@@ -619,7 +631,7 @@ RunReport PeerRun::run() {
   }
   g0_.resize(witnesses_.size());
   g1_.resize(witnesses_.size());
-  sample(0.0, z);
+  if (record_) env_.start(angles(z).data(), rates(z).data());
   sink_.trajectoryRow(makeRow(0.0, z));
   drv_->restart(z, 0.0);
   try {
@@ -638,7 +650,6 @@ RunReport PeerRun::run() {
   }
   report_.final_trajectory_row = makeRow(drv_->s1, drv_->y1);
   sink_.trajectoryRow(report_.final_trajectory_row);
-  sample(drv_->s1, drv_->y1);
   if (record_) report_.final_row = env_.finish();
   report_.counts.steps = drv_->steps;
   report_.counts.rhs_evals = eq_.evals;
