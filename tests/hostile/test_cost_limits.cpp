@@ -74,7 +74,9 @@ TEST(CostLimits, NetworkPlatformsStackAndMetronomesAtTheirBoundaries) {
       << msg;
   // every metronome locked: refused where the platforms are (main: exit 1, no file, no key)
   msg = networkError(networkText(2, 2, 0, true));
-  EXPECT_NE(msg.find("platforms: every metronome of the network is locked"), std::string::npos)
+  EXPECT_NE(msg.find("platforms.1.metronomes.1.locked = true: every metronome of the network is "
+                     "locked"),
+            std::string::npos)
       << msg;
   EXPECT_TRUE(located(msg, "net.yaml")) << msg;
 }
