@@ -106,7 +106,8 @@ std::string range(double lo, double hi, const std::string& unit = "x") {
 
 // The peer measured against, as speed.sh names it in peer.md (its source's hash, its binary).
 std::string peerName(const SpeedInputs& in) {
-  return in.peer.empty() ? std::string("`../shared/peer`") : in.peer;
+  return in.peer.empty() ? std::string("the careful C++ peer (not part of this repository)")
+                         : in.peer;
 }
 
 std::string ratioSentence(const SpeedFacts& f, const SpeedInputs& in) {
