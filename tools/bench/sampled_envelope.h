@@ -1,6 +1,6 @@
-// The benchmark's peers' envelope (tools/bench/odeint_peer.cpp, siconos_peer.cpp): integrators
-// without an interpolant the project's quadrature (sim/record/envelope_quadrature.h) could
-// integrate give samples instead, and this turns them into the same rows by the trapezoid rule,
+// The Siconos peer's envelope (tools/bench/siconos_peer.cpp; the Odeint peer integrates its own
+// solution as the engines do): an integrator without an interpolant the project's quadrature
+// (sim/record/envelope_quadrature.h) could integrate gives samples instead, and this turns them into the same rows by the trapezoid rule,
 // as the engines' recorder did before issue 36 (its error, up to 2e-5 in A where an impulse bends
 // A(t), is part of the peers' envelope error; their verdicts go by the final state).
 //
