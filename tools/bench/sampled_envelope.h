@@ -1,8 +1,9 @@
 // The Siconos peer's envelope (tools/bench/siconos_peer.cpp; the Odeint peer integrates its own
 // solution as the engines do): an integrator without an interpolant the project's quadrature
-// (sim/record/envelope_quadrature.h) could integrate gives samples instead, and this turns them into the same rows by the trapezoid rule,
-// as the engines' recorder did before issue 36 (its error, up to 2e-5 in A where an impulse bends
-// A(t), is part of the peers' envelope error; their verdicts go by the final state).
+// (sim/record/envelope_quadrature.h) could integrate gives samples instead, and this turns them
+// into the same rows by the trapezoid rule, as the engines' recorder did before issue 36 (its
+// error, up to 2e-5 in A where an impulse bends A(t), is part of the peers' envelope error; their
+// verdicts go by the final state).
 //
 // Turns a sampled full-model trajectory into envelope rows (SPEC section 3): for each fast period
 // [2 pi k, 2 pi (k+1)] of scaled time, the time average of A_i = sqrt(theta_i^2 + thetadot_i^2)
