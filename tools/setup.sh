@@ -6,10 +6,12 @@
 # test_packages and builds everything (tests, benches, the Python module, the man page).
 #   bash tools/setup.sh run   [extra metrosync run arguments]
 #   bash tools/setup.sh test
-#   bash tools/setup.sh sanitize   (CI's second stage, .ci/run: the `fast` tests under
-#                                   AddressSanitizer + UndefinedBehaviorSanitizer in build-asan)
-#   bash tools/setup.sh fuzz [S]   (the fuzz stage, also the end of `test`: libFuzzer's targets
-#                                   in build-fuzz, S seconds each; tools/fuzz/run.sh)
+#   bash tools/setup.sh sanitize   (the `fast` tests under AddressSanitizer +
+#                                   UndefinedBehaviorSanitizer, in build-fuzz)
+#   bash tools/setup.sh fuzz [S]   (libFuzzer's targets in build-fuzz, S seconds each;
+#                                   tools/fuzz/run.sh)
+# `test` ends with both: one instrumented build (clang, build-fuzz) serves the two, so that CI
+# (.ci/run) compiles the libraries twice, not three times.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -52,33 +54,33 @@ jobs=$(nproc 2>/dev/null || echo 2)
 launcher=""
 command -v ccache >/dev/null 2>&1 && launcher="-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"
 
-# The sanitizer stage: its own build directory (every object differs), only the fast tests'
-# executables built, every ODR violation and leak reported, the first UB finding fatal.
-# -O1: a third of -O3's compile time, and what the sanitizers' documentation recommends for
-# readable reports at a small run-time cost.
-if [ "$mode" = sanitize ]; then
-  fast_tests=(test_contact test_models test_sim test_yaml test_layout test_bench_fast test_fuzz)
-  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
-        -DMETROSYNC_SANITIZE=ON $launcher >/dev/null
-  cmake --build build-asan -j"$jobs" --target "${fast_tests[@]}"
-  ASAN_OPTIONS=detect_odr_violation=2:detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
-    ctest --test-dir build-asan -L fast --output-on-failure -j"$jobs" --timeout 900
-  exit $?
-fi
-
-# The fuzz stage: its own build directory (clang, every object instrumented), only the fuzz
-# targets and the libraries they link built; each target then runs for S seconds (default
-# $METROSYNC_FUZZ_SECONDS, else 30), failing on a crash, leak, slow input or memory limit.
-fuzz_stage() {
+# The checked build: its own directory (clang, every object instrumented for libFuzzer's coverage
+# and compiled with AddressSanitizer + UndefinedBehaviorSanitizer; -O1: a third of -O3's compile
+# time, and what the sanitizers' documentation recommends for readable reports), building only
+# what its two stages need:
+#   sanitize: the `fast` tests under the sanitizers, every ODR violation and leak reported, the
+#             first UB finding fatal;
+#   fuzz:     each libFuzzer target for S seconds (default $METROSYNC_FUZZ_SECONDS, else 30),
+#             failing on a crash, leak, slow input or memory limit (tools/fuzz/run.sh).
+fast_tests=(test_contact test_models test_sim test_yaml test_layout test_bench_fast test_fuzz)
+checked_build() {
   CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
         -DMETROSYNC_FUZZ=ON $launcher >/dev/null
-  cmake --build build-fuzz -j"$jobs" --target fuzz_targets
+  cmake --build build-fuzz -j"$jobs" --target "$@"
+}
+sanitize_stage() {
+  checked_build "${fast_tests[@]}"
+  ASAN_OPTIONS=detect_odr_violation=2:detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+    ctest --test-dir build-fuzz -L fast --output-on-failure -j"$jobs" --timeout 900
+}
+fuzz_stage() {
+  checked_build fuzz_targets
   bash tools/fuzz/run.sh "$@"
 }
-if [ "$mode" = fuzz ]; then
-  fuzz_stage "$@"
-  exit $?
-fi
+case "$mode" in
+  sanitize) sanitize_stage; exit $? ;;
+  fuzz) fuzz_stage "$@"; exit $? ;;
+esac
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release $launcher >/dev/null
 
@@ -90,6 +92,7 @@ case "$mode" in
   test)
     cmake --build build -j"$jobs"
     ctest --test-dir build --output-on-failure -j"$jobs" --timeout 900
+    sanitize_stage
     fuzz_stage
     ;;
   *)

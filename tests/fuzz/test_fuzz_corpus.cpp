@@ -43,12 +43,13 @@ TEST(FuzzCorpus, EveryInputPassesItsTarget) {
 
 // The split of an input into a text and its --set parts, and a finding as a finding.
 TEST(FuzzCorpus, TheBodiesSeeWhatTheyMust) {
-  EXPECT_EQ(nulSeparated(std::string("a\0b\0\0c", 6)),
+  using namespace std::string_literals;
+  EXPECT_EQ(nulSeparated("a\0b\0\0c"s),
             (std::vector<std::string>{"a", "b", "", "c"}));
   EXPECT_EQ(nulSeparated(""), std::vector<std::string>{""});
   EXPECT_NO_THROW(rigLoader("units: physical\nname: [\n"));  // refused, located
   EXPECT_NO_THROW(keyPath("metronomes.*.nu=0.5"));
-  EXPECT_NO_THROW(options(std::string("sweep\0--vary\0platform.friction.mu=0:1:3", 41)));
+  EXPECT_NO_THROW(options("sweep\0--vary\0platform.friction.mu=0:1:3"s));  // its length, no count
   EXPECT_NO_THROW(dataFile("t,theta_1\n0,0.1\n0.5,\n1,0.2\n"));
 }
 
