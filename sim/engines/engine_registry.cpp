@@ -31,9 +31,10 @@ class DirectEngine final : public Engine {
   std::string description() const override {
     return "the full model in minimal coordinates (the default; ~100x faster than simbody)";
   }
-  // a single rig on its own model (RigModel<N>, the hot path) unless the sink wants states
+  // a single rig on its own model (RigModel<N>, the hot path) whatever the sink wants (its states
+  // too: rig_recorder.h), so that the same board runs the same arithmetic in every command
   RunReport run(const Network& net, RunSink& sink) const override {
-    if (net.isSingleRig() && !sink.wantsStates()) return runDirectModel(net.toSingleRig(), sink);
+    if (net.isSingleRig()) return runDirectModel(net.toSingleRig(), sink);
     return runNetworkDirect(net, sink);
   }
   bool runsNetworks() const override { return true; }

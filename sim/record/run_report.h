@@ -73,8 +73,8 @@ struct RunReport {
 // event rows and records), and a network's state at every sample (stateSample). A run calls what
 // its model has and the sink wants: a network of two or more platforms has no rows in a single
 // rig's format, so its run calls stateSample only; a single rig's run calls the rows, and when the
-// sink wantsStates() Simbody's also calls stateSample, while the direct engine runs the rig on the
-// network's model (states only: sim/engines/direct/network_model.h).
+// sink wantsStates() also stateSample (both engines: the state as a network of one's, at every row
+// sample and at the end). What the sink wants never chooses the model.
 struct RunSink {
   virtual ~RunSink() = default;
   // t, x, xdot, theta_1, thetadot_1, ..., theta_N, thetadot_N, platform (0, 1, -1) in the rig's

@@ -195,7 +195,7 @@ TEST(Animate, TicksAreTheEnginesTicks) {
   }
 
   Network net = loadNetworkFile(kRigs + "two-boards-rollers.yaml");
-  const cli::AnimationTrack nt = cli::trackNetwork(net, req);
+  const cli::AnimationTrack nt = cli::trackNetwork(net, *findEngine("direct"), req);
   net.sim.t_end_s = req.to;
   net.sim.sample_s = req.frameInterval();
   struct Discard : StateSink {
@@ -206,6 +206,32 @@ TEST(Animate, TicksAreTheEnginesTicks) {
   ASSERT_EQ(nt.ticks.size(), nrep.counts.escapements.size());
   for (std::size_t i = 0; i < nt.ticks.size(); ++i)
     EXPECT_EQ(nt.ticks[i], nrep.counts.escapements[i]) << i;
+}
+
+// A network animates on the engine `run` would choose for it, Simbody's too (issue 38: every option
+// the same on both kinds; main refused `animate NETWORK --engine simbody`): the same frames at the
+// same times on both engines, their states agreeing to the engines' agreement at the rig's
+// accuracy, and the same ticks.
+TEST(Animate, ANetworkAnimatesOnEitherEngine) {
+  cli::AnimationRequest req;
+  req.to = 2.0;
+  Network net = loadNetworkFile(kRigs + "two-boards-rollers.yaml");
+  net.sim.accuracy = 1e-10;
+  const cli::AnimationTrack d = cli::trackNetwork(net, *findEngine("direct"), req);
+  const cli::AnimationTrack s = cli::trackNetwork(net, *findEngine("simbody"), req);
+  ASSERT_TRUE(d.complete && s.complete) << d.failure << s.failure;
+  ASSERT_EQ(d.frames.size(), static_cast<std::size_t>(req.frameCount()));
+  ASSERT_EQ(s.frames.size(), d.frames.size());
+  constexpr double kAgree = 1e-6;  // rad and m: the engines agree to ~1e-8 at accuracy 1e-10
+  for (std::size_t k = 0; k < d.frames.size(); ++k) {
+    ASSERT_EQ(d.frames[k].t, s.frames[k].t) << k;
+    ASSERT_EQ(d.frames[k].x.size(), 2u);
+    for (std::size_t p = 0; p < 2; ++p) EXPECT_NEAR(d.frames[k].x[p], s.frames[k].x[p], kAgree);
+    for (std::size_t i = 0; i < d.frames[k].theta.size(); ++i)
+      EXPECT_NEAR(d.frames[k].theta[i], s.frames[k].theta[i], kAgree) << k << " " << i;
+  }
+  EXPECT_EQ(d.ticks, s.ticks);
+  EXPECT_GT(d.ticks.at(0), 2);
 }
 
 #if METROSYNC_HAVE_CAIRO

@@ -14,6 +14,7 @@
 #include "models/minimal_equations.h"
 #include "models/network_equations.h"
 #include "sim/engines/direct/direct_engine.h"
+#include "sim/engines/engine.h"
 #include "yaml/network_loader.h"
 
 namespace metrosync {
@@ -154,6 +155,48 @@ TEST(OnePlatformNetwork, RunsAsTheSingleRig) {
   }
   for (int i = 0; i < lay.n; ++i)
     EXPECT_EQ(nrep.counts.escapements[i], srep.counts.escapements[i]) << i;
+}
+
+// The sink does not choose the model (issue 38): a single rig run through the engines' one entry
+// into a sink that wants its states runs the rig's own model, the same steps and evaluations as
+// into a sink of rows only, and its states are its rows' numbers, sample by sample (the rig is
+// physical: rows and states are SI). On main a sink of states ran the network's model (other steps,
+// and no rows).
+TEST(OnePlatformNetwork, TheSinkDoesNotChooseTheModel) {
+  const Network net = loadNetworkText(board("{law: coulomb, mu: 1e-4}", 3.0), "one.yaml");
+  ASSERT_TRUE(net.isSingleRig());
+  const Engine& direct = *findEngine("direct");
+  MemorySink rows, both;
+  both.keep_states = true;
+  const RunReport a = direct.run(net, rows);
+  const RunReport b = direct.run(net, both);
+  ASSERT_TRUE(a.complete && b.complete) << a.failure << b.failure;
+  EXPECT_EQ(a.counts.steps, b.counts.steps);
+  EXPECT_EQ(a.counts.rhs_evals, b.counts.rhs_evals);
+  EXPECT_EQ(a.counts.slip_reversals, b.counts.slip_reversals);
+  EXPECT_GT(b.counts.slip_reversals, 0);  // the board slid both ways
+  EXPECT_EQ(rows.trajectory, both.trajectory);
+  EXPECT_TRUE(rows.states.empty());
+  ASSERT_GE(both.states.size(), 20u);
+  ASSERT_EQ(both.states.size(), both.trajectory.size());
+  const network::Layout lay = network::NetworkEquations(net).layout();
+  for (std::size_t r = 0; r < both.states.size(); ++r) {
+    const MemorySink::State& s = both.states[r];
+    const std::vector<double>& row = both.trajectory[r];  // t, x, xdot, theta_i, thetadot_i, mode
+    ASSERT_EQ(s.y.size(), static_cast<std::size_t>(lay.dim()));
+    EXPECT_EQ(s.t, row[0]) << r;
+    EXPECT_EQ(s.y[lay.x(0)], row[1]) << r;
+    EXPECT_EQ(s.y[lay.v(0)], row[2]) << r;
+    for (int j = 0; j < lay.n; ++j) {
+      EXPECT_EQ(s.y[lay.theta(j)], row[3 + 2 * j]) << r;
+      EXPECT_EQ(s.y[lay.omega(j)], row[4 + 2 * j]) << r;
+    }
+    ASSERT_EQ(s.modes.size(), 1u);
+    EXPECT_EQ(static_cast<double>(static_cast<int>(s.modes[0])), row.back()) << r;
+    EXPECT_EQ(s.y[lay.damperWork()], 0.0);
+  }
+  EXPECT_EQ(both.states.back().t, net.sim.t_end_s);
+  EXPECT_EQ(b.final_state, both.states.back().y);
 }
 
 }  // namespace

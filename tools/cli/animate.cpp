@@ -151,26 +151,24 @@ bool animationAvailable() {
 
 namespace {
 
-// The run and its frames: one platform on the chosen full-model engine, or a network.
+// The run and its frames: the rig (one platform, or a network of several) loaded once, on the
+// full-model engine chosen for it as `run` chooses it.
 AnimationTrack simulate(const AnimateOptions& opt, AnimationRequest& req, std::string& rig_name,
                         bool& physical) {
   const Options& o = opt.rig;
   const LoadOptions lo = engineLoadOptions(HUGE_VAL);  // animate writes no trajectory
   const std::string text = o.rig_path.empty() ? defaultRigYaml() : readRigFile(o.rig_path);
-  const std::optional<Network> net = loadPlatformsNetwork(text, displayName(opt), o.sets, lo);
-  if (!net) loadRigText(text, displayName(opt), o.sets, lo);  // a bad rig said as such first
+  const Network net = loadNetworkText(text, displayName(opt), o.sets, lo);
   checkSensibleRanges(text, displayName(opt), o.sets, o.strict);
-  if (net) {
-    if (!o.engine.empty() && o.engine != "direct")
-      throw UsageError("--engine " + o.engine + ": a network runs on the direct engine only");
-    rig_name = net->name;
-    setTimes(opt, net->sim.t_end_s, 1.0, req);
-    req.title = net->name + " - " + networkOfPlatforms(net->platforms.size()) + " - " +
-                speedText(opt.speed, true);
-    return trackNetwork(*net, req);
+  const Engine& engine = chooseEngine(o.engine, "full", net, displayName(opt), "animates");
+  if (!net.isSingleRig()) {
+    rig_name = net.name;
+    setTimes(opt, net.sim.t_end_s, 1.0, req);
+    req.title = net.name + " - " + networkOfPlatforms(net.platforms.size()) + " - " +
+                engine.name() + " - " + speedText(opt.speed, true);
+    return trackNetwork(net, engine, req);
   }
-  const Rig rig = loadRigText(text, displayName(opt), o.sets, lo);
-  const Engine& engine = chooseEngine(o.engine, "full", rig, displayName(opt));
+  const Rig rig = net.toSingleRig();  // the rig loadRigText gives
   rig_name = rig.name;
   const ScaledParams sp = computeScaled(rig);
   physical = rig.units == Units::Physical;

@@ -354,14 +354,14 @@ Scene networkScene(const Network& net, const ScaledParams& sp, const AnimationRe
 
 }  // namespace
 
-AnimationTrack trackNetwork(Network net, const AnimationRequest& req) {
+AnimationTrack trackNetwork(Network net, const Engine& engine, const AnimationRequest& req) {
   net.sim.t_end_s = req.to;
   net.sim.sample_s = req.frameInterval();
   const ScaledParams sp = networkScales(net);
   AnimationTrack tr;
   tr.scene = networkScene(net, sp, req);
   NetworkTrackSink sink(net, sp, req, tr);
-  const RunReport rep = runNetworkDirect(net, sink);
+  const RunReport rep = engine.run(net, sink);
   tr.complete = rep.complete;
   tr.failure = rep.failure;
   finishFrames(tr, sink.ticks, req);

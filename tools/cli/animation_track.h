@@ -45,7 +45,8 @@ struct AnimationTrack {
 // One platform, on `engine` (a full-model engine); the rig's duration and sample are replaced.
 AnimationTrack trackRig(Rig rig, const Engine& engine, const AnimationRequest& request);
 
-// A network, on the direct engine.
-AnimationTrack trackNetwork(Network net, const AnimationRequest& request);
+// A network of several platforms, on `engine` (one that runs networks: direct or simbody); the
+// network's duration and sample are replaced.
+AnimationTrack trackNetwork(Network net, const Engine& engine, const AnimationRequest& request);
 
 }  // namespace metrosync::cli

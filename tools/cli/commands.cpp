@@ -296,8 +296,7 @@ void addSection3A(nlohmann::json& summary, const LinearDecay& decay, const Rig& 
 // (FileSink, its network part tools/report/network_files.h) in a single rig's steps; its rows are
 // in files only.
 RunOutcome runNetwork(const Options& opt, const Network& net, const std::string& text) {
-  const Engine& engine =
-      chooseNetworkEngine(opt.engine, opt.model, net, rigDisplayName(opt), "runs");
+  const Engine& engine = chooseEngine(opt.engine, opt.model, net, rigDisplayName(opt), "runs");
   if (opt.no_files)
     throw UsageError(rigDisplayName(opt) + ": a " + networkOfPlatforms(net.platforms.size()) +
                      " keeps its rows in files only: give it a folder");

@@ -21,9 +21,10 @@ const Engine& chooseEngine(const std::string& requested, const std::string& mode
   }
 }
 
-const Engine& chooseNetworkEngine(const std::string& requested, const std::string& model,
-                                  const Network& net, const std::string& rig_name,
-                                  const std::string& verb) {
+const Engine& chooseEngine(const std::string& requested, const std::string& model,
+                           const Network& net, const std::string& rig_name,
+                           const std::string& verb) {
+  if (net.isSingleRig()) return chooseEngine(requested, model, net.platforms[0].rig, rig_name);
   const std::string what = "a " + networkOfPlatforms(net.platforms.size());
   const std::string full_only = " " + verb + " the full model only (--engine direct or simbody)";
   if (model == "slow")

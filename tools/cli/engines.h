@@ -20,12 +20,14 @@ namespace metrosync::cli {
 const Engine& chooseEngine(const std::string& requested, const std::string& model, const Rig& rig,
                            const std::string& rig_name);
 
-// The full model's engine of a network of platforms (--engine, else the one
-// simulation.integrator names, else direct): --model slow and an engine that runs no networks are
-// UsageError (exit 2); `verb` ("runs", "sweeps") says what the command does with the network.
-const Engine& chooseNetworkEngine(const std::string& requested, const std::string& model,
-                                  const Network& net, const std::string& rig_name,
-                                  const std::string& verb);
+// The same for what the loader returns, a rig or a network (yaml/network_loader.h): a single rig
+// (Network::isSingleRig) as above; a network of several platforms the full model's engine
+// (--engine, else the one simulation.integrator names, else direct), --model slow and an engine
+// that runs no networks UsageError (exit 2); `verb` ("runs", "sweeps", "animates") says what the
+// command does with the network.
+const Engine& chooseEngine(const std::string& requested, const std::string& model,
+                           const Network& net, const std::string& rig_name,
+                           const std::string& verb);
 
 // The loader's options of a command that runs a rig: every engine's integrator names
 // (simulation.integrator is checked where it is written) and the output limit.

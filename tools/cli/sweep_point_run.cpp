@@ -184,7 +184,7 @@ PointInput loadPointRig(const std::string& text, const SweepOptions& opt,
     throw RigError(what + "\n  at " + where);
   }
   if (in.net) {  // docs/networks.md
-    in.engine = &chooseNetworkEngine(opt.engine, opt.model, *in.net, displayName(opt), "sweeps");
+    in.engine = &chooseEngine(opt.engine, opt.model, *in.net, displayName(opt), "sweeps");
     return in;
   }
   // checks --engine against --model and the point's integrator

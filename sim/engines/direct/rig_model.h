@@ -98,6 +98,8 @@ class RigModel final : public EventSystem {
   void last(const double* y, double t, RunReport& r) {
     RecordingScope rec(timer_);
     r.final_trajectory_row = rec_.row(y, t, dyn_.mode);  // (the recording thread's too)
+    r.final_state.assign(y, y + lay_.dim());             // network::Layout: a network of one's
+    r.final_state.push_back(0.0);                        // (no ground damper's work)
     if (thread_)
       thread_->last(y, t, dyn_.mode);
     else

@@ -1,7 +1,9 @@
 // A single rig's files from the direct engine's steps: trajectory rows on the shared schedule
 // (sim/events/sample_schedule.h) from each step's dense output, the envelope as integrals of the
 // steps' interpolants (sim/record/envelope_quadrature.h: each step, or its part before an event,
-// is one smooth stretch), event rows and records, all in the rig's units, into the run's sink.
+// is one smooth stretch), event rows and records, all in the rig's units, into the run's sink;
+// and, when the sink wants states, the state in network::Layout (a network of one) at every row
+// sample and at the end, as the Simbody engine gives it: the sink never chooses the model.
 // The rig's model (rig_model.h) calls it on the run's thread, or hands its steps over to a
 // recording thread that calls it there (rig_recording_thread.h): the same calls on the same
 // numbers, so the same files to the bit.
@@ -57,10 +59,11 @@ class RigRecorder {
   // The envelope's final row (after last()).
   EnvelopeRow finish() { return env_.finish(); }
 
-  // what the sink takes (asked once): event rows, event records, trajectory rows, envelope
+  // what the sink takes (asked once): event rows, event records, trajectory rows or states on the
+  // row schedule, envelope
   bool eventRows() const { return event_rows_; }
   bool eventRecords() const { return event_records_; }
-  bool rows() const { return want_rows_; }
+  bool rows() const { return want_rows_ || want_states_; }
   bool envelope() const { return want_envelope_; }
   // the recorder's own equations and stepper: a step handed over from the run's thread is loaded
   // into it (Stepper::load) and interpolated there
@@ -74,6 +77,9 @@ class RigRecorder {
     return row_;
   }
   void fillRow(const double* y, double t, PlatformMode mode, std::vector<double>& row) const;
+  // the state as a network of one's (network::Layout: the rig's slots and a ground damper's work,
+  // 0) to the sink
+  void stateSample(const double* y, double t, PlatformMode mode);
   void envelopeState(const double* y, double* theta, double* thetadot) const;
   void nodeEnvelope(const double* angles_rates, double* theta, double* thetadot) const;
 
@@ -82,7 +88,7 @@ class RigRecorder {
   MetronomeEquations eq_;  // its own: the recording thread's (kAnyN's scratch is per object)
   StateLayout lay_;
   RunSink& sink_;
-  bool event_rows_, event_records_, want_rows_, want_envelope_;
+  bool event_rows_, event_records_, want_rows_, want_envelope_, want_states_;
   int n_rig_;
   double omega0_, period_;
   Dynamics<N> dyn_;
@@ -97,6 +103,8 @@ class RigRecorder {
   double node_w_[EnvelopeQuadrature::kNodes][ode::detail::DenseTable::kPadRows] = {};
   std::vector<double> before_;  // the state before the event being recorded (events.csv)
   std::vector<double> row_;     // the row being written
+  std::vector<double> state_;   // a state being sampled (network::Layout)
+  std::vector<PlatformMode> modes_{PlatformMode::Stuck};
 };
 
 template <int N>
@@ -117,6 +125,7 @@ RigRecorder<N>::RigRecorder(const Rig& rig, const ScaledParams& sp, RunSink& sin
       event_records_(sink.wantsEventRecords()),
       want_rows_(sink.wantsTrajectory()),
       want_envelope_(sink.wantsEnvelope()),
+      want_states_(sink.wantsStates()),
       n_rig_(static_cast<int>(rig.metronomes.size())),
       omega0_(1.0 / sp.time_scale_s),
       period_(kTwoPi / omega0_),
@@ -124,7 +133,7 @@ RigRecorder<N>::RigRecorder(const Rig& rig, const ScaledParams& sp, RunSink& sin
       stepper_(ode::rkTableau(rig.sim.integrator.empty() ? defaultDirectIntegrator(rig)
                                                          : rig.sim.integrator),
                lay_.dim(), dyn_),
-      schedule_(rig.sim.sample_s, period_, rig.sim.t_end_s, want_rows_, false),
+      schedule_(rig.sim.sample_s, period_, rig.sim.t_end_s, want_rows_ || want_states_, false),
       env_(sp.epsilon, activeMetronomes<N>(rig), rig.sim.t_end_s * omega0_, sink),
       ya_(lay_.dim(), 0.0),
       nodes_(EnvelopeQuadrature::kNodes * 2 * lay_.n, 0.0),
@@ -194,8 +203,17 @@ void RigRecorder<N>::nodeEnvelope(const double* angles_rates, double* theta,
 }
 
 template <int N>
+void RigRecorder<N>::stateSample(const double* y, double t, PlatformMode mode) {
+  state_.assign(y, y + lay_.dim());
+  state_.push_back(0.0);  // network::Layout's damperWork: a single rig has no ground damper
+  modes_[0] = mode;
+  sink_.stateSample(t, state_, modes_);
+}
+
+template <int N>
 void RigRecorder<N>::start(const double* y, PlatformMode mode) {
   if (want_rows_) sink_.trajectoryRow(makeRow(y, 0.0, mode));
+  if (want_states_) stateSample(y, 0.0, mode);
   if (!want_envelope_) return;
   std::vector<double> th(n_rig_, 0.0), w(n_rig_, 0.0);
   envelopeState(y, th.data(), w.data());
@@ -206,10 +224,11 @@ template <int N>
 void RigRecorder<N>::sampleLoaded(double t_limit, bool inclusive, PlatformMode mode) {
   Stepper& s = stepper_;
   const double t0 = s.t(), h = s.h();
-  if (want_rows_) {
+  if (want_rows_ || want_states_) {
     schedule_.takeDue(t_limit, inclusive, [&](double ts, bool, bool) {
       s.interpolate(std::clamp((ts - t0) / h, 0.0, 1.0), ya_.data());
-      sink_.trajectoryRow(makeRow(ya_.data(), ts, mode));
+      if (want_rows_) sink_.trajectoryRow(makeRow(ya_.data(), ts, mode));
+      if (want_states_) stateSample(ya_.data(), ts, mode);
     });
   }
   if (!want_envelope_ || !(t_limit > t0)) return;
@@ -250,6 +269,7 @@ void RigRecorder<N>::eventRecord(const char* kind, int j, const double* y, doubl
 template <int N>
 void RigRecorder<N>::last(const double* y, double t, PlatformMode mode) {
   if (want_rows_) sink_.trajectoryRow(makeRow(y, t, mode));
+  if (want_states_) stateSample(y, t, mode);
 }
 
 }  // namespace
