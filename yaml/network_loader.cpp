@@ -235,18 +235,22 @@ bool isNetworkText(const std::string& yaml_text) {
 Network loadNetworkText(const std::string& yaml_text, const std::string& display_name,
                         const std::vector<std::string>& overrides, const LoadOptions& options) {
   const RigSource src{display_name, overrides};
-  const Node root = checkedRigTree(yaml_text, src);
-  if (root.find("platforms")) {
-    if (root.find("units")->scalar != "physical")
-      failAt(src, root.find("units")->at,
+  // the text parsed once: today's form (a text that never spells `platforms`) by the rig's loader,
+  // else its tree built here
+  std::optional<Node> root;
+  if (yaml_text.find("platforms") != std::string::npos) root = checkedRigTree(yaml_text, src);
+  if (root && root->find("platforms")) {
+    if (root->find("units")->scalar != "physical")
+      failAt(src, root->find("units")->at,
              "units: a network of platforms is written in physical units");
-    return buildNetwork(root, src, rigStem(display_name), options);
+    return buildNetwork(*root, src, rigStem(display_name), options);
   }
   // today's form: a network of one platform, exactly the rig
   Network net;
   NetworkPlatform p;
   p.name = kSinglePlatformName;  // what platforms.NAME... answers to (yaml/key_path.h)
-  p.rig = loadRigText(yaml_text, display_name, overrides, options);
+  p.rig = root ? rigFromCheckedTree(*root, src, options)
+               : loadRigText(yaml_text, display_name, overrides, options);
   net.name = p.rig.name;
   net.gravity_m_s2 = p.rig.gravity_m_s2;
   net.sim = p.rig.sim;

@@ -104,9 +104,7 @@ BasinPlan planBasin(const BasinOptions& opt) {
   BasinPlan plan;
   plan.text = sweepRigText(opt.run);
   const std::string name = displayName(opt.run);
-  const std::optional<Network> net =
-      loadPlatformsNetwork(plan.text, name, opt.run.sets, engineLoadOptions(HUGE_VAL));
-  const Rig base = net ? networkSweepRig(*net) : loadRigText(plan.text, name, opt.run.sets);
+  const Rig base = loadSweepRig(plan.text, name, opt.run.sets);
   checkSensibleRanges(plan.text, name, opt.run.sets, opt.run.strict);  // the base rig only
   // the keys resolved against the rig (docs/keys.md), no two setting one rig key
   std::vector<OptionKey> keys;

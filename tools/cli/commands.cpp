@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "base/number_text.h"
@@ -75,12 +76,15 @@ std::string rigText(const Options& opt) {
                                 : readRigFile(opt.rig_path);
 }
 
-LoadedRig loadAndCheck(const Options& opt, const std::string& model) {
+// `loaded`: the rig as the caller loaded it from rigText(opt) with opt.sets (run: its network's
+// loader), else loaded here.
+LoadedRig loadAndCheck(const Options& opt, const std::string& model,
+                       std::optional<Rig> loaded = std::nullopt) {
   LoadedRig r;
   // issue 17: the output limit and the integrator's name, located in the rig
   const LoadOptions lo = engineLoadOptions(opt.max_output);
   r.text = rigText(opt);
-  r.rig = loadRigText(r.text, rigDisplayName(opt), opt.sets, lo);
+  r.rig = loaded ? std::move(*loaded) : loadRigText(r.text, rigDisplayName(opt), opt.sets, lo);
   checkSensibleRanges(r.text, rigDisplayName(opt), opt.sets, opt.strict);
 
   // the integrator is the engine's business, so the loader leaves its name to us
@@ -331,13 +335,15 @@ RunOutcome runNetwork(const Options& opt, const Network& net, const std::string&
 RunOutcome runImpl(const Options& opt, bool keep) {
   markPhase("args");
   const std::string text = rigText(opt);
-  if (const std::optional<Network> net = loadPlatformsNetwork(text, rigDisplayName(opt), opt.sets,
-                                                              engineLoadOptions(opt.max_output))) {
+  // the rig parsed once: a network of several platforms, or a single rig (a network of one)
+  const Network net =
+      loadNetworkText(text, rigDisplayName(opt), opt.sets, engineLoadOptions(opt.max_output));
+  if (!net.isSingleRig()) {
     checkSensibleRanges(text, rigDisplayName(opt), opt.sets, opt.strict);
-    return runNetwork(opt, *net, text);
+    return runNetwork(opt, net, text);
   }
   RunOutcome out;
-  LoadedRig r = loadAndCheck(opt, opt.model);
+  LoadedRig r = loadAndCheck(opt, opt.model, net.toSingleRig());
   markPhase("rig");
   const std::string model = r.engine->model();
   installStopHandlers();  // before any file exists, so that no signal can leave a bare .part

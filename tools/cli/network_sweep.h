@@ -9,6 +9,10 @@
 // here.
 #pragma once
 
+#include <optional>
+#include <string>
+#include <vector>
+
 #include "models/network.h"
 
 namespace metrosync::cli {
@@ -16,5 +20,12 @@ namespace metrosync::cli {
 // The network as one Rig for the sweep's bookkeeping: its name and simulation settings, and all
 // its metronomes in the network's numbering (the point's metronome count is checked on it).
 Rig networkSweepRig(const Network& net);
+
+// The swept rig of sweep, basin and the Python module, its text parsed once: a single rig (a
+// single-platform text, or a network of one: Network::isSingleRig) as loadRigText gives it, a
+// network of several as networkSweepRig, that network itself in `net` when given. Throws
+// RigError as the loaders do.
+Rig loadSweepRig(const std::string& text, const std::string& name,
+                 const std::vector<std::string>& sets, std::optional<Network>* net = nullptr);
 
 }  // namespace metrosync::cli

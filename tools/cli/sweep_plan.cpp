@@ -157,9 +157,8 @@ SweepPlan planSweep(const SweepOptions& opt) {
   plan.shard = opt.shard.empty() ? SweepShard{} : parseShard(opt.shard);
   // the rig, its keys, and every grid point's rig: a bad key or value stops here, before any file
   plan.text = sweepRigText(opt);
-  const std::optional<Network> net =
-      loadPlatformsNetwork(plan.text, displayName(opt), opt.sets, engineLoadOptions(HUGE_VAL));
-  plan.base = net ? networkSweepRig(*net) : loadRigText(plan.text, displayName(opt), opt.sets);
+  std::optional<Network> net;
+  plan.base = loadSweepRig(plan.text, displayName(opt), opt.sets, &net);
   checkSensibleRanges(plan.text, displayName(opt), opt.sets, opt.strict);  // the base rig only
   plan.random = planPointBasin(opt, plan.grid, sweepKeys(opt, plan.text));
   plan.n = static_cast<int>(plan.base.metronomes.size());

@@ -54,9 +54,7 @@ struct BaseRig {
 BaseRig baseRig(const cli::SweepOptions& o) {
   BaseRig b;
   b.text = cli::sweepRigText(o);
-  const std::optional<Network> net =
-      loadPlatformsNetwork(b.text, o.rig_path, o.sets, cli::engineLoadOptions(HUGE_VAL));
-  const Rig rig = net ? cli::networkSweepRig(*net) : loadRigText(b.text, o.rig_path, o.sets);
+  const Rig rig = cli::loadSweepRig(b.text, o.rig_path, o.sets);
   b.name = rig.name;
   b.n = static_cast<int>(rig.metronomes.size());
   return b;
