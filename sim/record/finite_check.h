@@ -33,6 +33,9 @@ class CsvCheck {
   void line(std::string_view line);
   // any text: its whole lines checked, a last part without a newline kept for the next call
   void text(std::string_view text);
+  // `rows` whole rows its writer has checked as numbers (after the header, no part line pending):
+  // counted, so that a row checked later is still named by its place in the file
+  void passed(long rows);
 
  private:
   std::string file_;
