@@ -86,16 +86,33 @@ constexpr char kDigitPairs[] =
     "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
     "8081828384858687888990919293949596979899";
 
-// the k digits of s into out[0..k)
+// the 8 digits of n < 10^8, leading zeros kept, into out[0..8): 32-bit arithmetic throughout
+void writeEightDigits(std::uint32_t n, char* out) {
+  const std::uint32_t high = n / 10000, low = n - 10000 * high;
+  const std::uint32_t a = high / 100, b = high - 100 * a, c = low / 100, d = low - 100 * c;
+  std::memcpy(out, kDigitPairs + 2 * a, 2);
+  std::memcpy(out + 2, kDigitPairs + 2 * b, 2);
+  std::memcpy(out + 4, kDigitPairs + 2 * c, 2);
+  std::memcpy(out + 6, kDigitPairs + 2 * d, 2);
+}
+
+// the k digits of s into out[0..k): the last eight at a time, the rest two at a time
 void writeDigits(std::uint64_t s, int k, char* out) {
+  while (k > 8) {
+    const std::uint64_t top = s / 100000000;
+    writeEightDigits(static_cast<std::uint32_t>(s - 100000000 * top), out + k - 8);
+    s = top;
+    k -= 8;
+  }
+  auto n = static_cast<std::uint32_t>(s);  // at most 8 digits
   int i = k;
   while (i >= 2) {
-    const std::uint64_t q = s / 100;
-    std::memcpy(out + i - 2, kDigitPairs + 2 * (s - 100 * q), 2);
-    s = q;
+    const std::uint32_t q = n / 100;
+    std::memcpy(out + i - 2, kDigitPairs + 2 * (n - 100 * q), 2);
+    n = q;
     i -= 2;
   }
-  if (i == 1) out[0] = static_cast<char>('0' + s);
+  if (i == 1) out[0] = static_cast<char>('0' + n);
 }
 
 // The digits (d <= 15 of them, no trailing zero; the buffer readable to 32 characters) laid out
@@ -162,6 +179,7 @@ Scaled scaleExactly(double a, int k) {
 
 // s / 10^z with the trailing zeros z dropped (s > 0), and k reduced by z
 std::uint64_t dropTrailingZeros(std::uint64_t s, int& k) {
+  if (s % 10 != 0) return s;  // the usual case
   if (s % 100000000 == 0 && k > 8) {
     s /= 100000000;
     k -= 8;
