@@ -246,4 +246,42 @@ std::vector<KeyPath> expandKey(const KeyPath& key, const Node& root) {
   return out;
 }
 
+namespace {
+
+// Segment 1 of platforms.P... on a single-platform rig: its one platform, or a KeyError.
+void checkSinglePlatform(const KeyPath& key) {
+  const KeyPath::Segment& p = key[1];
+  const std::string at = printable(key.prefix(2));
+  if (p.kind == KeyPath::Segment::Kind::Index && p.index != 0)
+    throw KeyError(
+        at + ": index " + p.text +
+        " is out of range (a single-platform rig has one platform, platforms.0, named '" +
+        kSinglePlatformName + "')");
+  if (p.kind == KeyPath::Segment::Kind::Name && p.text != kSinglePlatformName)
+    throw KeyError(at + ": no entry of platforms is named '" + printable(p.text) +
+                   "' (names: " + kSinglePlatformName + "; this rig has one platform)");
+  if (key.size() == 2)
+    throw KeyError(at + ": a single-platform rig's platform is set key by key (" + at +
+                   ".friction, " + at + ".metronomes, ...), not as one value");
+}
+
+}  // namespace
+
+KeyPath singlePlatformKey(const KeyPath& key, const Node& root) {
+  if (root.kind != Node::Kind::Map || root.find("platforms") || key.size() < 2 ||
+      key[0].kind != KeyPath::Segment::Kind::Name || key[0].text != "platforms")
+    return key;
+  checkSinglePlatform(key);
+  const std::string& what = key[2].text;
+  std::vector<KeyPath::Segment> out(key.segments().begin() + 2, key.segments().end());
+  if (what == "name" || what == "on")
+    throw KeyError(printable(key.prefix(3)) + ": a single-platform rig's platform " +
+                   (what == "name" ? std::string("is named '") + kSinglePlatformName + "'"
+                                   : std::string("rests on the table")) +
+                   " (give the rig platforms: [...] for a network, docs/networks.md)");
+  if (what != "metronomes" && what != "start")
+    out.insert(out.begin(), KeyPath::Segment{KeyPath::Segment::Kind::Name, "platform", 0});
+  return KeyPath::of(std::move(out));
+}
+
 }  // namespace metrosync

@@ -92,4 +92,16 @@ std::string sharedPath(const std::vector<KeyPath>& paths, const std::vector<KeyP
 struct Node;
 std::vector<KeyPath> expandKey(const KeyPath& key, const Node& root);
 
+// The name a single-platform rig's one platform answers to in `platforms.NAME...` (the name the
+// network loader gives it, yaml/network_loader.h).
+inline constexpr const char* kSinglePlatformName = "platform";
+
+// Internal to yaml/: a key of a network's platform (`platforms.P.REST`) said on a single-platform
+// rig (a tree without `platforms`), written in that rig's own keys: P is 0, `*` or `platform`
+// (kSinglePlatformName), and platforms.P.mass / friction / spring become platform.REST,
+// platforms.P.metronomes... metronomes..., platforms.P.start... start.... Any other key is
+// returned as it is. Throws KeyError for another platform (naming the one the rig has) and for
+// what a single rig's platform does not have (its name, `on`, the platform as one value).
+KeyPath singlePlatformKey(const KeyPath& key, const Node& root);
+
 }  // namespace metrosync

@@ -245,7 +245,7 @@ Network loadNetworkText(const std::string& yaml_text, const std::string& display
   // today's form: a network of one platform, exactly the rig
   Network net;
   NetworkPlatform p;
-  p.name = "platform";
+  p.name = kSinglePlatformName;  // what platforms.NAME... answers to (yaml/key_path.h)
   p.rig = loadRigText(yaml_text, display_name, overrides, options);
   net.name = p.rig.name;
   net.gravity_m_s2 = p.rig.gravity_m_s2;

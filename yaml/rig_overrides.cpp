@@ -38,8 +38,10 @@ std::string schemaPathError(const Schema& s0, const Schema* other, Units units,
 
 }  // namespace
 
-// The one resolver of keys (docs/keys.md)
-std::vector<KeyPath> resolveIn(const Node& root, const KeyPath& key, Units& units) {
+namespace {
+
+// `key` (in the rig's own keys) checked against the schema and expanded on the tree.
+std::vector<KeyPath> resolveOwnKey(const Node& root, const KeyPath& key, Units& units) {
   if (auto u = unitsOf(root)) {
     units = *u;
     const std::string err = schemaPathError(schemaOf(units), &otherSchemaOf(units), units, key);
@@ -51,6 +53,21 @@ std::vector<KeyPath> resolveIn(const Node& root, const KeyPath& key, Units& unit
     units = err_p.empty() ? Units::Physical : Units::Scaled;
   }
   return expandKey(key, root);
+}
+
+}  // namespace
+
+// The one resolver of keys (docs/keys.md); a single rig answers its platform's keys as a network
+// of one does (platforms.0..., platforms.platform...)
+std::vector<KeyPath> resolveIn(const Node& root, const KeyPath& typed, Units& units) {
+  const KeyPath key = singlePlatformKey(typed, root);
+  if (key == typed) return resolveOwnKey(root, key, units);
+  try {
+    return resolveOwnKey(root, key, units);
+  } catch (const KeyError& e) {
+    throw KeyError(printable(typed.text()) + " is " + printable(key.text()) +
+                   " on this single-platform rig: " + e.what());
+  }
 }
 
 namespace {

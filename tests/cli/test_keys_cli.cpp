@@ -4,6 +4,7 @@
 // what the user typed, and `fit --free metronomes.*.X` reaches fit as one group.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -152,6 +153,72 @@ TEST(KeysCli, MessagesQuoteWhatWasTyped) {
             std::string::npos)
       << two.err;
   EXPECT_FALSE(fs::exists(out));
+}
+
+// A single rig is a network of one platform named "platform" (issue 38, docs/keys.md): README's
+// form `platforms.NAME.friction.mu` runs it as its own key does, the files byte for byte; a name
+// it does not have is refused by every option (exit 2, nothing written) naming the one it has.
+TEST(KeysCli, SingleRigAnswersItsPlatformByNameAndIndex) {
+  const std::string rig = kRigs + "experiment.yaml";
+  const std::string dur = " --set simulation.duration=3";
+  const std::string own = runInto("own", rig, "--set platform.friction.mu=0.01" + dur);
+  expectSameRun(runInto("byname", rig, "--set platforms.platform.friction.mu=0.01" + dur), own);
+  expectSameRun(runInto("byindex", rig, "--set platforms.0.friction.mu=0.01" + dur), own);
+  EXPECT_NE(slurp(own + "/trajectory.csv"),
+            slurp(runInto("plain", rig, dur) + "/trajectory.csv"));  // the key did change it
+
+  const std::string d = scratchDir("keys", "single-bad", true);
+  const std::string key = "platforms.left.friction.mu";
+  const std::vector<std::string> cases = {
+      "run " + shellQuote(rig) + " --set " + key + "=0.01",
+      "sweep " + shellQuote(rig) + " --vary " + key + "=0:0.01:2",
+      "basin " + shellQuote(rig) + " --samples 2 --random " + key + "=0:0.01",
+      "continue " + shellQuote(rig) + " --to 0.01 --param " + key,
+      "continue " + shellQuote(rig) + " --from 0.001 --to 0.01 --param " + key};
+  for (const std::string& c : cases) {
+    const CommandResult r = runMetrosync(c + " -q --out " + shellQuote(d + "/out"));
+    EXPECT_EQ(r.code, 2) << c << "\n" << r.err;
+    EXPECT_NE(r.err.find("platforms.left: no entry of platforms is named 'left' (names: platform;"),
+              std::string::npos)
+        << c << "\n"
+        << r.err;
+    EXPECT_EQ(r.err.find("_M_range_check"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(d + "/out")) << c;
+  }
+}
+
+// The other options take a single rig's platform keys too: a continuation in
+// platforms.0.friction.mu is the one in platform.friction.mu (its branches byte for byte), and a
+// basin drawing platforms.platform.friction.mu is the one drawing platform.friction.mu (their rows
+// byte for byte; the header names the key as typed).
+TEST(KeysCli, SingleRigPlatformKeysInContinueAndBasin) {
+  const std::string rig = kRigs + "experiment-scaled.yaml";
+  const std::string d = scratchDir("keys", "single-options", true);
+  std::vector<std::string> branches, basins;
+  for (const std::string key : {"platform.friction.mu", "platforms.0.friction.mu"}) {
+    const std::string c = d + "/c-" + key;
+    const CommandResult r = runMetrosync("continue " + shellQuote(rig) + " --param " + key +
+                                         " --from 0.1 --to 0.2 --max-points 5 --no-cycles -q "
+                                         "--out " +
+                                         shellQuote(c));
+    ASSERT_EQ(r.code, 0) << key << "\n" << r.err;
+    branches.push_back(slurp(c + "/branches.csv"));
+  }
+  for (const std::string key : {"platform.friction.mu", "platforms.platform.friction.mu"}) {
+    const std::string b = d + "/b-" + key;
+    const CommandResult r = runMetrosync("basin " + shellQuote(rig) +
+                                         " --samples 2 --jobs 1 --set simulation.tau=20 "
+                                         "--random " +
+                                         key + "=0.1:0.3 -q --out " + shellQuote(b));
+    ASSERT_EQ(r.code, 0) << key << "\n" << r.err;
+    basins.push_back(slurp(b + "/basin.csv"));
+  }
+  // the rows byte for byte (the header names the key as typed)
+  const auto body = [](const std::string& csv) { return csv.substr(csv.find('\n')); };
+  EXPECT_GT(std::count(branches[0].begin(), branches[0].end(), '\n'), 3);
+  EXPECT_EQ(body(branches[0]), body(branches[1]));
+  EXPECT_GT(std::count(basins[0].begin(), basins[0].end(), '\n'), 2);
+  EXPECT_EQ(body(basins[0]), body(basins[1]));
 }
 
 // `fit --free metronomes.*.X` reaches fit as one group of every metronome's X, fitted as one shared

@@ -90,15 +90,16 @@ TEST(LocatedMessages, ANetworkSaysWhichPlatformAndWhichKey) {
 
 // Ours, found by the fuzz target `keys` (tools/fuzz): a platform's name on a rig without
 // platforms. main: exit 1, "vector::_M_range_check: __n (which is 0) >= this->size() (which is 0)"
+// A single rig is the network of one platform named `platform` (issue 38): another name is
+// refused naming the one it has, before any file is written.
 TEST(LocatedMessages, APlatformNameOnASinglePlatformRigIsAKeyError) {
   expectMessages({
       {"run --set platforms.right.friction.mu=0.02",
-       "<default rig>: --set platforms.right.friction.mu=0.02: platforms.right: platforms has no "
-       "entries (none is named 'right')"},
-      // the grid's corner checked before any file: the option, the key and its value
+       "<default rig>: --set platforms.right.friction.mu=0.02: platforms.right: no entry of "
+       "platforms is named 'right' (names: platform; this rig has one platform)"},
       {"sweep --vary platforms.right.friction.mu=0:1:2",
-       "<default rig>: --vary point platforms.right.friction.mu=0: platforms.right: platforms has "
-       "no entries (none is named 'right')"},
+       "<default rig>: --vary platforms.right.friction.mu=0:1:2: platforms.right: no entry of "
+       "platforms is named 'right' (names: platform; this rig has one platform)"},
   });
 }
 

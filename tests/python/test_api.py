@@ -3,6 +3,7 @@ result; to_pandas() is a DataFrame; an error in a dict rig names the dict's key 
 wrong in Python terms; overrides act like the CLI's --set, wildcards included."""
 import json
 import os
+import subprocess
 import traceback
 
 import numpy as np
@@ -225,3 +226,31 @@ def test_rig_error_says_what_it_is():
     doc = metrosync.RigError.__doc__ or ""
     assert "before anything runs" in doc and "SimulationError" in doc
     assert issubclass(metrosync.RigError, ValueError)
+
+
+def test_every_option_is_the_same_on_a_network_or_refused_as_the_cli_refuses_it():
+    # run(model="slow") on a network ran the full model and said model='full' (issue 38): it is
+    # refused as `metrosync run --model slow` is, with the command line's reason
+    path = EXPERIMENT.replace("experiment.yaml", "chimera-swings.yaml")
+    calls = [
+        ("run --model slow", lambda: metrosync.run(path, model="slow", duration=1)),
+        ("run --engine slowflow", lambda: metrosync.run(path, engine="slowflow", duration=1)),
+        ("sweep --model slow --vary couplings.0.k=1:5:2",
+         lambda: metrosync.sweep(path, vary={"couplings.0.k": (1.0, 5.0, 2)}, model="slow",
+                                 duration=1)),
+        ("basin --model slow --random couplings.0.k=1:5 --samples 2",
+         lambda: metrosync.basin(path, random={"couplings.0.k": (1.0, 5.0)}, samples=2,
+                                 model="slow", duration=1)),
+    ]
+    for args, call in calls:
+        words = args.split(" ")
+        c = subprocess.run([os.environ["METROSYNC_BINARY"], words[0], path, *words[1:], "-q",
+                            "--out", os.devnull + "/none"], capture_output=True, text=True)
+        assert c.returncode == 2, (args, c.stderr)
+        reason = "the full model only"  # in the CLI's words and in Python's
+        assert reason in c.stderr, (args, c.stderr)
+        with pytest.raises(metrosync.RigError) as e:
+            call()
+        assert reason in str(e.value), (args, str(e.value))
+    # the full model asked for by name runs, and says so
+    assert metrosync.run(path, model="full", duration=1).summary["model"] == "full"

@@ -55,3 +55,20 @@ def test_a_bad_key_raises_the_words_of_set():
     what = cli.stderr.split("metronomes.*.nuu: ")[-1].strip()
     assert what == "unknown key (did you mean 'nu'?)"
     assert str(e.value) == SCALED + ": overrides['metronomes.*.nuu'] = 1: " + what
+
+
+def test_a_single_rig_answers_the_keys_of_its_one_platform():
+    # a single rig is a network of one platform named "platform" (docs/keys.md, issue 38)
+    experiment = os.path.join(SRC, "yaml/rigs/experiment.yaml")
+    own = metrosync.load_rig(experiment, {"platform.friction.mu": 0.01})
+    for key in ("platforms.0.friction.mu", "platforms.platform.friction.mu",
+                "platforms.*.friction.mu"):
+        rig = metrosync.load_rig(experiment, {key: 0.01})
+        assert rig.to_dict() == own.to_dict()
+        assert rig.scaled() == own.scaled()
+    assert own.scaled() != metrosync.load_rig(experiment).scaled()
+    # another platform's name: RigError (not IndexError) naming the one the rig has
+    with pytest.raises(metrosync.RigError) as e:
+        metrosync.load_rig(experiment, {"platforms.left.friction.mu": 0.01})
+    assert ("overrides['platforms.left.friction.mu'] = 0.01: platforms.left: no entry of "
+            "platforms is named 'left' (names: platform;") in str(e.value)

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "yaml/key_path.h"
+#include "yaml/network_loader.h"
 #include "yaml/rig_loader.h"
 
 namespace metrosync {
@@ -197,6 +198,65 @@ TEST(KeyResolver, OptionKeysResolveToConcretePaths) {
   // the number at a key, and at a wildcard's first element
   EXPECT_EQ(rigNumber(kPhysical, "rig.yaml", {}, "metronomes.1.start.angle"), 0.5);
   EXPECT_EQ(rigNumber(kScaled, "rig.yaml", {}, "metronomes.*.nu"), 0.7);
+}
+
+// A single-platform rig is a network of one platform named "platform" (issue 38): every key that
+// names a platform of a network works on it -- platforms.0..., platforms.platform...,
+// platforms.*... set exactly the rig's own keys -- and another platform is refused naming the one
+// it has. (On main these keys made a `platforms` list the rig does not have and were refused.)
+TEST(KeyResolver, SingleRigAnswersTheKeysOfItsOnePlatform) {
+  const std::vector<std::pair<std::string, std::string>> same = {
+      {"platforms.0.friction.mu=0.01", "platform.friction.mu=0.01"},
+      {"platforms.platform.friction.mu=0.01", "platform.friction.mu=0.01"},
+      {"platforms.*.friction={law: viscous, c: 0.2}", "platform.friction={law: viscous, c: 0.2}"},
+      {"platforms.platform.metronomes.1.start.angle=0.3", "metronomes.1.start.angle=0.3"},
+      {"platforms.0.metronomes.*.box_mass=0.08", "metronomes.*.box_mass=0.08"},
+      {"platforms.0.mass=0.2", "platform.mass=0.2"},
+      {"platforms.platform.spring.k=3", "platform.spring.k=3"},
+      {"platforms.0.start.x=0.001", "start.x=0.001"}};
+  for (const auto& [network, own] : same) {
+    EXPECT_EQ(resolved(kPhysical, {network}), resolved(kPhysical, {own})) << network;
+    EXPECT_NE(resolved(kPhysical, {network}), resolved(kPhysical, {})) << network;
+  }
+  EXPECT_EQ(resolved(kScaled, {"platforms.platform.metronomes.*.nu=0.5"}),
+            resolved(kScaled, {"metronomes.*.nu=0.5"}));
+  EXPECT_EQ(resolved(kScaled, {"platforms.0.friction.mu=0.2"}),
+            resolved(kScaled, {"platform.friction.mu=0.2"}));
+  // the name the loader gives the one platform is the name the keys answer to
+  EXPECT_EQ(loadNetworkText(kPhysical, "rig.yaml").platforms.at(0).name, kSinglePlatformName);
+  // an option's key resolves to the rig's own paths
+  const RigKey k = resolveRigKey(kPhysical, "rig.yaml", {},
+                                 "platforms.platform.metronomes.*.pendulum.mass", "--vary ...");
+  EXPECT_EQ(texts(k.paths),
+            (std::vector<std::string>{"metronomes.0.pendulum.mass", "metronomes.1.pendulum.mass",
+                                      "metronomes.2.pendulum.mass"}));
+  EXPECT_TRUE(k.group());
+}
+
+TEST(KeyResolver, SingleRigRefusesAPlatformItDoesNotHave) {
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"platforms.left.friction.mu=0.01",
+       "platforms.left: no entry of platforms is named 'left' (names: platform;"},
+      {"platforms.1.friction.mu=0.01", "platforms.1: index 1 is out of range"},
+      {"platforms.0.name=board",
+       "platforms.0.name: a single-platform rig's platform is named "
+       "'platform'"},
+      {"platforms.0.on=table",
+       "platforms.0.on: a single-platform rig's platform rests on the "
+       "table"},
+      {"platforms.0={mass: 1}", "platforms.0: a single-platform rig's platform is set key by key"},
+      {"platforms.0.spring.c=1",
+       "platforms.0.spring.c is platform.spring.c on this single-platform rig: "
+       "platform.spring.c: unknown key"}};
+  for (const auto& [set, why] : bad) {
+    const std::string e = loadError(kPhysical, {set});
+    EXPECT_EQ(e.rfind("rig.yaml: --set " + set + ": ", 0), 0u) << e;
+    EXPECT_NE(e.find(why), std::string::npos) << e;
+  }
+  // scaled: its platform has no mass, said in the scaled rig's words
+  EXPECT_NE(loadError(kScaled, {"platforms.0.mass=1"}).find("platform.mass"), std::string::npos);
+  EXPECT_NE(loadError(kScaled, {"platforms.right.friction.mu=1"}).find("(names: platform;"),
+            std::string::npos);
 }
 
 // The same bad key gets the same words from a --set as from any other option, after what the

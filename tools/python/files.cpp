@@ -14,12 +14,14 @@ namespace {
 
 namespace cli = metrosync::cli;
 
-// `metrosync run` of a network rig file into `out`.
+// `metrosync run` of a network rig file into `out`, with run's options (--model, --engine).
 int networkRun(const std::string& rig_path, const std::vector<std::string>& sets,
-               const std::string& engine, const std::string& out, bool plot) {
+               const std::string& model, const std::string& engine, const std::string& out,
+               bool plot) {
   cli::Options o;
   o.rig_path = rig_path;
   o.sets = sets;
+  o.model = model;  // refused as the CLI refuses it (--model slow: single-platform)
   o.engine = engine;
   o.out = out;
   o.quiet = true;
@@ -82,8 +84,8 @@ int fitCommand(const std::string& rig_path, const std::string& data_path,
 }  // namespace
 
 void bindFiles(py::module_& m) {
-  m.def("network_run", &networkRun, py::arg("rig_path"), py::arg("sets"), py::arg("engine"),
-        py::arg("out"), py::arg("plot"));
+  m.def("network_run", &networkRun, py::arg("rig_path"), py::arg("sets"), py::arg("model"),
+        py::arg("engine"), py::arg("out"), py::arg("plot"));
   m.def("continue_command", &continueCommand, py::arg("rig_path"), py::arg("sets"),
         py::arg("model"), py::arg("param"), py::arg("to"), py::arg("out"),
         py::arg("from_") = std::nullopt, py::arg("start") = "", py::arg("step") = 0.0,

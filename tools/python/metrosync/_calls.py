@@ -75,12 +75,13 @@ def _rig_file(rig):
         shutil.rmtree(folder, ignore_errors=True)
 
 
-def _network_run(rig, engine, out, extra):
-    """A network of platforms runs from a file into a folder, read back (docs/python.md)."""
+def _network_run(rig, model, engine, out, extra):
+    """A network of platforms runs from a file into a folder, read back (docs/python.md); its
+    options are run's (model="slow" is refused as the command line refuses --model slow)."""
     with _rig_file(rig) as (path, folder):
         target = _folder(out) or os.path.join(folder, "out")
         sets = [o.text for o in rig._origins(extra)]
-        code = _core.network_run(path, sets, engine or "", target, out is not None)
+        code = _core.network_run(path, sets, model or "", engine or "", target, out is not None)
         read = lambda name: _read_csv_table(os.path.join(target, name))
         rows = {"trajectory": read("trajectory.csv"), "envelope": read("envelope.csv"),
                 "events": None}
@@ -115,7 +116,7 @@ def run(rig, model=None, engine=None, out=None, **simulation):
     rig = as_rig(rig)
     extra = _simulation(simulation, "run")
     if rig._is_network():
-        return _network_run(rig, engine, out, extra)
+        return _network_run(rig, model, engine, out, extra)
     r = rig._call(_core.run, model or "", engine or "", _folder(out), extra=extra)
     return _checked(Result(json.loads(r["summary"]), r, _folder(out)), r["code"])
 
