@@ -179,22 +179,12 @@ Scaled scaleExactly(double a, int k) {
 
 // s / 10^z with the trailing zeros z dropped (s > 0), and k reduced by z
 std::uint64_t dropTrailingZeros(std::uint64_t s, int& k) {
-  if (s % 10 != 0) return s;  // the usual case
-  if (s % 100000000 == 0 && k > 8) {
-    s /= 100000000;
-    k -= 8;
-  }
-  if (s % 10000 == 0 && k > 4) {
-    s /= 10000;
-    k -= 4;
-  }
-  if (s % 100 == 0 && k > 2) {
-    s /= 100;
-    k -= 2;
-  }
-  if (s % 10 == 0 && k > 1) {
-    s /= 10;
-    k -= 1;
+  if (s % 10 != 0) return s;          // the usual case
+  for (const int z : {8, 4, 2, 1}) {  // at most 15 zeros: in halving steps
+    if (k > z && s % kPow10[z] == 0) {
+      s /= kPow10[z];
+      k -= z;
+    }
   }
   return s;
 }
