@@ -171,11 +171,12 @@ class RkStepperT {
   // scales them by each step's h.
   void denseWeights(double th, double h, double* w) const { dense_.weights(th, h, false, w); }
   void interpolateWith(const double* w, int first, int count, double* __restrict out);
-  // The interpolant at Q points at once from their weights w[q] (as denseWeights gives them):
-  // components [first, first + count) of point q into out[q * count ...]. The same sums as
-  // interpolateWith, point by point, in the same order.
-  template <int Q>
-  void interpolateMany(const double (&w)[Q][detail::DenseTable::kPadRows], int first, int count,
+  // The interpolant at Q points at once from their weights, by stage row (w[r][q]: what
+  // denseWeights gives for point q, its r-th value): components [first, first + count) of point q
+  // into out[q * count ...]. The same sums as interpolateWith, point by point, in the same order.
+  // C: count, when the compiler may know it (the sums then stay in registers), else kDynamic.
+  template <int Q, int C = kDynamic>
+  void interpolateMany(const double (&w)[detail::DenseTable::kPadRows][Q], int first, int count,
                        double* __restrict out);
   double component(int k, double th);
   double componentRate(int k, double th);
@@ -509,21 +510,35 @@ void RkStepperT<Rhs, Dim, Quad>::interpolateWith(const double* w, int first, int
 }
 
 template <class Rhs, int Dim, int Quad>
-template <int Q>
-void RkStepperT<Rhs, Dim, Quad>::interpolateMany(const double (&w)[Q][detail::DenseTable::kPadRows],
+template <int Q, int C>
+void RkStepperT<Rhs, Dim, Quad>::interpolateMany(const double (&w)[detail::DenseTable::kPadRows][Q],
                                                  int first, int count, double* __restrict out) {
   ensureStages();
   const int rows = static_cast<int>(dense_.stage.size());
   const double* y = y_.data() + first;
-  for (int k = 0; k < count; ++k) {
-    // the Q points' sums for one component, side by side (one vector of Q lanes)
-    double acc[Q];
-    for (int q = 0; q < Q; ++q) acc[q] = y[k];
+  if constexpr (C > 0) {
+    // every component's Q sums side by side (acc[k]: one vector of Q lanes), a stage's row and
+    // its weights read once for them all
+    double acc[C][Q];
+    for (int k = 0; k < C; ++k)
+      for (int q = 0; q < Q; ++q) acc[k][q] = y[k];
     for (int r = 0; r < rows; ++r) {
-      const double kv = stage(dense_.stage[r])[first + k];
-      for (int q = 0; q < Q; ++q) acc[q] += w[q][r] * kv;
+      const double* __restrict kr = stage(dense_.stage[r]) + first;
+      for (int k = 0; k < C; ++k)
+        for (int q = 0; q < Q; ++q) acc[k][q] += w[r][q] * kr[k];
     }
-    for (int q = 0; q < Q; ++q) out[q * count + k] = acc[q];
+    for (int k = 0; k < C; ++k)
+      for (int q = 0; q < Q; ++q) out[q * C + k] = acc[k][q];
+  } else {
+    for (int k = 0; k < count; ++k) {
+      double acc[Q];  // the Q points' sums for one component, side by side
+      for (int q = 0; q < Q; ++q) acc[q] = y[k];
+      for (int r = 0; r < rows; ++r) {
+        const double kv = stage(dense_.stage[r])[first + k];
+        for (int q = 0; q < Q; ++q) acc[q] += w[r][q] * kv;
+      }
+      for (int q = 0; q < Q; ++q) out[q * count + k] = acc[q];
+    }
   }
 }
 

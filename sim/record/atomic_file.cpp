@@ -138,6 +138,12 @@ void AtomicFile::writeLines(const std::string& lines) {
   flushNowAndThen();
 }
 
+void AtomicFile::writeCheckedLines(const std::string& lines, long rows) {
+  if (check_) check_->passed(rows);
+  put(lines);
+  flushNowAndThen();
+}
+
 // flush about once a second (the clock costs far less than formatting the lines)
 void AtomicFile::flushNowAndThen() {
   const auto now = std::chrono::steady_clock::now();

@@ -1,7 +1,9 @@
 // No non-finite number in an output file (issue 39): the one check at the writers. Every CSV file
 // metrosync writes goes through AtomicFile (sim/record/atomic_file.h) or, for regimes.csv and
 // timings.csv, through RegimesAppender (tools/report/sweep_files.h); both check each row with a
-// CsvCheck as it is written. JSON files are checked as a tree before they are dumped
+// CsvCheck as it is written, but for a run's trajectory and event rows, whose writer checks each
+// number as a double where it formats it (tools/report/deferred_rows.h) and hands CsvCheck only a
+// block that holds a non-finite one. JSON files are checked as a tree before they are dumped
 // (tools/report/json_file.h: nlohmann would write a NaN as null). A cell with no value is empty;
 // a non-finite number where a value belongs is a failure (exit 3), named by file, row and column.
 #pragma once
@@ -33,6 +35,9 @@ class CsvCheck {
   void line(std::string_view line);
   // any text: its whole lines checked, a last part without a newline kept for the next call
   void text(std::string_view text);
+  // `rows` whole rows its writer has checked as numbers (after the header, no part line pending):
+  // counted, so that a row checked later is still named by its place in the file
+  void passed(long rows);
 
  private:
   std::string file_;

@@ -15,6 +15,8 @@
 #include "sim/record/finite_check.h"
 #include "tests/hostile/hostile_support.h"
 #include "tools/report/json_file.h"
+#include "tools/report/output_dir.h"
+#include "tools/report/outputs.h"
 
 namespace metrosync::hostile {
 namespace {
@@ -149,6 +151,47 @@ TEST(FiniteOutputs, TheCheckKnowsEverySpellingOfANonFiniteNumber) {
   for (const char* fine : {"", "0", "-1.5e+300", "in-phase", "n", "info", "nano", "stuck", "i",
                            "\"nan\"", "suppressed:1", "1e308", "-0"})
     EXPECT_FALSE(isNonFiniteText(fine)) << fine;
+}
+
+// The run's own rows are checked as numbers where they are formatted, not read again as text
+// (tools/report/deferred_rows.h): a non-finite double in the second block of trajectory rows, or
+// in an event's state, is still refused by file, row and column, and no file reaches its name.
+TEST(FiniteOutputs, ARunsRowWithANonFiniteNumberIsRefusedByName) {
+  const std::string d = scratchDir("finite", "rows", true);
+  RunFilesOptions o;
+  o.n_metronomes = 2;
+  o.tau_end = 10;
+  o.events = true;
+  const std::vector<double> fine = {0.5, 1e-3, 0, 0.25, -1.5, 0, 0, 1};
+  for (const double bad : {HUGE_VAL, -HUGE_VAL, std::nan("")}) {
+    const std::string text = bad != bad ? "nan" : (bad > 0 ? "inf" : "-inf");
+    for (const bool in_event : {false, true}) {
+      OutputDir dir(d + "/" + text + (in_event ? "-event" : "-row"));
+      {
+        FileSink sink(dir, o);
+        for (int k = 0; k < 300; ++k) sink.trajectoryRow(fine);  // the first block passes
+        for (int k = 0; k < 3; ++k) sink.eventRecord("tick", 0, fine, fine);
+        std::vector<double> row = fine;
+        row[4] = bad;  // thetadot_1
+        if (in_event)
+          sink.eventRecord("slip", -1, fine, row);  // thetadot_1_after
+        else
+          sink.trajectoryRow(row);
+        try {
+          sink.commit();
+          ADD_FAILURE() << "accepted " << text;
+        } catch (const NonFiniteOutput& e) {
+          const std::string want =
+              in_event ? dir.file("events.csv") + ": row 4, column thetadot_1_after: "
+                       : dir.file("trajectory.csv") + ": row 301, column thetadot_1: ";
+          EXPECT_EQ(std::string(e.what()),
+                    want + text + " is not a finite number (a cell with no value is empty)");
+        }
+      }
+      EXPECT_FALSE(fs::exists(dir.file("trajectory.csv"))) << text;
+      EXPECT_FALSE(fs::exists(dir.file("events.csv"))) << text;
+    }
+  }
 }
 
 // A row with a non-finite cell: refused naming file, row and column (the header's name); the

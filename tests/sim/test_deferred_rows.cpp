@@ -35,8 +35,9 @@ std::string expectedText(long rows) {
   return text;
 }
 
-void formatRow(const double* row, std::string& line) {
+bool formatRow(const double* row, std::string& line) {
   for (int k = 0; k < 3; ++k) line += (k ? "," : "") + std::to_string(static_cast<long>(row[k]));
+  return true;
 }
 
 TEST(DeferredRows, EveryRowInOrderThroughManyBlocksAndAFullQueue) {
@@ -80,6 +81,7 @@ TEST(DeferredRows, TheWritersErrorReachesTheRunsThread) {
   DeferredRows text(file, 1, [](const double* row, std::string& line) {
     if (row[0] == 300) throw std::runtime_error("cannot write row 300");
     line += std::to_string(row[0]);
+    return true;
   });
   bool thrown = false;
   try {
@@ -104,6 +106,7 @@ TEST(DeferredRows, DroppedUnfinishedStopsItsWriter) {
     DeferredRows text(file, 1, [&](const double*, std::string& line) {
       ++formatted;
       line += "x";
+      return true;
     });
     for (int k = 0; k < 5000; ++k) {
       const double v = k;

@@ -99,6 +99,24 @@ TEST(NumberText, WriteGeneralIsPrintfOnRandomBitsAndNearHalves) {
       v.push_back(-x);
     }
   }
+  // the exact double-double path's edges (base/number_text.cpp, scaledDigits): ties that are
+  // exact in binary, integers (trailing zeros), the ends of its range of 10^k and values a few
+  // ulps beside the powers of ten where the first digit's exponent changes
+  for (const double x : {0.125, 0.375, 2.5, 1.5, 1.0, 7.0, 100.0, 123456.0, 1e11, 1e12, 1e13})
+    v.push_back(x);
+  for (int e = -25; e <= 16; ++e) {
+    const double ten = std::pow(10.0, e);
+    double x = ten;
+    for (int k = 0; k < 3; ++k) x = std::nextafter(x, 0.0);
+    for (int k = 0; k < 6; ++k, x = std::nextafter(x, 1e300)) {
+      v.push_back(x);
+      v.push_back(x * (1.0 - 5e-13));  // 9.9999999999995..: rounds up to the next power
+      v.push_back(x * (1.0 - 4e-13));
+    }
+  }
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int k = 0; k < 20000; ++k)  // the rows' magnitudes, uniform in log
+    v.push_back(std::pow(10.0, -12.0 + 24.0 * unit(rng)) * (k % 2 ? -1.0 : 1.0));
   char buf[kMaxGeneralChars];
   long checked = 0;
   for (double x : v) {

@@ -95,11 +95,18 @@ void DeferredRows::writerLoop() {
 
 void DeferredRows::writeBlock(const std::vector<double>& block, std::string& text) {
   text.clear();
-  for (size_t k = 0; k + width_ <= block.size(); k += width_) {
-    format_(block.data() + k, text);
+  bool checked = true;
+  long rows = 0;
+  for (size_t k = 0; k + width_ <= block.size(); k += width_, ++rows) {
+    checked = format_(block.data() + k, text) && checked;
     text += '\n';
   }
-  file_.writeLines(text);
+  // a row with a non-finite number (or one its format did not check): the whole block through
+  // the text check, which refuses it by file, row and column before any of it is written
+  if (checked)
+    file_.writeCheckedLines(text, rows);
+  else
+    file_.writeLines(text);
 }
 
 }  // namespace metrosync

@@ -20,8 +20,12 @@ class AtomicFile;
 class DeferredRows {
  public:
   // format(row, line): appends one row's text (without the newline) to `line`; called on the
-  // writer thread, so it may use only what it captured by value.
-  using Format = std::function<void(const double* row, std::string& line)>;
+  // writer thread, so it may use only what it captured by value. Returns true when it has checked
+  // the row itself: every cell a finite number (tested as a double where it is formatted) or a
+  // word that cannot spell one; a block of such rows skips the file's text check (CsvCheck).
+  // False: the row goes through the text check, which names a non-finite cell (file, row,
+  // column).
+  using Format = std::function<bool(const double* row, std::string& line)>;
 
   DeferredRows(AtomicFile& file, size_t width, Format format);
   DeferredRows(const DeferredRows&) = delete;

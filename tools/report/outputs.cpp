@@ -75,33 +75,39 @@ double eventKindIndex(const char* kind) {
   throw std::logic_error(std::string("unknown event kind ") + kind);
 }
 
-// %.12g of v at the line's end (numberText's text, written in place)
-void appendNumber(double v, std::string& line) {
+// %.12g of v at the line's end (numberText's text, written in place); false when v is not finite
+bool appendNumber(double v, std::string& line) {
   if (v != v) {
     line += "nan";
-    return;
+    return false;
   }
   char buf[kMaxGeneralChars];
   line.append(buf, static_cast<size_t>(writeGeneral(v, 12, buf) - buf));
+  return std::isfinite(v);
 }
 
-// the n numbers, comma-separated, written in place at the line's end (room made once)
-void appendNumbers(const double* v, size_t n, std::string& line) {
-  if (n == 0) return;
+// the n numbers, comma-separated, written in place at the line's end (room made once); false when
+// one of them is not finite (written as printf would, for the text check to name it)
+bool appendNumbers(const double* v, size_t n, std::string& line) {
+  if (n == 0) return true;
   const size_t at = line.size();
   line.resize(at + n * (kMaxGeneralChars + 1));
   char* const begin = line.data();
   char* out = begin + at;
+  bool finite = true;
   for (size_t k = 0; k < n; ++k) {
     if (k) *out++ = ',';
     if (v[k] != v[k]) {
       std::memcpy(out, "nan", 3);
       out += 3;
+      finite = false;
     } else {
+      finite = std::isfinite(v[k]) && finite;
       out = writeGeneral(v[k], 12, out);
     }
   }
   line.resize(static_cast<size_t>(out - begin));
+  return finite;
 }
 
 }  // namespace
@@ -119,8 +125,9 @@ FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt) : FileSink(
     // t is in seconds already for a physical rig (SPEC 3)
     trajectory_->writeLine(trajectoryHeader(opt_.n_metronomes));
     trajectory_text_ = std::make_unique<DeferredRows>(
-        *trajectory_, 2 * n + 4,
-        [w = 2 * n + 4](const double* row, std::string& line) { appendNumbers(row, w, line); });
+        *trajectory_, 2 * n + 4, [w = 2 * n + 4](const double* row, std::string& line) {
+          return appendNumbers(row, w, line);
+        });
     if (opt_.events) {
       events_ = std::make_unique<AtomicFile>(dir.file(opt_.events_name));
       events_->writeLine(eventsHeader(opt_.n_metronomes, opt_.seconds));
@@ -133,26 +140,28 @@ FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt) : FileSink(
 }
 
 // an event's numbers: kind (its index in kEventKinds), who (-1: the platform), t, then the rows
-// before and after without their t
+// before and after without their t. Its words (a kind, "platform", a metronome's number) are this
+// file's own and none spells a non-finite number: the row is checked by its numbers alone.
 DeferredRows::Format FileSink::eventFormat() const {
   const size_t width = 2 * static_cast<size_t>(opt_.n_metronomes) + 3;
   return [width, eps = opt_.epsilon, unit = opt_.time_unit, seconds = opt_.seconds](
              const double* v, std::string& line) {
     const double t = v[2];
     const int who = static_cast<int>(v[1]);
-    appendNumber(t, line);
+    bool finite = appendNumber(t, line);
     line += ',';
-    appendNumber(eps * t / unit, line);
+    finite = appendNumber(eps * t / unit, line) && finite;
     line += ',';
     line += kEventKinds[static_cast<size_t>(v[0])];
     line += ',';
     line += who < 0 ? std::string("platform") : std::to_string(who + 1);
     line += ',';
-    appendNumbers(v + 3, 2 * width, line);
+    finite = appendNumbers(v + 3, 2 * width, line) && finite;
     if (seconds) {
       line += ',';
-      appendNumber(t, line);
+      finite = appendNumber(t, line) && finite;
     }
+    return finite;
   };
 }
 
@@ -168,6 +177,7 @@ DeferredRows::Format FileSink::envelopeFormat() const {
     row.r = v[2 * n];
     line += formatEnvelopeRow(row);
     if (seconds) line += "," + numberText(row.tau / eps * unit, 12);
+    return false;  // a row a period: read by the text check
   };
 }
 

@@ -99,8 +99,8 @@ class RigRecorder {
   std::vector<double> nodes_;    // the Gauss nodes' angles and rates (kNodes x 2n)
   std::vector<int> rig_index_;   // (n x 1) each swinging pendulum's metronome
   double inv_angle_, inv_rate_;  // scaled angle and rate per radian and radian per second
-  // the interpolant's weights at the Gauss nodes of a whole step, for h = 1
-  double node_w_[EnvelopeQuadrature::kNodes][ode::detail::DenseTable::kPadRows] = {};
+  // the interpolant's weights at the Gauss nodes of a whole step, for h = 1, by stage row
+  double node_w_[ode::detail::DenseTable::kPadRows][EnvelopeQuadrature::kNodes] = {};
   std::vector<double> before_;  // the state before the event being recorded (events.csv)
   std::vector<double> row_;     // the row being written
   std::vector<double> state_;   // a state being sampled (network::Layout)
@@ -140,8 +140,11 @@ RigRecorder<N>::RigRecorder(const Rig& rig, const ScaledParams& sp, RunSink& sin
       inv_angle_(1.0 / sp.angle_scale),
       inv_rate_(1.0 / (sp.angle_scale * omega0_)) {
   for (int j = 0; j < lay_.n; ++j) rig_index_.push_back(eq_.pendulum(j).rig_index);
-  for (int q = 0; q < EnvelopeQuadrature::kNodes; ++q)
-    stepper_.denseWeights(0.5 * (1.0 + EnvelopeQuadrature::kNode[q]), 1.0, node_w_[q]);
+  for (int q = 0; q < EnvelopeQuadrature::kNodes; ++q) {
+    double w[ode::detail::DenseTable::kPadRows];
+    stepper_.denseWeights(0.5 * (1.0 + EnvelopeQuadrature::kNode[q]), 1.0, w);
+    for (int r = 0; r < ode::detail::DenseTable::kPadRows; ++r) node_w_[r][q] = w[r];
+  }
 }
 
 // --- rows -----------------------------------------------------------------------------------
@@ -156,30 +159,31 @@ std::vector<double> RigRecorder<N>::row(const double* y, double t, PlatformMode 
 template <int N>
 void RigRecorder<N>::fillRow(const double* y, double t, PlatformMode mode,
                              std::vector<double>& row) const {
-  row.clear();
+  row.resize(2 * static_cast<size_t>(n_rig_) + 4);  // written in place: no growth checks
+  double* out = row.data();
   const bool scaled = rig_.units == Units::Scaled;
   const double xs = scaled ? 1.0 / sp_.x_scale_m : 1.0;
   const double as = scaled ? 1.0 / sp_.angle_scale : 1.0;
   const double ts = scaled ? omega0_ : 1.0;
-  row.push_back(t * ts);
-  row.push_back(y[StateLayout::kX] * xs);
-  row.push_back(y[StateLayout::kV] * xs / ts);
+  *out++ = t * ts;
+  *out++ = y[StateLayout::kX] * xs;
+  *out++ = y[StateLayout::kV] * xs / ts;
   int j = 0;
   for (int i = 0; i < n_rig_; ++i) {
     if (rig_.metronomes[i].locked) {
-      row.push_back(0.0);
-      row.push_back(0.0);
+      *out++ = 0.0;
+      *out++ = 0.0;
       continue;
     }
-    row.push_back(y[lay_.theta(j)] * as);
-    row.push_back(y[lay_.omega(j)] * as / ts);
+    *out++ = y[lay_.theta(j)] * as;
+    *out++ = y[lay_.omega(j)] * as / ts;
     ++j;
   }
   if (eq_.friction().setValued()) {
-    row.push_back(static_cast<int>(mode));
+    *out = static_cast<int>(mode);
   } else {
     const double v = y[StateLayout::kV];
-    row.push_back(v > 0 ? 1 : (v < 0 ? -1 : 0));
+    *out = v > 0 ? 1 : (v < 0 ? -1 : 0);
   }
 }
 
@@ -239,17 +243,22 @@ void RigRecorder<N>::sampleLoaded(double t_limit, bool inclusive, PlatformMode m
   const bool whole_step = t_limit == t0 + h;
   env_.stretch(ta, tb, [&](double a, double b, double* th, double* w) {
     constexpr int Q = EnvelopeQuadrature::kNodes, R = ode::detail::DenseTable::kPadRows;
-    double wq[Q][R];
-    for (int q = 0; q < Q; ++q) {
-      if (whole_step && a == ta && b == tb) {
-        for (int r = 0; r < R; ++r) wq[q][r] = h * node_w_[q][r];
-      } else {
+    double wq[R][Q];  // by stage row
+    if (whole_step && a == ta && b == tb) {
+      for (int r = 0; r < R; ++r)
+        for (int q = 0; q < Q; ++q) wq[r][q] = h * node_w_[r][q];
+    } else {
+      for (int q = 0; q < Q; ++q) {
         const double t = EnvelopeQuadrature::nodeTime(a, b, q) / omega0_;
-        s.denseWeights(std::clamp((t - t0) / h, 0.0, 1.0), h, wq[q]);
+        double w[R];
+        s.denseWeights(std::clamp((t - t0) / h, 0.0, 1.0), h, w);
+        for (int r = 0; r < R; ++r) wq[r][q] = w[r];
       }
     }
     const int n = lay_.n;
-    s.interpolateMany(wq, lay_.theta(0), 2 * n, nodes_.data());  // (Q x 2n): angles, rates
+    // (Q x 2n): angles, rates
+    s.template interpolateMany<Q, (N > 0 ? 2 * N : ode::kDynamic)>(wq, lay_.theta(0), 2 * n,
+                                                                   nodes_.data());
     for (int q = 0; q < Q; ++q)
       nodeEnvelope(nodes_.data() + q * 2 * n, th + q * n_rig_, w + q * n_rig_);
   });
