@@ -107,7 +107,9 @@ if peer=$("$bench" peer "${peer_args[@]}" 2>"$out/.peer.err"); then
   peer_note="the careful peer: \`$peer\`"
   src=$(cd "$(git rev-parse --git-common-dir 2>/dev/null || echo .git)/.." && pwd)/../shared/peer/peer.cpp
   hash=$([ -f "$src" ] && sha256sum "$src" | cut -c1-12 || echo unknown)
-  echo "${PEER_NAME:-\`../shared/peer\` (peer.cpp sha256 $hash..., the binary \`$peer\`)}" >"$out/peer.md"
+  # named by its source's hash, not by a path outside the repository (docs:pointers)
+  peer_default="\`shared/peer\` (beside the repository on the project's machines, not in a clone; peer.cpp sha256 $hash...)"
+  echo "${PEER_NAME:-$peer_default}" >"$out/peer.md"
 else
   why=$(cat "$out/.peer.err")
   echo "speed.sh: THE CAREFUL PEER IS MISSING: $why" >&2
@@ -171,6 +173,10 @@ cpu=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')
     "average (1, 5, 15 min) $load_start at the start, $load_end at the end (every table gives" \
     "the 1-minute load of its own timed runs). Medians of $repeat timed runs per point of the" \
     "work-precision; $peer_note.$([ "$quick" = 1 ] && echo ' QUICK=1: shortened settings, not a result.')"
+  knobs=$(for k in QUICK SCENES RUN_PRECISION_SCENES RUN_SCENES METHODS ACCURACIES REPEAT RUN_REPEAT \
+      PROCESS_REPEAT EVENT_SCENES EVENT_ACCURACIES FIT_RECORDS FIT_RUN_REPEAT CONT_REPEAT CONT_TIMEOUT \
+      MAP_REPEAT MAX_LOAD MAX_WAIT BUDGET; do if [ -n "${!k:-}" ]; then printf "%s=%q " "$k" "${!k}"; fi; done)
+  if [ -n "$knobs" ]; then echo "Knobs set: \`${knobs% }\` (the commands below carry them)."; fi
   echo
   echo "The commands, in order:"
   echo
