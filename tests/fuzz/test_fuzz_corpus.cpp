@@ -44,8 +44,7 @@ TEST(FuzzCorpus, EveryInputPassesItsTarget) {
 // The split of an input into a text and its --set parts, and a finding as a finding.
 TEST(FuzzCorpus, TheBodiesSeeWhatTheyMust) {
   using namespace std::string_literals;
-  EXPECT_EQ(nulSeparated("a\0b\0\0c"s),
-            (std::vector<std::string>{"a", "b", "", "c"}));
+  EXPECT_EQ(nulSeparated("a\0b\0\0c"s), (std::vector<std::string>{"a", "b", "", "c"}));
   EXPECT_EQ(nulSeparated(""), std::vector<std::string>{""});
   EXPECT_NO_THROW(rigLoader("units: physical\nname: [\n"));  // refused, located
   EXPECT_NO_THROW(keyPath("metronomes.*.nu=0.5"));
