@@ -75,17 +75,6 @@ double eventKindIndex(const char* kind) {
   throw std::logic_error(std::string("unknown event kind ") + kind);
 }
 
-// %.12g of v at the line's end (numberText's text, written in place); false when v is not finite
-bool appendNumber(double v, std::string& line) {
-  if (v != v) {
-    line += "nan";
-    return false;
-  }
-  char buf[kMaxGeneralChars];
-  line.append(buf, static_cast<size_t>(writeGeneral(v, 12, buf) - buf));
-  return std::isfinite(v);
-}
-
 // the n numbers, comma-separated, written in place at the line's end (room made once); false when
 // one of them is not finite (written as printf would, for the text check to name it)
 bool appendNumbers(const double* v, size_t n, std::string& line) {
@@ -108,6 +97,11 @@ bool appendNumbers(const double* v, size_t n, std::string& line) {
   }
   line.resize(static_cast<size_t>(out - begin));
   return finite;
+}
+
+// %.12g of v at the line's end; false when v is not finite
+bool appendNumber(double v, std::string& line) {
+  return appendNumbers(&v, 1, line);
 }
 
 }  // namespace
