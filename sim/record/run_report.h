@@ -108,11 +108,18 @@ struct RunSink {
   virtual bool wantsStates() const { return false; }
   virtual void stateSample(double t, const std::vector<double>& y,
                            const std::vector<PlatformMode>& modes) {}
-  // true: a run may make this sink's rows on a recording thread of its own and call the row
-  // methods above from there (never from two threads at once), while it integrates on; the
-  // report's fields come back on the caller's thread. For a run that has a core to itself (the
-  // `run` command), not for one of many running in parallel (a sweep's points). Asked once.
-  virtual bool recordsOnAnotherThread() const { return false; }
+  // Where a run may make this sink's rows: on its own thread (Never), or on a recording thread
+  // of its own that calls the row methods above from there (never from two threads at once)
+  // while it integrates on, always or only when the run is long enough to pay for the thread
+  // (WhenLong: the engine judges). The report's fields come back on the caller's thread. A
+  // recording thread is for a run that has a core to itself (the `run` command), not for one of
+  // many running in parallel (a sweep's points). Asked once.
+  enum class RecordingThread { Never, WhenLong, Always };
+  virtual RecordingThread recordingThread() const { return RecordingThread::Never; }
+  // Called by a run that started a recording thread, before its first row: every row comes from
+  // that thread, which may then also write the rows' text itself (FileSink: no writer threads of
+  // its own beside it; on two cores a third and a fourth busy thread would take the run's core).
+  virtual void recordingThreadStarted() {}
   // Called by an engine that can take many steps between two rows (Simbody, whose grazing guard
   // redoes steps smaller and smaller) after each of its steps, t in the unit of the rows' t (a
   // network's: seconds). A sink may throw from it to stop the run, as from a row (FileSink: after

@@ -95,7 +95,7 @@ TEST(Recording, NeverChangesWhatTheEngineIntegratesEightMetronomes) {
 
 // A MemorySink that lets the run make its rows on a recording thread of its own.
 struct ThreadedSink : MemorySink {
-  bool recordsOnAnotherThread() const override { return true; }
+  RecordingThread recordingThread() const override { return RecordingThread::Always; }
 };
 
 void expectSameRows(const MemorySink& a, const MemorySink& b) {
@@ -145,7 +145,9 @@ TEST(Recording, OnItsOwnThreadMakesTheSameRowsToTheBit) {
 // before.
 struct FailingSink : MemorySink {
   explicit FailingSink(bool threaded) : threaded_(threaded) {}
-  bool recordsOnAnotherThread() const override { return threaded_; }
+  RecordingThread recordingThread() const override {
+    return threaded_ ? RecordingThread::Always : RecordingThread::Never;
+  }
   void trajectoryRow(const std::vector<double>& row) override {
     if (trajectory.size() == 100) throw std::runtime_error("no space left on device");
     MemorySink::trajectoryRow(row);

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include "sim/record/atomic_file.h"
 #include "tools/report/deferred_rows.h"
@@ -56,6 +57,60 @@ TEST(DeferredRows, EveryRowInOrderThroughManyBlocksAndAFullQueue) {
   }
   EXPECT_EQ(slurp(path), expectedText(rows));
   std::filesystem::remove(path);
+}
+
+// Rows that come from a recording thread already are written by it (writeOnCallersThread): the
+// same text, each full block in the file as soon as it is added, on the adding thread.
+TEST(DeferredRows, OnTheCallersThreadTheSameTextBlockByBlock) {
+  const long rows = 1000;  // three full blocks of 256 and a partial one
+  const std::string path = tempPath("caller");
+  {
+    AtomicFile file(path);
+    const std::thread::id caller = std::this_thread::get_id();
+    bool elsewhere = false;
+    long formatted = 0;
+    DeferredRows text(file, 3, [&](const double* row, std::string& line) {
+      elsewhere = elsewhere || std::this_thread::get_id() != caller;
+      ++formatted;
+      return formatRow(row, line);
+    });
+    text.writeOnCallersThread();
+    for (long k = 0; k < rows; ++k) {
+      const double row[3] = {static_cast<double>(k), 2.0 * k, -static_cast<double>(k)};
+      text.add(row);
+      if (k == 254) EXPECT_EQ(formatted, 0);
+      if (k == 255) EXPECT_EQ(formatted, 256);  // the first block, made by that add
+    }
+    EXPECT_EQ(formatted, 768);
+    text.finish();
+    EXPECT_EQ(formatted, rows);
+    file.commit();
+    EXPECT_FALSE(elsewhere);
+  }
+  EXPECT_EQ(slurp(path), expectedText(rows));
+  std::filesystem::remove(path);
+}
+
+TEST(DeferredRows, OnTheCallersThreadAnErrorComesFromAdd) {
+  const std::string path = tempPath("caller_error");
+  AtomicFile file(path);
+  DeferredRows text(file, 1, [](const double* row, std::string& line) {
+    if (row[0] == 300) throw std::runtime_error("cannot write row 300");
+    line += std::to_string(row[0]);
+    return true;
+  });
+  text.writeOnCallersThread();
+  int k = 0;
+  try {
+    for (; k < 1000; ++k) {
+      const double v = k;
+      text.add(&v);
+    }
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "cannot write row 300");
+  }
+  EXPECT_EQ(k, 511);  // the add of row 511, which filled the block of rows 256..511
+  file.discard();
 }
 
 TEST(DeferredRows, AFewRowsAreWrittenByFinish) {

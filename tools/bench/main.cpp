@@ -702,8 +702,9 @@ CLI::App* addRunCostCommand(CLI::App& app, Args& a) {
   uc->add_option("--metrosync", a.ro.metrosync, "the metrosync binary")->capture_default_str();
   uc->add_option("--scene", a.ro.scenes, "rig file (repeatable)")->required();
   uc->add_option("--variant", a.variants,
-                 "space-separated KEY=VALUE overrides (--set) of one variant, \"\" for none "
-                 "(repeatable; default: none, and simulation.sample=100)");
+                 "space-separated KEY=VALUE overrides (--set) of one variant, and env:NAME=VALUE "
+                 "for the run's environment, \"\" for none (repeatable; default: none, and "
+                 "simulation.sample=100)");
   uc->add_option("--tmp", a.ro.tmp,
                  "where the runs write their files (default: the system's temporary directory)");
   addCommon(uc, a.common);

@@ -27,12 +27,23 @@ std::string firstLine(const std::string& s) {
   return s.substr(0, s.find('\n'));
 }
 
-std::vector<std::string> splitSets(const std::string& variant) {
+// A variant's items: KEY=VALUE overrides (--set), and env:NAME=VALUE the run's environment.
+constexpr const char* kEnvItem = "env:";
+
+std::vector<std::string> variantItems(const std::string& variant, bool env) {
   std::vector<std::string> v;
   std::stringstream ss(variant);
-  for (std::string item; std::getline(ss, item, ' ');)
-    if (!item.empty()) v.push_back(item);
+  for (std::string item; std::getline(ss, item, ' ');) {
+    const bool is_env = item.rfind(kEnvItem, 0) == 0;
+    if (!item.empty() && is_env == env) v.push_back(is_env ? item.substr(4) : item);
+  }
   return v;
+}
+std::vector<std::string> splitSets(const std::string& variant) {
+  return variantItems(variant, false);
+}
+std::vector<std::string> splitEnv(const std::string& variant) {
+  return variantItems(variant, true);
 }
 
 std::vector<std::string> runArgs(const RunCostOptions& o, const std::string& scene,
@@ -98,7 +109,8 @@ RunCostRow measureOne(const RunCostOptions& o, const BenchOptions& c, const std:
   row.scene = scene;
   row.variant = variant;
   const std::vector<std::string> base = runArgs(o, scene, variant);
-  row.command = shellCommand(base);
+  const std::vector<std::string> env = splitEnv(variant);
+  row.command = shellCommand(env) + (env.empty() ? "" : " ") + shellCommand(base);
   std::vector<double> walls, engines, ratios, pwall, pcpu, loads;
   Summary sum;
   for (int k = 0; k <= o.repeat; ++k) {
@@ -106,7 +118,7 @@ RunCostRow measureOne(const RunCostOptions& o, const BenchOptions& c, const std:
     const fs::path out = tmp / ("r" + std::to_string(k));
     std::vector<std::string> argv = base;
     argv.insert(argv.end(), {"--out", out.string()});
-    const ProcessResult pr = runProcess(argv);
+    const ProcessResult pr = runProcess(argv, 0.0, env);
     const bool read = pr.ok() && readSummary(out, sum);
     const double wall = sum.wall, engine = sum.engine;
     fs::remove_all(out);
@@ -237,7 +249,8 @@ std::string runCostMarkdown(const std::vector<RunCostRow>& rows, const std::stri
      << "the last column and left out of the engine_seconds and ratio medians.\n\n"
      << "**`run` against the engine: wall_seconds / engine_seconds " << rowsVerdict(met, measured)
      << "; wall_seconds / engine alone " << rowsVerdict(alone_met, measured) << ".**\n\n"
-     << "| scene | --set | runs | wall_seconds | engine_seconds | wall / engine (range) | "
+     << "| scene | variant (--set, env:) | runs | wall_seconds | engine_seconds | wall / engine "
+        "(range) | "
         "engine alone | wall / engine alone | engine | process wall | process CPU | load | "
         "impossible splits |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const RunCostRow& r : rows) runCostRow(os, r);

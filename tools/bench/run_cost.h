@@ -26,7 +26,8 @@ constexpr double kRunRatioTarget = kRunOverEngineTarget;
 struct RunCostOptions {
   std::string metrosync = "build/metrosync";  // the binary
   std::vector<std::string> scenes;            // rig files
-  // each variant is a list of KEY=VALUE overrides given as --set ("" = the rig as it is)
+  // each variant is a list of KEY=VALUE overrides given as --set ("" = the rig as it is) and of
+  // env:NAME=VALUE settings of the run's environment (e.g. env:METROSYNC_RECORDING_THREAD=never)
   std::vector<std::string> variants = {"", "simulation.sample=100"};
   int repeat = 5;
   std::string tmp;  // where the runs write their files ("" = the system's temporary directory)

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -17,6 +18,7 @@
 #include "sim/analysis/regime.h"
 #include "sim/record/atomic_file.h"
 #include "tools/cli/engines.h"
+#include "tools/cli/exit_codes.h"
 #include "tools/cli/phase_clock.h"
 #include "tools/cli/range_warnings.h"
 #include "tools/report/comparison_csv.h"
@@ -127,6 +129,18 @@ PlotStyle plotStyle(const Options& opt, const LoadedRig& r) {
   return s;
 }
 
+// A run's recording thread (RunSink::RecordingThread): the engine's judgement, or, for benches,
+// METROSYNC_RECORDING_THREAD=never|always (docs/bench/speed/run.md, the runcost variants).
+RunSink::RecordingThread recordingThreadChoice() {
+  const char* v = std::getenv("METROSYNC_RECORDING_THREAD");
+  const std::string s = v ? v : "";
+  if (s.empty()) return RunSink::RecordingThread::WhenLong;
+  if (s == "never") return RunSink::RecordingThread::Never;
+  if (s == "always") return RunSink::RecordingThread::Always;
+  throw UsageError("METROSYNC_RECORDING_THREAD=" + s +
+                   ": expected never or always (unset: the engine chooses)");
+}
+
 RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::string& envelope) {
   RunFilesOptions o;
   o.n_metronomes = static_cast<int>(r.rig.metronomes.size());
@@ -140,7 +154,7 @@ RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::stri
   o.envelope_platform = !trajectory;  // the slow flow's `uncoupled` rule (sim/analysis/regime.h)
   o.x_unit = r.rig.units == Units::Physical ? r.scaled.x_scale_m : 1.0;
   o.law = r.scaled.friction;
-  o.recording_thread = true;  // one run at a time: its rows made beside its integration
+  o.recording_thread = recordingThreadChoice();  // one run at a time: rows beside the integration
   return o;
 }
 

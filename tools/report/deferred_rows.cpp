@@ -31,6 +31,11 @@ DeferredRows::~DeferredRows() {
 void DeferredRows::add(const double* row) {
   block_.insert(block_.end(), row, row + width_);
   if (block_.size() < width_ * kRowsPerBlock) return;
+  if (on_callers_thread_) {  // the block's memory reused
+    writeBlock(block_, text_);
+    block_.clear();
+    return;
+  }
   std::vector<double> full;
   full.reserve(width_ * kRowsPerBlock);
   full.swap(block_);
@@ -38,6 +43,10 @@ void DeferredRows::add(const double* row) {
 }
 
 void DeferredRows::post(std::vector<double>&& block) {
+  if (on_callers_thread_) {
+    writeBlock(block, text_);
+    return;
+  }
   std::unique_lock<std::mutex> lock(mutex_);
   wake_run_.wait(lock, [&] { return queue_.size() < kMaxQueuedBlocks || error_; });
   if (error_) {

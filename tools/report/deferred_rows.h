@@ -36,6 +36,10 @@ class DeferredRows {
   void add(const double* row);
   // Writes every row added so far and waits for it; rethrows the writer's first error.
   void finish();
+  // From now on a full block is written by the thread that adds it (no writer thread): for rows
+  // that come from a recording thread already (RunSink::recordingThreadStarted). Called before
+  // the first add; errors then come straight from add and finish.
+  void writeOnCallersThread() { on_callers_thread_ = true; }
 
  private:
   void post(std::vector<double>&& block);
@@ -51,6 +55,8 @@ class DeferredRows {
   std::condition_variable wake_writer_, wake_run_;
   std::deque<std::vector<double>> queue_;
   bool busy_ = false, stop_ = false;
+  bool on_callers_thread_ = false;
+  std::string text_;  // a block's text, when written on the caller's thread
   std::exception_ptr error_;
   std::thread writer_;
 };

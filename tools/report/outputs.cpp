@@ -133,6 +133,11 @@ FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt) : FileSink(
   envelope_text_ = std::make_unique<DeferredRows>(*envelope_, 2 * n + 1, envelopeFormat());
 }
 
+void FileSink::recordingThreadStarted() {
+  for (DeferredRows* w : {trajectory_text_.get(), envelope_text_.get(), events_text_.get()})
+    if (w) w->writeOnCallersThread();
+}
+
 // an event's numbers: kind (its index in kEventKinds), who (-1: the platform), t, then the rows
 // before and after without their t. Its words (a kind, "platform", a metronome's number) are this
 // file's own and none spells a non-finite number: the row is checked by its numbers alone.

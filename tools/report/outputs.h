@@ -68,9 +68,9 @@ struct RunFilesOptions {
   bool envelope_platform = false;
   double x_unit = 1.0;  // trajectory x per unit of scaled x (physical rigs: x_scale_m)
   FrictionLaw law;      // scaled
-  // the run may make the rows on a recording thread of its own (RunSink::recordsOnAnotherThread):
+  // the run may make the rows on a recording thread of its own (RunSink::recordingThread):
   // a run that has the machine to itself (`metrosync run`), not a sweep's points
-  bool recording_thread = false;
+  RunSink::RecordingThread recording_thread = RunSink::RecordingThread::Never;
 };
 
 // trajectory.csv's header: t,x,xdot,theta_1,thetadot_1,...,theta_N,thetadot_N,platform.
@@ -118,7 +118,11 @@ class FileSink : public RunSink {
   bool wantsEnvelope() const override { return !network_; }
   bool wantsEventRows() const override { return !network_; }
   bool wantsStates() const override { return network_ != nullptr; }
-  bool recordsOnAnotherThread() const override { return opt_.recording_thread && !network_; }
+  RecordingThread recordingThread() const override {
+    return network_ ? RecordingThread::Never : opt_.recording_thread;
+  }
+  // the recording thread writes the files' text too (DeferredRows::writeOnCallersThread)
+  void recordingThreadStarted() override;
   void stateSample(double t, const std::vector<double>& y,
                    const std::vector<PlatformMode>& modes) override;
   // between rows: a stop request stops the run there (RunInterrupted, once)

@@ -3,7 +3,7 @@
 // compiler, its one platform seen by the shared resolver, and its files through its recorder
 // (rig_recorder.h: trajectory rows on the shared schedule, the envelope from the steps'
 // interpolants, event rows and records), called on the run's thread or, when the sink allows it
-// (RunSink::recordsOnAnotherThread), handed over to a recording thread (rig_recording_thread.h).
+// (RunSink::recordingThread), handed over to a recording thread (rig_recording_thread.h).
 #pragma once
 
 #include <algorithm>
@@ -166,6 +166,8 @@ class RigModel final : public EventSystem {
   double mobility_ = 0.0;  // platformMobility() at ev_y_'s angles (0: not computed yet)
   RigRecorder<N> rec_;
   std::unique_ptr<RigRecordingThread<N>> thread_;  // recording on its own thread, or none
+
+  bool worthARecordingThread() const;
 };
 
 template <int N>
@@ -185,8 +187,23 @@ RigModel<N>::RigModel(SplitTimer& timer, const Rig& rig, RunSink& sink)
       rec_(rig, sp_, sink) {
   stepper_.setTolerances(rig.sim.accuracy, scaledTolerances(rig.sim.accuracy, sp_, lay_));
   const bool records = rec_.rows() || rec_.envelope() || rec_.eventRows() || rec_.eventRecords();
-  if (records && sink.recordsOnAnotherThread())
+  const auto offer = sink.recordingThread();
+  using Offer = RunSink::RecordingThread;
+  if (records &&
+      (offer == Offer::Always || (offer == Offer::WhenLong && worthARecordingThread()))) {
+    sink.recordingThreadStarted();  // before the first row
     thread_ = std::make_unique<RigRecordingThread<N>>(rec_);
+  }
+}
+
+// A recording thread pays when the run is long enough to hide its start and its hand-overs:
+// measured on 2 cores (docs/bench/speed/run.md, the runcost variants), a run of 34-67 fast periods
+// of 2-8 metronomes was 1.0-1.8x faster without one, a run of 200-2400 periods 1.1-1.7x faster with
+// one.
+template <int N>
+bool RigModel<N>::worthARecordingThread() const {
+  constexpr double kMetronomePeriods = 500.0;  // between the two groups measured
+  return tEnd() / period_ * n_rig_ >= kMetronomePeriods;
 }
 
 // The recording's end: every record made into rows (the recording thread drained), then the

@@ -2,7 +2,7 @@
 // the run's thread writes each kept step's start, size, state, end state and stages (what the
 // step's dense output is made of) and each event's state as records; the recording thread loads
 // each step into the recorder's own stepper and makes the same rows from it as the run's thread
-// would (rig_model.h decides which thread records: RunSink::recordsOnAnotherThread()).
+// would (rig_model.h decides which thread records: RunSink::recordingThread()).
 #pragma once
 
 #include <algorithm>
