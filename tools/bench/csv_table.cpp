@@ -1,15 +1,32 @@
 #include "tools/bench/csv_table.h"
 
+#include <algorithm>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
-#include "tools/bench/wp_csv.h"
+#include "base/csv.h"
 
 namespace metrosync::bench {
 
+std::vector<std::string> csvCellsAt(const std::string& line, const std::string& where) {
+  try {
+    return csvCells(line);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(where + ": " + e.what());
+  }
+}
+
+double csvNumber(const std::string& s, const std::string& where) {
+  if (s.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const std::optional<double> v = metrosync::csvNumber(s);
+  if (!v) throw std::invalid_argument(where + ": '" + s + "' is not a number");
+  return *v;
+}
+
 bool CsvTable::has(const std::string& key) const {
-  return !rows.empty() && rows.front().count(key) > 0;
+  return std::find(columns.begin(), columns.end(), key) != columns.end();
 }
 
 const std::string& CsvTable::text(size_t row, const std::string& key) const {
@@ -25,7 +42,8 @@ std::string CsvTable::textOr(size_t row, const std::string& key,
 }
 
 double CsvTable::number(size_t row, const std::string& key) const {
-  return csvNumber(text(row, key), source + " line " + std::to_string(row + 2) + ", column " + key);
+  return csvNumber(text(row, key),
+                   source + " line " + std::to_string(lines[row]) + ", column " + key);
 }
 
 CsvTable parseCsvTable(const std::string& text, const std::string& source) {
@@ -35,6 +53,7 @@ CsvTable parseCsvTable(const std::string& text, const std::string& source) {
   std::string line;
   if (!std::getline(in, line)) return csv;
   const std::vector<std::string> header = csvCellsAt(line, source + " line 1");
+  csv.columns = header;
   for (int lineno = 2; std::getline(in, line); ++lineno) {
     if (line.empty()) continue;
     const std::vector<std::string> f = csvCellsAt(line, source + " line " + std::to_string(lineno));
@@ -45,6 +64,7 @@ CsvTable parseCsvTable(const std::string& text, const std::string& source) {
     std::map<std::string, std::string> row;
     for (size_t k = 0; k < f.size(); ++k) row[header[k]] = f[k];
     csv.rows.push_back(row);
+    csv.lines.push_back(lineno);
   }
   return csv;
 }

@@ -10,7 +10,9 @@
 namespace metrosync::bench {
 
 struct CsvTable {
+  std::vector<std::string> columns;  // the header's
   std::vector<std::map<std::string, std::string>> rows;
+  std::vector<int> lines;                  // each row's line in the file, for messages
   std::string source;                      // the file's name, for messages
   bool has(const std::string& key) const;  // the header has that column
   // the field as a number: NaN when empty; throws std::invalid_argument (source, line, column)
@@ -21,6 +23,14 @@ struct CsvTable {
   // the field, or `fallback` when the column is missing (files of earlier versions)
   std::string textOr(size_t row, const std::string& key, const std::string& fallback) const;
 };
+
+// The fields of one CSV line (base/csv.h csvCells); an unterminated quote throws
+// std::invalid_argument "WHERE: unterminated quote".
+std::vector<std::string> csvCellsAt(const std::string& line, const std::string& where);
+
+// A CSV field as a number: NaN when empty; throws std::invalid_argument "WHERE: 'S' is not a
+// number" when it is not one (WHERE: file, line and column).
+double csvNumber(const std::string& s, const std::string& where);
 
 // Throws std::invalid_argument (source, line, what) for a line whose field count differs from
 // the header's. An empty text is an empty table.

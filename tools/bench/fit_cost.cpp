@@ -12,8 +12,8 @@
 #include <stdexcept>
 
 #include "tools/bench/bench_metrics.h"
+#include "tools/bench/csv_table.h"
 #include "tools/bench/subprocess.h"
-#include "tools/bench/wp_csv.h"
 
 namespace metrosync::bench {
 

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "base/csv.h"
+#include "tools/bench/csv_table.h"
 
 namespace metrosync::bench {
 
@@ -18,16 +18,13 @@ const char* const kColumns[] = {
     "setting",   "status",    "runs",         "wall_median_s",  "cpu_median_s",
     "load1_min", "load1_max", "err_envelope", "err_final_state"};
 
-// A row's fields by column name, with its place for error messages.
+// A row of the table.
 struct Row {
-  const std::map<std::string, size_t>* col;
-  std::vector<std::string> f;
-  std::string where;  // "source line L"
-  const std::string& text(const std::string& key) const { return f[col->at(key)]; }
-  bool has(const std::string& key) const { return col->count(key) > 0; }
-  double num(const std::string& key) const {
-    return csvNumber(text(key), where + ", column " + key);
-  }
+  const CsvTable& t;
+  size_t k;
+  const std::string& text(const std::string& key) const { return t.text(k, key); }
+  bool has(const std::string& key) const { return t.has(key); }
+  double num(const std::string& key) const { return t.number(k, key); }
 };
 
 void addRow(VerdictScene& s, const Row& r, const Sides& sides) {
@@ -67,41 +64,17 @@ void addRow(VerdictScene& s, const Row& r, const Sides& sides) {
 
 }  // namespace
 
-std::vector<std::string> csvCellsAt(const std::string& line, const std::string& where) {
-  try {
-    return csvCells(line);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(where + ": " + e.what());
-  }
-}
-
-double csvNumber(const std::string& s, const std::string& where) {
-  if (s.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const std::optional<double> v = metrosync::csvNumber(s);
-  if (!v) throw std::invalid_argument(where + ": '" + s + "' is not a number");
-  return *v;
-}
-
 std::vector<VerdictScene> parseWorkPrecisionCsv(const std::string& text, const std::string& source,
                                                 const Sides& sides) {
-  std::istringstream in(text);
-  std::string line;
-  if (!std::getline(in, line)) throw std::invalid_argument(source + ": empty, no CSV header");
-  std::map<std::string, size_t> col;
-  const std::vector<std::string> header = csvCellsAt(line, source + " line 1");
-  for (size_t k = 0; k < header.size(); ++k) col[header[k]] = k;
+  const CsvTable table = parseCsvTable(text, source);
+  if (table.columns.empty()) throw std::invalid_argument(source + ": empty, no CSV header");
   for (const char* c : kColumns)
-    if (!col.count(c))
+    if (!table.has(c))
       throw std::invalid_argument(source + " line 1: no column '" + c +
                                   "' (not a metrosync_bench precision CSV)");
   std::vector<VerdictScene> scenes;
-  for (int lineno = 2; std::getline(in, line); ++lineno) {
-    if (line.empty()) continue;
-    const std::string where = source + " line " + std::to_string(lineno);
-    Row r{&col, csvCellsAt(line, where), where};
-    if (r.f.size() != header.size())
-      throw std::invalid_argument(r.where + ": " + std::to_string(r.f.size()) + " fields, the " +
-                                  "header has " + std::to_string(header.size()));
+  for (size_t k = 0; k < table.rows.size(); ++k) {
+    const Row r{table, k};
     auto it = std::find_if(scenes.begin(), scenes.end(),
                            [&](const VerdictScene& s) { return s.name == r.text("scene"); });
     if (it == scenes.end()) {
