@@ -63,7 +63,7 @@ class RigRows {
     if (want_envelope_) report.final_row = env_.finish();
   }
   std::string failureText(double t, const std::string& why) const {
-    return rigFailureText(t, sp_, rig_.units == Units::Scaled, why);
+    return metrosync::failureText(t, why, &sp_, rig_.units == Units::Scaled);
   }
 
  private:
@@ -213,7 +213,7 @@ class Recorder : public RunRecorder {
       ps_.layoutState(s, y_);
   }
   std::string failureText(double t, const std::string& why) const override {
-    return rows_ ? rows_->failureText(t, why) : networkFailureText(t, why);
+    return rows_ ? rows_->failureText(t, why) : metrosync::failureText(t, why);
   }
   RunReport& report() { return report_; }
 
