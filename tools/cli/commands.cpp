@@ -369,7 +369,8 @@ RunVerdict verdictOf(const RunSubject& s, RunReport& report, const FileSink& sin
 // The run's plots in `dir`, their file names: a single rig's envelope, a network's boards.
 std::vector<std::string> plotRun(const Options& opt, const RunSubject& s, const std::string& model,
                                  const FileSink& sink, const RunVerdict& v, const OutputDir& dir) {
-  if (!s.rig) return plotNetwork(dir, *sink.network(), s.net, s.net.name + " - " + v.label);
+  if (!s.rig)
+    return plotNetwork(dir, *sink.network(), s.net, s.net.name + " - " + v.label, opt.plot_format);
   const LoadedRig& r = *s.rig;
   const std::string plot = "envelope." + opt.plot_format;
   if (plotEnvelope(dir, plot, sink.plotRows(), r.scaled.theta_c,
