@@ -2,11 +2,10 @@
 
 #include <cmath>
 #include <complex>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "base/constants.h"
+#include "base/csv.h"
 #include "base/number_text.h"
 
 namespace metrosync {
@@ -39,11 +38,7 @@ std::string formatEnvelopeRow(const EnvelopeRow& row) {
 }
 
 EnvelopeLayout parseEnvelopeHeader(const std::string& header, const std::string& path) {
-  std::vector<std::string> names;
-  std::stringstream ss(header);
-  std::string name;
-  while (std::getline(ss, name, ',')) names.push_back(name);
-  if (!header.empty() && header.back() == ',') names.emplace_back();
+  const std::vector<std::string> names = csvCells(header);
   EnvelopeLayout layout;
   layout.has_t_s = names.size() > 1 && names.back() == "t_s";
   const size_t tail = names.size() - (layout.has_t_s ? 1 : 0);
@@ -68,29 +63,6 @@ EnvelopeRow envelopeRowFromValues(const std::vector<double>& v, const EnvelopeLa
   r.psi.assign(v.begin() + 1 + n, v.begin() + 2 * n);
   r.r = layout.has_r ? v[2 * n] : orderParameter(r.A, r.psi);
   return r;
-}
-
-std::vector<EnvelopeRow> readEnvelopeCsv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open");
-  std::string line;
-  if (!std::getline(in, line)) throw std::runtime_error(path + ": empty file");
-  const EnvelopeLayout layout = parseEnvelopeHeader(line, path);
-  const int ncols = layout.columns();
-  std::vector<EnvelopeRow> rows;
-  long lineno = 1;
-  while (std::getline(in, line)) {
-    ++lineno;
-    if (line.empty()) continue;
-    std::stringstream ss(line);
-    std::string cell;
-    std::vector<double> v;
-    while (std::getline(ss, cell, ',')) v.push_back(std::stod(cell));
-    if (static_cast<int>(v.size()) != ncols)
-      throw std::runtime_error(path + ":" + std::to_string(lineno) + ": wrong number of columns");
-    rows.push_back(envelopeRowFromValues(v, layout));
-  }
-  return rows;
 }
 
 double PhaseUnwrapper::operator()(double raw) {

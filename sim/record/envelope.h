@@ -46,9 +46,7 @@ EnvelopeLayout parseEnvelopeHeader(const std::string& header, const std::string&
 // A row from the numbers of one line (values.size() == layout.columns()); r computed when absent.
 EnvelopeRow envelopeRowFromValues(const std::vector<double>& values, const EnvelopeLayout& layout);
 
-// Reads an envelope.csv written by formatEnvelopeRow, with or without the r column (older files);
-// throws std::runtime_error on bad input.
-std::vector<EnvelopeRow> readEnvelopeCsv(const std::string& path);
+// (envelope.csv read back: sim/record/envelope_csv.h)
 
 // Keeps a phase difference continuous: each new raw value (any branch) is moved by a multiple of
 // 2 pi to the branch nearest the previous one; the first value is put in [0, 2 pi).

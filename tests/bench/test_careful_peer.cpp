@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "base/csv.h"
 #include "contact/law_registry.h"
 #include "tests/bench/bench_rig.h"
 #include "tests/common/run_metrosync.h"
@@ -197,8 +198,8 @@ TEST(CarefulPeerMethod, RunsAStandInPeerAndReadsItsAnswer) {
   const std::string csv = ts::slurp((dir / "out" / "wp-peer-n2.csv").string());
   const size_t at = csv.find("peer-n2,2,65.4061,direct,dopri5,1e-08,");
   ASSERT_NE(at, std::string::npos) << csv;
-  const auto f = mb::splitCsvLine(csv.substr(at, csv.find('\n', at) - at));
-  const auto head = mb::splitCsvLine(csv.substr(0, csv.find('\n')));
+  const auto f = metrosync::csvCells(csv.substr(at, csv.find('\n', at) - at));
+  const auto head = metrosync::csvCells(csv.substr(0, csv.find('\n')));
   ASSERT_EQ(f.size(), head.size()) << csv;
   auto column = [&](const std::string& name) {
     const auto k = std::find(head.begin(), head.end(), name);
@@ -259,10 +260,10 @@ TEST(RunCost, TimesRunAgainstItsEngine) {
   std::istringstream lines(csv);
   std::string line;
   std::getline(lines, line);
-  const std::vector<std::string> header = mb::splitCsvLine(line);
+  const std::vector<std::string> header = metrosync::csvCells(line);
   int rows = 0;
   for (; std::getline(lines, line); ++rows) {
-    const auto f = mb::splitCsvLine(line);
+    const auto f = metrosync::csvCells(line);
     ASSERT_EQ(f.size(), header.size()) << line;
     std::map<std::string, std::string> c;
     for (size_t k = 0; k < f.size(); ++k) c[header[k]] = f[k];

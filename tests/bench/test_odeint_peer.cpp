@@ -15,6 +15,7 @@
 #include <string>
 
 #include "base/constants.h"
+#include "base/csv.h"
 #include "tests/bench/bench_rig.h"
 #include "tests/common/run_metrosync.h"
 #include "tools/bench/bench_run.h"
@@ -223,7 +224,7 @@ TEST(OdeintPeer, TheBenchPrintsTheVerdictAgainstThePeer) {
   std::istringstream lines(csv);
   int rows = 0, filled = 0;
   for (std::string line; std::getline(lines, line); ++rows)
-    if (rows > 0 && !mb::splitCsvLine(line).at(7).empty()) ++filled;
+    if (rows > 0 && !metrosync::csvCells(line).at(7).empty()) ++filled;
   EXPECT_EQ(rows, 1 + 5 * 4);
   EXPECT_GE(filled, 4 * 2) << csv;
   EXPECT_TRUE(fs::exists(out / "nslope.csv"));

@@ -16,6 +16,7 @@
 #include "base/constants.h"
 #include "sim/engines/simbody/simbody_engine.h"
 #include "sim/record/envelope.h"
+#include "sim/record/envelope_csv.h"
 #include "tests/common/run_metrosync.h"
 
 namespace {

@@ -7,6 +7,7 @@
 
 #include "base/constants.h"
 #include "sim/record/envelope.h"
+#include "sim/record/envelope_csv.h"
 #include "sim/record/envelope_quadrature.h"
 
 namespace metrosync {

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <thread>
 
+#include "sim/record/envelope_csv.h"
 #include "sim/record/finite_check.h"
 #include "tools/report/outputs.h"
 #include "tools/report/run_columns.h"

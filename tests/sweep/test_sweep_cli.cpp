@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "sim/record/envelope.h"
+#include "sim/record/envelope_csv.h"
 #include "tests/common/run_metrosync.h"
 
 namespace {

@@ -19,6 +19,7 @@
 #include "sim/analysis/sweep.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 #include "sim/record/envelope.h"
+#include "sim/record/envelope_csv.h"
 #include "tests/common/sweep_axis_values.h"
 #include "tools/report/sweep_files.h"
 #include "tools/report/sweep_maps.h"

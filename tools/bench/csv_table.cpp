@@ -34,10 +34,10 @@ CsvTable parseCsvTable(const std::string& text, const std::string& source) {
   std::istringstream in(text);
   std::string line;
   if (!std::getline(in, line)) return csv;
-  const std::vector<std::string> header = splitCsvLine(line);
+  const std::vector<std::string> header = csvCellsAt(line, source + " line 1");
   for (int lineno = 2; std::getline(in, line); ++lineno) {
     if (line.empty()) continue;
-    const std::vector<std::string> f = splitCsvLine(line);
+    const std::vector<std::string> f = csvCellsAt(line, source + " line " + std::to_string(lineno));
     if (f.size() != header.size())
       throw std::invalid_argument(source + " line " + std::to_string(lineno) + ": " +
                                   std::to_string(f.size()) + " fields, the header has " +

@@ -36,7 +36,7 @@ std::vector<FitRecordCost> readFits(const fs::path& csv) {
   std::vector<FitRecordCost> out;
   while (std::getline(in, line)) {
     if (line.empty()) continue;
-    const std::vector<std::string> f = splitCsvLine(line);
+    const std::vector<std::string> f = csvCellsAt(line, csv.string());
     if (f.size() != 7)
       throw std::invalid_argument(csv.string() + ": a line of " + std::to_string(f.size()) +
                                   " fields, not 7");

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "base/csv.h"
+
 namespace metrosync::bench {
 
 namespace {
@@ -65,40 +67,19 @@ void addRow(VerdictScene& s, const Row& r, const Sides& sides) {
 
 }  // namespace
 
-std::vector<std::string> splitCsvLine(const std::string& line) {
-  std::vector<std::string> out(1);
-  bool quoted = false;
-  for (size_t k = 0; k < line.size(); ++k) {
-    const char c = line[k];
-    if (quoted) {
-      if (c == '"' && k + 1 < line.size() && line[k + 1] == '"')
-        out.back() += '"', ++k;
-      else if (c == '"')
-        quoted = false;
-      else
-        out.back() += c;
-    } else if (c == '"') {
-      quoted = true;
-    } else if (c == ',') {
-      out.emplace_back();
-    } else if (c != '\r') {
-      out.back() += c;
-    }
+std::vector<std::string> csvCellsAt(const std::string& line, const std::string& where) {
+  try {
+    return csvCells(line);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(where + ": " + e.what());
   }
-  return out;
 }
 
 double csvNumber(const std::string& s, const std::string& where) {
   if (s.empty()) return std::numeric_limits<double>::quiet_NaN();
-  size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(s, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != s.size()) throw std::invalid_argument(where + ": '" + s + "' is not a number");
-  return v;
+  const std::optional<double> v = metrosync::csvNumber(s);
+  if (!v) throw std::invalid_argument(where + ": '" + s + "' is not a number");
+  return *v;
 }
 
 std::vector<VerdictScene> parseWorkPrecisionCsv(const std::string& text, const std::string& source,
@@ -107,7 +88,7 @@ std::vector<VerdictScene> parseWorkPrecisionCsv(const std::string& text, const s
   std::string line;
   if (!std::getline(in, line)) throw std::invalid_argument(source + ": empty, no CSV header");
   std::map<std::string, size_t> col;
-  const std::vector<std::string> header = splitCsvLine(line);
+  const std::vector<std::string> header = csvCellsAt(line, source + " line 1");
   for (size_t k = 0; k < header.size(); ++k) col[header[k]] = k;
   for (const char* c : kColumns)
     if (!col.count(c))
@@ -116,7 +97,8 @@ std::vector<VerdictScene> parseWorkPrecisionCsv(const std::string& text, const s
   std::vector<VerdictScene> scenes;
   for (int lineno = 2; std::getline(in, line); ++lineno) {
     if (line.empty()) continue;
-    Row r{&col, splitCsvLine(line), source + " line " + std::to_string(lineno)};
+    const std::string where = source + " line " + std::to_string(lineno);
+    Row r{&col, csvCellsAt(line, where), where};
     if (r.f.size() != header.size())
       throw std::invalid_argument(r.where + ": " + std::to_string(r.f.size()) + " fields, the " +
                                   "header has " + std::to_string(header.size()));

@@ -16,8 +16,9 @@ namespace metrosync::bench {
 std::vector<VerdictScene> parseWorkPrecisionCsv(const std::string& text, const std::string& source,
                                                 const Sides& sides = {});
 
-// The fields of one CSV line (double quotes around a field that holds a comma or a quote).
-std::vector<std::string> splitCsvLine(const std::string& line);
+// The fields of one CSV line (base/csv.h csvCells); an unterminated quote throws
+// std::invalid_argument "WHERE: unterminated quote".
+std::vector<std::string> csvCellsAt(const std::string& line, const std::string& where);
 
 // A CSV field as a number: NaN when empty; throws std::invalid_argument "WHERE: 'S' is not a
 // number" when it is not one (WHERE: file, line and column).

@@ -1,9 +1,9 @@
 #include "tools/report/comparison_csv.h"
 
 #include <cstdio>
-#include <sstream>
 #include <stdexcept>
 
+#include "base/csv.h"
 #include "base/number_text.h"
 #include "sim/record/atomic_file.h"
 
@@ -60,44 +60,6 @@ std::string comparisonCsvLine(const EnvelopeRow& full, const EnvelopeRow& slow) 
   return line;
 }
 
-EnvelopeCsvReader::EnvelopeCsvReader(const std::string& path) : path_(path), in_(path) {
-  if (!in_) throw std::runtime_error(path + ": cannot open");
-  std::string header;
-  if (!std::getline(in_, header)) throw std::runtime_error(path + ": empty file");
-  layout_ = parseEnvelopeHeader(header, path);  // with or without the r column
-  n_ = layout_.n;
-}
-
-bool EnvelopeCsvReader::next(EnvelopeRow& row) {
-  std::string line;
-  while (std::getline(in_, line)) {
-    ++lineno_;
-    if (line.empty()) continue;
-    std::vector<double> v;
-    v.reserve(layout_.columns());
-    size_t start = 0;
-    while (start <= line.size()) {
-      const size_t comma = line.find(',', start);
-      const std::string cell =
-          line.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-      try {
-        size_t used = 0;
-        v.push_back(std::stod(cell, &used));
-      } catch (const std::exception&) {
-        throw std::runtime_error(path_ + ":" + std::to_string(lineno_) + ": bad number '" + cell +
-                                 "'");
-      }
-      if (comma == std::string::npos) break;
-      start = comma + 1;
-    }
-    if (static_cast<int>(v.size()) != layout_.columns())
-      throw std::runtime_error(path_ + ":" + std::to_string(lineno_) + ": wrong number of columns");
-    row = envelopeRowFromValues(v, layout_);
-    return true;
-  }
-  return false;
-}
-
 ComparisonResult writeComparisonCsv(const std::vector<EnvelopeRow>& full,
                                     const std::vector<EnvelopeRow>& slow, double epsilon,
                                     const std::string& out_csv, double seconds_per_tau) {
@@ -122,8 +84,7 @@ ComparisonResult comparisonColumns(int n, const std::vector<EnvelopeRow>& full,
                                    double seconds_per_tau, ColumnTable& table) {
   const bool t_s = seconds_per_tau > 0;
   table = ColumnTable{};
-  std::stringstream header(comparisonCsvHeader(n) + (t_s ? ",t_s" : ""));
-  for (std::string name; std::getline(header, name, ',');) table.names.push_back(name);
+  table.names = csvCells(comparisonCsvHeader(n) + (t_s ? ",t_s" : ""));
   std::vector<double>& v = table.values;
   // the numbers of comparisonCsvLine, in its order
   return joinEnvelopes(n, rowSource(full), rowSource(slow), epsilon,

@@ -3,13 +3,13 @@
 // as it wrote it.
 #pragma once
 
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "sim/analysis/compare.h"
 #include "sim/record/envelope.h"
+#include "sim/record/envelope_csv.h"
 #include "tools/report/run_columns.h"
 
 namespace metrosync {
@@ -18,22 +18,6 @@ namespace metrosync {
 std::string comparisonCsvHeader(int n);
 // One matched pair's line (no newline).
 std::string comparisonCsvLine(const EnvelopeRow& full, const EnvelopeRow& slow);
-
-// Reads an envelope.csv one row at a time (readEnvelopeCsv holds the whole file).
-class EnvelopeCsvReader {
- public:
-  explicit EnvelopeCsvReader(const std::string& path);  // throws std::runtime_error
-  int n() const { return n_; }
-  // false at the end of the file; throws std::runtime_error on a malformed line
-  bool next(EnvelopeRow& row);
-
- private:
-  std::string path_;
-  std::ifstream in_;
-  EnvelopeLayout layout_;
-  int n_ = 0;
-  long lineno_ = 1;
-};
 
 // compareEnvelopes, and comparison.csv written to `out_csv` atomically. Rows without a partner
 // (a run that stopped early) are counted, not written. seconds_per_tau > 0 (a physical rig): a

@@ -19,6 +19,7 @@
 #include <set>
 #include <sstream>
 
+#include "base/csv.h"
 #include "base/number_text.h"
 #include "sim/record/atomic_file.h"
 #include "sim/record/safe_open.h"
@@ -41,45 +42,21 @@ std::string csvCell(std::string s) {
   return q + "\"";
 }
 
-// Splits one CSV line (RFC 4180 quotes); throws SweepInputError on an unterminated quote.
-std::vector<std::string> csvCells(const std::string& line) {
-  std::vector<std::string> cells;
-  std::string cur;
-  bool quoted = false, was_quoted = false;
-  for (size_t k = 0; k < line.size(); ++k) {
-    const char c = line[k];
-    if (quoted) {
-      if (c == '"' && k + 1 < line.size() && line[k + 1] == '"') {
-        cur += '"';
-        ++k;
-      } else if (c == '"') {
-        quoted = false;
-      } else {
-        cur += c;
-      }
-    } else if (c == '"' && cur.empty() && !was_quoted) {
-      quoted = was_quoted = true;
-    } else if (c == ',') {
-      cells.push_back(cur);
-      cur.clear();
-      was_quoted = false;
-    } else {
-      cur += c;
-    }
+// One line's cells (base/csv.h); an unterminated quote is a SweepInputError.
+std::vector<std::string> regimesCells(const std::string& line) {
+  try {
+    return csvCells(line);
+  } catch (const std::invalid_argument& e) {
+    throw SweepInputError(e.what());
   }
-  if (quoted) throw SweepInputError("unterminated quote");
-  cells.push_back(cur);
-  return cells;
 }
 
 // A number cell; empty (no value; "nan" in files written before issue 39) is NaN.
 double cellNumber(const std::string& cell, const std::string& column) {
   if (cell.empty() || cell == "nan") return std::numeric_limits<double>::quiet_NaN();
-  char* end = nullptr;
-  const double v = std::strtod(cell.c_str(), &end);
-  if (cell.empty() || end != cell.c_str() + cell.size())
-    throw SweepInputError(column + " = '" + cell + "' is not a number");
-  return v;
+  const std::optional<double> v = csvNumber(cell);
+  if (!v) throw SweepInputError(column + " = '" + cell + "' is not a number");
+  return *v;
 }
 
 // A grid index: digits only, the whole cell.
@@ -166,7 +143,7 @@ size_t resumableTimingsBytes(const std::string& path) {
 }
 
 SweepPoint parseRegimesRow(const SweepGrid& grid, int n, const std::string& line) {
-  const std::vector<std::string> cells = csvCells(line);
+  const std::vector<std::string> cells = regimesCells(line);
   const std::vector<std::string> cols = regimesColumns(grid, n);
   if (cells.size() != cols.size())
     throw SweepInputError(std::to_string(cells.size()) + " columns, expected " +

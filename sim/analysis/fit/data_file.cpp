@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "base/csv.h"
 #include "base/number_text.h"
 
 namespace metrosync {
@@ -43,18 +44,16 @@ std::string trimmed(const std::string& s) {
   return s.substr(b, e - b + 1);
 }
 
-std::vector<std::string> cells(const std::string& line) {
+// A line's cells (base/csv.h), each trimmed of spaces: measured data typed by hand or exported by
+// a spreadsheet may pad them.
+std::vector<std::string> cells(const std::string& line, const std::string& file, int lineno) {
   std::vector<std::string> out;
-  std::string cur;
-  for (char ch : line) {
-    if (ch == ',') {
-      out.push_back(trimmed(cur));
-      cur.clear();
-    } else {
-      cur += ch;
-    }
+  try {
+    out = csvCells(line);
+  } catch (const std::invalid_argument& e) {
+    fail(file, lineno, e.what());
   }
-  out.push_back(trimmed(cur));
+  for (std::string& c : out) c = trimmed(c);
   return out;
 }
 
@@ -91,14 +90,6 @@ Role roleOf(const std::string& name, int n_metronomes, const std::string& file, 
            "thetadot_i, platform, t_s)");
 }
 
-std::optional<double> number(const std::string& cell) {
-  if (cell.empty()) return std::nullopt;
-  char* end = nullptr;
-  const double v = std::strtod(cell.c_str(), &end);
-  if (end != cell.c_str() + cell.size()) return std::nullopt;
-  return v;
-}
-
 struct Header {
   int t_index = -1;
   std::vector<int> observed_index;  // cell index of each observed column
@@ -106,7 +97,7 @@ struct Header {
 
 Header readHeader(const std::string& line, const std::string& file, int n_metronomes,
                   MeasuredData& data) {
-  const std::vector<std::string> names = cells(line);
+  const std::vector<std::string> names = cells(line, file, 1);
   Header h;
   for (std::size_t i = 0; i < names.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j)
@@ -126,11 +117,11 @@ Header readHeader(const std::string& line, const std::string& file, int n_metron
 
 void readRow(const std::string& line, int lineno, std::size_t n_cells, const Header& h,
              const std::string& file, MeasuredData& data) {
-  const std::vector<std::string> c = cells(line);
+  const std::vector<std::string> c = cells(line, file, lineno);
   if (c.size() != n_cells)
     fail(file, lineno,
          std::to_string(c.size()) + " cells, the header has " + std::to_string(n_cells));
-  const std::optional<double> t = number(c[h.t_index]);
+  const std::optional<double> t = csvNumber(c[h.t_index]);
   if (!t || !std::isfinite(*t))
     fail(file, lineno, "t = '" + c[h.t_index] + "': must be a finite number (seconds)");
   if (!data.t_s.empty() && !(*t > data.t_s.back())) {
@@ -148,7 +139,7 @@ void readRow(const std::string& line, int lineno, std::size_t n_cells, const Hea
       col.values.push_back(kMissing);
       continue;
     }
-    const std::optional<double> v = number(cell);
+    const std::optional<double> v = csvNumber(cell);
     if (!v || !std::isfinite(*v))
       fail(file, lineno,
            col.name + " = '" + cell +
@@ -211,7 +202,7 @@ MeasuredData parseDataText(const std::string& text, const std::string& display_n
     if (t.empty() || t[0] == '#') continue;
     if (!have_header) {
       header = readHeader(line, display_name, n_metronomes, data);
-      n_cells = cells(line).size();
+      n_cells = cells(line, display_name, lineno).size();
       have_header = true;
       header_line = lineno;
       continue;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "base/csv.h"
 #include "tools/bench/peer_verdict.h"
 #include "tools/bench/peer_verdict_report.h"
 #include "tools/bench/wp_csv.h"
@@ -273,7 +274,7 @@ TEST(PeerVerdict, ReadsTheWorkPrecisionCsvBack) {
   EXPECT_EQ(s.peer[0].runs, 4);
   EXPECT_DOUBLE_EQ(s.load_min, 2.5);
   EXPECT_DOUBLE_EQ(s.load_max, 3.7);
-  EXPECT_EQ(mb::splitCsvLine("a,\"b,\"\"c\"\"\",d"),
+  EXPECT_EQ(metrosync::csvCells("a,\"b,\"\"c\"\"\",d"),
             (std::vector<std::string>{"a", "b,\"c\"", "d"}));
 
   // a missing column and a malformed number name the file, the line and the column
