@@ -4,8 +4,10 @@
 // `version`, `command`), with `final` per platform too.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -140,6 +142,31 @@ TEST(NetworkContract, NoPlotMeansNoPlot) {
                    shellQuote(plotted));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(std::filesystem::exists(plotted + "/order.png"));
+}
+
+// --plot-format means the same on a network as on a single rig: its plots in that format (main
+// wrote order.png and raster.png whatever was asked), named so in summary.json's files.
+TEST(NetworkContract, PlotFormatMeansTheSame) {
+  ASSERT_EQ(std::system("command -v gnuplot > /dev/null 2>&1"), 0)
+      << "gnuplot not on PATH (tools/setup.sh installs gnuplot-nox): no run could write a plot";
+  for (const std::string format : {"svg", "pdf"}) {
+    const std::string out = scratchDir("netc", "format-" + format, true);
+    const auto r = runMetrosync("run " + shellQuote(kRig) +
+                                " --quiet --set simulation.duration=3.625 --plot-format " + format +
+                                " --out " + shellQuote(out));
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json summary = nlohmann::json::parse(slurp(out + "/summary.json"));
+    const std::vector<std::string> listed = summary["files"];
+    for (const std::string stem : {"order.", "raster."}) {
+      const std::string name = stem + format;
+      EXPECT_TRUE(std::filesystem::exists(out + "/" + name)) << name;
+      EXPECT_NE(std::find(listed.begin(), listed.end(), name), listed.end()) << name;
+      EXPECT_FALSE(std::filesystem::exists(out + "/" + stem + "png")) << stem;
+    }
+    // the file is what its name says: an SVG's XML, a PDF's header
+    const std::string head = slurp(out + "/order." + format).substr(0, 512);
+    EXPECT_NE(head.find(format == "svg" ? "<svg" : "%PDF"), std::string::npos) << head;
+  }
 }
 
 // A network of one platform (its board on a damped spring: not today's rig) is labelled by the

@@ -186,6 +186,27 @@ TEST(OneOfEach, OneDirectModel) {
   expectOne(directModels(METROSYNC_SOURCE_DIR), kDirectModelTwins, "direct model");
 }
 
+// A failed run's message is made in one place for every engine and every kind of rig
+// (sim/record/failure_text.h, failureText; main had one function for a rig and one for a
+// network): the message's literal once in the scanned folders (tools/bench's peers, independent
+// programs on purpose, left out).
+TEST(OneOfEach, OneFailureMessage) {
+  const fs::path root = METROSYNC_SOURCE_DIR;
+  const std::string literal = "\"simulation failed at t = \"";
+  std::vector<std::string> where;
+  for (const std::string& top : kScanned)
+    for (const auto& e : fs::recursive_directory_iterator(root / top)) {
+      const std::string rel = fs::relative(e.path(), root).generic_string();
+      if (!isSource(e) || rel.rfind("tools/bench/", 0) == 0) continue;
+      const std::string text = slurp(e.path());
+      for (size_t at = text.find(literal); at != std::string::npos; at = text.find(literal, at + 1))
+        where.push_back(rel);
+    }
+  std::string all;
+  for (const std::string& w : where) all += "  " + w + "\n";
+  EXPECT_EQ(where, std::vector<std::string>{"sim/record/failure_text.h"}) << all;
+}
+
 // The checkers themselves, on a small tree: they must be able to fail.
 class OneOfEachChecker : public ::testing::Test {
  protected:

@@ -78,14 +78,15 @@ std::string rigText(const Options& opt) {
                                 : readRigFile(opt.rig_path);
 }
 
-// `loaded`: the rig as the caller loaded it from rigText(opt) with opt.sets (run: its network's
-// loader), else loaded here.
+// `loaded`: the rig as the caller loaded it from `text` (else rigText(opt)) with opt.sets (run: its
+// network's loader), else loaded here.
 LoadedRig loadAndCheck(const Options& opt, const std::string& model,
-                       std::optional<Rig> loaded = std::nullopt) {
+                       std::optional<Rig> loaded = std::nullopt,
+                       std::optional<std::string> text = std::nullopt) {
   LoadedRig r;
   // issue 17: the output limit and the integrator's name, located in the rig
   const LoadOptions lo = engineLoadOptions(opt.max_output);
-  r.text = rigText(opt);
+  r.text = text ? std::move(*text) : rigText(opt);
   r.rig = loaded ? std::move(*loaded) : loadRigText(r.text, rigDisplayName(opt), opt.sets, lo);
   checkSensibleRanges(r.text, rigDisplayName(opt), opt.sets, opt.strict);
 
@@ -310,93 +311,131 @@ void addSection3A(nlohmann::json& summary, const LinearDecay& decay, const Rig& 
                             {"extremes", s3a->extremes}};
 }
 
-// `run` on a network of platforms (docs/networks.md): the network's engine and the one file writer
-// (FileSink, its network part tools/report/network_files.h) in a single rig's steps; its rows are
-// in files only.
-RunOutcome runNetwork(const Options& opt, const Network& net, const std::string& text) {
-  const Engine& engine = chooseEngine(opt.engine, opt.model, net, rigDisplayName(opt), "runs");
-  if (opt.no_files)
-    throw UsageError(rigDisplayName(opt) + ": a " + networkOfPlatforms(net.platforms.size()) +
-                     " keeps its rows in files only: give it a folder");
-  installStopHandlers();  // before any file exists
-  const std::optional<OutputDir> dir = openOutputDir(opt, net.name, "run");
-  FileSink sink(*dir, net);
-  RunReport report = guardedRun(engine, true, [&] { return engine.run(net, sink); });
-  report.write_seconds = sink.commit();
-  const NetworkFiles& files = *sink.network();
-  RunOutcome out;
-  out.summary = runSummaryJson(net.name, Units::Physical, report, files.verdictJson(report));
-  const std::string label = out.summary["network"]["regime"].get<std::string>();
-  std::vector<std::string> names = sink.fileNames();
-  if (!opt.no_plot)
-    for (const std::string& png : plotNetwork(*dir, files, net, net.name + " - " + label))
-      names.push_back(png);
-  addRunProvenance(out.summary, opt, text);
-  finishSummary(out.summary, dir, names);
-  if (!opt.quiet) {
-    std::cout << networkOfPlatforms(net.platforms.size()) << " (" << engine.name() << ", "
-              << report.integrator << "): " << label
-              << ", r = " << out.summary["network"]["r"].get<double>() << "\n";
-    printFiles(dir, names);
+// What `run` runs (docs/architecture.md, "One run"): the network its file holds (a single rig is
+// the network of one), parsed once, and the engine chosen for it by the one chooser; a single
+// rig's scales besides (its summary, plot and printed state).
+struct RunSubject {
+  std::string text;  // the rig file's text, before the overrides
+  Network net;
+  std::optional<LoadedRig> rig;  // a single rig's; empty for a network of several platforms
+  const Engine* engine = nullptr;
+  bool physical() const { return !rig || rig->rig.units == Units::Physical; }
+};
+
+RunSubject loadRunSubject(const Options& opt) {
+  RunSubject s;
+  s.text = rigText(opt);
+  s.net = loadNetworkText(s.text, rigDisplayName(opt), opt.sets, engineLoadOptions(opt.max_output));
+  if (s.net.isSingleRig()) {
+    s.rig = loadAndCheck(opt, opt.model, s.net.toSingleRig(), s.text);
+    s.engine = s.rig->engine;
+    return s;
   }
-  out.code = report.complete ? kSuccess : kSimulationFailed;
-  if (!report.complete) reportFailure("full", report.failure, dir);
-  return out;
+  checkSensibleRanges(s.text, rigDisplayName(opt), opt.sets, opt.strict);
+  s.engine = &chooseEngine(opt.engine, opt.model, s.net, rigDisplayName(opt), "runs");
+  if (opt.no_files)  // docs/networks.md: its rows are in files only
+    throw UsageError(rigDisplayName(opt) + ": a " + networkOfPlatforms(s.net.platforms.size()) +
+                     " keeps its rows in files only: give it a folder");
+  return s;
 }
 
-// `run`, its rows also kept when `keep` (a single rig's).
-// METROSYNC_PHASES=1: each phase's end on stderr (tools/cli/phase_clock.h)
+// The run's sink: a single rig's files (its rows also to `keep`: the Python module's), or a
+// network's (tools/report/network_files.h).
+std::unique_ptr<FileSink> makeRunSink(const RunSubject& s, const std::optional<OutputDir>& dir,
+                                      bool full, std::optional<RunColumns>* keep) {
+  if (!s.rig) return std::make_unique<FileSink>(*dir, s.net);
+  return makeSink(dir, sinkOptions(*s.rig, full, "envelope.csv"), keep);
+}
+
+// A finished run's verdict: its label, and a single rig's regime (SPEC 4) or a network's keys.
+struct RunVerdict {
+  std::string label;
+  RegimeVerdict rig;
+  nlohmann::json network;
+};
+
+RunVerdict verdictOf(const RunSubject& s, RunReport& report, const FileSink& sink) {
+  RunVerdict v;
+  if (s.rig) {
+    v.rig = judge(report, sink, *s.rig);
+    v.label = regimeName(v.rig);
+  } else {
+    v.network = sink.network()->verdictJson(report);
+    v.label = v.network["network"]["regime"].get<std::string>();
+  }
+  return v;
+}
+
+// The run's plots in `dir`, their file names: a single rig's envelope, a network's boards.
+std::vector<std::string> plotRun(const Options& opt, const RunSubject& s, const std::string& model,
+                                 const FileSink& sink, const RunVerdict& v, const OutputDir& dir) {
+  if (!s.rig)
+    return plotNetwork(dir, *sink.network(), s.net, s.net.name + " - " + v.label, opt.plot_format);
+  const LoadedRig& r = *s.rig;
+  const std::string plot = "envelope." + opt.plot_format;
+  if (plotEnvelope(dir, plot, sink.plotRows(), r.scaled.theta_c,
+                   r.rig.name + " - " + modelTitle(model) + " - " + v.label, plotStyle(opt, r)))
+    return {plot};
+  return {};
+}
+
+nlohmann::json summaryOf(const RunSubject& s, const RunReport& report, const RunVerdict& v,
+                         const LinearDecay& decay) {
+  if (!s.rig) return runSummaryJson(s.net.name, Units::Physical, report, v.network);
+  nlohmann::json summary = runSummaryJson(s.rig->rig, s.rig->scaled_json, report, v.rig);
+  addSection3A(summary, decay, s.rig->rig);
+  return summary;
+}
+
+void printRun(const RunSubject& s, const std::string& model, const RunReport& report,
+              const RunVerdict& v, const LinearDecay& decay, const nlohmann::json& summary) {
+  if (s.rig) return printRunSummary(model, *s.rig, report, v.rig, &decay);
+  std::cout << networkOfPlatforms(s.net.platforms.size()) << " (" << s.engine->name() << ", "
+            << report.integrator << "): " << v.label
+            << ", r = " << summary["network"]["r"].get<double>() << "\n";
+}
+
+// `run`, one path for a single rig and a network of platforms; a single rig's rows also kept
+// when `keep`. METROSYNC_PHASES=1: each phase's end on stderr (tools/cli/phase_clock.h)
 RunOutcome runImpl(const Options& opt, bool keep) {
   markPhase("args");
-  const std::string text = rigText(opt);
-  // the rig parsed once: a network of several platforms, or a single rig (a network of one)
-  const Network net =
-      loadNetworkText(text, rigDisplayName(opt), opt.sets, engineLoadOptions(opt.max_output));
-  if (!net.isSingleRig()) {
-    checkSensibleRanges(text, rigDisplayName(opt), opt.sets, opt.strict);
-    return runNetwork(opt, net, text);
-  }
-  RunOutcome out;
-  LoadedRig r = loadAndCheck(opt, opt.model, net.toSingleRig());
+  const RunSubject s = loadRunSubject(opt);
   markPhase("rig");
-  const std::string model = r.engine->model();
+  const Engine& engine = *s.engine;
+  const std::string model = engine.model();
   installStopHandlers();  // before any file exists, so that no signal can leave a bare .part
   const bool full = model == "full";
   // each model its own default folder: `run` then `run --model slow` keep both runs' files
-  const std::optional<OutputDir> dir = openOutputDir(opt, r.rig.name, full ? "run" : "run-slow");
+  const std::optional<OutputDir> dir = openOutputDir(opt, s.net.name, full ? "run" : "run-slow");
 
   // the run's files made durable with one sync (sim/record/atomic_file.h): all of them and
   // summary.json with --no-plot; else the result files, then the plot and summary.json
   CommitBatch durable;
-  const auto sink = makeSink(dir, sinkOptions(r, full, "envelope.csv"), keep ? &out.rows : nullptr);
+  RunOutcome out;
+  const auto sink = makeRunSink(s, dir, full, keep ? &out.rows : nullptr);
   LinearDecay decay;
-  observeSection3A(r, full, *sink, decay);
-  const auto progress = attachProgress(opt, r, *sink, "run");
+  if (s.rig) observeSection3A(*s.rig, full, *sink, decay);
+  const auto progress = s.rig ? attachProgress(opt, *s.rig, *sink, "run") : nullptr;
   markPhase("folder");
-  RunReport report = runModel(*r.engine, r, *sink);
+  RunReport report = guardedRun(engine, s.physical(), [&] { return engine.run(s.net, *sink); });
   markPhase("run");
   report.write_seconds = sink->commit();
   markPhase("files");
-  const RegimeVerdict verdict = judge(report, *sink, r);
+  const RunVerdict verdict = verdictOf(s, report, *sink);
 
   std::vector<std::string> files = sink->fileNames();
-  const std::string plot = "envelope." + opt.plot_format;
   // the result files on disk before the plot (a gnuplot child, ~0.1 s); summary.json then
   // follows on its own
   if (dir && !opt.no_plot) {
     durable.finish();
     markPhase("sync");
+    for (const std::string& png : plotRun(opt, s, model, *sink, verdict, *dir))
+      files.push_back(png);
+    markPhase("plot");
   }
-  if (dir && !opt.no_plot &&
-      plotEnvelope(*dir, plot, sink->plotRows(), r.scaled.theta_c,
-                   r.rig.name + " - " + modelTitle(model) + " - " + regimeName(verdict),
-                   plotStyle(opt, r)))
-    files.push_back(plot);
-  if (dir && !opt.no_plot) markPhase("plot");
 
-  out.summary = runSummaryJson(r.rig, r.scaled_json, report, verdict);
-  addRunProvenance(out.summary, opt, r.text);
-  addSection3A(out.summary, decay, r.rig);
+  out.summary = summaryOf(s, report, verdict, decay);
+  addRunProvenance(out.summary, opt, s.text);
   finishSummary(out.summary, dir, files);
   markPhase("summary");
   if (durable.active()) {
@@ -405,7 +444,7 @@ RunOutcome runImpl(const Options& opt, bool keep) {
   }
 
   if (!opt.quiet) {
-    printRunSummary(model, r, report, verdict, &decay);
+    printRun(s, model, report, verdict, decay, out.summary);
     printFiles(dir, files);
   }
   markPhase("print");

@@ -42,8 +42,25 @@ bool isNetworkRig(const std::string& text) {
 
 // ---- one point ---------------------------------------------------------------------------------
 
+// What a point's run leaves for its row: the report, the last envelope row (none when the run
+// never sampled), and, when it completed, its label and clusters.
+struct PointOutcome {
+  RunReport report;
+  std::optional<EnvelopeRow> last;
+  std::string regime, clusters;
+};
+
+// A point's sink and judge, one interface for a single rig's (PointSink) and a network's
+// (NetworkPointSink): the run streams into sink(); judge() then fills the outcome's last row and,
+// when the run completed, its label and clusters.
+struct PointJudge {
+  virtual ~PointJudge() = default;
+  virtual RunSink& sink() = 0;
+  virtual void judge(const PointInput& in, PointOutcome& o) const = 0;
+};
+
 // Keeps what the verdict needs; a stop request (SIGINT, SIGTERM) interrupts the run.
-struct PointSink : RunSink {
+struct PointSink : RunSink, PointJudge {
   PointSink(double tau_end, double epsilon) : window(tau_end, epsilon) {}
   void envelopeRow(const EnvelopeRow& row) override {
     window.add(row);
@@ -58,6 +75,15 @@ struct PointSink : RunSink {
   void poll(double t) override {
     if (FileSink::stopRequested()) throw RunInterrupted(t, "interrupted by a signal");
   }
+  RunSink& sink() override { return *this; }
+  // its regime (SPEC 4) and clusters
+  void judge(const PointInput& in, PointOutcome& o) const override {
+    o.last = window.empty() ? o.report.final_row : window.last();
+    if (!o.report.complete) return;
+    const RegimeVerdict v = classifyRegime(window, in.scaled.theta_c, in.scaled.locked);
+    o.regime = regimeName(v);
+    o.clusters = clusterText(v.cluster_sizes);
+  }
   RegimeWindow window;
   double x_unit = 1.0;  // trajectory x per scaled x
   bool keep = false;    // --keep envelope
@@ -66,7 +92,7 @@ struct PointSink : RunSink {
 
 // A network's verdict (sim/analysis/network_verdict.h) that a stop request interrupts, as
 // PointSink does a rig's.
-struct NetworkPointSink : NetworkVerdict {
+struct NetworkPointSink : NetworkVerdict, PointJudge {
   using NetworkVerdict::NetworkVerdict;
   void stateSample(double t, const std::vector<double>& y,
                    const std::vector<PlatformMode>& modes) override {
@@ -76,14 +102,16 @@ struct NetworkPointSink : NetworkVerdict {
   void poll(double t) override {
     if (FileSink::stopRequested()) throw RunInterrupted(t, "interrupted by a signal");
   }
-};
-
-// What a point's run leaves for its row: the report, the last envelope row (none when the run
-// never sampled), and, when it completed, its label and clusters.
-struct PointOutcome {
-  RunReport report;
-  std::optional<EnvelopeRow> last;
-  std::string regime, clusters;
+  RunSink& sink() override { return *this; }
+  // the network's label (docs/sweep-points.md), each platform's regime
+  void judge(const PointInput& in, PointOutcome& o) const override {
+    if (!empty()) o.last = last();
+    if (!o.report.complete) return;
+    o.regime = label();
+    const std::vector<std::string> regimes = platformRegimes();
+    for (std::size_t q = 0; q < regimes.size(); ++q)
+      o.clusters += (q ? "|" : "") + in.net->platforms[q].name + "=" + regimes[q];
+  }
 };
 
 // Runs a point's rig or network through `run`, with the test hook (tools/cli/fault_hooks.h): a
@@ -110,32 +138,15 @@ std::optional<RunReport> guardedRun(const PointInput& in, long g, Run run) {
   return rep;
 }
 
-// A network's point (docs/sweep-points.md): the network's label, each platform's regime.
-std::optional<PointOutcome> runNetworkPoint(const PointInput& in, long g) {
-  NetworkPointSink verdict(*in.net);
-  std::optional<RunReport> rep =
-      guardedRun(in, g, [&] { return in.engine->run(*in.net, verdict); });
+// One point's run, a single rig's or a network's (a single rig is the network of one): the
+// engine runs it into the judge's sink, which then judges it.
+std::optional<PointOutcome> runPointModel(const PointInput& in, long g, PointJudge& judge) {
+  std::optional<RunReport> rep = guardedRun(in, g, [&] {
+    return in.net ? in.engine->run(*in.net, judge.sink()) : in.engine->run(in.rig, judge.sink());
+  });
   if (!rep) return std::nullopt;
   PointOutcome o{std::move(*rep), std::nullopt, "", ""};
-  if (!verdict.empty()) o.last = verdict.last();
-  if (!o.report.complete) return o;
-  o.regime = verdict.label();
-  const std::vector<std::string> regimes = verdict.platformRegimes();
-  for (std::size_t q = 0; q < regimes.size(); ++q)
-    o.clusters += (q ? "|" : "") + in.net->platforms[q].name + "=" + regimes[q];
-  return o;
-}
-
-// A single rig's point: its regime (SPEC 4) and clusters; `sink` keeps the envelope.
-std::optional<PointOutcome> runRigPoint(const PointInput& in, long g, PointSink& sink) {
-  std::optional<RunReport> rep = guardedRun(in, g, [&] { return in.engine->run(in.rig, sink); });
-  if (!rep) return std::nullopt;
-  PointOutcome o{std::move(*rep), std::nullopt, "", ""};
-  o.last = sink.window.empty() ? o.report.final_row : sink.window.last();
-  if (!o.report.complete) return o;
-  const RegimeVerdict v = classifyRegime(sink.window, in.scaled.theta_c, in.scaled.locked);
-  o.regime = regimeName(v);
-  o.clusters = clusterText(v.cluster_sizes);
+  judge.judge(in, o);
   return o;
 }
 
@@ -207,7 +218,10 @@ PointInput loadPoint(const std::string& text, const SweepOptions& opt, const Swe
 std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
   const ScaledParams& sp = in.scaled;
   std::optional<PointSink> sink;  // a single rig's (a network's verdict is its own sink)
-  if (!in.net) {
+  std::optional<NetworkPointSink> verdict;
+  if (in.net) {
+    verdict.emplace(*in.net);
+  } else {
     sink.emplace(sp.tau_end, sp.epsilon);
     // the `uncoupled` rule: the slow flow's averaged drive, the full model's own stick/slip
     if (in.engine->model() != "full") sink->window.setEnvelopePlatform(sp.friction);
@@ -215,7 +229,8 @@ std::optional<SweepPoint> runPoint(const PointInput& in, long g, bool keep) {
     sink->keep = keep;
   }
   const double engine_cpu0 = threadCpuSeconds();
-  std::optional<PointOutcome> o = in.net ? runNetworkPoint(in, g) : runRigPoint(in, g, *sink);
+  std::optional<PointOutcome> o =
+      runPointModel(in, g, in.net ? static_cast<PointJudge&>(*verdict) : *sink);
   if (!o) return std::nullopt;
 
   const int n = static_cast<int>(in.rig.metronomes.size());

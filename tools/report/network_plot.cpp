@@ -47,7 +47,7 @@ std::string networkOrderScript(const Network& net, const NetworkPlotAxes& axes,
                                const std::string& png) {
   const int groups = static_cast<int>(net.platforms.size());
   std::ostringstream s;
-  s << "set terminal pngcairo size 1000,500\nset output " << gnuplotQuote(png) << "\n"
+  s << plotTerminal(axes.style.format, 1000, 500) << "set output " << gnuplotQuote(png) << "\n"
     << "set title " << gnuplotQuote(title) << " noenhanced\n"
     << timeAxis(axes.style, axes.tau_end) << "set ylabel 'r'\n"
     << "set yrange [0:1.05]\nset key outside right\nplot ";
@@ -64,7 +64,7 @@ std::string networkRasterScript(const Network& net, const NetworkPlotAxes& axes,
                                 const std::string& title, const std::string& data,
                                 const std::string& png) {
   std::ostringstream s;
-  s << "set terminal pngcairo size 1000,600\nset output " << gnuplotQuote(png) << "\n"
+  s << plotTerminal(axes.style.format, 1000, 600) << "set output " << gnuplotQuote(png) << "\n"
     << "set title " << gnuplotQuote(title + " - phase relative to its platform") << " noenhanced\n"
     << timeAxis(axes.style, axes.tau_end) << "set ylabel 'metronome'\nset cbrange [-pi:pi]\n"
     << "set palette model HSV functions gray, 1, 0.9\nunset key\n"  // cyclic: -pi = pi
@@ -75,19 +75,22 @@ std::string networkRasterScript(const Network& net, const NetworkPlotAxes& axes,
 }
 
 std::vector<std::string> plotNetwork(const OutputDir& dir, const NetworkFiles& files,
-                                     const Network& net, const std::string& title) {
+                                     const Network& net, const std::string& title,
+                                     const std::string& format) {
   std::vector<std::string> made;
-  const NetworkPlotAxes axes = networkPlotAxes(net, files);
-  if (drawPng(dir, "order.png", rowsText(files.orderRows()),
-              [&](const std::string& data, const std::string& png) {
-                return networkOrderScript(net, axes, title, data, png);
+  NetworkPlotAxes axes = networkPlotAxes(net, files);
+  axes.style.format = format;
+  const std::string order = "order." + format, raster = "raster." + format;
+  if (drawPng(dir, order, rowsText(files.orderRows()),
+              [&](const std::string& data, const std::string& out) {
+                return networkOrderScript(net, axes, title, data, out);
               }))
-    made.push_back("order.png");
-  if (drawPng(dir, "raster.png", rasterText(files.rasterRows()),
-              [&](const std::string& data, const std::string& png) {
-                return networkRasterScript(net, axes, title, data, png);
+    made.push_back(order);
+  if (drawPng(dir, raster, rasterText(files.rasterRows()),
+              [&](const std::string& data, const std::string& out) {
+                return networkRasterScript(net, axes, title, data, out);
               }))
-    made.push_back("raster.png");
+    made.push_back(raster);
   return made;
 }
 

@@ -29,9 +29,11 @@ std::string networkRasterScript(const Network& net, const NetworkPlotAxes& axes,
                                 const std::string& png);
 
 // The plots of a network run: order.png (r per platform and overall against time) and raster.png
-// (metronome against time, colour = phase relative to its platform's mean). Returns the files
-// made (none when gnuplot is missing).
+// (metronome against time, colour = phase relative to its platform's mean), .svg or .pdf in
+// those formats (--plot-format: tools/report/plot.h, plotTerminal, as a single rig's plots).
+// Returns the files made (none when gnuplot is missing).
 std::vector<std::string> plotNetwork(const OutputDir& dir, const NetworkFiles& files,
-                                     const Network& net, const std::string& title);
+                                     const Network& net, const std::string& title,
+                                     const std::string& format = "png");
 
 }  // namespace metrosync

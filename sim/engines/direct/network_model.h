@@ -111,7 +111,7 @@ class NetworkModel {
   std::vector<double> startState() const;
   int metronomes() const { return net_.numMetronomes(); }
   std::string failureText(double t, const std::string& why) const {
-    return networkFailureText(t, why);
+    return metrosync::failureText(t, why);
   }
 
   // --- recording: the state on the grid ---------------------------------------------------

@@ -225,7 +225,7 @@ void RigModel<N>::close(RunReport& r) {
 
 template <int N>
 std::string RigModel<N>::failureText(double t, const std::string& why) const {
-  return rigFailureText(t, sp_, rig_.units == Units::Scaled, why);
+  return metrosync::failureText(t, why, &sp_, rig_.units == Units::Scaled);
 }
 
 // --- the model's start and steps --------------------------------------------------------------

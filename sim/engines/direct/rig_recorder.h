@@ -21,6 +21,7 @@
 #include "sim/events/sample_schedule.h"
 #include "sim/record/envelope_quadrature.h"
 #include "sim/record/run_report.h"
+#include "sim/record/trajectory_row.h"
 
 namespace metrosync::direct {
 // Internal linkage on purpose: see rig_model.h (one includer, direct_engine.cpp).
@@ -99,6 +100,7 @@ class RigRecorder {
   std::vector<double> nodes_;    // the Gauss nodes' angles and rates (kNodes x 2n)
   std::vector<int> rig_index_;   // (n x 1) each swinging pendulum's metronome
   double inv_angle_, inv_rate_;  // scaled angle and rate per radian and radian per second
+  TrajectoryRow rows_;           // the rows' maker, both engines' (sim/record/trajectory_row.h)
   // the interpolant's weights at the Gauss nodes of a whole step, for h = 1, by stage row
   double node_w_[ode::detail::DenseTable::kPadRows][EnvelopeQuadrature::kNodes] = {};
   std::vector<double> before_;  // the state before the event being recorded (events.csv)
@@ -138,7 +140,8 @@ RigRecorder<N>::RigRecorder(const Rig& rig, const ScaledParams& sp, RunSink& sin
       ya_(lay_.dim(), 0.0),
       nodes_(EnvelopeQuadrature::kNodes * 2 * lay_.n, 0.0),
       inv_angle_(1.0 / sp.angle_scale),
-      inv_rate_(1.0 / (sp.angle_scale * omega0_)) {
+      inv_rate_(1.0 / (sp.angle_scale * omega0_)),
+      rows_(rig, sp, swingingPendulums(rig)) {
   for (int j = 0; j < lay_.n; ++j) rig_index_.push_back(eq_.pendulum(j).rig_index);
   for (int q = 0; q < EnvelopeQuadrature::kNodes; ++q) {
     double w[ode::detail::DenseTable::kPadRows];
@@ -159,32 +162,11 @@ std::vector<double> RigRecorder<N>::row(const double* y, double t, PlatformMode 
 template <int N>
 void RigRecorder<N>::fillRow(const double* y, double t, PlatformMode mode,
                              std::vector<double>& row) const {
-  row.resize(2 * static_cast<size_t>(n_rig_) + 4);  // written in place: no growth checks
-  double* out = row.data();
-  const bool scaled = rig_.units == Units::Scaled;
-  const double xs = scaled ? 1.0 / sp_.x_scale_m : 1.0;
-  const double as = scaled ? 1.0 / sp_.angle_scale : 1.0;
-  const double ts = scaled ? omega0_ : 1.0;
-  *out++ = t * ts;
-  *out++ = y[StateLayout::kX] * xs;
-  *out++ = y[StateLayout::kV] * xs / ts;
-  int j = 0;
-  for (int i = 0; i < n_rig_; ++i) {
-    if (rig_.metronomes[i].locked) {
-      *out++ = 0.0;
-      *out++ = 0.0;
-      continue;
-    }
-    *out++ = y[lay_.theta(j)] * as;
-    *out++ = y[lay_.omega(j)] * as / ts;
-    ++j;
-  }
-  if (eq_.friction().setValued()) {
-    *out = static_cast<int>(mode);
-  } else {
-    const double v = y[StateLayout::kV];
-    *out = v > 0 ? 1 : (v < 0 ? -1 : 0);
-  }
+  const double v = y[StateLayout::kV];
+  rows_.fill(
+      row, t, y[StateLayout::kX], v, [&](int j) { return y[lay_.theta(j)]; },
+      [&](int j) { return y[lay_.omega(j)]; },
+      TrajectoryRow::column(eq_.friction().setValued(), static_cast<int>(mode), v));
 }
 
 // The envelope's view of a state: every metronome's scaled angle and rate, in rig order (a locked

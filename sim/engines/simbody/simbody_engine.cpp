@@ -13,6 +13,7 @@
 #include "sim/engines/simbody/platform_run.h"
 #include "sim/record/envelope_quadrature.h"
 #include "sim/record/failure_text.h"
+#include "sim/record/trajectory_row.h"
 
 namespace metrosync {
 
@@ -38,6 +39,7 @@ class RigRows {
         want_envelope_(sink.wantsEnvelope()),
         pendulum_(n_, -1) {
     for (int j = 0; j < ps.numPendulums(); ++j) pendulum_[ps.equations().pendulum(j).rig_index] = j;
+    rows_ = TrajectoryRow(rig_, sp_, pendulum_);
   }
   double timeScale() const { return sp_.time_scale_s; }
   // t (seconds) in the unit of the rows' t: the rig's (seconds, or scaled time)
@@ -63,7 +65,7 @@ class RigRows {
     if (want_envelope_) report.final_row = env_.finish();
   }
   std::string failureText(double t, const std::string& why) const {
-    return rigFailureText(t, sp_, rig_.units == Units::Scaled, why);
+    return metrosync::failureText(t, why, &sp_, rig_.units == Units::Scaled);
   }
 
  private:
@@ -74,9 +76,9 @@ class RigRows {
     return pendulum_[i] < 0 ? 0.0 : ps_.thetadot(s, pendulum_[i]);
   }
   int platformColumn(const SimTK::State& s) const {
-    if (ps_.contact(0)) return static_cast<int>(ps_.contact(0)->mode(s));
-    const double v = ps_.xdot(s, 0);
-    return v > 0 ? 1 : (v < 0 ? -1 : 0);
+    const bool set_valued = ps_.contact(0) != nullptr;
+    return TrajectoryRow::column(
+        set_valued, set_valued ? static_cast<int>(ps_.contact(0)->mode(s)) : 0, ps_.xdot(s, 0));
   }
   std::vector<double> makeRow(const SimTK::State& s, double t) const;
   void recordTrajectory(const SimTK::State& s, double t) {
@@ -95,9 +97,10 @@ class RigRows {
   double omega0_ = 1;
   EnvelopeQuadrature env_;
   bool want_envelope_;
-  std::vector<int> pendulum_;     // (metronomes) its swinging pendulum in the system, or -1
-  std::vector<double> before_;    // the state before the event being recorded (events.csv)
-  std::vector<double> last_row_;  // the last trajectory row (RunReport::final_trajectory_row)
+  std::vector<int> pendulum_;          // (metronomes) its swinging pendulum in the system, or -1
+  TrajectoryRow rows_{rig_, sp_, {}};  // the rows' maker, both engines' (trajectory_row.h)
+  std::vector<double> before_;         // the state before the event being recorded (events.csv)
+  std::vector<double> last_row_;       // the last trajectory row (RunReport::final_trajectory_row)
   // the current stretch's start: t, the state and its derivative; a state to interpolate into
   double seg_t_ = 0.0;
   SimTK::Vector seg_y_, seg_yd_;
@@ -107,19 +110,9 @@ class RigRows {
 
 std::vector<double> RigRows::makeRow(const SimTK::State& s, double t) const {
   std::vector<double> row;
-  row.reserve(4 + 2 * n_);
-  const bool scaled = rig_.units == Units::Scaled;
-  const double xs = scaled ? 1.0 / sp_.x_scale_m : 1.0;
-  const double as = scaled ? 1.0 / sp_.angle_scale : 1.0;
-  const double ts = scaled ? omega0_ : 1.0;
-  row.push_back(t * ts);
-  row.push_back(ps_.x(s, 0) * xs);
-  row.push_back(ps_.xdot(s, 0) * xs / ts);
-  for (int i = 0; i < n_; ++i) {
-    row.push_back(theta(s, i) * as);
-    row.push_back(thetadot(s, i) * as / ts);
-  }
-  row.push_back(platformColumn(s));
+  rows_.fill(
+      row, t, ps_.x(s, 0), ps_.xdot(s, 0), [&](int j) { return ps_.theta(s, j); },
+      [&](int j) { return ps_.thetadot(s, j); }, platformColumn(s));
   return row;
 }
 
@@ -213,7 +206,7 @@ class Recorder : public RunRecorder {
       ps_.layoutState(s, y_);
   }
   std::string failureText(double t, const std::string& why) const override {
-    return rows_ ? rows_->failureText(t, why) : networkFailureText(t, why);
+    return rows_ ? rows_->failureText(t, why) : metrosync::failureText(t, why);
   }
   RunReport& report() { return report_; }
 
