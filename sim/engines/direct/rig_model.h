@@ -199,10 +199,10 @@ RigModel<N>::RigModel(SplitTimer& timer, const Rig& rig, RunSink& sink)
 // A recording thread pays when the run is long enough to hide its start and its hand-overs, and
 // its pendulums few enough that handing a step over (its stages, (2 + stages) x dim doubles)
 // costs less than recording it: measured on 2 cores (docs/bench/speed/run.md, the runcost
-// variants), a run of 34-67 fast periods of 2-8 metronomes was 1.0-1.8x faster without one, a
-// run of 200-2400 periods of 2-8 metronomes 1.1-1.7x faster with one, and 32 and 128 metronomes
-// (dopri5, no extra interpolation stages for the thread to take over) 1.0-1.1x and 1.5-1.8x slower
-// with one.
+// variants), a run of 34-67 fast periods of 2-8 metronomes was 1.0-1.6x faster without one, a
+// run of 200-2400 periods of 2-8 metronomes 1.1-1.7x faster with one (in most runs: 7-run medians
+// vary by ~15%), and 32 and 128 metronomes (dopri5, no extra interpolation stages for the thread
+// to take over) 1.0-1.1x and 1.5-1.8x slower with one.
 template <int N>
 bool RigModel<N>::worthARecordingThread() const {
   constexpr double kMetronomePeriods = 500.0;  // between the two groups measured
