@@ -38,7 +38,6 @@ class CsvLines {
   bool next(std::vector<std::string>& cells);
   long line() const { return line_; }                // the number of the line last read
   const std::string& text() const { return text_; }  // that line, without its '\r'
-  const std::string& file() const { return file_; }
   // Throws CsvError at the line last read.
   [[noreturn]] void fail(const std::string& what) const;
 

@@ -30,8 +30,13 @@ DeferredRows::~DeferredRows() {
 
 void DeferredRows::add(const double* row) {
   block_.insert(block_.end(), row, row + width_);
-  if (block_.size() < width_ * kRowsPerBlock) return;
-  if (on_callers_thread_) {  // the block's memory reused
+  if (block_.size() == width_ * kRowsPerBlock) flushBlock();
+}
+
+// The block so far: written here, its memory reused (on the caller's thread), or handed to the
+// writer thread.
+void DeferredRows::flushBlock() {
+  if (on_callers_thread_) {
     writeBlock(block_, text_);
     block_.clear();
     return;
@@ -43,10 +48,6 @@ void DeferredRows::add(const double* row) {
 }
 
 void DeferredRows::post(std::vector<double>&& block) {
-  if (on_callers_thread_) {
-    writeBlock(block, text_);
-    return;
-  }
   std::unique_lock<std::mutex> lock(mutex_);
   wake_run_.wait(lock, [&] { return queue_.size() < kMaxQueuedBlocks || error_; });
   if (error_) {
@@ -60,8 +61,7 @@ void DeferredRows::post(std::vector<double>&& block) {
 }
 
 void DeferredRows::finish() {
-  if (!block_.empty()) post(std::move(block_));
-  block_.clear();
+  if (!block_.empty()) flushBlock();
   std::unique_lock<std::mutex> lock(mutex_);
   wake_run_.wait(lock, [&] { return (queue_.empty() && !busy_) || error_; });
   lock.unlock();

@@ -42,6 +42,7 @@ class DeferredRows {
   void writeOnCallersThread() { on_callers_thread_ = true; }
 
  private:
+  void flushBlock();
   void post(std::vector<double>&& block);
   void writerLoop();
   void writeBlock(const std::vector<double>& block, std::string& text);
