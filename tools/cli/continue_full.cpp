@@ -51,7 +51,8 @@ bool sameDynamics(const Rig& a, const Rig& b) {
   return true;
 }
 
-double startValue(const ContinueOptions& opt) {
+// (the full model's: epsilon is a key it depends on; continue.cpp's startValue refuses it)
+double fullStartValue(const ContinueOptions& opt) {
   loadContinueRig(opt, {});  // the rig itself must load
   const std::string display = opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
   const std::string text = opt.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.rig_path);
@@ -94,7 +95,7 @@ void printSummary(const orbit::FullContinuation& r, const std::string& dir) {
 
 int continueFullCommand(const ContinueOptions& opt) {
   checkOptions(opt);
-  const double from = startValue(opt);
+  const double from = fullStartValue(opt);
   const Rig rig = rigAt(opt, from);
   orbit::FamilySettings s;
   s.p_min = std::min(from, opt.to);

@@ -24,7 +24,7 @@ using continuation::ResultSpecial;
 constexpr int kMarkers[] = {6, 8, 4, 12, 10};
 constexpr int kMarkersPerBranch = 12;  // markers along a branch: enough to tell, few enough to read
 
-std::string num(double v) {
+std::string plotNumber(double v) {
   return std::isfinite(v) ? numberText(v, 10) : std::string("nan");  // gnuplot: no inf
 }
 
@@ -42,9 +42,9 @@ double width(int i) {
 
 std::string row(const ResultPoint& q, bool stable) {
   std::ostringstream d;
-  d << num(q.value);
-  for (double a : q.A) d << " " << num(a);
-  for (double p : q.psi) d << " " << num(p);
+  d << plotNumber(q.value);
+  for (double a : q.A) d << " " << plotNumber(a);
+  for (double p : q.psi) d << " " << plotNumber(p);
   d << " " << (stable ? 1 : 0) << "\n";
   return d.str();
 }
@@ -101,9 +101,9 @@ std::string branchColumn(const std::vector<std::pair<const ResultPoint*, bool>>&
   std::ostringstream d;
   for (const auto& [q, stable] : rows) {
     const size_t k = static_cast<size_t>(col - 2);
-    const std::string v = num(k < q->A.size() ? q->A[k] : q->psi[k - q->A.size()]);
-    d << num(q->value) << " " << v << " " << (stable ? v : "nan") << " " << (stable ? "nan" : v)
-      << "\n";
+    const std::string v = plotNumber(k < q->A.size() ? q->A[k] : q->psi[k - q->A.size()]);
+    d << plotNumber(q->value) << " " << v << " " << (stable ? v : "nan") << " "
+      << (stable ? "nan" : v) << "\n";
   }
   return d.str();
 }
@@ -127,16 +127,16 @@ std::string specialRows(const ContinuationResult& r) {
   for (const ResultSpecial& s : r.special) {
     std::string line = row(s.at, true);
     line.pop_back();
-    d << line << " " << label(s) << " " << num(*std::max_element(s.at.A.begin(), s.at.A.end()))
-      << "\n";
+    d << line << " " << label(s) << " "
+      << plotNumber(*std::max_element(s.at.A.begin(), s.at.A.end())) << "\n";
   }
   return d.str();
 }
 
 // KEY, then lo_k hi_k for each k.
 std::string rangeRow(double value, const std::vector<double>& lo, const std::vector<double>& hi) {
-  std::string d = num(value);
-  for (size_t k = 0; k < lo.size(); ++k) d += " " + num(lo[k]) + " " + num(hi[k]);
+  std::string d = plotNumber(value);
+  for (size_t k = 0; k < lo.size(); ++k) d += " " + plotNumber(lo[k]) + " " + plotNumber(hi[k]);
   return d;
 }
 
@@ -159,8 +159,8 @@ std::string cycleFoldRows(const ContinuationResult& r) {
   for (const auto& c : r.cycles)
     for (const auto& f : c.folds)
       if (f.confirmed)
-        d << num(f.at.value) << " " << num(*std::max_element(f.at.A_max.begin(), f.at.A_max.end()))
-          << "\n";
+        d << plotNumber(f.at.value) << " "
+          << plotNumber(*std::max_element(f.at.A_max.begin(), f.at.A_max.end())) << "\n";
   return d.str();
 }
 

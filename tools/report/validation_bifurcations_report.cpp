@@ -10,7 +10,7 @@ namespace metrosync {
 
 namespace {
 
-std::string list(const std::vector<double>& v) {
+std::string valueList(const std::vector<double>& v) {
   std::string s;
   for (double x : v) s += (s.empty() ? "" : ", ") + numberText(x, 4);
   return s;
@@ -64,8 +64,8 @@ void mdBifurcations(std::ostream& md, const std::vector<BifurcationFamilyResult>
       std::string full;
       if (i < f.full.size())
         for (const FullBracket& b : f.full[i]) full += (full.empty() ? "" : "; ") + bracketText(b);
-      md << "| " << p.type << " | " << numberText(p.value, 9) << " | " << list(p.A) << " | "
-         << list(p.psi) << " | " << side(p.below) << " | " << side(p.above) << " | "
+      md << "| " << p.type << " | " << numberText(p.value, 9) << " | " << valueList(p.A) << " | "
+         << valueList(p.psi) << " | " << side(p.below) << " | " << side(p.above) << " | "
          << (!p.checked ? "not checked (unstable on both sides)"
              : p.pass   ? "pass"
                         : "**FAIL**")

@@ -11,13 +11,13 @@ namespace metrosync {
 
 namespace {
 
-std::string num(double v, int digits = 6) {
+std::string orbitNumber(double v, int digits = 6) {
   return reportNumber(v, digits, "—");
 }
 
-std::string list(const std::vector<double>& v, int digits = 3) {
+std::string orbitList(const std::vector<double>& v, int digits = 3) {
   std::string s;
-  for (double x : v) s += (s.empty() ? "" : ", ") + num(x, digits);
+  for (double x : v) s += (s.empty() ? "" : ", ") + orbitNumber(x, digits);
   return s;
 }
 
@@ -27,15 +27,15 @@ const char* slowName(const std::string& type) {
 
 void seriesTable(std::ostream& md, const FullOrbitsResult& r) {
   md << "| family | full model (slow flow) | slow flow |";
-  for (double e : r.epsilons) md << " ε = " << num(e) << " |";
+  for (double e : r.epsilons) md << " ε = " << orbitNumber(e) << " |";
   md << " order | (full − slow)/ε | check |\n|";
   for (size_t k = 0; k < r.epsilons.size() + 6; ++k) md << " --- |";
   md << "\n";
   for (const FullPointSeries& s : r.series) {
     md << "| " << s.family << " (`" << s.key << "`) | " << s.full_type << " ("
-       << slowName(s.slow_type) << ") | " << num(s.slow, 8) << " |";
-    for (const FullPointValue& v : s.values) md << " " << num(v.value, 8) << " |";
-    md << " " << num(s.order, 3) << " | " << num(s.constant, 3) << " | "
+       << slowName(s.slow_type) << ") | " << orbitNumber(s.slow, 8) << " |";
+    for (const FullPointValue& v : s.values) md << " " << orbitNumber(v.value, 8) << " |";
+    md << " " << orbitNumber(s.order, 3) << " | " << orbitNumber(s.constant, 3) << " | "
        << (!s.checked ? "not checked (< 2 ε)"
            : s.pass   ? "pass"
                       : "**fail**")
@@ -45,7 +45,7 @@ void seriesTable(std::ostream& md, const FullOrbitsResult& r) {
   for (const FullPointSeries& s : r.series)
     for (const FullPointValue& v : s.values)
       if (!std::isfinite(v.value))
-        md << "- " << s.family << ", " << s.full_type << " at ε = " << num(v.epsilon)
+        md << "- " << s.family << ", " << s.full_type << " at ε = " << orbitNumber(v.epsilon)
            << ": not found (" << v.note << ").\n";
   md << "\n";
 }
@@ -56,39 +56,41 @@ void asymmetricSection(std::ostream& md, const AsymmetricState& a) {
     md << "Not found: " << a.start << "\n\n";
     return;
   }
-  md << "The experiment's rig (`" << a.scenario << "`: ε = " << num(a.epsilon, 4)
-     << ", μ = " << num(a.mu, 3) << ", started near antiphase) settles onto an asymmetric orbit: "
-     << "A = " << list(a.A) << ", ψ = " << list(a.psi) << ", largest multiplier "
-     << num(a.max_multiplier, 4) << " (" << (a.max_multiplier < 1 ? "stable" : "unstable") << "); "
-     << a.start << ".\n\n";
-  md << "- **In ε** (down to " << num(a.eps_lo) << "): ";
+  md << "The experiment's rig (`" << a.scenario << "`: ε = " << orbitNumber(a.epsilon, 4)
+     << ", μ = " << orbitNumber(a.mu, 3)
+     << ", started near antiphase) settles onto an asymmetric orbit: "
+     << "A = " << orbitList(a.A) << ", ψ = " << orbitList(a.psi) << ", largest multiplier "
+     << orbitNumber(a.max_multiplier, 4) << " (" << (a.max_multiplier < 1 ? "stable" : "unstable")
+     << "); " << a.start << ".\n\n";
+  md << "- **In ε** (down to " << orbitNumber(a.eps_lo) << "): ";
   if (a.eps_folds.empty()) md << "no fold; ";
   for (const FoldValue& f : a.eps_folds)
-    md << "a fold of cycles at ε = " << num(f.value, 6) << " (A = " << list(f.A)
-       << ", ψ = " << list(f.psi) << "); ";
-  md << "at ε = " << num(a.eps_lo) << " the family's orbit has A = " << list(a.A_lo)
-     << ", ψ = " << list(a.psi_lo) << " (" << a.eps_ends << ").\n";
+    md << "a fold of cycles at ε = " << orbitNumber(f.value, 6) << " (A = " << orbitList(f.A)
+       << ", ψ = " << orbitList(f.psi) << "); ";
+  md << "at ε = " << orbitNumber(a.eps_lo) << " the family's orbit has A = " << orbitList(a.A_lo)
+     << ", ψ = " << orbitList(a.psi_lo) << " (" << a.eps_ends << ").\n";
   if (std::isfinite(a.mu_from)) {
-    md << "- **In μ**: the orbit exists over μ = " << num(a.mu_from, 3) << " … " << num(a.mu_to, 3)
-       << " (" << a.mu_ends << "); special points: ";
+    md << "- **In μ**: the orbit exists over μ = " << orbitNumber(a.mu_from, 3) << " … "
+       << orbitNumber(a.mu_to, 3) << " (" << a.mu_ends << "); special points: ";
     for (size_t k = 0; k < a.mu_specials.size(); ++k) md << (k ? ", " : "") << a.mu_specials[k];
     md << (a.mu_specials.empty() ? "none" : "") << ".\n";
   }
   md << "- **Exact antiphase** (θ₁ = −θ₂, the platform still, the ticks cancelling): largest "
-     << "multiplier " << num(a.antiphase_multiplier, 6) << " at ε = " << num(a.epsilon, 4)
+     << "multiplier " << orbitNumber(a.antiphase_multiplier, 6)
+     << " at ε = " << orbitNumber(a.epsilon, 4)
      << "; its symmetry-breaking branch point (an antisymmetric multiplier crosses +1) at ε = "
-     << num(a.antiphase_branch, 6) << ".\n\n";
-  md << "The slow flow from the same start ends at A = " << list(a.A_slow)
-     << ", ψ = " << list(a.psi_slow) << ".\n\n";
+     << orbitNumber(a.antiphase_branch, 6) << ".\n\n";
+  md << "The slow flow from the same start ends at A = " << orbitList(a.A_slow)
+     << ", ψ = " << orbitList(a.psi_slow) << ".\n\n";
   const bool s_shape = a.eps_folds.size() == 2 && a.eps_folds[0].stability_changes &&
                        a.eps_folds[1].stability_changes;
   if (s_shape)
     md << "So the asymmetric state is not born where a symmetric orbit breaks its symmetry: "
           "followed down in ε it is the stable upper part of an S-shaped family, which dies in "
           "the fold at ε = "
-       << num(std::min(a.eps_folds[0].value, a.eps_folds[1].value), 4)
+       << orbitNumber(std::min(a.eps_folds[0].value, a.eps_folds[1].value), 4)
        << " against the family's unstable middle part; that part turns back at ε = "
-       << num(std::max(a.eps_folds[0].value, a.eps_folds[1].value), 4)
+       << orbitNumber(std::max(a.eps_folds[0].value, a.eps_folds[1].value), 4)
        << " onto the stable lower part, the near-antiphase state the slow flow predicts. Between "
           "the two folds both states are stable (hysteresis in ε); at the rig's ε only the "
           "asymmetric one is left on this family. ";
@@ -111,7 +113,7 @@ void mdFullOrbitsSummaryRow(std::ostream& md, const FullOrbitsResult& r) {
     for (const FullPointValue& v : s.values) values += 1, found += std::isfinite(v.value);
   md << "| 7. bifurcations of the full model (periodic orbits) | " << found << " of " << values
      << " torus and fold points located on " << r.series.size() << " series; orders in ε fitted; "
-     << r.failed() << " outside [" << num(kOrderLo, 2) << ", " << num(kOrderHi, 2)
+     << r.failed() << " outside [" << orbitNumber(kOrderLo, 2) << ", " << orbitNumber(kOrderHi, 2)
      << "]: " << (r.failed() == 0 ? "pass" : "**fail**") << " |\n";
 }
 
@@ -127,8 +129,8 @@ void mdFullOrbits(std::ostream& md, const FullOrbitsResult& r) {
         "model's counterpart of the slow flow's Hopf point, a fold of cycles that of its fold. "
         "Order: least-squares slope of log |full − slow| against log ε (theory: 1); it passes "
         "in ["
-     << num(kOrderLo, 2) << ", " << num(kOrderHi, 2) << "]. This part took "
-     << num(r.wall_seconds, 3) << " s.\n\n";
+     << orbitNumber(kOrderLo, 2) << ", " << orbitNumber(kOrderHi, 2) << "]. This part took "
+     << orbitNumber(r.wall_seconds, 3) << " s.\n\n";
   seriesTable(md, r);
   asymmetricSection(md, r.asymmetric);
 }

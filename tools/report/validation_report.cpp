@@ -19,7 +19,7 @@ namespace metrosync {
 namespace {
 
 // a number for a table: fixed for O(1) values, scientific for tiny or huge ones
-std::string num(double v, int digits = 3) {
+std::string tableNumber(double v, int digits = 3) {
   if (!std::isfinite(v)) return "–";
   const double a = std::abs(v);
   if (a != 0 && (a < 1e-3 || a >= 1e5))
@@ -68,10 +68,10 @@ std::string epsLabel(double eps) {
 std::string stateText(const EnvelopeRow& f) {
   if (f.A.empty()) return "no state";
   std::string s = "A = ";
-  for (size_t i = 0; i < f.A.size(); ++i) s += (i ? ", " : "") + num(f.A[i], 2);
+  for (size_t i = 0; i < f.A.size(); ++i) s += (i ? ", " : "") + tableNumber(f.A[i], 2);
   if (!f.psi.empty()) {
     s += "; ψ = ";
-    for (size_t j = 0; j < f.psi.size(); ++j) s += (j ? ", " : "") + num(f.psi[j], 2);
+    for (size_t j = 0; j < f.psi.size(); ++j) s += (j ? ", " : "") + tableNumber(f.psi[j], 2);
   }
   return s;
 }
@@ -484,10 +484,10 @@ void mdConvergence(std::ostream& md, const ValidationResults& r,
   md << " --- | --- | --- | --- |\n";
   for (const auto& c : r.convergence) {
     md << "| " << c.name << " |";
-    for (const auto& e : c.error) md << " " << num(e.max_distance, 4) << " |";
+    for (const auto& e : c.error) md << " " << tableNumber(e.max_distance, 4) << " |";
     const EnvelopeError& last = c.error.back();
-    md << " " << numberText(c.order, 3, Notation::Fixed) << " | " << num(last.max_dA, 4) << " | "
-       << num(last.max_dpsi, 4) << " | " << passText(c.pass) << " |\n";
+    md << " " << numberText(c.order, 3, Notation::Fixed) << " | " << tableNumber(last.max_dA, 4)
+       << " | " << tableNumber(last.max_dpsi, 4) << " | " << passText(c.pass) << " |\n";
   }
   md << "\n";
   if (hasPlot(plots, "convergence.png"))
@@ -534,7 +534,7 @@ void mdRegimeTable(std::ostream& md, const ValidationResults& r) {
              : rc.mirror_agree[k] ? "↔ "
                                   : "✗ ")
          << "**" << regimeText(f) << "**<br>" << stateText(f.final())
-         << "<br>d = " << num(rc.distance[k], 3) << " |";
+         << "<br>d = " << tableNumber(rc.distance[k], 3) << " |";
     }
     md << "\n";
   }
@@ -557,12 +557,12 @@ void mdDisagreements(std::ostream& md, const ValidationResults& r,
       else
         line += "both " + regimeText(f) + ", but in different states: full " +
                 stateText(f.final()) + ", slow " + stateText(rc.slow.final()) +
-                " (d = " + num(rc.distance[k], 2) + ").";
+                " (d = " + tableNumber(rc.distance[k], 2) + ").";
       if (rc.mirror_agree[k])
         line +=
             " With the full model's metronomes exchanged (they are identical but for their "
             "start) the states agree, d = " +
-            num(rc.mirror_distance[k], 3) +
+            tableNumber(rc.mirror_distance[k], 3) +
             ": the small asymmetry of the start grew the other way.";
       lines.push_back(line);
     }

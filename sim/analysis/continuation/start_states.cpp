@@ -141,18 +141,18 @@ std::optional<Vec> solveLocked(const SlowFlowProblem& prob, const Vec& x0, doubl
 
 namespace {
 
-using Seed = std::pair<std::vector<double>, std::vector<double>>;  // (A, psi)
+using StartSeed = std::pair<std::vector<double>, std::vector<double>>;  // (A, psi)
 
 // Every combination of the levels (each metronome) and phase differences: levels^N phases^(N-1).
-std::vector<Seed> fullGrid(int n, const std::vector<double>& levels,
-                           const std::vector<double>& phases) {
+std::vector<StartSeed> fullGrid(int n, const std::vector<double>& levels,
+                                const std::vector<double>& phases) {
   long combos = 1;
   for (int i = 0; i < n; ++i) combos *= static_cast<long>(levels.size());
   for (int j = 1; j < n; ++j) combos *= static_cast<long>(phases.size());
-  std::vector<Seed> seeds;
+  std::vector<StartSeed> seeds;
   for (long c = 0; c < combos; ++c) {
     long r = c;
-    Seed s{std::vector<double>(n), std::vector<double>(n - 1)};
+    StartSeed s{std::vector<double>(n), std::vector<double>(n - 1)};
     for (int i = 0; i < n; ++i, r /= static_cast<long>(levels.size()))
       s.first[i] = levels[r % levels.size()];
     for (int j = 1; j < n; ++j, r /= static_cast<long>(phases.size()))
@@ -165,19 +165,19 @@ std::vector<Seed> fullGrid(int n, const std::vector<double>& levels,
 // For many metronomes (the full grid grows as 8^N): the symmetric patterns only, each at every
 // level -- in phase, two clusters in antiphase, splay, one metronome against the rest -- and each
 // metronome suppressed (the lowest level) with the others at every level in phase.
-std::vector<Seed> patterns(int n, const std::vector<double>& levels) {
+std::vector<StartSeed> patterns(int n, const std::vector<double>& levels) {
   std::vector<std::vector<double>> phase_sets(4, std::vector<double>(n - 1, 0.0));
   for (int j = 1; j < n; ++j) {
     phase_sets[1][j - 1] = j % 2 ? kPi : 0.0;  // alternating clusters
     phase_sets[2][j - 1] = -2 * kPi * j / n;   // splay
   }
   phase_sets[3][n - 2] = kPi;  // the last one against the rest
-  std::vector<Seed> seeds;
+  std::vector<StartSeed> seeds;
   for (double level : levels)
     for (const auto& psi : phase_sets) seeds.push_back({std::vector<double>(n, level), psi});
   for (int i = 0; i < n; ++i)
     for (double level : levels) {
-      Seed s{std::vector<double>(n, level), std::vector<double>(n - 1, 0.0)};
+      StartSeed s{std::vector<double>(n, level), std::vector<double>(n - 1, 0.0)};
       s.first[i] = levels.front();
       seeds.push_back(s);
     }
@@ -198,14 +198,14 @@ std::vector<Vec> allLockedStates(const SlowFlowProblem& prob, double p, int jobs
   const std::vector<double> levels = {0.3 * tc, 1.2 * tc, astar, 1.4 * astar};
   const std::vector<double> phases =
       n <= 2 ? std::vector<double>{0, kPi / 2, kPi, 3 * kPi / 2} : std::vector<double>{0, kPi};
-  const std::vector<Seed> seeds =
+  const std::vector<StartSeed> seeds =
       n <= kFullGridUpTo ? fullGrid(n, levels, phases) : patterns(n, levels);
   // each seed solved on its own (a problem per thread: its cache is not shared), the first
   // failure in the seeds' order rethrown as the loop over them would have
   std::vector<std::optional<Vec>> solved(seeds.size());
   std::vector<std::exception_ptr> failed(seeds.size());
   auto solve = [&](const SlowFlowProblem& mine, size_t k) {
-    Seed seed = seeds[k];
+    StartSeed seed = seeds[k];
     for (int i = 0; i < n; ++i)
       if (sp.locked[i]) seed.first[i] = 0;
     const std::vector<Cd> z = stateFrom(seed.first, seed.second);

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/median.h"
+
 namespace metrosync {
 
 namespace {
@@ -19,12 +21,6 @@ constexpr double kAgreement = 1.15;
 constexpr int kMinWindows = 30;
 // The median of |N(0, 1)|.
 constexpr double kMadToSigma = 1.0 / 0.6744897501960817;
-
-double median(std::vector<double> v) {
-  const std::size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + mid, v.end());
-  return v[mid];
-}
 
 // The normalized residual at the middle of the window t[i - h .. i + h] (times relative to t[i]).
 double middleResidual(const std::vector<double>& t, const std::vector<double>& y, std::size_t i,

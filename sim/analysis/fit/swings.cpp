@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "base/constants.h"
+#include "base/median.h"
 
 namespace metrosync {
 
@@ -23,13 +24,6 @@ constexpr double kPeakHalfWidth = 0.3;
 constexpr double kCrossingHalfWidth = 0.4;
 // A window fit needs at least this many samples (3 unknowns and some to spare).
 constexpr int kMinWindowSamples = 6;
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const std::size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + mid, v.end());
-  return v[mid];
-}
 
 // Noise level from second differences (an upper bound: the signal's own curvature adds to it).
 double noiseLevel(const std::vector<double>& y) {
