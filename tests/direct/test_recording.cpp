@@ -47,14 +47,19 @@ metronomes:
 simulation: {tau: 5}
 )";
 
-std::string eight() {
+// n detuned metronomes for tau (at epsilon 0.05: tau / 0.05 / 2 pi fast periods)
+std::string many(int n, double tau) {
   std::string s =
       "units: scaled\nepsilon: 0.05\nplatform: {friction: {law: coulomb, mu: 0.6}}\n"
       "metronomes:\n";
-  for (int i = 0; i < 8; ++i)
+  for (int i = 0; i < n; ++i)
     s += "  - {nu: 0.65, J: 3.14, theta_c: 0.9, alpha: " + std::to_string(0.05 * i) +
          ", start: {A: 2.6, phi: " + std::to_string(0.8 * i) + "}}\n";
-  return s + "simulation: {tau: 3}\n";
+  return s + "simulation: {tau: " + std::to_string(tau) + "}\n";
+}
+
+std::string eight() {
+  return many(8, 3);
 }
 
 void expectSameIntegration(const Rig& rig) {
@@ -137,6 +142,46 @@ TEST(Recording, OnItsOwnThreadMakesTheSameRowsToTheBit) {
     EXPECT_EQ(a.final_row.psi, b.final_row.psi);
     EXPECT_EQ(a.counts.steps, b.counts.steps);
     EXPECT_EQ(a.counts.rhs_evals, b.counts.rhs_evals);
+  }
+}
+
+// Offered WhenLong, the engine takes a recording thread by the run's length in metronome-periods
+// (500 and more, for at most 8 metronomes: sim/engines/direct/rig_model.h) and says so before
+// the first row; offered Always, always; offered Never, never.
+struct JudgedSink : MemorySink {
+  explicit JudgedSink(RecordingThread offer) : offer_(offer) {}
+  RecordingThread recordingThread() const override { return offer_; }
+  void recordingThreadStarted() override {
+    EXPECT_TRUE(trajectory.empty());
+    ++threaded;
+  }
+  int threaded = 0;
+
+ private:
+  RecordingThread offer_;
+};
+
+TEST(Recording, TheEngineTakesARecordingThreadByTheRunsLength) {
+  using Offer = RunSink::RecordingThread;
+  struct Case {
+    std::string yaml;
+    Offer offer;
+    int threaded;
+  };
+  const Case cases[] = {
+      {many(2, 3), Offer::WhenLong, 0},                                     // 2 x 9.5 periods
+      {many(2, 90), Offer::WhenLong, 1},                                    // 2 x 286
+      {many(2, 90), Offer::Never, 0},    {many(8, 3), Offer::WhenLong, 0},  // 8 x 9.5
+      {many(8, 25), Offer::WhenLong, 1},                                    // 8 x 80
+      {many(9, 25), Offer::WhenLong, 0},  // 9 x 80: long, too many for a thread
+      {many(2, 3), Offer::Always, 1},
+  };
+  for (const Case& c : cases) {
+    JudgedSink sink(c.offer);
+    const RunReport r = runDirectModel(rigFrom(c.yaml), sink);
+    ASSERT_TRUE(r.complete) << c.yaml;
+    EXPECT_EQ(sink.threaded, c.threaded) << c.yaml;
+    EXPECT_GT(sink.trajectory.size(), 100u);
   }
 }
 

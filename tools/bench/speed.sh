@@ -135,11 +135,11 @@ run_args=()
 for s in $run_scenes; do
   case $s in */* | default) run_args+=(--scene "$s") ;; *) run_args+=(--scene "yaml/rigs/bench/$s.yaml") ;; esac
 done
-# (the rig as it is; sampled every 100 periods; the recording thread never and always, against
-# the engine's own choice: docs/outputs.md)
+# (the rig as it is; sampled every 100 periods; the recording thread never, always, and nothing
+# off the run's thread, against the engine's own choice: docs/outputs.md)
 step "$bench" runcost --metrosync "$metrosync" "${run_args[@]}" --variant "" \
   --variant simulation.sample=100 --variant env:METROSYNC_RECORDING_THREAD=never \
-  --variant env:METROSYNC_RECORDING_THREAD=always \
+  --variant env:METROSYNC_RECORDING_THREAD=always --variant env:METROSYNC_RECORDING_THREAD=inline \
   --repeat "${RUN_REPEAT:-$(q 3 11)}" "${common[@]}" --out "$out" >/dev/null || true
 
 # 4. the whole process on the peer's scene

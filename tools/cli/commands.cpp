@@ -130,16 +130,24 @@ PlotStyle plotStyle(const Options& opt, const LoadedRig& r) {
   return s;
 }
 
-// A run's recording thread (RunSink::RecordingThread): the engine's judgement, or, for benches,
-// METROSYNC_RECORDING_THREAD=never|always (docs/bench/speed/run.md, the runcost variants).
-RunSink::RecordingThread recordingThreadChoice() {
+// Where a run makes its rows and their text (RunSink::RecordingThread): as the engine judges, or,
+// for benches, METROSYNC_RECORDING_THREAD=never (no recording thread; the text on writer threads),
+// always (a recording thread, which writes the text) or inline (everything on the run's thread)
+// (docs/bench/speed/run.md, the runcost variants).
+void chooseRecordingThread(RunFilesOptions& o) {
   const char* v = std::getenv("METROSYNC_RECORDING_THREAD");
   const std::string s = v ? v : "";
-  if (s.empty()) return RunSink::RecordingThread::WhenLong;
-  if (s == "never") return RunSink::RecordingThread::Never;
-  if (s == "always") return RunSink::RecordingThread::Always;
-  throw UsageError("METROSYNC_RECORDING_THREAD=" + s +
-                   ": expected never or always (unset: the engine chooses)");
+  if (s.empty()) {
+    o.recording_thread = RunSink::RecordingThread::WhenLong;
+  } else if (s == "never" || s == "inline") {
+    o.recording_thread = RunSink::RecordingThread::Never;
+    o.text_on_rows_thread = s == "inline";
+  } else if (s == "always") {
+    o.recording_thread = RunSink::RecordingThread::Always;
+  } else {
+    throw UsageError("METROSYNC_RECORDING_THREAD=" + s +
+                     ": expected never, always or inline (unset: the engine chooses)");
+  }
 }
 
 RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::string& envelope) {
@@ -155,7 +163,7 @@ RunFilesOptions sinkOptions(const LoadedRig& r, bool trajectory, const std::stri
   o.envelope_platform = !trajectory;  // the slow flow's `uncoupled` rule (sim/analysis/regime.h)
   o.x_unit = r.rig.units == Units::Physical ? r.scaled.x_scale_m : 1.0;
   o.law = r.scaled.friction;
-  o.recording_thread = recordingThreadChoice();  // one run at a time: rows beside the integration
+  chooseRecordingThread(o);  // one run at a time: rows beside the integration
   return o;
 }
 

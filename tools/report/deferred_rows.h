@@ -37,8 +37,9 @@ class DeferredRows {
   // Writes every row added so far and waits for it; rethrows the writer's first error.
   void finish();
   // From now on a full block is written by the thread that adds it (no writer thread): for rows
-  // that come from a recording thread already (RunSink::recordingThreadStarted). Called before
-  // the first add; errors then come straight from add and finish.
+  // that come from a recording thread already (RunSink::recordingThreadStarted), or for a
+  // bench's variant (RunFilesOptions::text_on_rows_thread). Called before the first add; errors
+  // then come straight from add and finish.
   void writeOnCallersThread() { on_callers_thread_ = true; }
 
  private:

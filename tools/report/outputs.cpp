@@ -131,9 +131,10 @@ FileSink::FileSink(const OutputDir& dir, const RunFilesOptions& opt) : FileSink(
   envelope_ = std::make_unique<AtomicFile>(dir.file(opt_.envelope_name));
   envelope_->writeLine(envelopeHeader(opt_.n_metronomes) + (opt_.seconds ? ",t_s" : ""));
   envelope_text_ = std::make_unique<DeferredRows>(*envelope_, 2 * n + 1, envelopeFormat());
+  if (opt_.text_on_rows_thread) textOnRowsThread();
 }
 
-void FileSink::recordingThreadStarted() {
+void FileSink::textOnRowsThread() {
   for (DeferredRows* w : {trajectory_text_.get(), envelope_text_.get(), events_text_.get()})
     if (w) w->writeOnCallersThread();
 }

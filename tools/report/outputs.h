@@ -71,6 +71,9 @@ struct RunFilesOptions {
   // the run may make the rows on a recording thread of its own (RunSink::recordingThread):
   // a run that has the machine to itself (`metrosync run`), not a sweep's points
   RunSink::RecordingThread recording_thread = RunSink::RecordingThread::Never;
+  // every file's text written on the thread that makes the rows, no writer threads, whatever
+  // the run does (a bench's variant, METROSYNC_RECORDING_THREAD=inline: docs/outputs.md)
+  bool text_on_rows_thread = false;
 };
 
 // trajectory.csv's header: t,x,xdot,theta_1,thetadot_1,...,theta_N,thetadot_N,platform.
@@ -122,7 +125,7 @@ class FileSink : public RunSink {
     return network_ ? RecordingThread::Never : opt_.recording_thread;
   }
   // the recording thread writes the files' text too (DeferredRows::writeOnCallersThread)
-  void recordingThreadStarted() override;
+  void recordingThreadStarted() override { textOnRowsThread(); }
   void stateSample(double t, const std::vector<double>& y,
                    const std::vector<PlatformMode>& modes) override;
   // between rows: a stop request stops the run there (RunInterrupted, once)
@@ -161,6 +164,7 @@ class FileSink : public RunSink {
  private:
   void checkStop(double t);
   DeferredRows::Format eventFormat() const;
+  void textOnRowsThread();
   DeferredRows::Format envelopeFormat() const;
 
   RunFilesOptions opt_;
