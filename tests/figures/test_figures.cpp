@@ -11,7 +11,7 @@
 #include <set>
 #include <string>
 
-#include "sim/analysis/validation.h"
+#include "sim/analysis/validation/validation.h"
 #include "tests/common/run_metrosync.h"
 #include "tools/cli/validate.h"
 #include "tools/report/validation_report.h"

@@ -195,7 +195,7 @@ TEST(Layout, EveryIncludePointsDownwards) {
   EXPECT_TRUE(v.empty()) << v.size() << " includes against the layout:\n" << joined(v);
 }
 
-// The validation's files (sim/analysis/validation*: catalogue, runs, measures, checks, plan,
+// The validation's files (sim/analysis/validation/: catalogue, runs, measures, checks, plan,
 // parts, parts 6 and 7) include each other one way only (issue 24: validation.h and
 // validation_bifurcations included each other).
 TEST(Layout, NoIncludeCycleThroughTheValidation) {

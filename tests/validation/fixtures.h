@@ -1,13 +1,13 @@
 // Shared by the validation tests: the shipped scenarios loaded from the source tree, and the
-// engines that sim/analysis/validation.h takes as functions (the Simbody full model, the Coulomb
-// harness).
+// engines that sim/analysis/validation/validation.h takes as functions (the Simbody full model, the
+// Coulomb harness).
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "contact/simbody/driven_coulomb.h"
-#include "sim/analysis/validation.h"
+#include "sim/analysis/validation/validation.h"
 #include "sim/engines/simbody/simbody_engine.h"
 #include "yaml/rig_loader.h"
 

@@ -7,7 +7,7 @@
 
 #include <sstream>
 
-#include "sim/analysis/validation_bifurcations.h"
+#include "sim/analysis/validation/validation_bifurcations.h"
 #include "sim/engines/engine.h"
 #include "tests/validation/fixtures.h"
 #include "tools/report/validation_bifurcations_report.h"

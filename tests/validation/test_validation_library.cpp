@@ -1,7 +1,7 @@
-// The validation library's own pieces (sim/analysis/validation.h, tools/report/validation_report.h)
-// on inputs whose answers are known by construction: the order fit, the envelope distance and
-// error, the rig at another epsilon, the agreement rule, the regime sequence, and the report (its
-// numbers are the results' numbers).
+// The validation library's own pieces (sim/analysis/validation/validation.h,
+// tools/report/validation_report.h) on inputs whose answers are known by construction: the order
+// fit, the envelope distance and error, the rig at another epsilon, the agreement rule, the regime
+// sequence, and the report (its numbers are the results' numbers).
 #include <gtest/gtest.h>
 
 #include <cmath>

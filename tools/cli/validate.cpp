@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "contact/simbody/driven_coulomb.h"
-#include "sim/analysis/validation.h"
+#include "sim/analysis/validation/validation.h"
 #include "sim/engines/simbody_plugin.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/engines.h"

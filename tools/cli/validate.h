@@ -1,13 +1,14 @@
 // `metrosync validate [--out DIR] [--quick] [--engine E]`: the full model against the asymptotics
 // (the slow flow and its closed forms), written up as DIR/report.md with its plots
-// (sim/analysis/validation.h, tools/report/validation_report.h). Registered in tools/metrosync.cpp.
+// (sim/analysis/validation/validation.h, tools/report/validation_report.h). Registered in
+// tools/metrosync.cpp.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
-#include "sim/analysis/validation.h"
+#include "sim/analysis/validation/validation.h"
 
 namespace metrosync::cli {
 

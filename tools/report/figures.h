@@ -1,4 +1,4 @@
-// The files of `metrosync figures` (sim/analysis/paper_figures.h), written into the output
+// The files of `metrosync figures` (sim/analysis/figures/paper_figures.h), written into the output
 // directory through gnuplot, PNG and SVG of each:
 //   f4.1 .. f4.4   the paper's layout: A_1 (top), A_2 (middle), psi (bottom) against tau, one
 //                  curve per run in the paper's colours (black, red, blue) with the varied value in
@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/analysis/paper_figures.h"
+#include "sim/analysis/figures/paper_figures.h"
 #include "sim/analysis/sweep.h"
 #include "tools/report/outputs.h"
 

@@ -1,6 +1,6 @@
-// Part 6 of the validation report (sim/analysis/validation_bifurcations.h): the slow flow's
-// located folds and Hopf points for the paper's families, their slow-flow side checks, and the
-// full model's brackets of the same transitions; as a report.md section and as summary.json's
+// Part 6 of the validation report (sim/analysis/validation/validation_bifurcations.h): the slow
+// flow's located folds and Hopf points for the paper's families, their slow-flow side checks, and
+// the full model's brackets of the same transitions; as a report.md section and as summary.json's
 // `bifurcations`.
 #pragma once
 
@@ -8,7 +8,7 @@
 #include <ostream>
 #include <vector>
 
-#include "sim/analysis/validation_bifurcations.h"
+#include "sim/analysis/validation/validation_bifurcations.h"
 
 namespace metrosync {
 

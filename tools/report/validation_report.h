@@ -1,13 +1,13 @@
-// The report of `metrosync validate` (sim/analysis/validation.h): report.md with its tables, a few
-// PNG plots through gnuplot (a missing gnuplot drops the plots, with a warning, never the report)
-// and summary.json. Every number in them comes from the ValidationResults passed in.
+// The report of `metrosync validate` (sim/analysis/validation/validation.h): report.md with its
+// tables, a few PNG plots through gnuplot (a missing gnuplot drops the plots, with a warning, never
+// the report) and summary.json. Every number in them comes from the ValidationResults passed in.
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "sim/analysis/validation.h"
+#include "sim/analysis/validation/validation.h"
 #include "tools/report/outputs.h"
 
 namespace metrosync {

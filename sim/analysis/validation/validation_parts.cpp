@@ -1,4 +1,4 @@
-#include "sim/analysis/validation_parts.h"
+#include "sim/analysis/validation/validation_parts.h"
 
 #include <algorithm>
 #include <cmath>

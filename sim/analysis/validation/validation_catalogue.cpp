@@ -1,4 +1,4 @@
-#include "sim/analysis/validation_catalogue.h"
+#include "sim/analysis/validation/validation_catalogue.h"
 
 #include <stdexcept>
 

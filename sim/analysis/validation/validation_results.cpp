@@ -1,4 +1,4 @@
-#include "sim/analysis/validation_results.h"
+#include "sim/analysis/validation/validation_results.h"
 
 namespace metrosync {
 

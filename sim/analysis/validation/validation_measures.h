@@ -1,12 +1,12 @@
-// How the validation (sim/analysis/validation.h) compares runs: distances between envelope states,
-// the error of a full-model envelope against the slow flow's, orders of convergence, and when two
-// final states agree.
+// How the validation (sim/analysis/validation/validation.h) compares runs: distances between
+// envelope states, the error of a full-model envelope against the slow flow's, orders of
+// convergence, and when two final states agree.
 #pragma once
 
 #include <vector>
 
 #include "models/scaling.h"
-#include "sim/analysis/validation_runs.h"
+#include "sim/analysis/validation/validation_runs.h"
 #include "sim/record/envelope.h"
 
 namespace metrosync {

@@ -1,4 +1,4 @@
-#include "sim/analysis/validation_checks.h"
+#include "sim/analysis/validation/validation_checks.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,11 +1,11 @@
-#include "sim/analysis/validation_runs.h"
+#include "sim/analysis/validation/validation_runs.h"
 
 #include <chrono>
 #include <complex>
 #include <exception>
 
 #include "contact/averaged_response.h"
-#include "sim/analysis/validation_catalogue.h"
+#include "sim/analysis/validation/validation_catalogue.h"
 #include "sim/engines/slow_flow/slow_flow_engine.h"
 
 namespace metrosync {

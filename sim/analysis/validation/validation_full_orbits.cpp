@@ -1,4 +1,4 @@
-#include "sim/analysis/validation_full_orbits.h"
+#include "sim/analysis/validation/validation_full_orbits.h"
 
 #include <chrono>
 #include <cmath>
@@ -8,8 +8,8 @@
 #include "base/number_text.h"
 #include "sim/analysis/periodic_orbit/full_continuation.h"
 #include "sim/analysis/periodic_orbit/orbit_continuation.h"
-#include "sim/analysis/validation_bifurcations.h"
-#include "sim/analysis/validation_measures.h"
+#include "sim/analysis/validation/validation_bifurcations.h"
+#include "sim/analysis/validation/validation_measures.h"
 #include "sim/parallel/worker_pool.h"
 
 namespace metrosync {

@@ -1,11 +1,11 @@
-// What `metrosync validate` runs (sim/analysis/validation.h): the drive strengths, scenarios,
-// epsilons and friction values of each part, the full plan or the quick one.
+// What `metrosync validate` runs (sim/analysis/validation/validation.h): the drive strengths,
+// scenarios, epsilons and friction values of each part, the full plan or the quick one.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "sim/analysis/validation_bifurcations.h"
+#include "sim/analysis/validation/validation_bifurcations.h"
 
 namespace metrosync {
 
@@ -26,10 +26,10 @@ struct ValidationPlan {
   // part 5: the scenario's rig (its own epsilon and tau) with mu replaced
   std::string sweep_scenario = "experiment-low-friction-inphase";
   std::vector<double> sweep_mu;
-  // part 6: the slow flow's bifurcations (sim/analysis/validation_bifurcations.h)
+  // part 6: the slow flow's bifurcations (sim/analysis/validation/validation_bifurcations.h)
   std::vector<BifurcationFamilySpec> bifurcations;
-  // part 7: the full model's bifurcations (sim/analysis/validation_full_orbits.h); on in both
-  // of defaultValidationPlan's plans
+  // part 7: the full model's bifurcations (sim/analysis/validation/validation_full_orbits.h); on in
+  // both of defaultValidationPlan's plans
   bool full_orbits = false;
 };
 

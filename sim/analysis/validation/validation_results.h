@@ -1,4 +1,4 @@
-// What the validation found (sim/analysis/validation.h), part by part: the runs, checks,
+// What the validation found (sim/analysis/validation/validation.h), part by part: the runs, checks,
 // errors and agreements that the report (tools/report/validation_report.h) writes.
 #pragma once
 
@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "sim/analysis/validation_bifurcations.h"
-#include "sim/analysis/validation_checks.h"
-#include "sim/analysis/validation_full_orbits.h"
-#include "sim/analysis/validation_measures.h"
-#include "sim/analysis/validation_plan.h"
-#include "sim/analysis/validation_runs.h"
+#include "sim/analysis/validation/validation_bifurcations.h"
+#include "sim/analysis/validation/validation_checks.h"
+#include "sim/analysis/validation/validation_full_orbits.h"
+#include "sim/analysis/validation/validation_measures.h"
+#include "sim/analysis/validation/validation_plan.h"
+#include "sim/analysis/validation/validation_runs.h"
 
 namespace metrosync {
 

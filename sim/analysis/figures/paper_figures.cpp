@@ -1,4 +1,4 @@
-#include "sim/analysis/paper_figures.h"
+#include "sim/analysis/figures/paper_figures.h"
 
 #include <algorithm>
 #include <exception>

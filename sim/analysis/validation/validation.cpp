@@ -1,10 +1,10 @@
-#include "sim/analysis/validation.h"
+#include "sim/analysis/validation/validation.h"
 
 #include <algorithm>
 #include <chrono>
 #include <numeric>
 
-#include "sim/analysis/validation_parts.h"
+#include "sim/analysis/validation/validation_parts.h"
 #include "sim/parallel/worker_pool.h"
 
 namespace metrosync {

@@ -1,4 +1,4 @@
-#include "sim/analysis/validation_measures.h"
+#include "sim/analysis/validation/validation_measures.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "sim/analysis/validation_bifurcations.h"
+#include "sim/analysis/validation/validation_bifurcations.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "base/number_text.h"
 #include "sim/analysis/continuation/arclength.h"
 #include "sim/analysis/continuation/start_states.h"
-#include "sim/analysis/validation_measures.h"
+#include "sim/analysis/validation/validation_measures.h"
 #include "sim/parallel/worker_pool.h"
 
 namespace metrosync {

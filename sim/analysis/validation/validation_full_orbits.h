@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "models/scaling.h"
-#include "sim/analysis/validation_catalogue.h"
-#include "sim/analysis/validation_runs.h"
+#include "sim/analysis/validation/validation_catalogue.h"
+#include "sim/analysis/validation/validation_runs.h"
 
 namespace metrosync {
 

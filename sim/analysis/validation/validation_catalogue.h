@@ -1,6 +1,6 @@
-// The validation's catalogue (`metrosync validate`, sim/analysis/validation.h): the shipped rigs it
-// runs, what the paper says each of the paper's simulations shows, and a scenario's rig at another
-// epsilon.
+// The validation's catalogue (`metrosync validate`, sim/analysis/validation/validation.h): the
+// shipped rigs it runs, what the paper says each of the paper's simulations shows, and a scenario's
+// rig at another epsilon.
 #pragma once
 
 #include <string>

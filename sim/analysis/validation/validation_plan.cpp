@@ -1,10 +1,10 @@
-#include "sim/analysis/validation_plan.h"
+#include "sim/analysis/validation/validation_plan.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "contact/averaged_response.h"
-#include "sim/analysis/validation_catalogue.h"
+#include "sim/analysis/validation/validation_catalogue.h"
 
 namespace metrosync {
 

@@ -1,16 +1,16 @@
-// The runners of parts 1-5 of the validation (sim/analysis/validation.h), for runValidation:
-// parts 1 and 2 run at once; the full-model runs of parts 3-5 are queued as tasks for one pool
-// (longest first) and finished once every run is in.
+// The runners of parts 1-5 of the validation (sim/analysis/validation/validation.h), for
+// runValidation: parts 1 and 2 run at once; the full-model runs of parts 3-5 are queued as tasks
+// for one pool (longest first) and finished once every run is in.
 #pragma once
 
 #include <functional>
 #include <vector>
 
-#include "sim/analysis/validation_catalogue.h"
-#include "sim/analysis/validation_plan.h"
-#include "sim/analysis/validation_progress.h"
-#include "sim/analysis/validation_results.h"
-#include "sim/analysis/validation_runs.h"
+#include "sim/analysis/validation/validation_catalogue.h"
+#include "sim/analysis/validation/validation_plan.h"
+#include "sim/analysis/validation/validation_progress.h"
+#include "sim/analysis/validation/validation_results.h"
+#include "sim/analysis/validation/validation_runs.h"
 
 namespace metrosync {
 

@@ -1,12 +1,12 @@
-// The validation's progress lines (sim/analysis/validation.h): one line per run, from every
-// worker thread, one at a time.
+// The validation's progress lines (sim/analysis/validation/validation.h): one line per run, from
+// every worker thread, one at a time.
 #pragma once
 
 #include <functional>
 #include <mutex>
 #include <string>
 
-#include "sim/analysis/validation_runs.h"
+#include "sim/analysis/validation/validation_runs.h"
 
 namespace metrosync {
 

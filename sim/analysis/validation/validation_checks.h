@@ -1,13 +1,13 @@
-// Part 2 of the validation (sim/analysis/validation.h): the paper's statements about each of its
-// simulations, checked on the slow flow's run.
+// Part 2 of the validation (sim/analysis/validation/validation.h): the paper's statements about
+// each of its simulations, checked on the slow flow's run.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "models/scaling.h"
-#include "sim/analysis/validation_catalogue.h"
-#include "sim/analysis/validation_runs.h"
+#include "sim/analysis/validation/validation_catalogue.h"
+#include "sim/analysis/validation/validation_runs.h"
 
 namespace metrosync {
 

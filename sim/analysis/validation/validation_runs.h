@@ -1,6 +1,6 @@
-// One run of either model for the validation (sim/analysis/validation.h): the slow flow, or the
-// full model through the engine the caller passes in (sim/ sees no Simbody), each kept as its
-// envelope rows, regime verdict and the platform's state over the regime window.
+// One run of either model for the validation (sim/analysis/validation/validation.h): the slow flow,
+// or the full model through the engine the caller passes in (sim/ sees no Simbody), each kept as
+// its envelope rows, regime verdict and the platform's state over the regime window.
 #pragma once
 
 #include <functional>

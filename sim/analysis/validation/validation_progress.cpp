@@ -1,4 +1,4 @@
-#include "sim/analysis/validation_progress.h"
+#include "sim/analysis/validation/validation_progress.h"
 
 #include "base/number_text.h"
 

@@ -1,8 +1,8 @@
 // The paper's section-4 figures (f4.1-f4.4) as runs, behind `metrosync figures`: which shipped
 // scenarios each figure overlays, with the varied value that names each curve, and each run of
 // the slow flow and/or the full model. The runs are validation's own (runSlowModel,
-// runFullModelAt of sim/analysis/validation.h, the scenario's shipped epsilon and tau), so a
-// figure's numbers are the validation report's. The drawing is tools/report/figures.h; the
+// runFullModelAt of sim/analysis/validation/validation.h, the scenario's shipped epsilon and tau),
+// so a figure's numbers are the validation report's. The drawing is tools/report/figures.h; the
 // computed regime diagram (figure exp1) is a `metrosync sweep` run by the command.
 #pragma once
 
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/analysis/validation.h"
+#include "sim/analysis/validation/validation.h"
 
 namespace metrosync {
 

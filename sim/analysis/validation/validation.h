@@ -25,14 +25,14 @@
 #include <string>
 #include <vector>
 
-#include "sim/analysis/validation_bifurcations.h"
-#include "sim/analysis/validation_catalogue.h"
-#include "sim/analysis/validation_checks.h"
-#include "sim/analysis/validation_full_orbits.h"
-#include "sim/analysis/validation_measures.h"
-#include "sim/analysis/validation_plan.h"
-#include "sim/analysis/validation_results.h"
-#include "sim/analysis/validation_runs.h"
+#include "sim/analysis/validation/validation_bifurcations.h"
+#include "sim/analysis/validation/validation_catalogue.h"
+#include "sim/analysis/validation/validation_checks.h"
+#include "sim/analysis/validation/validation_full_orbits.h"
+#include "sim/analysis/validation/validation_measures.h"
+#include "sim/analysis/validation/validation_plan.h"
+#include "sim/analysis/validation/validation_results.h"
+#include "sim/analysis/validation/validation_runs.h"
 
 namespace metrosync {
 
