@@ -10,6 +10,10 @@
 
 namespace metrosync::bench {
 
+namespace {
+
+// The fields of one CSV line (base/csv.h csvCells); an unterminated quote throws
+// std::invalid_argument "WHERE: unterminated quote".
 std::vector<std::string> csvCellsAt(const std::string& line, const std::string& where) {
   try {
     return csvCells(line);
@@ -17,6 +21,8 @@ std::vector<std::string> csvCellsAt(const std::string& line, const std::string& 
     throw std::invalid_argument(where + ": " + e.what());
   }
 }
+
+}  // namespace
 
 double csvNumber(const std::string& s, const std::string& where) {
   if (s.empty()) return std::numeric_limits<double>::quiet_NaN();

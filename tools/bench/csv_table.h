@@ -24,10 +24,6 @@ struct CsvTable {
   std::string textOr(size_t row, const std::string& key, const std::string& fallback) const;
 };
 
-// The fields of one CSV line (base/csv.h csvCells); an unterminated quote throws
-// std::invalid_argument "WHERE: unterminated quote".
-std::vector<std::string> csvCellsAt(const std::string& line, const std::string& where);
-
 // A CSV field as a number: NaN when empty; throws std::invalid_argument "WHERE: 'S' is not a
 // number" when it is not one (WHERE: file, line and column).
 double csvNumber(const std::string& s, const std::string& where);

@@ -28,25 +28,19 @@ std::string slurp(const fs::path& p) {
   return s.str();
 }
 
-// The fit bench's per-record CSV (fit_recovery.cpp's --csv).
+// The fit bench's per-record CSV (fit_recovery.cpp's --csv), by its columns.
 std::vector<FitRecordCost> readFits(const fs::path& csv) {
-  std::istringstream in(slurp(csv));
-  std::string line;
-  if (!std::getline(in, line)) throw std::invalid_argument(csv.string() + ": empty");
+  const CsvTable t = parseCsvTable(slurp(csv), csv.string());
+  if (t.columns.empty()) throw std::invalid_argument(csv.string() + ": empty");
   std::vector<FitRecordCost> out;
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    const std::vector<std::string> f = csvCellsAt(line, csv.string());
-    if (f.size() != 7)
-      throw std::invalid_argument(csv.string() + ": a line of " + std::to_string(f.size()) +
-                                  " fields, not 7");
+  for (size_t k = 0; k < t.rows.size(); ++k) {
     FitRecordCost r;
-    r.record = std::stoi(f[0]);
-    r.wall_s = std::stod(f[1]);
-    r.cpu_s = std::stod(f[2]);
-    r.model_runs = std::stol(f[3]);
-    r.recovered = f[5] == "1";
-    r.error = f[6];
+    r.record = std::stoi(t.text(k, "record"));
+    r.wall_s = t.number(k, "wall_s");
+    r.cpu_s = t.number(k, "cpu_s");
+    r.model_runs = std::stol(t.text(k, "model_runs"));
+    r.recovered = t.text(k, "recovered") == "1";
+    r.error = t.text(k, "error");
     out.push_back(r);
   }
   return out;

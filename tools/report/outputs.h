@@ -164,8 +164,8 @@ class FileSink : public RunSink {
  private:
   void checkStop(double t);
   DeferredRows::Format eventFormat() const;
-  void textOnRowsThread();
   DeferredRows::Format envelopeFormat() const;
+  void textOnRowsThread();
 
   RunFilesOptions opt_;
   std::unique_ptr<NetworkFiles> network_;  // a network's files
