@@ -40,27 +40,35 @@ namespace trig_detail {
 
 typedef double Pair __attribute__((vector_size(16)));  // two angles: one SSE2 register
 
-// sin and cos of two angles with |x| <= kSmallAngle: Taylor to x^19 and x^20 by Horner in x^2
+// sin and cos of two angles with |x| <= kSmallAngle: Taylor to x^19 and x^20 as polynomials of
+// degree 8 in u = x^2, summed by Estrin's scheme (pairs of terms, then pairs of pairs with u^2
+// and u^4) rather than by Horner's rule. Horner's rule is one chain of 8 multiply-adds per
+// polynomial; Estrin's is 4 deep. The right-hand side waits on these sines at every stage (the
+// next stage's state is made from this one's derivative), so the chain's latency is the
+// evaluation's. Measured against Horner's rule (metrosync_engine_probe, medians of 11 alternating
+// runs, quiet 2-core machine): the bench scenes 1.03-1.16x faster (peer-n2 1.05x, suppression
+// 1.16x) for 0.4% (N = 2) and 0.8% (N = 8) more instructions. The same accuracy: within 2 ulp of
+// glibc over 2e7 random angles, as Horner's rule was.
 inline void smallSinCos(Pair x, Pair& s, Pair& c) {
-  const Pair x2 = x * x;
-  Pair ps = x2 * (1.0 / 121645100408832000.0) - 1.0 / 355687428096000.0;  // 1/19!, 1/17!
-  ps = ps * x2 + 1.0 / 1307674368000.0;                                   // 1/15!
-  ps = ps * x2 - 1.0 / 6227020800.0;                                      // 1/13!
-  ps = ps * x2 + 1.0 / 39916800.0;                                        // 1/11!
-  ps = ps * x2 - 1.0 / 362880.0;                                          // 1/9!
-  ps = ps * x2 + 1.0 / 5040.0;                                            // 1/7!
-  ps = ps * x2 - 1.0 / 120.0;                                             // 1/5!
-  ps = ps * x2 + 1.0 / 6.0;                                               // 1/3!
-  s = x - x * x2 * ps;
-  Pair pc = x2 * (1.0 / 2432902008176640000.0) - 1.0 / 6402373705728000.0;  // 1/20!, 1/18!
-  pc = pc * x2 + 1.0 / 20922789888000.0;                                    // 1/16!
-  pc = pc * x2 - 1.0 / 87178291200.0;                                       // 1/14!
-  pc = pc * x2 + 1.0 / 479001600.0;                                         // 1/12!
-  pc = pc * x2 - 1.0 / 3628800.0;                                           // 1/10!
-  pc = pc * x2 + 1.0 / 40320.0;                                             // 1/8!
-  pc = pc * x2 - 1.0 / 720.0;                                               // 1/6!
-  pc = pc * x2 + 1.0 / 24.0;                                                // 1/4!
-  c = 1.0 - 0.5 * x2 + x2 * x2 * pc;
+  const Pair u = x * x;
+  const Pair u2 = u * u;
+  const Pair u4 = u2 * u2;
+  // sin x = x - x u ps(u), ps(u) = 1/3! - u/5! + u^2/7! - ... + u^8/19!
+  const Pair s01 = 1.0 / 6.0 - u * (1.0 / 120.0);                          // 1/3!, 1/5!
+  const Pair s23 = 1.0 / 5040.0 - u * (1.0 / 362880.0);                    // 1/7!, 1/9!
+  const Pair s45 = 1.0 / 39916800.0 - u * (1.0 / 6227020800.0);            // 1/11!, 1/13!
+  const Pair s67 = 1.0 / 1307674368000.0 - u * (1.0 / 355687428096000.0);  // 1/15!, 1/17!
+  const Pair s8 = u4 * (1.0 / 121645100408832000.0);                       // 1/19!
+  const Pair ps = (s01 + u2 * s23) + u4 * ((s45 + u2 * s67) + s8);
+  s = x - x * u * ps;
+  // cos x = 1 - u/2 + u^2 pc(u), pc(u) = 1/4! - u/6! + u^2/8! - ... + u^8/20!
+  const Pair c01 = 1.0 / 24.0 - u * (1.0 / 720.0);                           // 1/4!, 1/6!
+  const Pair c23 = 1.0 / 40320.0 - u * (1.0 / 3628800.0);                    // 1/8!, 1/10!
+  const Pair c45 = 1.0 / 479001600.0 - u * (1.0 / 87178291200.0);            // 1/12!, 1/14!
+  const Pair c67 = 1.0 / 20922789888000.0 - u * (1.0 / 6402373705728000.0);  // 1/16!, 1/18!
+  const Pair c8 = u4 * (1.0 / 2432902008176640000.0);                        // 1/20!
+  const Pair pc = (c01 + u2 * c23) + u4 * ((c45 + u2 * c67) + c8);
+  c = 1.0 - 0.5 * u + u2 * pc;
 }
 
 // every |x[i]| <= kSmallAngle (false for a NaN)
