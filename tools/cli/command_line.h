@@ -1,7 +1,8 @@
 // The command line of `metrosync` (SPEC section 2): every sub-command registered on one CLI11 app
 // with its handler, and the one place that maps what a command throws to the SPEC section 5 exit
 // codes (0 success, 2 bad command line or rig, nothing written; 3 the simulation failed; 1
-// anything else). tools/metrosync.cpp only builds the list and calls run().
+// anything else). tools/cli/every_command.h builds the list (the commands argv names);
+// tools/metrosync.cpp calls runCommandLine().
 #pragma once
 
 #include <CLI/CLI.hpp>

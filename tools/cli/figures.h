@@ -1,7 +1,7 @@
 // `metrosync figures [--out DIR] [--model slow|full|both] [--only ID]... [--quick]`: the paper's
 // section-4 figures (f4.1-f4.4) and the computed regime diagram (exp1), PNG and SVG, with an
 // index figures.md. Which runs: sim/analysis/figures/paper_figures.h; the map: a `metrosync sweep`;
-// the files: tools/report/figures.h. Registered in tools/metrosync.cpp.
+// the files: tools/report/figures.h. Registered in tools/cli/every_command.cpp.
 #pragma once
 
 #include <CLI/CLI.hpp>

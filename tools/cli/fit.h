@@ -1,7 +1,7 @@
 // `metrosync fit RIG DATA.csv --free KEY ...` and `metrosync measure RIG --decay FILE ...`
 // (docs/fit.md): the rig's parameters from measured data -- by nonlinear least squares on the
 // full model or the slow flow (sim/analysis/fit/fit_strategy.h), or by the paper's section-3
-// closed forms (measure.cpp). Registered in tools/metrosync.cpp.
+// closed forms (measure.cpp). Registered in tools/cli/every_command.cpp.
 #pragma once
 
 #include <CLI/CLI.hpp>

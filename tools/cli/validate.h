@@ -1,7 +1,7 @@
 // `metrosync validate [--out DIR] [--quick] [--engine E]`: the full model against the asymptotics
 // (the slow flow and its closed forms), written up as DIR/report.md with its plots
 // (sim/analysis/validation/validation.h, tools/report/validation_report.h). Registered in
-// tools/metrosync.cpp.
+// tools/cli/every_command.cpp.
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -14,7 +14,8 @@ if(PkgConfig_FOUND)
 endif()
 
 foreach(pair "metrosync_tools_report;tools/report/animation.cpp"
-             "metrosync_tools_cli;tools/cli/animate.cpp" "metrosync_tools_cli;tools/cli/animate_render.cpp")
+             "metrosync_tools_cli;tools/cli/animate.cpp" "metrosync_tools_cli;tools/cli/animate_render.cpp"
+             "metrosync_tools_cli;tools/cli/every_command.cpp")
   list(GET pair 0 lib)
   list(GET pair 1 file)
   get_target_property(srcs ${lib} SOURCES)
@@ -28,6 +29,16 @@ target_link_libraries(metrosync_animate PUBLIC metrosync_tools_cli)
 metrosync_simbody_flags(metrosync_animate)
 target_link_libraries(metrosync PRIVATE metrosync_animate)
 target_link_libraries(metrosync-faults PRIVATE metrosync_animate)
+# every command of `metrosync` (tools/cli/every_command.h) registers animate with the others: it
+# leaves tools_cli too, for the executables and test_cli, which tests it
+add_library(metrosync_every_command STATIC ${CMAKE_SOURCE_DIR}/tools/cli/every_command.cpp)
+target_link_libraries(metrosync_every_command PUBLIC metrosync_animate)
+metrosync_simbody_flags(metrosync_every_command)
+foreach(t metrosync metrosync-faults test_cli)
+  if(TARGET ${t})
+    target_link_libraries(${t} PRIVATE metrosync_every_command)
+  endif()
+endforeach()
 foreach(t test_animate test_hostile)  # test_hostile: every command's options (issue 29)
   if(TARGET ${t})
     target_link_libraries(${t} PRIVATE metrosync_animate)
