@@ -12,6 +12,8 @@
 
 #include "base/constants.h"
 #include "fixtures.h"
+#include "sim/analysis/validation/validation_parts.h"
+#include "sim/engines/direct/direct_engine.h"
 #include "tools/report/validation_report.h"
 
 namespace metrosync {
@@ -154,6 +156,70 @@ TEST(ValidationLibrary, RegimeSequenceCollapsesAndMarksUncoupledStates) {
   EXPECT_EQ(seq[2].label, "death");  // dead over a still platform is just death
   EXPECT_EQ(seq[2].mu_to, 1.0);
   EXPECT_EQ(seq[3].label, "phase-locked, uncoupled");
+}
+
+// Part 5's refinement adds the geometric mean of neighbours whose labels differ in either model,
+// while they are farther apart than the resolution; nothing between equal labels, nothing at
+// resolution 0, and a stopped run ("failed") is a label of its own.
+TEST(ValidationLibrary, SweepRefinementsBisectWhereEitherModelsLabelChanges) {
+  std::vector<FrictionSweepPoint> sweep;
+  auto add = [&](double mu, Regime slow, Regime full, const std::string& platform = "slipping") {
+    FrictionSweepPoint p;
+    p.mu = mu;
+    p.slow = judged(slow, {2, 2}, {0}, platform);
+    p.full = judged(full, {2, 2}, {0}, platform);
+    sweep.push_back(p);
+  };
+  add(0.1, Regime::InPhase, Regime::InPhase);
+  add(0.2, Regime::InPhase, Regime::InPhase);            // same as 0.1: nothing
+  add(0.4, Regime::InPhase, Regime::Suppression);        // the full model changes: sqrt(0.08)
+  add(0.404, Regime::Suppression, Regime::Suppression);  // the slow flow changes, 1% apart
+  add(0.8, Regime::Death, Regime::Death);                // both change: sqrt(0.3232)
+  add(1.0, Regime::Death, Regime::Death, "stuck");       // death is death over a still platform
+  add(3.0, Regime::PhaseLocked, Regime::PhaseLocked, "stuck");  // alive and uncoupled
+  const std::vector<double> mids = sweepRefinements(sweep, 0.02);
+  ASSERT_EQ(mids.size(), 3u);
+  EXPECT_DOUBLE_EQ(mids[0], std::sqrt(0.2 * 0.4));
+  EXPECT_DOUBLE_EQ(mids[1], std::sqrt(0.404 * 0.8));
+  EXPECT_DOUBLE_EQ(mids[2], std::sqrt(1.0 * 3.0));
+  EXPECT_EQ(sweepRefinements(sweep, 0.005).size(), 4u);  // 0.4 and 0.404 now count too
+  EXPECT_TRUE(sweepRefinements(sweep, 0.0).empty());
+  sweep[1].full.report.complete = false;  // a stopped run differs from its neighbours
+  EXPECT_EQ(sweepRefinements(sweep, 0.02).size(), 4u);
+}
+
+// The full plan's refinement on the experiment's in-phase rig between the grid's mu = 0.4
+// (in-phase) and 0.5 (death in the full model): it finds the full model's suppression window
+// (mu 0.47-0.505, issue 41, from runs at mu steps of 0.005) that the grid steps over, and leaves
+// no two neighbours of different labels farther apart than the resolution.
+TEST(ValidationLibrary, RefinedSweepFindsTheSuppressionWindowBetweenGridPoints) {
+  ValidationPlan plan;
+  plan.beta_s = {};
+  plan.convergence_scenarios = {};
+  plan.regime_scenarios = {};
+  plan.sweep_mu = {0.4, 0.5};
+  plan.sweep_resolution = 0.02;
+  ValidationEngines direct = testval::engines();  // the direct engine: `validate`'s default
+  direct.full_model = [](const Rig& rig, RunSink& sink) { return runDirectModel(rig, sink); };
+  const ValidationResults r = runValidation(plan, testval::loadScenarios(), direct, {}, 2);
+  ASSERT_GT(r.sweep.size(), 2u);
+  EXPECT_EQ(r.sweep.front().mu, 0.4);
+  EXPECT_EQ(r.sweep.back().mu, 0.5);
+  bool window = false;
+  for (size_t k = 0; k + 1 < r.sweep.size(); ++k) {
+    const FrictionSweepPoint &a = r.sweep[k], &b = r.sweep[k + 1];
+    EXPECT_LT(a.mu, b.mu);
+    if (sweepLabel(a.full) != sweepLabel(b.full) || sweepLabel(a.slow) != sweepLabel(b.slow)) {
+      EXPECT_LE(b.mu, a.mu * 1.02 * (1 + 1e-12)) << a.mu << " .. " << b.mu;
+    }
+  }
+  for (const auto& p : r.sweep) window |= p.full.verdict.regime == Regime::Suppression;
+  EXPECT_TRUE(window) << "no full-model suppression between mu = 0.4 and 0.5";
+  const auto seq = regimeSequence(r.sweep, true);
+  ASSERT_GE(seq.size(), 3u);
+  EXPECT_EQ(seq.front().label, "in-phase");
+  EXPECT_EQ(seq.back().label, "death");
+  EXPECT_EQ(r.incompleteRuns(), 0);
 }
 
 // The report is made of the results: distinctive numbers put in come out in the tables, and the

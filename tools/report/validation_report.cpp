@@ -85,11 +85,6 @@ double regimeEps(const RegimeComparison& rc, size_t k) {
   return k < rc.full.size() ? rc.full[k].epsilon : 0.0;
 }
 
-bool isAliveRegime(Regime r) {
-  return r == Regime::InPhase || r == Regime::Antiphase || r == Regime::PhaseLocked ||
-         r == Regime::Drift || r == Regime::Unsettled;
-}
-
 // ---- gnuplot --------------------------------------------------------------------------------
 
 const char* const kColours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9",
@@ -246,14 +241,6 @@ std::string pngNameFor(const RegimeComparison& rc) {
 }  // namespace
 
 // ---- the regime sequence ------------------------------------------------------------------------
-
-std::string sweepLabel(const ModelRun& run) {
-  if (!run.report.complete) return "failed";
-  const Regime g = run.verdict.regime;
-  std::string label = toString(g);
-  if (isAliveRegime(g) && run.platform == "stuck") label += ", uncoupled";
-  return label;
-}
 
 std::vector<RegimeStretch> regimeSequence(const std::vector<FrictionSweepPoint>& sweep, bool full) {
   std::vector<RegimeStretch> seq;
@@ -600,7 +587,16 @@ void mdSweepTable(std::ostream& md, const ValidationResults& r) {
       exp_mu += (exp_mu.empty() ? "" : ", ") + rc.name +
                 ": μ = " + numberText(rc.slow.mu, 3, Notation::Fixed);
   if (!exp_mu.empty()) md << " (the experiment's rigs: " << exp_mu << ")";
-  md << ". Platform: where it spends the last 10% (full model: the share of time stuck; slow "
+  md << ".";
+  if (r.plan.sweep_resolution > 0)
+    md << " The grid is refined where the regimes change: wherever two neighbouring values of μ "
+          "end in different regimes (in either model), the run at their geometric mean is added, "
+          "round after round, until such neighbours are within a ratio of "
+       << numberText(1 + r.plan.sweep_resolution) << " (" << r.sweep.size()
+       << " values of μ in all, " << r.plan.sweep_mu.size()
+       << " on the grid); a window of a regime between two values that end alike is not "
+          "looked for.";
+  md << " Platform: where it spends the last 10% (full model: the share of time stuck; slow "
         "flow: the Coulomb regime of the final drive s = \\|Z\\|/μ); \"uncoupled\": alive over "
         "a platform at rest.\n\n"
      << "| μ | μ̄ | slow flow | full model, ε = " << numberText(r.sweep_epsilon, 4) << " |\n"

@@ -26,7 +26,6 @@ struct RegimeStretch {
   double mu_from = 0.0, mu_to = 0.0;
 };
 std::vector<RegimeStretch> regimeSequence(const std::vector<FrictionSweepPoint>& sweep, bool full);
-std::string sweepLabel(const ModelRun& run);
 
 // The markdown of report.md; `plots` are the PNG names written (the report links to those only).
 std::string validationReportMarkdown(const ValidationResults& r, const ReportContext& ctx,

@@ -35,6 +35,7 @@ ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Sc
   // longest, listed first, balance best
   parallelFor(static_cast<long>(order.size()), jobs, [&](long k) { tasks[order[k]].run(); });
 
+  refineMuSweep(plan, scenarios, engines, log, res, jobs);
   finishConvergence(plan, log, res);
   finishRegimes(scenarios, res);
   if (!plan.bifurcations.empty()) {

@@ -120,18 +120,57 @@ void queueMuSweep(const ValidationPlan& plan, const std::vector<Scenario>& scena
   res.sweep.resize(plan.sweep_mu.size());
   for (size_t k = 0; k < plan.sweep_mu.size(); ++k) {
     tasks.push_back({b.tau_end / b.epsilon, [&res, &plan, &engines, &log, scp = &sc, k] {
-                       FrictionSweepPoint& pt = res.sweep[k];
-                       ScaledParams q = scp->scaled;
-                       q.friction = FrictionLaw::coulomb(plan.sweep_mu[k]);
-                       pt.mu = plan.sweep_mu[k];
-                       pt.mu_bar = pt.mu * std::pow(q.epsilon, 1.5);
-                       pt.slow = runSlowModel(q, q.epsilon, q.tau_end);
-                       pt.full =
-                           runFullModelAt(engines, q, scp->spec.name + "-mu" + numberText(pt.mu),
-                                          q.epsilon, q.tau_end);
-                       log.run("sweep mu = " + numberText(pt.mu) + " slow", pt.slow);
-                       log.run("sweep mu = " + numberText(pt.mu) + " full", pt.full);
+                       res.sweep[k] = runSweepPoint(*scp, plan.sweep_mu[k], engines, log);
                      }});
+  }
+}
+
+// One friction value of part 5: the scenario's rig with mu replaced, both models.
+FrictionSweepPoint runSweepPoint(const Scenario& sc, double mu, const ValidationEngines& engines,
+                                 ProgressLog& log) {
+  FrictionSweepPoint pt;
+  ScaledParams q = sc.scaled;
+  q.friction = FrictionLaw::coulomb(mu);
+  pt.mu = mu;
+  pt.mu_bar = pt.mu * std::pow(q.epsilon, 1.5);
+  pt.slow = runSlowModel(q, q.epsilon, q.tau_end);
+  pt.full =
+      runFullModelAt(engines, q, sc.spec.name + "-mu" + numberText(pt.mu), q.epsilon, q.tau_end);
+  log.run("sweep mu = " + numberText(pt.mu) + " slow", pt.slow);
+  log.run("sweep mu = " + numberText(pt.mu) + " full", pt.full);
+  return pt;
+}
+
+std::vector<double> sweepRefinements(const std::vector<FrictionSweepPoint>& sweep,
+                                     double resolution) {
+  std::vector<double> mids;
+  if (!(resolution > 0)) return mids;
+  for (size_t k = 0; k + 1 < sweep.size(); ++k) {
+    const FrictionSweepPoint &a = sweep[k], &b = sweep[k + 1];
+    const bool differ =
+        sweepLabel(a.slow) != sweepLabel(b.slow) || sweepLabel(a.full) != sweepLabel(b.full);
+    if (differ && a.mu > 0 && b.mu > a.mu * (1 + resolution))
+      mids.push_back(std::sqrt(a.mu * b.mu));
+  }
+  return mids;
+}
+
+void refineMuSweep(const ValidationPlan& plan, const std::vector<Scenario>& scenarios,
+                   const ValidationEngines& engines, ProgressLog& log, ValidationResults& res,
+                   int jobs) {
+  if (res.sweep.empty() || !(plan.sweep_resolution > 0)) return;
+  const Scenario& sc = findScenario(scenarios, plan.sweep_scenario);
+  auto byMu = [](const FrictionSweepPoint& a, const FrictionSweepPoint& b) { return a.mu < b.mu; };
+  std::sort(res.sweep.begin(), res.sweep.end(), byMu);
+  for (int round = 0; round < kMaxSweepRefinements; ++round) {
+    const std::vector<double> mids = sweepRefinements(res.sweep, plan.sweep_resolution);
+    if (mids.empty()) return;
+    log.say("sweep: " + std::to_string(mids.size()) + " friction values between regimes");
+    std::vector<FrictionSweepPoint> added(mids.size());
+    parallelFor(static_cast<long>(mids.size()), jobs,
+                [&](long k) { added[k] = runSweepPoint(sc, mids[k], engines, log); });
+    res.sweep.insert(res.sweep.end(), added.begin(), added.end());
+    std::sort(res.sweep.begin(), res.sweep.end(), byMu);
   }
 }
 

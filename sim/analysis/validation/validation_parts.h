@@ -36,6 +36,21 @@ void queueRegimes(const ValidationPlan& plan, const std::vector<Scenario>& scena
 void queueMuSweep(const ValidationPlan& plan, const std::vector<Scenario>& scenarios,
                   const ValidationEngines& engines, ProgressLog& log, ValidationResults& res,
                   std::vector<ValidationTask>& tasks);
+// One friction value of part 5 (what queueMuSweep's tasks run).
+FrictionSweepPoint runSweepPoint(const Scenario& sc, double mu, const ValidationEngines& engines,
+                                 ProgressLog& log);
+// Part 5's next friction values: the geometric mean of each pair of neighbours (the sweep in
+// order of mu) whose labels differ in either model (sweepLabel) and whose ratio exceeds
+// 1 + resolution; none for resolution 0.
+std::vector<double> sweepRefinements(const std::vector<FrictionSweepPoint>& sweep,
+                                     double resolution);
+// Part 5 once the grid is in: the sweep put in order of mu, then rounds of sweepRefinements run on
+// the pool and merged in, until none is left (plan.sweep_resolution) or after
+// kMaxSweepRefinements rounds (from a grid step of 1.5x to 1.02x takes 5).
+constexpr int kMaxSweepRefinements = 8;
+void refineMuSweep(const ValidationPlan& plan, const std::vector<Scenario>& scenarios,
+                   const ValidationEngines& engines, ProgressLog& log, ValidationResults& res,
+                   int jobs);
 // Parts 3 and 4 once every run is in.
 void finishConvergence(const ValidationPlan& plan, ProgressLog& log, ValidationResults& res);
 void finishRegimes(const std::vector<Scenario>& scenarios, ValidationResults& res);

@@ -26,6 +26,11 @@ struct ValidationPlan {
   // part 5: the scenario's rig (its own epsilon and tau) with mu replaced
   std::string sweep_scenario = "experiment-low-friction-inphase";
   std::vector<double> sweep_mu;
+  // ... refined: between neighbours whose labels differ in either model (sweepLabel) their
+  // geometric mean is run, round after round, until such neighbours are within a ratio of
+  // 1 + sweep_resolution (0: the grid alone), so that no window of a regime wider than that
+  // between two points of different regimes goes unseen
+  double sweep_resolution = 0.0;
   // part 6: the slow flow's bifurcations (sim/analysis/validation/validation_bifurcations.h)
   std::vector<BifurcationFamilySpec> bifurcations;
   // part 7: the full model's bifurcations (sim/analysis/validation/validation_full_orbits.h); on in

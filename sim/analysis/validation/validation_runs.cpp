@@ -12,6 +12,12 @@ namespace metrosync {
 
 namespace {
 
+// both metronomes ticking (a live synchronized or drifting state)
+bool isAliveRegime(Regime r) {
+  return r == Regime::InPhase || r == Regime::Antiphase || r == Regime::PhaseLocked ||
+         r == Regime::Drift || r == Regime::Unsettled;
+}
+
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t0) {
@@ -55,6 +61,14 @@ ModelRun modelRun(const char* model, const ScaledParams& p, double epsilon, doub
 }
 
 }  // namespace
+
+std::string sweepLabel(const ModelRun& run) {
+  if (!run.report.complete) return "failed";
+  const Regime g = run.verdict.regime;
+  std::string label = toString(g);
+  if (isAliveRegime(g) && run.platform == "stuck") label += ", uncoupled";
+  return label;
+}
 
 ModelRun runSlowModel(const ScaledParams& p, double epsilon, double tau_end) {
   ModelRun run = modelRun("slow", p, epsilon, tau_end);

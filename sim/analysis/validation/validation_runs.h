@@ -38,6 +38,10 @@ struct ModelRun {
   const EnvelopeRow& final() const { return report.final_row; }
 };
 
+// A run's label in part 5's regime sequence (and the report's): "failed" when it stopped early,
+// else its regime's name, with ", uncoupled" for an alive state over a platform at rest.
+std::string sweepLabel(const ModelRun& run);
+
 // The slow flow of p from its start to tau_end, rows on epsilon's grid.
 ModelRun runSlowModel(const ScaledParams& p, double epsilon, double tau_end);
 // The full model of rigAtEpsilon(p, name, epsilon, tau_end).
