@@ -256,11 +256,17 @@ std::vector<RegimeStretch> regimeSequence(const std::vector<FrictionSweepPoint>&
 
 namespace {
 
+// A friction value of part 5: four digits (the refined values are geometric means, good to the
+// refinement's 2%; the grid's values print as written)
+std::string muText(double mu) {
+  return numberText(mu, 4);
+}
+
 std::string sequenceText(const std::vector<RegimeStretch>& seq) {
   std::string s;
   for (const auto& st : seq) {
-    s += (s.empty() ? "" : " → ") + st.label + " (μ = " + numberText(st.mu_from);
-    if (st.mu_to != st.mu_from) s += "–" + numberText(st.mu_to);
+    s += (s.empty() ? "" : " → ") + st.label + " (μ = " + muText(st.mu_from);
+    if (st.mu_to != st.mu_from) s += "–" + muText(st.mu_to);
     s += ")";
   }
   return s;
@@ -611,7 +617,7 @@ void mdSweepTable(std::ostream& md, const ValidationResults& r) {
       }
       return s;
     };
-    md << "| " << numberText(p.mu) << " | " << sci(p.mu_bar, 2) << " | " << cell(p.slow) << " | "
+    md << "| " << muText(p.mu) << " | " << sci(p.mu_bar, 2) << " | " << cell(p.slow) << " | "
        << cell(p.full) << " |\n";
   }
 }
@@ -631,10 +637,10 @@ void mdSweepWords(std::ostream& md, const ValidationResults& r,
                f_sup = firstMuWith(r.sweep, true, Regime::Suppression);
   const double s_death = firstMuWith(r.sweep, false, Regime::Death),
                f_death = firstMuWith(r.sweep, true, Regime::Death);
-  auto at = [](double mu) { return std::isfinite(mu) ? "μ = " + numberText(mu) : "never"; };
+  auto at = [](double mu) { return std::isfinite(mu) ? "μ = " + muText(mu) : "never"; };
   md << "Suppression first appears at " << at(s_sup) << " in the slow flow and " << at(f_sup)
      << " in the full model; death at " << at(s_death) << " and " << at(f_death)
-     << ". At the highest μ tried (" << numberText(r.sweep.back().mu) << ") the slow flow gives "
+     << ". At the highest μ tried (" << muText(r.sweep.back().mu) << ") the slow flow gives "
      << sweepLabel(r.sweep.back().slow) << " and the full model " << sweepLabel(r.sweep.back().full)
      << " (the paper: antiphase, then uncoupling). ";
   if (const RegimeComparison* hi = findRegimes(r, "experiment-high-friction-inphase")) {
@@ -656,7 +662,7 @@ void mdSweepWords(std::ostream& md, const ValidationResults& r,
   const FrictionSweepPoint& top = r.sweep.back();
   if (top.slow.platform == "stuck" && top.full.report.complete && top.full.platform != "stuck" &&
       std::isfinite(top.full.platform_stuck_fraction) && !top.full.final().psi.empty())
-    md << " At μ = " << numberText(top.mu)
+    md << " At μ = " << muText(top.mu)
        << " the slow flow's platform never moves (\\|Z\\| < μ: the metronomes are uncoupled), "
           "while the full model's is at rest "
        << numberText(100 * top.full.platform_stuck_fraction, 1, Notation::Fixed)
