@@ -33,6 +33,9 @@ inline ValidationEngines engines() {
   ValidationEngines e;
   e.full_model = [](const Rig& rig, RunSink& sink) { return runSimbody(networkOfOne(rig), sink); };
   e.coulomb_probe = [](double s) { return measureDrivenCoulomb(s); };
+  e.load_rig = [](const std::string& file, const std::vector<std::string>& sets) {
+    return loadRigFile(rigsDir() + "/" + file, sets);
+  };
   return e;
 }
 

@@ -157,6 +157,9 @@ int validateCommand(const ValidateOptions& opt) {
   ValidationEngines engines;
   engines.full_model = [engine](const Rig& rig, RunSink& sink) { return engine->run(rig, sink); };
   engines.coulomb_probe = [](double s) { return simbodyPlugin().coulomb_probe(s); };
+  engines.load_rig = [rigs_dir](const std::string& file, const std::vector<std::string>& sets) {
+    return loadRigFile((fs::path(rigs_dir) / file).string(), sets);
+  };
 
   const auto t0 = std::chrono::steady_clock::now();
   auto progress = [&](const std::string& line) {

@@ -12,6 +12,7 @@
 #include "tools/report/json_file.h"
 #include "tools/report/plot.h"
 #include "tools/report/validation_bifurcations_report.h"
+#include "tools/report/validation_experiments_report.h"
 #include "tools/report/validation_full_orbits_report.h"
 
 namespace metrosync {
@@ -393,6 +394,7 @@ void mdSummary(std::ostream& md, const ValidationResults& r) {
        << " |\n";
   }
   if (r.full_orbits) mdFullOrbitsSummaryRow(md, *r.full_orbits);
+  if (r.experiments) mdExperimentsSummaryRow(md, *r.experiments);
   md << "\nChecks failed: " << r.failedChecks()
      << "; runs that stopped early: " << r.incompleteRuns() << ".\n\n";
 }
@@ -698,6 +700,7 @@ std::string validationReportMarkdown(const ValidationResults& r, const ReportCon
   }
   mdBifurcations(md, r.bifurcations);
   if (r.full_orbits) mdFullOrbits(md, *r.full_orbits);
+  if (r.experiments) mdExperiments(md, *r.experiments);
   return md.str();
 }
 
@@ -780,6 +783,7 @@ nlohmann::json validationJson(const ValidationResults& r, const ReportContext& c
                           {"full", modelRunJson(p.full)}});
   if (!r.bifurcations.empty()) j["bifurcations"] = validationBifurcationsJson(r.bifurcations);
   if (r.full_orbits) j["full_orbits"] = validationFullOrbitsJson(*r.full_orbits);
+  if (r.experiments) j["experiments"] = validationExperimentsJson(*r.experiments);
   return j;
 }
 

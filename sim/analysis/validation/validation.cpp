@@ -15,7 +15,7 @@ ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Sc
                                 const ValidationEngines& engines,
                                 const std::function<void(const std::string&)>& progress, int jobs) {
   const Clock::time_point t0 = Clock::now();
-  ProgressLog log(progress);
+  ValidationLog log(progress);
   ValidationResults res;
   res.plan = plan;
   runBetas(plan, engines, log, jobs, res);
@@ -45,6 +45,10 @@ ValidationResults runValidation(const ValidationPlan& plan, const std::vector<Sc
   if (plan.full_orbits) {
     log.say("bifurcations of the full model (periodic orbits, continuation at several epsilon)");
     res.full_orbits = runFullOrbitBifurcations(plan.quick, scenarios, engines, jobs);
+  }
+  if (plan.experiments && engines.load_rig) {
+    log.say("the paper's experiments (fig. exp1-exp3) in each variant of the rig");
+    res.experiments = runExperiments(plan.measured_frequency_hz, scenarios, engines, log, jobs);
   }
   res.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return res;

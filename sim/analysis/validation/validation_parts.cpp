@@ -13,7 +13,7 @@
 namespace metrosync {
 
 // Part 1: betas against the Coulomb element.
-void runBetas(const ValidationPlan& plan, const ValidationEngines& engines, ProgressLog& log,
+void runBetas(const ValidationPlan& plan, const ValidationEngines& engines, ValidationLog& log,
               int jobs, ValidationResults& res) {
   res.betas.resize(plan.beta_s.size());
   parallelFor(static_cast<long>(plan.beta_s.size()), jobs, [&](long k) {
@@ -33,7 +33,7 @@ void runBetas(const ValidationPlan& plan, const ValidationEngines& engines, Prog
 }
 
 // Part 2: the paper's scenarios from the slow flow, at their shipped epsilon and tau (cheap).
-void runPaperScenarios(const std::vector<Scenario>& scenarios, ProgressLog& log,
+void runPaperScenarios(const std::vector<Scenario>& scenarios, ValidationLog& log,
                        ValidationResults& res) {
   for (const auto& sc : scenarios) {
     if (sc.spec.outcome == PaperOutcome::None) continue;
@@ -51,7 +51,7 @@ void runPaperScenarios(const std::vector<Scenario>& scenarios, ProgressLog& log,
 
 // Part 3: convergence in epsilon over tau in [0, convergence_tau].
 void queueConvergence(const ValidationPlan& plan, const std::vector<Scenario>& scenarios,
-                      const ValidationEngines& engines, ProgressLog& log, ValidationResults& res,
+                      const ValidationEngines& engines, ValidationLog& log, ValidationResults& res,
                       std::vector<ValidationTask>& tasks) {
   res.convergence.resize(plan.convergence_scenarios.size());
   for (size_t c = 0; c < plan.convergence_scenarios.size(); ++c) {
@@ -79,7 +79,7 @@ void queueConvergence(const ValidationPlan& plan, const std::vector<Scenario>& s
 
 // Part 4: final regimes, the full model at several epsilons against the slow flow.
 void queueRegimes(const ValidationPlan& plan, const std::vector<Scenario>& scenarios,
-                  const ValidationEngines& engines, ProgressLog& log, ValidationResults& res,
+                  const ValidationEngines& engines, ValidationLog& log, ValidationResults& res,
                   std::vector<ValidationTask>& tasks) {
   res.regimes.resize(plan.regime_scenarios.size());
   for (size_t c = 0; c < plan.regime_scenarios.size(); ++c) {
@@ -106,7 +106,7 @@ void queueRegimes(const ValidationPlan& plan, const std::vector<Scenario>& scena
 
 // Part 5: the experiment's regime sequence over mu, both models at the rig's epsilon.
 void queueMuSweep(const ValidationPlan& plan, const std::vector<Scenario>& scenarios,
-                  const ValidationEngines& engines, ProgressLog& log, ValidationResults& res,
+                  const ValidationEngines& engines, ValidationLog& log, ValidationResults& res,
                   std::vector<ValidationTask>& tasks) {
   if (plan.sweep_mu.empty()) return;
   const Scenario& sc = findScenario(scenarios, plan.sweep_scenario);
@@ -127,7 +127,7 @@ void queueMuSweep(const ValidationPlan& plan, const std::vector<Scenario>& scena
 
 // One friction value of part 5: the scenario's rig with mu replaced, both models.
 FrictionSweepPoint runSweepPoint(const Scenario& sc, double mu, const ValidationEngines& engines,
-                                 ProgressLog& log) {
+                                 ValidationLog& log) {
   FrictionSweepPoint pt;
   ScaledParams q = sc.scaled;
   q.friction = FrictionLaw::coulomb(mu);
@@ -156,7 +156,7 @@ std::vector<double> sweepRefinements(const std::vector<FrictionSweepPoint>& swee
 }
 
 void refineMuSweep(const ValidationPlan& plan, const std::vector<Scenario>& scenarios,
-                   const ValidationEngines& engines, ProgressLog& log, ValidationResults& res,
+                   const ValidationEngines& engines, ValidationLog& log, ValidationResults& res,
                    int jobs) {
   if (res.sweep.empty() || !(plan.sweep_resolution > 0)) return;
   const Scenario& sc = findScenario(scenarios, plan.sweep_scenario);
@@ -175,7 +175,7 @@ void refineMuSweep(const ValidationPlan& plan, const std::vector<Scenario>& scen
 }
 
 // Part 3 once every run is in: the order of convergence and its check.
-void finishConvergence(const ValidationPlan& plan, ProgressLog& log, ValidationResults& res) {
+void finishConvergence(const ValidationPlan& plan, ValidationLog& log, ValidationResults& res) {
   for (auto& cv : res.convergence) {
     cv.complete =
         std::all_of(cv.runs_complete.begin(), cv.runs_complete.end(), [](int b) { return b != 0; });

@@ -36,6 +36,7 @@ ValidationPlan defaultValidationPlan(bool quick) {
   plan.sweep_resolution = quick ? 0.0 : 0.02;
   plan.bifurcations = paperBifurcationFamilies(quick);
   plan.full_orbits = true;
+  plan.experiments = true;  // eight runs of 200 s and a few of one metronome: cheap in both
   return plan;
 }
 

@@ -36,6 +36,10 @@ struct ValidationPlan {
   // part 7: the full model's bifurcations (sim/analysis/validation/validation_full_orbits.h); on in
   // both of defaultValidationPlan's plans
   bool full_orbits = false;
+  // part 8: the paper's experiments in each variant of the rig (validation_experiments.h); the
+  // measured frequency the second variant's inertia is found from (section 3D)
+  bool experiments = false;
+  double measured_frequency_hz = 2.69;
 };
 
 // The full plan (`metrosync validate`) or the quick one (`--quick`).

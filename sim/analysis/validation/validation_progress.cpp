@@ -4,7 +4,7 @@
 
 namespace metrosync {
 
-void ProgressLog::run(const std::string& what, const ModelRun& r) {
+void ValidationLog::run(const std::string& what, const ModelRun& r) {
   std::string s = what + ": " + (r.report.complete ? toString(r.verdict.regime) : "FAILED");
   s += " (" + numberText(r.report.wall_seconds, 1, Notation::Fixed) + " s)";
   if (!r.report.complete) s += " - " + r.report.failure;

@@ -11,9 +11,9 @@
 namespace metrosync {
 
 // Progress lines from every thread, one at a time.
-class ProgressLog {
+class ValidationLog {
  public:
-  explicit ProgressLog(const std::function<void(const std::string&)>& out) : out_(out) {}
+  explicit ValidationLog(const std::function<void(const std::string&)>& out) : out_(out) {}
   void say(const std::string& line) {
     if (!out_) return;
     std::lock_guard<std::mutex> lock(mutex_);

@@ -8,6 +8,7 @@
 
 #include "sim/analysis/validation/validation_bifurcations.h"
 #include "sim/analysis/validation/validation_checks.h"
+#include "sim/analysis/validation/validation_experiments.h"
 #include "sim/analysis/validation/validation_full_orbits.h"
 #include "sim/analysis/validation/validation_measures.h"
 #include "sim/analysis/validation/validation_plan.h"
@@ -69,6 +70,7 @@ struct ValidationResults {
   std::vector<FrictionSweepPoint> sweep;
   std::vector<BifurcationFamilyResult> bifurcations;  // part 6
   std::optional<FullOrbitsResult> full_orbits;        // part 7
+  std::optional<ExperimentsResult> experiments;       // part 8
   double wall_seconds = 0.0;
 
   int failedChecks() const;    // betas, paper regimes, convergence orders

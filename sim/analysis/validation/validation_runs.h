@@ -21,12 +21,15 @@ namespace metrosync {
 struct ValidationEngines {
   std::function<RunReport(const Rig&, RunSink&)> full_model;        // an Engine's run
   std::function<DrivenCoulombMeasurement(double s)> coulomb_probe;  // measureDrivenCoulomb
+  // a shipped rig (its path under the rigs' folder) with --set keys applied: part 8's variants
+  std::function<Rig(const std::string& file, const std::vector<std::string>& sets)> load_rig;
 };
 
 struct ModelRun {
   std::string model;  // "full" or "slow"
   double epsilon = 0.0, tau_end = 0.0;
   double mu = 0.0;              // scaled platform friction of the run
+  double time_scale_s = 0.0;    // seconds per unit of scaled time of the rig it stands for
   std::vector<double> theta_c;  // (N x 1) scaled critical angles
   RunReport report;
   RegimeVerdict verdict;              // Regime::Unknown when the run did not complete
