@@ -131,7 +131,7 @@ void measureDecay(const MeasureOptions& opt, const RigText& rt, const Rig& rig, 
 void measureFriction(const MeasureOptions& opt, const RigText& rt, const Rig& rig,
                      Measurements& m) {
   const MeasuredData d = loadData(opt.friction, rig);
-  const LinearDecay l = measured(opt.friction, [&] {
+  const BoardDecay l = measured(opt.friction, [&] {
     return measureLinearDecay(d.t_s, columnOf(d, "x").values, rig.gravity_m_s2);
   });
   const double eps = computeScaled(rig).epsilon, k = 1.0 / (eps * std::sqrt(eps));

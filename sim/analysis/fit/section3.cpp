@@ -75,13 +75,13 @@ FreeDecay measureFreeDecay(const std::vector<double>& t_s, const std::vector<dou
   return out;
 }
 
-LinearDecay measureLinearDecay(const std::vector<double>& t_s, const std::vector<double>& x,
+BoardDecay measureLinearDecay(const std::vector<double>& t_s, const std::vector<double>& x,
                                double gravity_m_s2) {
   const Swings s = enoughSwings(t_s, x, SwingWindow::Crossing, "linear decay");
   std::vector<double> t, y, w;
   for (const Swing& sw : s.swings) t.push_back(sw.t_s), y.push_back(sw.amplitude), w.push_back(1);
   const Line l = fitLine(t, y, w);
-  LinearDecay out;
+  BoardDecay out;
   out.slope_m_per_s = {-l.slope, l.slope_error};
   out.period_s = periodOf(s);
   out.swings = static_cast<int>(s.swings.size());

@@ -35,13 +35,13 @@ FreeDecay measureFreeDecay(const std::vector<double>& t_s, const std::vector<dou
 
 // Linear decay of the board's swing (x in m): the slope of its amplitude against time, the
 // period, and mu-bar. Throws std::invalid_argument with fewer than 3 swings.
-struct LinearDecay {
+struct BoardDecay {
   Estimate slope_m_per_s;  // how fast the amplitude falls
   Estimate period_s;
   Estimate mu_bar;  // the rig key platform.friction.mu
   int swings = 0;
 };
-LinearDecay measureLinearDecay(const std::vector<double>& t_s, const std::vector<double>& x,
+BoardDecay measureLinearDecay(const std::vector<double>& t_s, const std::vector<double>& x,
                                double gravity_m_s2);
 
 // Steady amplitude (rad): the mean swing over the last half of the record (standard error of the

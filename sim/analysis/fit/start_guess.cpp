@@ -28,7 +28,7 @@ std::optional<StartGuess> decayGuess(const Rig& rig, const MeasuredData& data, i
 std::optional<StartGuess> frictionGuess(const Rig& rig, const MeasuredData& data) {
   const DataColumn* c = data.find("x");
   if (!c || rig.numSwinging() > 0 || !(rig.platform.spring_N_m > 0)) return std::nullopt;
-  const LinearDecay d = measureLinearDecay(data.t_s, c->values, rig.gravity_m_s2);
+  const BoardDecay d = measureLinearDecay(data.t_s, c->values, rig.gravity_m_s2);
   if (!(d.mu_bar.value > 0)) return std::nullopt;
   return StartGuess{d.mu_bar.value, "linear decay"};
 }
