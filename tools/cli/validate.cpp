@@ -53,7 +53,8 @@ CLI::App* addValidateCommand(CLI::App& app, ValidateOptions& opt) {
       "validate",
       "validate the full model against the asymptotics: beta1, beta2 against the Coulomb "
       "element, the paper's eight simulations, convergence in epsilon, where the asymptotics "
-      "fail, the experiment's regime sequence; writes report.md with plots");
+      "fail, the experiment's regime sequence, the bifurcations of both models, the paper's "
+      "experiments in each variant of the rig; writes report.md with plots");
   cmd->add_option("--out", opt.out, "output directory")->type_name("DIR")->capture_default_str();
   cmd->add_flag("--quick", opt.quick,
                 "the reduced plan (fewer drive strengths, two convergence scenarios, the rigs' "
