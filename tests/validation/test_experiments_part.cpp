@@ -98,8 +98,7 @@ TEST(ValidationExperiments, InertiaSearchMatchesThePendulumsClosedForm) {
 // while exp2 (leaving antiphase) and exp3 (death) are not (docs/experiments.md).
 TEST(ValidationExperiments, ShippedRigsInBothVariants) {
   const std::vector<Scenario> scenarios = testval::loadScenarios();
-  const std::function<void(const std::string&)> quiet;  // the log keeps a reference to it
-  ValidationLog log(quiet);
+  ValidationLog log({});
   const ExperimentsResult r = runExperiments(2.69, scenarios, directEngines(), log, 2);
   EXPECT_NEAR(r.shipped_inertia, 0.0226 * 0.0225 * 0.0225, 1e-15);
   EXPECT_NEAR(r.variant_hz, 2.69, 2.69e-4);

@@ -5,6 +5,7 @@
 #include <functional>
 #include <mutex>
 #include <string>
+#include <utility>
 
 #include "sim/analysis/validation/validation_runs.h"
 
@@ -13,7 +14,7 @@ namespace metrosync {
 // Progress lines from every thread, one at a time.
 class ValidationLog {
  public:
-  explicit ValidationLog(const std::function<void(const std::string&)>& out) : out_(out) {}
+  explicit ValidationLog(std::function<void(const std::string&)> out) : out_(std::move(out)) {}
   void say(const std::string& line) {
     if (!out_) return;
     std::lock_guard<std::mutex> lock(mutex_);
@@ -23,7 +24,7 @@ class ValidationLog {
   void run(const std::string& what, const ModelRun& r);
 
  private:
-  const std::function<void(const std::string&)>& out_;
+  std::function<void(const std::string&)> out_;  // a copy: a temporary's lambda outlives its line
   std::mutex mutex_;
 };
 
