@@ -76,7 +76,7 @@ FreeDecay measureFreeDecay(const std::vector<double>& t_s, const std::vector<dou
 }
 
 BoardDecay measureLinearDecay(const std::vector<double>& t_s, const std::vector<double>& x,
-                               double gravity_m_s2) {
+                              double gravity_m_s2) {
   const Swings s = enoughSwings(t_s, x, SwingWindow::Crossing, "linear decay");
   std::vector<double> t, y, w;
   for (const Swing& sw : s.swings) t.push_back(sw.t_s), y.push_back(sw.amplitude), w.push_back(1);

@@ -42,7 +42,7 @@ struct BoardDecay {
   int swings = 0;
 };
 BoardDecay measureLinearDecay(const std::vector<double>& t_s, const std::vector<double>& x,
-                               double gravity_m_s2);
+                              double gravity_m_s2);
 
 // Steady amplitude (rad): the mean swing over the last half of the record (standard error of the
 // mean). Throws std::invalid_argument with fewer than 2 swings there.
