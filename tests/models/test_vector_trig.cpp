@@ -3,6 +3,7 @@
 // to its slow path, and the special values.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -114,6 +115,26 @@ TEST(VectorTrig, SmallAnglePolynomialsMatchTheScalarFunctions) {
   EXPECT_FALSE(smallAngleSinCos(one_out, s, c, 3));
   const double nan_in[2] = {0.1, std::numeric_limits<double>::quiet_NaN()};
   EXPECT_FALSE(smallAngleSinCos(nan_in, s, c, 2));
+}
+
+// The polynomials' own bound, tighter than libmvec's: within 2 ulp of glibc over 2e6 random angles
+// of the domain (Horner's rule and Estrin's scheme, models/vector_trig.h, both measured within 2).
+TEST(VectorTrig, SmallAnglePolynomialsAreWithinTwoUlp) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> angle(-kSmallAngle, kSmallAngle);
+  double worst_s = 0.0, worst_c = 0.0;
+  for (int k = 0; k < 1000000; ++k) {
+    const double x[2] = {angle(rng), angle(rng)};
+    double s[2], c[2];
+    ASSERT_TRUE(smallAngleSinCos(x, s, c, 2));
+    for (int i = 0; i < 2; ++i) {
+      worst_s = std::max(worst_s, ulps(s[i], std::sin(x[i])));
+      worst_c = std::max(worst_c, ulps(c[i], std::cos(x[i])));
+    }
+  }
+  EXPECT_LE(worst_s, 2.0);
+  EXPECT_LE(worst_c, 2.0);
+  EXPECT_GT(worst_s + worst_c, 0.0);  // not the same functions: the check can see a difference
 }
 
 // Mirror-image pendulums (exact antiphase) must get mirror-image sines and equal cosines to the
