@@ -5,12 +5,14 @@
 
 #include <cmath>
 #include <functional>
+#include <stdexcept>
 #include <string>
 
 #include "base/constants.h"
 #include "fixtures.h"
 #include "sim/analysis/validation/validation_experiments.h"
 #include "sim/engines/direct/direct_engine.h"
+#include "tools/report/validation_report.h"
 
 namespace metrosync {
 namespace {
@@ -111,6 +113,25 @@ TEST(ValidationExperiments, ShippedRigsInBothVariants) {
                        o.scenario == "experiment-low-friction-inphase";
     EXPECT_EQ(o.reproduces(), stays) << o.scenario << " " << o.variant;
   }
+}
+
+// A part that cannot run (here: no rig to load) is said and counted as a run that stopped, not
+// left out: the command then exits 3 with the rest of its report written.
+TEST(ValidationExperiments, APartThatCannotRunIsCounted) {
+  ValidationPlan plan;
+  plan.beta_s = {};
+  plan.convergence_scenarios = {};
+  plan.regime_scenarios = {};
+  plan.experiments = true;
+  ValidationEngines engines = directEngines();
+  engines.load_rig = [](const std::string& file, const std::vector<std::string>&) -> Rig {
+    throw std::runtime_error("no rig " + file);
+  };
+  const ValidationResults r = runValidation(plan, testval::loadScenarios(), engines, {}, 1);
+  ASSERT_TRUE(r.experiments.has_value());
+  EXPECT_EQ(r.experiments->failure, "no rig experiment-low-friction-antiphase.yaml");
+  EXPECT_EQ(r.incompleteRuns(), 1);
+  EXPECT_NE(validationReportMarkdown(r, {}, {}).find("could not run: no rig"), std::string::npos);
 }
 
 }  // namespace

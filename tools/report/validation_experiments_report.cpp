@@ -50,6 +50,10 @@ std::string outcomeCell(const ExperimentSpec& e, const ExperimentOutcome& o) {
 
 void mdExperimentsSummaryRow(std::ostream& md, const ExperimentsResult& r) {
   md << "| 8. the paper's experiments (fig. exp1-exp3) | ";
+  if (!r.failure.empty()) {
+    md << "could not run: " << r.failure << " |\n";
+    return;
+  }
   for (size_t v = 0; v < r.variants.size(); ++v)
     md << (v ? "; " : "") << r.variants[v].name << ": "
        << reproducedBy(r, r.variants[v].name).size() << " of " << paperExperiments().size()
@@ -58,8 +62,12 @@ void mdExperimentsSummaryRow(std::ostream& md, const ExperimentsResult& r) {
 }
 
 void mdExperiments(std::ostream& md, const ExperimentsResult& r) {
-  md << "\n## 8. The paper's experiments\n\n"
-     << "Each experiment of section 3C is one of the shipped rigs (docs/experiments.md gives every "
+  md << "\n## 8. The paper's experiments\n\n";
+  if (!r.failure.empty()) {
+    md << "The part could not run: " << r.failure << "\n";
+    return;
+  }
+  md << "Each experiment of section 3C is one of the shipped rigs (docs/experiments.md gives every "
         "number, its source and the conflicts between them), run by the full model over the "
         "rig's own duration in each variant of the rig. An experiment is reproduced when the "
         "final regime is the paper's and, where the paper gives a time, the model's is within a "
@@ -110,6 +118,7 @@ void mdExperiments(std::ostream& md, const ExperimentsResult& r) {
 
 nlohmann::json validationExperimentsJson(const ExperimentsResult& r) {
   nlohmann::json j;
+  if (!r.failure.empty()) j["failure"] = r.failure;
   j["frequency_hz"] = jsonNumber(r.frequency_hz);
   j["shipped_hz"] = jsonNumber(r.shipped_hz);
   j["shipped_inertia_kgm2"] = jsonNumber(r.shipped_inertia);

@@ -66,6 +66,7 @@ struct ExperimentsResult {
   double variant_hz = 0.0;       // what that inertia ticks at
   std::vector<ExperimentVariant> variants;
   std::vector<ExperimentOutcome> outcomes;  // experiment-major, variants in order
+  std::string failure;  // why the part could not run (the inertia's search failed), or empty
 };
 
 // One metronome (the rig's first) alone on a bolted board, the other held in its box: its

@@ -23,6 +23,10 @@ int ValidationResults::incompleteRuns() const {
   }
   for (const auto& p : sweep) n += !p.slow.report.complete + !p.full.report.complete;
   for (const auto& c : convergence) n += !c.complete;
+  if (experiments) {
+    n += !experiments->failure.empty();
+    for (const auto& o : experiments->outcomes) n += !o.run.report.complete;
+  }
   return n;
 }
 
