@@ -85,8 +85,8 @@ TEST(ValidationExperiments, InertiaSearchMatchesThePendulumsClosedForm) {
   const MetronomeSpec& m = rig.metronomes[0];
   const double mgL = m.pendulum_mass_kg * rig.gravity_m_s2 * m.length_m;
   const double hz = 2.0;
-  double reached = 0.0;
-  const double inertia = inertiaForFrequency(engines, file, free, m.inertia_kgm2, hz, &reached);
+  const InertiaSearch search = inertiaForFrequency(engines, file, free, m.inertia_kgm2, hz);
+  const double reached = search.hz, inertia = search.inertia;
   const double closed = mgL / std::pow(2 * kPi * hz, 2);
   EXPECT_NEAR(reached, hz, 1e-4 * hz);
   EXPECT_NEAR(inertia / closed, 1.0, 3e-4) << inertia << " against " << closed;

@@ -82,22 +82,23 @@ double oneMetronomeFrequency(const ValidationEngines& engines, const std::string
   return static_cast<double>(sink.up.size() - 1) / (sink.up.back() - sink.up.front());
 }
 
-double inertiaForFrequency(const ValidationEngines& engines, const std::string& rig_file,
-                           const std::vector<std::string>& sets, double start_inertia, double hz,
-                           double* reached_hz) {
+InertiaSearch inertiaForFrequency(const ValidationEngines& engines, const std::string& rig_file,
+                                  const std::vector<std::string>& sets, double start_inertia,
+                                  double hz) {
+  InertiaSearch search;
   auto frequencyAt = [&](double inertia) {
     std::vector<std::string> with = sets;
     with.push_back(inertiaSet(inertia));
+    ++search.runs;
     return oneMetronomeFrequency(engines, rig_file, with);
   };
-  double inertia = start_inertia;
-  double f = frequencyAt(inertia);
-  for (int k = 0; k < kInertiaIterations && std::abs(f - hz) > 1e-4 * hz; ++k) {
-    inertia *= (f / hz) * (f / hz);  // f ~ I^(-1/2) at a fixed amplitude
-    f = frequencyAt(inertia);
+  search.inertia = start_inertia;
+  search.start_hz = search.hz = frequencyAt(start_inertia);
+  for (int k = 0; k < kInertiaIterations && std::abs(search.hz - hz) > 1e-4 * hz; ++k) {
+    search.inertia *= (search.hz / hz) * (search.hz / hz);  // f ~ I^(-1/2) at a fixed amplitude
+    search.hz = frequencyAt(search.inertia);
   }
-  if (reached_hz) *reached_hz = f;
-  return inertia;
+  return search;
 }
 
 double experimentClock(const ExperimentSpec& e, const ModelRun& run) {
@@ -144,12 +145,15 @@ ExperimentsResult runExperiments(double frequency_hz, const std::vector<Scenario
   res.frequency_hz = frequency_hz;
   const std::string& base = scenarioFile(scenarios, paperExperiments().front().scenario);
   res.shipped_inertia = engines.load_rig(base, {}).metronomes.front().inertia_kgm2;
-  res.shipped_hz = oneMetronomeFrequency(engines, base, {});
-  res.inertia =
-      inertiaForFrequency(engines, base, {}, res.shipped_inertia, frequency_hz, &res.variant_hz);
+  // the search starts at the shipped inertia: its first run is the shipped metronome's
+  const InertiaSearch search =
+      inertiaForFrequency(engines, base, {}, res.shipped_inertia, frequency_hz);
+  res.shipped_hz = search.start_hz;
+  res.inertia = search.inertia;
+  res.variant_hz = search.hz;
   log.say("experiments: one metronome ticks at " + numberText(res.shipped_hz, 5) +
-          " Hz as shipped, at " + numberText(res.variant_hz, 5) +
-          " Hz with I = " + numberText(res.inertia, 4) + " kg m^2");
+          " Hz as shipped, at " + numberText(res.variant_hz, 5) + " Hz with I = " +
+          numberText(res.inertia, 4) + " kg m^2 (" + std::to_string(search.runs) + " runs)");
   res.variants = {
       {"as shipped", "I = m L^2 (the paper's assumption, section 3B)", {}},
       {"measured frequency",

@@ -79,9 +79,15 @@ double oneMetronomeFrequency(const ValidationEngines& engines, const std::string
 // (oneMetronomeFrequency with `sets`): I scaled by (f / hz)^2 until f is within 1e-4 of hz (at
 // most kInertiaIterations more runs).
 constexpr int kInertiaIterations = 8;
-double inertiaForFrequency(const ValidationEngines& engines, const std::string& rig_file,
-                           const std::vector<std::string>& sets, double start_inertia, double hz,
-                           double* reached_hz = nullptr);
+struct InertiaSearch {
+  double start_hz = 0.0;  // the frequency at start_inertia (the search's first run)
+  double inertia = 0.0;   // kg m^2
+  double hz = 0.0;        // the frequency at that inertia
+  int runs = 0;
+};
+InertiaSearch inertiaForFrequency(const ValidationEngines& engines, const std::string& rig_file,
+                                  const std::vector<std::string>& sets, double start_inertia,
+                                  double hz);
 
 // The clock of an experiment on a run (seconds; NaN when it never happened).
 double experimentClock(const ExperimentSpec& e, const ModelRun& run);
