@@ -46,9 +46,9 @@ typedef double Pair __attribute__((vector_size(16)));  // two angles: one SSE2 r
 // polynomial; Estrin's is 4 deep. The right-hand side waits on these sines at every stage (the
 // next stage's state is made from this one's derivative), so the chain's latency is the
 // evaluation's. Measured against Horner's rule (metrosync_engine_probe, medians of 11 alternating
-// runs, quiet 2-core machine): the bench scenes 1.03-1.16x faster (peer-n2 1.05x, suppression
-// 1.16x) for 0.4% (N = 2) and 0.8% (N = 8) more instructions. The same accuracy: within 2 ulp of
-// glibc over 2e6 random angles (tests/models/test_vector_trig.cpp).
+// runs, 2 cores with nothing else running): the bench scenes 1.03-1.16x faster (peer-n2 1.05x,
+// suppression 1.16x) for 0.4% (N = 2) and 0.8% (N = 8) more instructions. The same accuracy: within
+// 2 ulp of glibc over 2e6 random angles (tests/models/test_vector_trig.cpp).
 inline void smallSinCos(Pair x, Pair& s, Pair& c) {
   const Pair u = x * x;
   const Pair u2 = u * u;
