@@ -3,7 +3,7 @@
 // velocity, in each of the law's parameters and the normal force), the stick/slip bounds of a
 // set-valued law (contact/set_valued_law.h) and what the platform can do (move, stick, feel a
 // force). A law's file (contact/*.cpp, LawKind::platform) makes one; the direct engine
-// (models/minimal_equations.cpp, models/network_equations.cpp), the event resolver (sim/events/),
+// (models/platform_arrow.cpp, models/network_equations.cpp), the event resolver (sim/events/),
 // the Simbody elements (contact/simbody/), the periodic-orbit Jacobians and the bench's peers ask
 // it, never which law it is.
 //

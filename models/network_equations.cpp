@@ -5,15 +5,14 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "models/platform_arrow_rates.h"
+
 namespace metrosync::network {
 
 NetworkEquations::NetworkEquations(const Network& net) : couplings_(net.couplings) {
   lay_.platforms = static_cast<int>(net.platforms.size());
   for (int p = 0; p < lay_.platforms; ++p) {
     const NetworkPlatform& np = net.platforms[p];
-    // the platform's arrow: the single-platform equations of its rig
-    arrows_.emplace_back(np.rig);
-    const direct::MetronomeEquations& one = arrows_.back();
     Block b;
     b.moves = np.rig.platform.friction.platformMoves();
     b.below = np.on;
@@ -22,18 +21,50 @@ NetworkEquations::NetworkEquations(const Network& net) : couplings_(net.coupling
     b.c = np.spring_c_Ns_m;
     // the normal force carries what rests on it
     b.friction = np.rig.platform.friction.platform(net.carriedMass(p) * net.gravity_m_s2);
+    arrows_.emplace_back(np.rig, b.friction);
+    const PlatformArrow& one = arrows_.back();
     b.first = static_cast<int>(pend_.size());
     b.count = one.numSwinging();
     for (int j = 0; j < one.numSwinging(); ++j) {
-      direct::PendulumConstants pc = one.pendulum(j);
+      PendulumConstants pc = one.pendulum(j);
       pc.rig_index += net.firstMetronome(p);  // the metronome's global number
       pend_.push_back(pc);
     }
+    lay_.dampers = lay_.dampers || (b.moves && b.c != 0);
     blocks_.push_back(b);
   }
+  for (const Coupling& k : couplings_) lay_.dampers = lay_.dampers || k.c_Ns_m != 0;
   lay_.n = static_cast<int>(pend_.size());
   meff_.resize(lay_.platforms);
+  single_arrow_ =
+      lay_.platforms == 1 && blocks_[0].below < 0 && couplings_.empty() && !lay_.dampers;
 }
+
+NetworkEquations::NetworkEquations(const Rig& rig) : NetworkEquations(networkOfOne(rig)) {}
+
+// The single board's right-hand side: its arrow's fused pass inlined whole, one call per
+// evaluation from the stepper (as the single rig's always was).
+template <int N>
+void NetworkEquations::rhsN(const double* y, PlatformMode mode, double* dy) const {
+  const int n = N > 0 ? N : lay_.n;
+  const ArrowPower power =
+      arrows_[0].tableRates<N>(y, y + 2, y + 2 + n, mode, dy, dy + 2, dy + 2 + n);
+  dy[2 + 2 * n] = power.damping;   // lay_.dampingWork()
+  dy[3 + 2 * n] = power.friction;  // lay_.frictionWork()
+}
+
+#define METROSYNC_SINGLE_BOARD_RHS(N) \
+  template void NetworkEquations::rhsN<N>(const double*, PlatformMode, double*) const;
+METROSYNC_SINGLE_BOARD_RHS(NetworkEquations::kAnyN)
+METROSYNC_SINGLE_BOARD_RHS(1)
+METROSYNC_SINGLE_BOARD_RHS(2)
+METROSYNC_SINGLE_BOARD_RHS(3)
+METROSYNC_SINGLE_BOARD_RHS(4)
+METROSYNC_SINGLE_BOARD_RHS(5)
+METROSYNC_SINGLE_BOARD_RHS(6)
+METROSYNC_SINGLE_BOARD_RHS(7)
+METROSYNC_SINGLE_BOARD_RHS(8)
+#undef METROSYNC_SINGLE_BOARD_RHS
 
 bool NetworkEquations::stuck(int p, const std::vector<PlatformMode>& modes) const {
   return blocks_[p].moves && blocks_[p].friction.setValued() && modes[p] == PlatformMode::Stuck;
@@ -126,7 +157,7 @@ void NetworkEquations::rhs(const double* y, const std::vector<PlatformMode>& mod
   }
   dy[lay_.dampingWork()] = damping;
   dy[lay_.frictionWork()] = friction;
-  dy[lay_.damperWork()] = dampers;
+  if (lay_.dampers) dy[lay_.damperWork()] = dampers;
 }
 
 std::vector<double> NetworkEquations::holdingForces(const double* y,
@@ -138,7 +169,7 @@ std::vector<double> NetworkEquations::holdingForces(const double* y,
 
 double NetworkEquations::inverseMass(const double* y, int p) const {
   if (p < 0 || !blocks_[p].moves) return 0.0;
-  return arrows_[p].platformMobilityAt(y + lay_.theta(blocks_[p].first));
+  return arrows_[p].mobility(y + lay_.theta(blocks_[p].first));
 }
 
 double NetworkEquations::applyImpulse(double* y, const std::vector<double>& pin,
@@ -150,8 +181,8 @@ double NetworkEquations::applyImpulse(double* y, const std::vector<double>& pin,
     double P = contact.empty() ? 0.0 : contact[p];
     for (int q = 0; q < lay_.platforms; ++q)
       if (blocks_[q].below == p && !contact.empty()) P -= contact[q];
-    dT += arrows_[p].applyImpulseAt(y + lay_.theta(b.first), y + lay_.v(p), y + lay_.omega(b.first),
-                                    pin.data() + b.first, P);
+    dT += arrows_[p].applyImpulse(y + lay_.theta(b.first), y + lay_.v(p), y + lay_.omega(b.first),
+                                  pin.data() + b.first, P);
   }
   return dT;
 }
@@ -176,8 +207,8 @@ double NetworkEquations::energy(const double* y) const {
   double e = 0.0;
   for (int p = 0; p < lay_.platforms; ++p) {
     const Block& b = blocks_[p];
-    e += arrows_[p].energyAt(y[lay_.x(p)], y[lay_.v(p)], y + lay_.theta(b.first),
-                             y + lay_.omega(b.first));
+    e += arrows_[p].energy(y[lay_.x(p)], y[lay_.v(p)], y + lay_.theta(b.first),
+                           y + lay_.omega(b.first));
   }
   for (const Coupling& k : couplings_) {
     const double d = y[lay_.x(k.a)] - y[lay_.x(k.b)];

@@ -1,10 +1,10 @@
-// The full model (e1.1a-c) for a network of platforms (models/network.h, docs/networks.md) in
-// minimal coordinates, physical units: each platform's absolute position x_p and one angle per
-// swinging pendulum. In absolute coordinates platforms share no inertia, so the mass matrix is
-// block-diagonal with one arrow per platform,
+// The full model (e1.1a-c) in minimal coordinates, physical units, for every rig: a network of
+// platforms (models/network.h, docs/networks.md), a single board being a network of one: each
+// platform's absolute position x_p and one angle per swinging pendulum. In absolute coordinates
+// platforms share no inertia, so the mass matrix is block-diagonal with one arrow per platform,
 //   [[M_p, c_p^T], [c_p, diag(I_p)]],  c_j = m_j L_j cos theta_j,  M_p = rig.totalMass(),
 // and each arrow is solved in O(its pendulums) by its Schur complement Meff_p = M_p - sum c_j^2/I_j
-// exactly as for one platform (models/minimal_equations.h). Platforms interact through forces only:
+// (models/platform_arrow.h). Platforms interact through forces only:
 //   ground spring and damper  -k_p x_p - c_p xdot_p  (a platform on the table)
 //   couplings                 -k (x_a - x_b) - c (xdot_a - xdot_b) on a, the opposite on b
 //   friction of the contact under p (the table, or the platform p rests on): F_p(u_p), u_p = xdot_p
@@ -14,31 +14,23 @@
 // one small linear system for the lambdas (contacts x contacts; platforms are few).
 // A fixed platform keeps its x = xdot = 0 entries but has no equation (it never moves).
 //
-// State y: x_p, xdot_p for every platform (file order), theta_j then thetadot_j for every swinging
-// pendulum (file order over the network), then three quadratures of the energy ledger: the work of
-// the pivot dampers, of friction, and of the ground and coupling dampers (J).
+// State y: models/network_layout.h (the dampers' work only in a network with a damper).
+//
+// A single board -- one platform on the table, no damper, no coupling (singleArrow()) -- has its
+// own entry points, with one platform mode and N known to the compiler: its arrow's fused pass
+// (PlatformArrow::tableRates), the holding force and its rate in closed form. They give the bits
+// the single rig always had; the general ones agree with them to round-off.
 #pragma once
 
 #include <vector>
 
 #include "contact/escapement.h"
 #include "contact/platform_friction.h"
-#include "models/minimal_equations.h"
 #include "models/network.h"
+#include "models/network_layout.h"
+#include "models/platform_arrow.h"
 
 namespace metrosync::network {
-
-struct Layout {
-  int platforms = 0, n = 0;  // platforms, swinging pendulums
-  int x(int p) const { return 2 * p; }
-  int v(int p) const { return 2 * p + 1; }
-  int theta(int j) const { return 2 * platforms + j; }
-  int omega(int j) const { return 2 * platforms + n + j; }
-  int dampingWork() const { return 2 * platforms + 2 * n; }
-  int frictionWork() const { return dampingWork() + 1; }
-  int damperWork() const { return dampingWork() + 2; }
-  int dim() const { return dampingWork() + 3; }
-};
 
 struct Block {
   bool moves = false;         // not fixed
@@ -52,11 +44,13 @@ struct Block {
 class NetworkEquations {
  public:
   explicit NetworkEquations(const Network& net);
+  // a rig as the network of one it is (models/network.h, networkOfOne)
+  explicit NetworkEquations(const Rig& rig);
 
   const Layout& layout() const { return lay_; }
   int numPlatforms() const { return lay_.platforms; }
   const Block& block(int p) const { return blocks_[p]; }
-  const direct::PendulumConstants& pendulum(int j) const { return pend_[j]; }
+  const PendulumConstants& pendulum(int j) const { return pend_[j]; }
   Escapement escapement(int j) const { return {pend_[j].theta_c, pend_[j].impulse}; }
   // platform p's contact is Coulomb and currently stuck in `modes`
   bool stuck(int p, const std::vector<PlatformMode>& modes) const;
@@ -77,8 +71,40 @@ class NetworkEquations {
   double contactMobility(const double* y, int p) const;
   // Horizontal momentum sum_p (M_p xdot_p + sum_j c_j thetadot_j) (N s).
   double momentum(const double* y) const;
-  // Kinetic + potential energy (J): gravity as in minimal_equations.h, every spring's energy.
+  // Kinetic + potential energy (J): gravity as in platform_arrow.h, every spring's energy.
   double energy(const double* y) const;
+
+  // --- a single board: one platform on the table, no damper, no coupling ----------------------
+  bool singleArrow() const { return single_arrow_; }
+  // its platform's arrow, and the arrow's facts
+  const PlatformArrow& arrow() const { return arrows_[0]; }
+  int numSwinging() const { return lay_.n; }
+  bool hasPlatform() const { return blocks_[0].moves; }
+  const PlatformFriction& friction() const { return blocks_[0].friction; }
+  // the set-valued law's bounds (friction().setValued() only)
+  const SetValuedLaw& dryFriction() const { return blocks_[0].friction.bounds(); }
+  double totalMass() const { return blocks_[0].mass; }
+  // dy/dt in the platform's mode (only a set-valued law uses it: Stuck holds xdot = 0, a slip
+  // feels the law's slip force); dy gets the damping and friction power too. N == numSwinging()
+  // (1 .. PlatformArrow::kMaxFixedN) or kAnyN: the same operations in the same order.
+  static constexpr int kAnyN = PlatformArrow::kAnyN, kMaxFixedN = PlatformArrow::kMaxFixedN;
+  template <int N>
+  void rhsN(const double* y, PlatformMode mode, double* dy) const;
+  void rhs(const double* y, PlatformMode mode, double* dy) const { rhsN<kAnyN>(y, mode, dy); }
+  // H = -G: the force friction must supply to keep the platform still (xdot = 0 in y), and dH/dt
+  // along the motion with the platform held still (xddot = 0).
+  double holdingForce(const double* y) const {
+    return arrows_[0].tableHoldingForce(y[0], y + 2, y + 2 + lay_.n);
+  }
+  double holdingForceRate(const double* y) const {
+    return arrows_[0].tableHoldingForceRate(y + 2, y + 2 + lay_.n);
+  }
+  // applyImpulse() with pin_impulse (n x 1) and platform_impulse on x
+  double applyImpulse(double* y, const double* pin_impulse, double platform_impulse) const {
+    return arrows_[0].applyImpulse(y + 2, y + 1, y + 2 + lay_.n, pin_impulse, platform_impulse);
+  }
+  // (M^-1)_xx = 1 / Meff (1/kg)
+  double platformMobility(const double* y) const { return arrows_[0].mobility(y + 2); }
 
  private:
   // Schur pass of platform p: Meff_p, and G_p (every force on x_p but friction, after eliminating
@@ -92,10 +118,10 @@ class NetworkEquations {
 
   Layout lay_;
   std::vector<Block> blocks_;
-  // each platform's arrow: the single-platform equations of its rig, whose arithmetic (Schur
-  // pass, pendulum accelerations, impulses, energy) this class composes
-  std::vector<direct::MetronomeEquations> arrows_;
-  std::vector<direct::PendulumConstants> pend_;
+  // each platform's arrow (its Schur pass, pendulum accelerations, impulses, energy), composed
+  std::vector<PlatformArrow> arrows_;
+  bool single_arrow_ = false;
+  std::vector<PendulumConstants> pend_;
   std::vector<Coupling> couplings_;
   mutable std::vector<double> meff_;
 };

@@ -160,7 +160,7 @@ void PlatformSystem::addPendulums(int p) {
   MobilizedBody parent = matter_.Ground();
   if (b.moves) parent = sliders_[p];
   for (int j = b.first; j < b.first + b.count; ++j) {
-    const direct::PendulumConstants& q = eq_.pendulum(j);
+    const network::PendulumConstants& q = eq_.pendulum(j);
     const int i = q.rig_index - net_.firstMetronome(p);  // its index on the platform
     const MetronomeSpec& m = net_.platforms[p].rig.metronomes[i];
     const double mass = m.pendulum_mass_kg, L = m.length_m, I = m.inertia_kgm2;
@@ -231,7 +231,7 @@ void PlatformSystem::layoutState(const State& s, std::vector<double>& y) const {
   }
   y[lay.dampingWork()] = dampingLoss(s);
   y[lay.frictionWork()] = frictionLoss(s);
-  y[lay.damperWork()] = damperLoss(s);
+  if (lay.dampers) y[lay.damperWork()] = damperLoss(s);
 }
 
 State PlatformSystem::initialState() {
@@ -246,7 +246,7 @@ State PlatformSystem::initialState() {
     sliders_[p].setOneU(s, MobilizerUIndex(0), ps.start_v_m_s - (bs ? bs->start_v_m_s : 0.0));
   }
   for (int j = 0; j < numPendulums(); ++j) {
-    const direct::PendulumConstants& q = eq_.pendulum(j);
+    const network::PendulumConstants& q = eq_.pendulum(j);
     const int p = owner_[j];
     const MetronomeSpec& m = net_.platforms[p].rig.metronomes[q.rig_index - net_.firstMetronome(p)];
     pins_[j].setOneQ(s, MobilizerQIndex(0), m.start_angle_rad);

@@ -38,7 +38,7 @@ struct NetworkVerdict::Impl {
     omega0 = 1.0 / sp.time_scale_s;
     swinging_index.assign(n.numMetronomes(), -1);
     for (int j = 0; j < lay.n; ++j) {
-      const direct::PendulumConstants& q = eq.pendulum(j);
+      const network::PendulumConstants& q = eq.pendulum(j);
       omega.push_back(std::sqrt(q.mgL / q.inertia));
       swinging_index[q.rig_index] = j;
     }

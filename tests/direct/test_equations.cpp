@@ -1,17 +1,19 @@
-// The direct engine's equations (models/minimal_equations.h) against an independent formulation:
-// the full mass matrix [[M, c^T], [c, diag(I)]] and Lagrange's equations written out densely and
-// solved by Eigen, on random rigs and states (property tests, Pinocchio style). The O(N) Schur
-// solves must give the same accelerations, holding force and tick impulses.
+// The direct engine's equations (models/network_equations.h, a single board) against an independent
+// formulation: the full mass matrix [[M, c^T], [c, diag(I)]] and Lagrange's equations written out
+// densely and solved by Eigen, on random rigs and states (property tests, Pinocchio style). The
+// O(N) Schur solves must give the same accelerations, holding force and tick impulses.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 #include <cmath>
 #include <random>
 
-#include "models/minimal_equations.h"
+#include "models/network_equations.h"
 
-namespace metrosync::direct {
+namespace metrosync::network {
 namespace {
+
+constexpr int kX = 0, kV = 1;  // a single board's x and xdot (models/network_layout.h)
 
 struct RandomCase {
   Rig rig;
@@ -43,10 +45,10 @@ RandomCase makeCase(std::mt19937& rng, int n, Law law) {
     m.locked = n > 1 && i == n - 1 && u(rng) < 0.5;  // sometimes a locked one
     rig.metronomes.push_back(m);
   }
-  MetronomeEquations eq(rig);
+  NetworkEquations eq(rig);
   rc.y.assign(eq.layout().dim(), 0.0);
-  rc.y[StateLayout::kX] = 0.01 * (u(rng) - 0.5);
-  rc.y[StateLayout::kV] = 0.1 * (u(rng) - 0.5);
+  rc.y[kX] = 0.01 * (u(rng) - 0.5);
+  rc.y[kV] = 0.1 * (u(rng) - 0.5);
   for (int j = 0; j < eq.numSwinging(); ++j) {
     rc.y[eq.layout().theta(j)] = 2.0 * (u(rng) - 0.5);
     rc.y[eq.layout().omega(j)] = 10.0 * (u(rng) - 0.5);
@@ -61,7 +63,7 @@ struct Dense {
   Eigen::VectorXd Q;
 };
 
-Dense dense(const MetronomeEquations& eq, const Rig& rig, const std::vector<double>& y) {
+Dense dense(const NetworkEquations& eq, const Rig& rig, const std::vector<double>& y) {
   const int n = eq.numSwinging();
   Dense d;
   d.M = Eigen::MatrixXd::Zero(n + 1, n + 1);
@@ -89,7 +91,7 @@ TEST(DirectEquations, SchurSolveMatchesTheDenseMassMatrix) {
     const int n = 1 + trial % 7;
     const Law law = static_cast<Law>(trial % 3);  // Coulomb, Viscous, None
     RandomCase rc = makeCase(rng, n, law);
-    MetronomeEquations eq(rc.rig);
+    NetworkEquations eq(rc.rig);
     const Dense d = dense(eq, rc.rig, rc.y);
     for (PlatformMode mode : {PlatformMode::SlipPositive, PlatformMode::SlipNegative}) {
       std::vector<double> dy(rc.y.size());
@@ -101,17 +103,17 @@ TEST(DirectEquations, SchurSolveMatchesTheDenseMassMatrix) {
       const Eigen::VectorXd qdd = d.M.ldlt().solve(rhs);
       // relative to the size of the accelerations: the two solves differ by rounding only
       const double scale = 1.0 + qdd.cwiseAbs().maxCoeff();
-      EXPECT_NEAR(dy[StateLayout::kV], qdd(0), 1e-12 * scale) << "trial " << trial;
+      EXPECT_NEAR(dy[kV], qdd(0), 1e-12 * scale) << "trial " << trial;
       for (int j = 0; j < eq.numSwinging(); ++j)
         EXPECT_NEAR(dy[eq.layout().omega(j)], qdd(j + 1), 1e-12 * scale) << "trial " << trial;
     }
     // held still (Coulomb stuck): xddot = 0, and friction supplies the platform row's residual
     if (law == Law::Coulomb) {
       std::vector<double> ys = rc.y, dy(rc.y.size());
-      ys[StateLayout::kV] = 0.0;
+      ys[kV] = 0.0;
       eq.rhs(ys.data(), PlatformMode::Stuck, dy.data());
-      EXPECT_EQ(dy[StateLayout::kV], 0.0);
-      EXPECT_EQ(dy[StateLayout::kX], 0.0);
+      EXPECT_EQ(dy[kV], 0.0);
+      EXPECT_EQ(dy[kX], 0.0);
       const Dense ds = dense(eq, rc.rig, ys);
       Eigen::VectorXd thdd(eq.numSwinging());
       for (int j = 0; j < eq.numSwinging(); ++j) thdd(j) = dy[eq.layout().omega(j)];
@@ -145,7 +147,7 @@ TEST(DirectEquations, CombinedImpulseMatchesTheDenseMassMatrix) {
   for (int trial = 0; trial < 100; ++trial) {
     const int n = 1 + trial % 6;
     RandomCase rc = makeCase(rng, n, Law::Coulomb);
-    MetronomeEquations eq(rc.rig);
+    NetworkEquations eq(rc.rig);
     const Dense d = dense(eq, rc.rig, rc.y);
     std::vector<double> pins(eq.numSwinging(), 0.0);
     Eigen::VectorXd impulse = Eigen::VectorXd::Zero(eq.numSwinging() + 1);
@@ -160,7 +162,7 @@ TEST(DirectEquations, CombinedImpulseMatchesTheDenseMassMatrix) {
     std::vector<double> y = rc.y;
     const double dT = eq.applyImpulse(y.data(), pins.data(), px);
     const double scale = du.cwiseAbs().maxCoeff();
-    EXPECT_NEAR(y[StateLayout::kV] - rc.y[StateLayout::kV], du(0), 1e-12 * scale);
+    EXPECT_NEAR(y[kV] - rc.y[kV], du(0), 1e-12 * scale);
     for (int j = 0; j < eq.numSwinging(); ++j)
       EXPECT_NEAR(y[eq.layout().omega(j)] - rc.y[eq.layout().omega(j)], du(j + 1), 1e-12 * scale);
     // positions do not jump
@@ -176,7 +178,7 @@ TEST(DirectEquations, CombinedImpulseMatchesTheDenseMassMatrix) {
     auto momentum = [&](const std::vector<double>& s) {
       const Dense dd = dense(eq, rc.rig, s);
       Eigen::VectorXd u(eq.numSwinging() + 1);
-      u(0) = s[StateLayout::kV];
+      u(0) = s[kV];
       for (int j = 0; j < eq.numSwinging(); ++j) u(j + 1) = s[eq.layout().omega(j)];
       return dd.M.row(0).dot(u);
     };
@@ -192,9 +194,9 @@ TEST(DirectEquations, EnergyRateIsMinusTheDissipatedPower) {
   for (int trial = 0; trial < 100; ++trial) {
     const Law law = static_cast<Law>(trial % 3);
     RandomCase rc = makeCase(rng, 1 + trial % 5, law);
-    MetronomeEquations eq(rc.rig);
+    NetworkEquations eq(rc.rig);
     const PlatformMode mode =
-        rc.y[StateLayout::kV] > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative;
+        rc.y[kV] > 0 ? PlatformMode::SlipPositive : PlatformMode::SlipNegative;
     std::vector<double> dy(rc.y.size());
     eq.rhs(rc.y.data(), mode, dy.data());
     const double h = 1e-7;
@@ -212,4 +214,4 @@ TEST(DirectEquations, EnergyRateIsMinusTheDissipatedPower) {
 }
 
 }  // namespace
-}  // namespace metrosync::direct
+}  // namespace metrosync::network

@@ -1,8 +1,9 @@
 // The limiting case of the one model (issue 24): a network of one platform on the table, no
-// coupling, no ground damper, is the single rig. Its equations (models/network_equations.h, which
-// compose each platform's single-platform arrow) against the single-platform equations
-// (models/minimal_equations.h) on random states in every contact mode, and its run on the
-// network engine against the single-platform engine's.
+// coupling, no ground damper, is the single rig. The network's general equations
+// (models/network_equations.h, composing each platform's arrow and solving the stuck contacts'
+// holding forces) against its single-board entries (the arrow's fused pass with one platform mode,
+// the closed-form holding force) on random states in every contact mode, and its run on the
+// network's model against the single rig's.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "models/minimal_equations.h"
 #include "models/network_equations.h"
 #include "sim/engines/direct/direct_engine.h"
 #include "sim/engines/engine.h"
@@ -55,22 +55,24 @@ void expectSameRates(const std::string& friction, PlatformMode mode) {
   const Network net = loadNetworkText(board(friction, 1.0), "one.yaml");
   ASSERT_EQ(net.platforms.size(), 1u);
   const network::NetworkEquations nq(net);
-  const direct::MetronomeEquations sq(net.platforms[0].rig);
+  ASSERT_TRUE(nq.singleArrow());
+  const network::NetworkEquations& sq = nq;  // its single-board entries
   const network::Layout lay = nq.layout();
-  const direct::StateLayout sl = sq.layout();
-  ASSERT_EQ(lay.n, sl.n);
+  const network::Layout sl = lay;
+  ASSERT_FALSE(lay.dampers);
+  ASSERT_EQ(lay.dim(), 4 + 2 * lay.n);  // the layout the single rig always had
   std::mt19937 gen(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int trial = 0; trial < 50; ++trial) {
     std::vector<double> ys(sl.dim(), 0.0), yn(lay.dim(), 0.0);
-    ys[direct::StateLayout::kX] = 0.01 * u(gen);
-    ys[direct::StateLayout::kV] = mode == PlatformMode::Stuck ? 0.0 : 0.05 * u(gen);
+    ys[sl.x(0)] = 0.01 * u(gen);
+    ys[sl.v(0)] = mode == PlatformMode::Stuck ? 0.0 : 0.05 * u(gen);
     for (int j = 0; j < sl.n; ++j) {
       ys[sl.theta(j)] = 1.2 * u(gen);
       ys[sl.omega(j)] = 5.0 * u(gen);
     }
-    yn[lay.x(0)] = ys[direct::StateLayout::kX];
-    yn[lay.v(0)] = ys[direct::StateLayout::kV];
+    yn[lay.x(0)] = ys[sl.x(0)];
+    yn[lay.v(0)] = ys[sl.v(0)];
     for (int j = 0; j < sl.n; ++j) {
       yn[lay.theta(j)] = ys[sl.theta(j)];
       yn[lay.omega(j)] = ys[sl.omega(j)];
@@ -78,10 +80,10 @@ void expectSameRates(const std::string& friction, PlatformMode mode) {
     std::vector<double> ds(sl.dim()), dn(lay.dim());
     sq.rhs(ys.data(), mode, ds.data());
     nq.rhs(yn.data(), {mode}, dn.data());
-    const double a_size = std::max(std::abs(ds[direct::StateLayout::kV]),
-                                   size(ds, sl.omega(0), sl.omega(0) + sl.n) * 1e-3);
-    EXPECT_EQ(dn[lay.x(0)], ds[direct::StateLayout::kX]);
-    EXPECT_NEAR(dn[lay.v(0)], ds[direct::StateLayout::kV], kRoundOff * a_size) << trial;
+    const double a_size =
+        std::max(std::abs(ds[sl.v(0)]), size(ds, sl.omega(0), sl.omega(0) + sl.n) * 1e-3);
+    EXPECT_EQ(dn[lay.x(0)], ds[sl.x(0)]);
+    EXPECT_NEAR(dn[lay.v(0)], ds[sl.v(0)], kRoundOff * a_size) << trial;
     const double dw_size = size(ds, sl.omega(0), sl.omega(0) + sl.n);
     for (int j = 0; j < sl.n; ++j) {
       EXPECT_EQ(dn[lay.theta(j)], ds[sl.theta(j)]) << trial << " " << j;
@@ -91,18 +93,17 @@ void expectSameRates(const std::string& friction, PlatformMode mode) {
     EXPECT_NEAR(dn[lay.frictionWork()], ds[sl.frictionWork()],
                 kRoundOff * std::abs(ds[sl.frictionWork()]))
         << trial;
-    EXPECT_EQ(dn[lay.damperWork()], 0.0);
     // the energy and an impulse are the arrow's own arithmetic: the same bits
     EXPECT_EQ(nq.energy(yn.data()), sq.energy(ys.data())) << trial;
     const std::vector<double> pin = {1e-4 * u(gen), 1e-4 * u(gen)};
     const double contact = 1e-3 * u(gen);
     EXPECT_EQ(nq.applyImpulse(yn.data(), pin, {contact}),
               sq.applyImpulse(ys.data(), pin.data(), contact));
-    EXPECT_EQ(yn[lay.v(0)], ys[direct::StateLayout::kV]);
+    EXPECT_EQ(yn[lay.v(0)], ys[sl.v(0)]);
     for (int j = 0; j < sl.n; ++j) EXPECT_EQ(yn[lay.omega(j)], ys[sl.omega(j)]) << j;
     EXPECT_EQ(nq.contactMobility(yn.data(), 0), sq.platformMobility(ys.data()));
     if (mode == PlatformMode::Stuck && friction.find("coulomb") != std::string::npos) {
-      yn[lay.v(0)] = ys[direct::StateLayout::kV] = 0.0;
+      yn[lay.v(0)] = ys[sl.v(0)] = 0.0;
       const double h = sq.holdingForce(ys.data());
       EXPECT_NEAR(nq.holdingForces(yn.data(), {mode})[0], h, kRoundOff * std::abs(h)) << trial;
     }
@@ -180,6 +181,7 @@ TEST(OnePlatformNetwork, TheSinkDoesNotChooseTheModel) {
   ASSERT_GE(both.states.size(), 20u);
   ASSERT_EQ(both.states.size(), both.trajectory.size());
   const network::Layout lay = network::NetworkEquations(net).layout();
+  EXPECT_FALSE(lay.dampers);  // no damper: no slot for its work
   for (std::size_t r = 0; r < both.states.size(); ++r) {
     const MemorySink::State& s = both.states[r];
     const std::vector<double>& row = both.trajectory[r];  // t, x, xdot, theta_i, thetadot_i, mode
@@ -193,7 +195,6 @@ TEST(OnePlatformNetwork, TheSinkDoesNotChooseTheModel) {
     }
     ASSERT_EQ(s.modes.size(), 1u);
     EXPECT_EQ(static_cast<double>(static_cast<int>(s.modes[0])), row.back()) << r;
-    EXPECT_EQ(s.y[lay.damperWork()], 0.0);
   }
   EXPECT_EQ(both.states.back().t, net.sim.t_end_s);
   EXPECT_EQ(b.final_state, both.states.back().y);

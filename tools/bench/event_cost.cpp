@@ -6,7 +6,7 @@
 #include <iostream>
 
 #include "base/number_text.h"
-#include "models/minimal_equations.h"
+#include "models/network_equations.h"
 #include "sim/engines/direct/direct_integrators.h"
 #include "sim/engines/direct/start_state.h"
 
@@ -14,7 +14,7 @@ namespace metrosync::bench {
 
 namespace {
 
-using direct::MetronomeEquations;
+using network::NetworkEquations;
 
 // Batches of evaluations, each about this long: far above the clock's resolution.
 constexpr double kBatchS = 2e-3;
@@ -29,7 +29,7 @@ double threadCpuSeconds() {
 // `count` evaluations at y (each result fed back into y by a vanishing amount, so that none can
 // be skipped); their CPU seconds.
 template <int N>
-double timeEvaluations(const MetronomeEquations& eq, std::vector<double>& y, long count) {
+double timeEvaluations(const NetworkEquations& eq, std::vector<double>& y, long count) {
   std::vector<double> dy(y.size());
   const double t0 = threadCpuSeconds();
   for (long k = 0; k < count; ++k) {
@@ -40,7 +40,7 @@ double timeEvaluations(const MetronomeEquations& eq, std::vector<double>& y, lon
 }
 
 template <int N>
-double medianEvaluation(const MetronomeEquations& eq, std::vector<double>& y) {
+double medianEvaluation(const NetworkEquations& eq, std::vector<double>& y) {
   long count = 16;
   while (timeEvaluations<N>(eq, y, count) < kBatchS && count < (1L << 30)) count *= 2;
   std::vector<double> per;
@@ -82,7 +82,7 @@ EventCostRow measureOne(const Scene& scene, double accuracy, double rhs_s, const
 }  // namespace
 
 double rhsSeconds(const Rig& rig) {
-  const MetronomeEquations eq(rig);
+  const NetworkEquations eq(rig);
   std::vector<double> y(eq.layout().dim(), 0.0);
   direct::writePlatformStart(rig, eq.hasPlatform(), eq.layout(), 0, 0, y.data());
   switch (eq.numSwinging()) {  // as runDirectModel dispatches
@@ -103,7 +103,7 @@ double rhsSeconds(const Rig& rig) {
     case 8:
       return medianEvaluation<8>(eq, y);
     default:
-      return medianEvaluation<MetronomeEquations::kAnyN>(eq, y);
+      return medianEvaluation<NetworkEquations::kAnyN>(eq, y);
   }
 }
 

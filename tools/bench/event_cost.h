@@ -1,5 +1,5 @@
 // The measurements behind tools/bench/event_cost_table.h: per scene, one RHS evaluation timed
-// alone (the direct engine's equations, MetronomeEquations::rhsN with N known to the compiler up
+// alone (the direct engine's equations, NetworkEquations::rhsN with N known to the compiler up
 // to kMaxFixedN as in the run, at the rig's start state, a slipping platform), and the direct
 // engine's run without samples at each accuracy (its default integrator; `repeat` runs, CPU
 // median, the counts of the first).

@@ -1,6 +1,7 @@
 #include "sim/analysis/fit/model_jacobian.h"
 
 #include "base/constants.h"
+#include "models/network_layout.h"
 #include "models/scaling.h"
 #include "sim/analysis/fit/key_directions.h"
 #include "sim/analysis/fit/trajectory_sensitivity.h"
@@ -14,7 +15,8 @@ namespace {
 // scaled variables' units (start_state.h), steps at most a tenth of the fast period.
 SensitivitySettings settingsOf(const Rig& rig, const orbit::PhysicalModel& m) {
   const ScaledParams sp = computeScaled(rig);
-  direct::StateLayout lay;
+  network::Layout lay;  // a single board: one platform, no damper
+  lay.platforms = 1;
   lay.n = m.n();
   SensitivitySettings s;
   s.accuracy = rig.sim.accuracy;

@@ -15,7 +15,7 @@ PhysicalModel::PhysicalModel(const Rig& rig)
   pl_.law_values = static_cast<int>(law_.values().size());
   p_ = Vec::Zero(pl_.size());
   for (int j = 0; j < n_; ++j) {
-    const direct::PendulumConstants& k = eq_.pendulum(j);
+    const network::PendulumConstants& k = eq_.pendulum(j);
     p_(pl_.mL(j)) = k.mL;
     p_(pl_.mgL(j)) = k.mgL;
     p_(pl_.inertia(j)) = k.inertia;
@@ -49,7 +49,7 @@ Vec PhysicalModel::rhs(const Vec& y, PlatformMode mode) const {
 
 void PhysicalModel::pendulumTerms(const double* y) const {
   for (int j = 0; j < n_; ++j) {
-    const direct::PendulumConstants& k = eq_.pendulum(j);
+    const network::PendulumConstants& k = eq_.pendulum(j);
     PendulumTerms& t = terms_[j];
     t.s = std::sin(y[theta(j)]);
     t.co = std::cos(y[theta(j)]);
@@ -67,7 +67,7 @@ void PhysicalModel::platformSums(double x, PlatformSums& p) const {
   p.S = 0.0;
   p.dG(kX) = -k_spring_;
   for (int j = 0; j < n_; ++j) {
-    const direct::PendulumConstants& k = eq_.pendulum(j);
+    const network::PendulumConstants& k = eq_.pendulum(j);
     const PendulumTerms& t = terms_[j];
     p.G += k.mL * t.s * t.w * t.w - t.c * t.r * t.inv_I;
     p.S += t.c * t.c * t.inv_I;
@@ -81,7 +81,7 @@ void PhysicalModel::platformSums(double x, PlatformSums& p) const {
 void PhysicalModel::addPlatformSumsParameters(double x, double wG, double wS, Vec& out) const {
   out(pl_.spring()) += -wG * x;
   for (int j = 0; j < n_; ++j) {
-    const direct::PendulumConstants& k = eq_.pendulum(j);
+    const network::PendulumConstants& k = eq_.pendulum(j);
     const PendulumTerms& t = terms_[j];
     // G = sum (mL s w^2 - c r / I) - k x, S = sum c^2 / I, c = mL co, r = -mgL s - b w
     out(pl_.mL(j)) +=
@@ -137,7 +137,7 @@ void PhysicalModel::variationalRates(const double* y, PlatformMode mode, const d
     for (int j = 0; j < n_; ++j) dY(omega(j), q) = -eq_.pendulum(j).mL * av;  // * co / I below
   }
   for (int j = 0; j < n_; ++j) {
-    const direct::PendulumConstants& kj = eq_.pendulum(j);
+    const network::PendulumConstants& kj = eq_.pendulum(j);
     const PendulumTerms& t = terms_[j];
     const double rate = (t.r - t.c * a) * t.inv_I;  // w_j'
     const double by_theta = (-kj.mgL * t.co + kj.mL * t.s * a) * t.inv_I;
@@ -227,12 +227,12 @@ Mat PhysicalModel::tickJacobian(const Vec& y, const std::vector<int>& ticked) co
     Q += eq_.pendulum(j).mL * std::cos(y(theta(j))) * p[j] * eq_.pendulum(j).inv_inertia;
   const double dv = -Q / meff;
   for (int k = 0; k < n_; ++k) {
-    const direct::PendulumConstants& ck = eq_.pendulum(k);
+    const network::PendulumConstants& ck = eq_.pendulum(k);
     const double dQ = -ck.mL * std::sin(y(theta(k))) * p[k] * ck.inv_inertia;
     const double ddv = (-dQ + dv * sums.dS(theta(k))) / meff;
     D(kV, theta(k)) = ddv;
     for (int j = 0; j < n_; ++j) {
-      const direct::PendulumConstants& cj = eq_.pendulum(j);
+      const network::PendulumConstants& cj = eq_.pendulum(j);
       const double dc = j == k ? -cj.mL * std::sin(y(theta(j))) : 0.0;
       D(omega(j), theta(k)) = -(dc * dv + cj.mL * std::cos(y(theta(j))) * ddv) * cj.inv_inertia;
     }
@@ -260,7 +260,7 @@ void PhysicalModel::impulseParameterJacobian(const Vec& y, const std::vector<dou
   Vec dQ = Vec::Zero(P), dMeff = Vec::Zero(P);
   dMeff(pl_.mass()) = 1.0;
   for (int j = 0; j < n_; ++j) {
-    const direct::PendulumConstants& k = eq_.pendulum(j);
+    const network::PendulumConstants& k = eq_.pendulum(j);
     co[j] = std::cos(y(theta(j)));
     c[j] = k.mL * co[j];
     Q += c[j] * pins[j] * k.inv_inertia;
@@ -276,7 +276,7 @@ void PhysicalModel::impulseParameterJacobian(const Vec& y, const std::vector<dou
   const Vec ddv = platform ? Vec((-dQ - dv * dMeff) / meff) : Vec::Zero(P);
   D.row(kV) = ddv.transpose();
   for (int j = 0; j < n_; ++j) {
-    const direct::PendulumConstants& k = eq_.pendulum(j);
+    const network::PendulumConstants& k = eq_.pendulum(j);
     D.row(omega(j)) = -c[j] * k.inv_inertia * ddv.transpose();
     D(omega(j), pl_.mL(j)) += -co[j] * dv * k.inv_inertia;
     D(omega(j), pl_.inertia(j)) += -(pins[j] - c[j] * dv) * k.inv_inertia * k.inv_inertia;
@@ -299,7 +299,7 @@ Mat PhysicalModel::plasticStopJacobian(const Vec& y) const {
   Mat D = Mat::Identity(d_, d_);
   D(kV, kV) = 0.0;
   for (int j = 0; j < n_; ++j) {
-    const direct::PendulumConstants& c = eq_.pendulum(j);
+    const network::PendulumConstants& c = eq_.pendulum(j);
     D(omega(j), kV) = c.mL * std::cos(y(theta(j))) * c.inv_inertia;
     D(omega(j), theta(j)) += -c.mL * std::sin(y(theta(j))) * y(kV) * c.inv_inertia;
   }
@@ -310,7 +310,7 @@ Mat PhysicalModel::plasticStopParameterJacobian(const Vec& y) const {
   Mat D = Mat::Zero(d_, pl_.size());
   const double v = y(kV);
   for (int j = 0; j < n_; ++j) {
-    const direct::PendulumConstants& c = eq_.pendulum(j);
+    const network::PendulumConstants& c = eq_.pendulum(j);
     const double co = std::cos(y(theta(j)));
     D(omega(j), pl_.mL(j)) = co * v * c.inv_inertia;
     D(omega(j), pl_.inertia(j)) = -c.mL * co * v * c.inv_inertia * c.inv_inertia;

@@ -1,11 +1,11 @@
-// The full model (models/minimal_equations.h, e1.1a-c) in physical units, with the derivatives a
-// linearization needs, in the state and in the rig's parameters:
+// The full model (models/network_equations.h for a single board, e1.1a-c) in physical units, with
+// the derivatives a linearization needs, in the state and in the rig's parameters:
 //   the right-hand side's Jacobian in each platform mode, and its derivative in the parameters;
 //   the holding force's gradient (the stick -> slip event) and the static bound's parameters;
 //   the jump maps -- a tick's impulse through M(theta)^-1, a plastic stop -- with their Jacobians
 //   in the state and in the parameters (an impulse's size, the masses it goes through).
-// The equations are evaluated as MetronomeEquations writes them; only their derivatives are
-// written here, in closed form, and checked against differences in tests/periodic_orbit. What
+// The equations are evaluated as NetworkEquations writes a single board's; only their derivatives
+// are written here, in closed form, and checked against differences in tests/periodic_orbit. What
 // depends on the friction law comes from the law (contact/friction_partials.h). ScaledModel
 // (scaled_model.h) is this model in the paper's scaled variables.
 //
@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "contact/friction_partials.h"
-#include "models/minimal_equations.h"
+#include "models/network_equations.h"
 #include "models/rig.h"
 
 namespace metrosync::orbit {
@@ -60,7 +60,7 @@ class PhysicalModel {
   bool hasPlatform() const { return eq_.hasPlatform(); }
   bool coulomb() const { return eq_.friction().setValued(); }
   int rigIndex(int j) const { return eq_.pendulum(j).rig_index; }
-  const direct::MetronomeEquations& equations() const { return eq_; }
+  const network::NetworkEquations& equations() const { return eq_; }
   const FrictionLaw& law() const { return law_; }
   // Does the friction law give its partials (contact/friction_partials.h)? Without them the
   // parameter derivatives are not available (the state's still are).
@@ -136,7 +136,7 @@ class PhysicalModel {
   void impulseParameterJacobian(const Vec& y, const std::vector<double>& pins,
                                 const std::vector<int>& ticked, Mat& D) const;
 
-  direct::MetronomeEquations eq_;
+  network::NetworkEquations eq_;
   FrictionLaw law_;
   double normal_force_ = 0.0;  // M g (N)
   int n_ = 0, d_ = 0;

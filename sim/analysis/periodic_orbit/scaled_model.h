@@ -1,4 +1,4 @@
-// The full model (models/minimal_equations.h, e1.1a-c) in the paper's scaled variables (s2.1),
+// The full model (models/platform_arrow.h, e1.1a-c) in the paper's scaled variables (s2.1),
 // with the derivatives a periodic orbit's linearization needs: the Jacobian of the right-hand side
 // in each platform mode, the gradient of the holding force, and the Jacobians of the two jump
 // maps the event resolver applies (a tick's impulse through the mass matrix, a plastic stop).

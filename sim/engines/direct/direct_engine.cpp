@@ -1,6 +1,6 @@
 // The direct engine's entries: a single rig and a network of platforms, each the one run
 // (sim/engines/direct/direct_run.h) over its model (rig_model.h: N known to the compiler up to
-// MetronomeEquations::kMaxFixedN; network_model.h). What the run does, top to bottom:
+// NetworkEquations::kMaxFixedN; network_model.h). What the run does, top to bottom:
 //   1. witnesses (sim/events/witness.h), each turned into one that rises through zero at its
 //      event: ticks side * theta_i - theta_c,i (only while armed, sim/events/resolver.h); each
 //      contact's PlatformWitness with the sign flipped (|H| - bound while stuck, -mode * slip
@@ -21,7 +21,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "models/minimal_equations.h"
+#include "models/network_equations.h"
 #include "sim/engines/direct/direct_run.h"
 #include "sim/engines/direct/network_model.h"
 #include "sim/engines/direct/rig_model.h"
@@ -50,7 +50,7 @@ RunReport runDirectModel(const Rig& rig, RunSink& sink, const DirectOptions& opt
   }
   // the state's size known to the compiler for up to kMaxFixedN swinging pendulums (every loop
   // over the state unrolled, every buffer in the run object), dynamic above: the same bits
-  const int n = direct::MetronomeEquations(rig).numSwinging();
+  const int n = network::NetworkEquations(rig).numSwinging();
   switch (n) {
     case 1:
       return direct::runRig<1>(rig, sink, options);
@@ -69,7 +69,7 @@ RunReport runDirectModel(const Rig& rig, RunSink& sink, const DirectOptions& opt
     case 8:
       return direct::runRig<8>(rig, sink, options);
     default:
-      return direct::runRig<direct::MetronomeEquations::kAnyN>(rig, sink, options);
+      return direct::runRig<network::NetworkEquations::kAnyN>(rig, sink, options);
   }
 }
 

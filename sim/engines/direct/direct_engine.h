@@ -1,5 +1,5 @@
 // The full model (e1.1a-c) on a minimal-coordinates engine: the platform's x and one angle per
-// swinging pendulum (models/minimal_equations.h), an embedded Runge-Kutta pair with dense output
+// swinging pendulum (models/network_equations.h), an embedded Runge-Kutta pair with dense output
 // (sim/ode/rk_stepper.h), and events located on the dense output to the last few bits.
 // Same semantics and same outputs as the Simbody engine (sim/engines/simbody/simbody_engine.h):
 // the witnesses, the window resolver, the escapement and Coulomb rules, the storm rule and the

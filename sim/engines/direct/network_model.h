@@ -107,7 +107,7 @@ class NetworkModel {
   double accuracy() const { return net_.sim.accuracy; }
   double tEnd() const { return net_.sim.t_end_s; }
   double energy(const double* y) const { return eq_.energy(y); }
-  double dampingOut(const double* y) const { return y[lay_.dampingWork()] + y[lay_.damperWork()]; }
+  double dampingOut(const double* y) const { return y[lay_.dampingWork()] + lay_.damperWorkIn(y); }
   std::vector<double> startState() const;
   int metronomes() const { return net_.numMetronomes(); }
   std::string failureText(double t, const std::string& why) const {

@@ -1,11 +1,11 @@
 // The single rig's right-hand side as the direct engine's stepper sees it: the rig's minimal
-// coordinates (models/minimal_equations.h) in the platform's current mode, with the number N of
-// swinging pendulums known to the compiler (or kAnyN), and the stepper that integrates it. Shared
-// by the rig's model (rig_model.h) and its recorder (rig_recorder.h), which interpolates the same
-// steps.
+// coordinates (models/network_equations.h: a single board) in the platform's current mode, with the
+// number N of swinging pendulums known to the compiler (or kAnyN), and the stepper that integrates
+// it. Shared by the rig's model (rig_model.h) and its recorder (rig_recorder.h), which interpolates
+// the same steps.
 #pragma once
 
-#include "models/minimal_equations.h"
+#include "models/network_equations.h"
 #include "sim/ode/rk_stepper.h"
 
 namespace metrosync::direct {
@@ -16,12 +16,12 @@ namespace {
 template <int N>
 class Dynamics final {
  public:
-  explicit Dynamics(const MetronomeEquations& eq) : eq_(eq) {}
+  explicit Dynamics(const network::NetworkEquations& eq) : eq_(eq) {}
   void eval(const double* y, double* dy) { eq_.rhsN<N>(y, mode, dy); }
   PlatformMode mode = PlatformMode::Stuck;
 
  private:
-  const MetronomeEquations& eq_;
+  const network::NetworkEquations& eq_;
 };
 
 // The state's size for N swinging pendulums: x, xdot, N angles and rates, two ledger quadratures.

@@ -1,9 +1,9 @@
 // The single rig as the direct run's model (sim/engines/direct/direct_run.h): the rig's minimal
-// coordinates (models/minimal_equations.h) with the number N of swinging pendulums known to the
-// compiler, its one platform seen by the shared resolver, and its files through its recorder
-// (rig_recorder.h: trajectory rows on the shared schedule, the envelope from the steps'
-// interpolants, event rows and records), called on the run's thread or, when the sink allows it
-// (RunSink::recordingThread), handed over to a recording thread (rig_recording_thread.h).
+// coordinates (models/network_equations.h: a network of one) with the number N of swinging
+// pendulums known to the compiler, its one platform seen by the shared resolver, and its files
+// through its recorder (rig_recorder.h: trajectory rows on the shared schedule, the envelope from
+// the steps' interpolants, event rows and records), called on the run's thread or, when the sink
+// allows it (RunSink::recordingThread), handed over to a recording thread (rig_recording_thread.h).
 #pragma once
 
 #include <algorithm>
@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "base/constants.h"
-#include "models/minimal_equations.h"
+#include "models/network_equations.h"
 #include "models/rig.h"
 #include "models/scaling.h"
 #include "sim/engines/direct/direct_integrators.h"
@@ -43,13 +43,14 @@ template <int N>
 class RigModel final : public EventSystem {
  public:
   using Stepper = RigStepper<N>;
+  static constexpr int kV = 1;                     // the platform's xdot in the state (lay_.v(0))
   static constexpr bool kHoldingForceRate = true;  // H's rate is known in closed form
   RigModel(SplitTimer& timer, const Rig& rig, RunSink& sink);
 
   // --- the model (sim/engines/direct/direct_run.h) ----------------------------------------------
   Stepper& stepper() { return stepper_; }
   const RkTableau& tableau() const { return tab_; }
-  const StateLayout& layout() const { return lay_; }
+  const network::Layout& layout() const { return lay_; }
   int platforms() const { return 1; }
   int first(int) const { return 0; }
   int count(int) const { return lay_.n; }
@@ -59,7 +60,7 @@ class RigModel final : public EventSystem {
   const PlatformFriction& contact(int) const { return eq_.friction(); }
   Escapement escapement(int j) const { return eq_.escapement(j); }
   PlatformMode mode(int) const { return dyn_.mode; }
-  double slipVelocity(int, const double* y) const { return y[StateLayout::kV]; }
+  double slipVelocity(int, const double* y) const { return y[kV]; }
   double holdingForce(int, const double* y) const { return eq_.holdingForce(y); }
   double holdingForceRate(int, const double* y) const { return eq_.holdingForceRate(y); }
   EventSystem& view(int, double* y, double t) {
@@ -98,8 +99,7 @@ class RigModel final : public EventSystem {
   void last(const double* y, double t, RunReport& r) {
     RecordingScope rec(timer_);
     r.final_trajectory_row = rec_.row(y, t, dyn_.mode);  // (the recording thread's too)
-    r.final_state.assign(y, y + lay_.dim());             // network::Layout: a network of one's
-    r.final_state.push_back(0.0);                        // (no ground damper's work)
+    r.final_state.assign(y, y + lay_.dim());             // a network of one's
     if (thread_)
       thread_->last(y, t, dyn_.mode);
     else
@@ -110,11 +110,11 @@ class RigModel final : public EventSystem {
   // --- EventSystem (on ev_y_) -------------------------------------------------------------
   double theta(int j) const override { return ev_y_[lay_.theta(j)]; }
   double thetadot(int j) const override { return ev_y_[lay_.omega(j)]; }
-  double xdot() const override { return ev_y_[StateLayout::kV]; }
+  double xdot() const override { return ev_y_[kV]; }
   PlatformMode mode() const override { return dyn_.mode; }
   void setMode(PlatformMode m) override {
     dyn_.mode = m;
-    if (m == PlatformMode::Stuck) ev_y_[StateLayout::kV] = 0.0;  // held: the residual of a stop
+    if (m == PlatformMode::Stuck) ev_y_[kV] = 0.0;  // held: the residual of a stop
   }
   double holdingForce() override { return eq_.holdingForce(ev_y_); }
   double applyImpulse(const std::vector<double>& pin, double platform) override {
@@ -154,8 +154,8 @@ class RigModel final : public EventSystem {
   SplitTimer& timer_;
   const Rig& rig_;
   ScaledParams sp_;
-  MetronomeEquations eq_;
-  StateLayout lay_;
+  network::NetworkEquations eq_;
+  network::Layout lay_;
   int n_rig_;
   Dynamics<N> dyn_;
   const RkTableau& tab_;
@@ -248,7 +248,7 @@ template <int N>
 double RigModel<N>::maxStepSize() const {
   double fastest = period_;
   for (int j = 0; j < lay_.n; ++j) {
-    const PendulumConstants& p = eq_.pendulum(j);
+    const network::PendulumConstants& p = eq_.pendulum(j);
     fastest = std::min(fastest, kTwoPi * std::sqrt(p.inertia / p.mgL));
   }
   if (eq_.hasPlatform() && rig_.platform.spring_N_m > 0) {

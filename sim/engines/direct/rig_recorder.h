@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "base/constants.h"
-#include "models/minimal_equations.h"
+#include "models/network_equations.h"
 #include "models/rig.h"
 #include "models/scaling.h"
 #include "sim/engines/direct/rig_dynamics.h"
@@ -78,16 +78,15 @@ class RigRecorder {
     return row_;
   }
   void fillRow(const double* y, double t, PlatformMode mode, std::vector<double>& row) const;
-  // the state as a network of one's (network::Layout: the rig's slots and a ground damper's work,
-  // 0) to the sink
+  // the state (a network of one's: models/network_layout.h) to the sink
   void stateSample(const double* y, double t, PlatformMode mode);
   void envelopeState(const double* y, double* theta, double* thetadot) const;
   void nodeEnvelope(const double* angles_rates, double* theta, double* thetadot) const;
 
   const Rig& rig_;
   ScaledParams sp_;
-  MetronomeEquations eq_;  // its own: the recording thread's (kAnyN's scratch is per object)
-  StateLayout lay_;
+  network::NetworkEquations eq_;  // its own: the recording thread's (kAnyN's scratch is per object)
+  network::Layout lay_;
   RunSink& sink_;
   bool event_rows_, event_records_, want_rows_, want_envelope_, want_states_;
   int n_rig_;
@@ -162,9 +161,9 @@ std::vector<double> RigRecorder<N>::row(const double* y, double t, PlatformMode 
 template <int N>
 void RigRecorder<N>::fillRow(const double* y, double t, PlatformMode mode,
                              std::vector<double>& row) const {
-  const double v = y[StateLayout::kV];
+  const double v = y[lay_.v(0)];
   rows_.fill(
-      row, t, y[StateLayout::kX], v, [&](int j) { return y[lay_.theta(j)]; },
+      row, t, y[lay_.x(0)], v, [&](int j) { return y[lay_.theta(j)]; },
       [&](int j) { return y[lay_.omega(j)]; },
       TrajectoryRow::column(eq_.friction().setValued(), static_cast<int>(mode), v));
 }
@@ -191,7 +190,6 @@ void RigRecorder<N>::nodeEnvelope(const double* angles_rates, double* theta,
 template <int N>
 void RigRecorder<N>::stateSample(const double* y, double t, PlatformMode mode) {
   state_.assign(y, y + lay_.dim());
-  state_.push_back(0.0);  // network::Layout's damperWork: a single rig has no ground damper
   modes_[0] = mode;
   sink_.stateSample(t, state_, modes_);
 }
