@@ -1,5 +1,5 @@
 // The registry of sim/engines/engine.h: the three engines as thin adapters over their entry
-// points (runDirectModel and runNetworkDirect, runSimbody, runSlowFlow), whose internals live in
+// points (runDirect, runSimbody, runSlowFlow), whose internals live in
 // their folders; runSimbody through the Simbody plugin (sim/engines/simbody_plugin.h).
 #include <algorithm>
 #include <stdexcept>
@@ -31,12 +31,9 @@ class DirectEngine final : public Engine {
   std::string description() const override {
     return "the full model in minimal coordinates (the default; ~100x faster than simbody)";
   }
-  // a single rig on its own model (RigModel<N>, the hot path) whatever the sink wants (its states
-  // too: rig_recorder.h), so that the same board runs the same arithmetic in every command
-  RunReport run(const Network& net, RunSink& sink) const override {
-    if (net.isSingleRig()) return runDirectModel(net.toSingleRig(), sink);
-    return runNetworkDirect(net, sink);
-  }
+  // the one model of the rig's kind whatever the sink wants (a single board's states too:
+  // rig_recorder.h), so that the same board runs the same arithmetic in every command
+  RunReport run(const Network& net, RunSink& sink) const override { return runDirect(net, sink); }
   bool runsNetworks() const override { return true; }
 };
 

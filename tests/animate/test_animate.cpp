@@ -202,7 +202,7 @@ TEST(Animate, TicksAreTheEnginesTicks) {
     void stateSample(double, const std::vector<double>&,
                      const std::vector<PlatformMode>&) override {}
   } discard;
-  const RunReport nrep = runNetworkDirect(net, discard);
+  const RunReport nrep = runDirect(net, discard);
   ASSERT_EQ(nt.ticks.size(), nrep.counts.escapements.size());
   for (std::size_t i = 0; i < nt.ticks.size(); ++i)
     EXPECT_EQ(nt.ticks[i], nrep.counts.escapements[i]) << i;

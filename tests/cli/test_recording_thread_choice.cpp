@@ -1,7 +1,7 @@
 // Where `metrosync run` makes a single rig's rows does not change them: with a recording thread
 // (which then also writes the files' text, tools/report/deferred_rows.h writeOnCallersThread),
 // without one (the rows on the run's thread, the text on writer threads), everything on the run's
-// thread, or as the engine judges by the run's length (sim/engines/direct/rig_model.h), every
+// thread, or as the engine judges by the run's length (sim/engines/direct/rig_recording.h), every
 // file is the same to the byte. METROSYNC_RECORDING_THREAD (a bench's knob) takes never, always
 // or inline, nothing else.
 #include <gtest/gtest.h>

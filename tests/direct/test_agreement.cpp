@@ -21,7 +21,7 @@
 // within about a minute.
 //
 // Networks of platforms (docs/networks.md) are compared the same way, sample by sample, on the
-// network entries of both (runNetworkDirect, runSimbody).
+// network entries of both (runDirect, runSimbody).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -93,7 +93,7 @@ void compareNetworkEngines(const std::string& name) {
   net_direct.sim.accuracy = 1e-12;
 
   NetworkSamples sd, ss;
-  const RunReport d = runNetworkDirect(net_direct, sd);
+  const RunReport d = runDirect(net_direct, sd);
   const RunReport s = runSimbody(net, ss);
   ASSERT_TRUE(d.complete) << d.failure;
   ASSERT_TRUE(s.complete) << s.failure;

@@ -77,7 +77,7 @@ TEST(NetworkEngine, ZeroCouplingDecouplesIntoSinglePlatformRuns) {
       network(left + right, "couplings:\n  - {between: [left, right], k: 0.0}\n", duration, acc),
       "k0.yaml");
   LastSample sink;
-  const RunReport rep = runNetworkDirect(net, sink);
+  const RunReport rep = runDirect(net, sink);
   ASSERT_TRUE(rep.complete) << rep.failure;
   const network::Layout lay = network::NetworkEquations(net).layout();
   int j = 0;
@@ -121,7 +121,7 @@ TEST(NetworkEngine, FrictionlessNetworkConservesMomentumAndClosesItsLedger) {
   const Network net = frictionlessPair(metronome(0.785, 0.0) + metronome(-0.5, 0.3),
                                        metronome(0.6, -0.2), 5.0, 1e-12);
   LastSample sink;
-  const RunReport rep = runNetworkDirect(net, sink);
+  const RunReport rep = runDirect(net, sink);
   ASSERT_TRUE(rep.complete) << rep.failure;
   long ticks = 0;
   for (long t : rep.counts.escapements) ticks += t;
@@ -141,7 +141,7 @@ TEST(NetworkEngine, IdenticalPlatformsStayIdentical) {
   const Network net = loadNetworkText(
       network(a + b, "couplings:\n  - {between: [a, b], k: 2.0}\n", 5.0, 1e-10), "s.yaml");
   LastSample sink;
-  const RunReport rep = runNetworkDirect(net, sink);
+  const RunReport rep = runDirect(net, sink);
   ASSERT_TRUE(rep.complete) << rep.failure;
   const network::Layout lay = network::NetworkEquations(net).layout();
   for (const auto& y : sink.rows) {
@@ -163,7 +163,7 @@ TEST(NetworkEngine, StackStuckThroughoutIsOnePlatformWithBoth) {
   const double duration = 3.0, acc = 1e-12;
   const Network net = loadNetworkText(network(base + top, "", duration, acc), "stack.yaml");
   LastSample sink;
-  const RunReport rep = runNetworkDirect(net, sink);
+  const RunReport rep = runDirect(net, sink);
   ASSERT_TRUE(rep.complete) << rep.failure;
   // one board of both boards' mass, carrying all three metronomes
   Rig both = net.platforms[0].rig;
@@ -198,7 +198,7 @@ TEST(NetworkEngine, StackThatSlipsConservesMomentumAndClosesItsLedger) {
       platform("top", "{law: coulomb, mu: 0.02}", "    on: base\n", metronome(0.5, -0.3, 0.03));
   const Network net = loadNetworkText(network(base + top, "", 5.0, 1e-12), "slip.yaml");
   LastSample sink;
-  const RunReport rep = runNetworkDirect(net, sink);
+  const RunReport rep = runDirect(net, sink);
   ASSERT_TRUE(rep.complete) << rep.failure;
   EXPECT_GT(rep.counts.stick_slip, 2);  // the contact did switch
   const network::NetworkEquations eq(net);

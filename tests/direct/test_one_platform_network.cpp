@@ -127,14 +127,17 @@ struct LastState : StateSink {
 
 // The two runs of the same board agree to their accuracy: at 1e-12, three seconds with stick-slip
 // and ticks, measured 3.4e-12 apart at most (a pendulum's; the platform's x and xdot 1.2e-14).
-// Not round-off: one run (sim/engines/direct/direct_run.h) over two models, the network's
-// arithmetic and steps of at most 0.05 of a period against the rig's arrow with N known to the
-// compiler and steps of a tenth of its fastest oscillation.
+// Not round-off: one run and one model (sim/engines/direct/direct_model.h) in its two kinds, the
+// network's general equations and steps of at most 0.05 of a period (DirectOptions::
+// general_equations) against the single board's fused entry with N known to the compiler and
+// steps of a tenth of its fastest oscillation.
 TEST(OnePlatformNetwork, RunsAsTheSingleRig) {
   const Network net = loadNetworkText(board("{law: coulomb, mu: 1e-4}", 3.0), "one.yaml");
   ASSERT_TRUE(net.isSingleRig());
   LastState sink;
-  const RunReport nrep = runNetworkDirect(net, sink);
+  DirectOptions general;
+  general.general_equations = true;  // the board run as any network is
+  const RunReport nrep = runDirect(net, sink, general);
   ASSERT_TRUE(nrep.complete) << nrep.failure;
   MemorySink one;
   const RunReport srep = runDirectModel(net.toSingleRig(), one);

@@ -146,7 +146,7 @@ TEST(Recording, OnItsOwnThreadMakesTheSameRowsToTheBit) {
 }
 
 // Offered WhenLong, the engine takes a recording thread by the run's length in metronome-periods
-// (500 and more, for at most 8 metronomes: sim/engines/direct/rig_model.h) and says so before
+// (500 and more, for at most 8 metronomes: sim/engines/direct/rig_recording.h) and says so before
 // the first row; offered Always, always; offered Never, never.
 struct JudgedSink : MemorySink {
   explicit JudgedSink(RecordingThread offer) : offer_(offer) {}

@@ -151,7 +151,7 @@ std::set<std::string> directModels(const fs::path& root) {
 // The listed exceptions: today's twins (issue 38, "One model": one equation class per platform
 // arrow, one direct model). That work removes them; a list that no longer matches the tree fails.
 const std::set<std::string> kEquationClassTwins = {};
-const std::set<std::string> kDirectModelTwins = {"RigModel", "NetworkModel"};
+const std::set<std::string> kDirectModelTwins = {};
 
 // One class, or exactly the listed twins.
 void expectOne(const std::set<std::string>& found, const std::set<std::string>& twins,

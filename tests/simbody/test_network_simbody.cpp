@@ -243,7 +243,7 @@ void expectEnginesAgree(const Network& net, double simbody_accuracy, long min_sw
   net_direct.sim.accuracy = 1e-12;
   net_direct.sim.integrator = "verner76";
   Samples sd, ss;
-  const RunReport d = runNetworkDirect(net_direct, sd);
+  const RunReport d = runDirect(net_direct, sd);
   const RunReport s = runSimbody(net_simbody, ss);
   ASSERT_TRUE(d.complete) << d.failure;
   ASSERT_TRUE(s.complete) << s.failure;

@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
   const metrosync::Network net = metrosync::loadNetworkFile(argv[1], sets);
   NullSink sink;
   const auto t0 = std::chrono::steady_clock::now();
-  const metrosync::RunReport rep = metrosync::runNetworkDirect(net, sink);
+  const metrosync::RunReport rep = metrosync::runDirect(net, sink);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double periods = net.sim.t_end_s / rep.fast_period_s;
   std::printf("metronomes %d periods %.1f wall %.3f s steps %ld rhs %ld cost/period %.3g ms\n",

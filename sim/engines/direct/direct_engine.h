@@ -18,15 +18,15 @@
 
 namespace metrosync {
 
-// Runs the rig to rig.sim.t_end_s. Never throws for a failed simulation: the report says
-// complete = false and why (non-finite state, step-size underflow, event storm). Throws
-// std::invalid_argument for a rig it cannot run (an integrator name that is not its own).
-RunReport runDirectModel(const Rig& rig, RunSink& sink, const DirectOptions& options = {});
+// Runs the rig or network to net.sim.t_end_s on the one model (direct_model.h): a single board
+// (Network::isSingleRig) writes a rig's rows, envelope and events into the sink (and its states
+// when the sink wants them), a network its states (sink.stateSample, the last at t_end exactly).
+// Never throws for a failed simulation: the report says complete = false and why (non-finite
+// state, step-size underflow, event storm). Throws std::invalid_argument for a rig it cannot run
+// (an integrator name that is not its own).
+RunReport runDirect(const Network& net, RunSink& sink, const DirectOptions& options = {});
 
-// Runs the network to net.sim.t_end_s (docs/networks.md): its states go to sink.stateSample, the
-// last at t_end exactly. The same run as a rig's (sim/engines/direct/direct_run.h) over the
-// network's model (network_model.h). Never throws for a failed simulation (complete = false);
-// throws std::invalid_argument for a network it cannot run (an unknown integrator name).
-RunReport runNetworkDirect(const Network& net, RunSink& sink);
+// runDirect on the rig's network of one (models/network.h, networkOfOne).
+RunReport runDirectModel(const Rig& rig, RunSink& sink, const DirectOptions& options = {});
 
 }  // namespace metrosync

@@ -10,6 +10,10 @@ struct DirectOptions {
   // advancing by less than `storm_window` fast periods (2 pi / omega0) ends the run, incomplete.
   long storm_events = StormGuard::kMaxEvents;
   double storm_window = StormGuard::kWindowPeriods;
+  // Run a single board as any network is run: the general equations (a solve for the holding
+  // force, no rate), steps of at most kMaxStepPeriods of a period, its states on the sample grid
+  // (direct_model.h). For tests that hold the two against each other; commands never set it.
+  bool general_equations = false;
 };
 
 }  // namespace metrosync

@@ -188,16 +188,19 @@ std::optional<WindowCrossing> DirectRun<Model>::detectStuck(int index, const Run
 // dip before a crossing): detectComponent() reports nothing else (its rates at the step's ends are
 // f(y0) and f(y1), whose angle rows are the rates). One pass over the pendulums finds those; with
 // N pendulums most steps have none, and the 2N witnesses are not looked at one by one.
+// Inlined into the step loop (it runs on every kept step): out of line, the single board's run
+// executed 1.4% more instructions (callgrind, peer-n2).
 template <class Model>
-bool DirectRun<Model>::findCrossings() {
+inline __attribute__((always_inline)) bool DirectRun<Model>::findCrossings() {
   auto& s = m_.stepper();
   const auto& lay = m_.layout();
-  const double* y0 = s.y();
-  const double* y1 = s.y1();
+  const double* w0s = s.y() + lay.omega(0);
+  const double* w1s = s.y1() + lay.omega(0);
+  const double* th1s = s.y1() + lay.theta(0);
   for (int j = 0; j < n_; ++j) {
-    const double w0 = y0[lay.omega(j)], w1 = y1[lay.omega(j)];
+    const double w0 = w0s[j], w1 = w1s[j];
     const bool turns = (w0 > 0 && w1 < 0) || (w0 < 0 && w1 > 0);  // not w0 * w1: underflow
-    maybe_[j] = std::abs(y1[lay.theta(j)]) >= theta_c_[j] || turns;
+    maybe_[j] = std::abs(th1s[j]) >= theta_c_[j] || turns;
   }
   return witnesses_.findCrossings(
       s, *this, [&](const RunWitness& w) { return !w.tick() || maybe_[w.index]; });

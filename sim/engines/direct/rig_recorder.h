@@ -4,9 +4,9 @@
 // is one smooth stretch), event rows and records, all in the rig's units, into the run's sink;
 // and, when the sink wants states, the state in network::Layout (a network of one) at every row
 // sample and at the end, as the Simbody engine gives it: the sink never chooses the model.
-// The rig's model (rig_model.h) calls it on the run's thread, or hands its steps over to a
-// recording thread that calls it there (rig_recording_thread.h): the same calls on the same
-// numbers, so the same files to the bit.
+// The direct model (direct_model.h, rig_recording.h) calls it on the run's thread, or hands its
+// steps over to a recording thread that calls it there (rig_recording_thread.h): the same calls on
+// the same numbers, so the same files to the bit.
 #pragma once
 
 #include <algorithm>
@@ -17,20 +17,20 @@
 #include "models/network_equations.h"
 #include "models/rig.h"
 #include "models/scaling.h"
-#include "sim/engines/direct/rig_dynamics.h"
+#include "sim/engines/direct/model_dynamics.h"
 #include "sim/events/sample_schedule.h"
 #include "sim/record/envelope_quadrature.h"
 #include "sim/record/run_report.h"
 #include "sim/record/trajectory_row.h"
 
 namespace metrosync::direct {
-// Internal linkage on purpose: see rig_model.h (one includer, direct_engine.cpp).
+// Internal linkage on purpose: see direct_model.h (one includer, direct_engine.cpp).
 namespace {
 
 template <int N>
 class RigRecorder {
  public:
-  using Stepper = RigStepper<N>;
+  using Stepper = ModelStepper<N>;
   RigRecorder(const Rig& rig, const ScaledParams& sp, RunSink& sink);
 
   // The start's trajectory row and envelope row, from the state at t = 0.
@@ -86,7 +86,7 @@ class RigRecorder {
   const Rig& rig_;
   ScaledParams sp_;
   network::NetworkEquations eq_;  // its own: the recording thread's (kAnyN's scratch is per object)
-  network::Layout lay_;
+  network::BoardLayout lay_;
   RunSink& sink_;
   bool event_rows_, event_records_, want_rows_, want_envelope_, want_states_;
   int n_rig_;
@@ -120,7 +120,7 @@ RigRecorder<N>::RigRecorder(const Rig& rig, const ScaledParams& sp, RunSink& sin
     : rig_(rig),
       sp_(sp),
       eq_(rig),
-      lay_(eq_.layout()),
+      lay_(eq_.layout().as<1>()),
       sink_(sink),
       event_rows_(sink.wantsEventRows()),
       event_records_(sink.wantsEventRecords()),
@@ -130,7 +130,7 @@ RigRecorder<N>::RigRecorder(const Rig& rig, const ScaledParams& sp, RunSink& sin
       n_rig_(static_cast<int>(rig.metronomes.size())),
       omega0_(1.0 / sp.time_scale_s),
       period_(kTwoPi / omega0_),
-      dyn_(eq_),
+      dyn_(eq_, 1),
       stepper_(ode::rkTableau(rig.sim.integrator.empty() ? defaultDirectIntegrator(rig)
                                                          : rig.sim.integrator),
                lay_.dim(), dyn_),

@@ -2,7 +2,7 @@
 // the run's thread writes each kept step's start, size, state, end state and stages (what the
 // step's dense output is made of) and each event's state as records; the recording thread loads
 // each step into the recorder's own stepper and makes the same rows from it as the run's thread
-// would (rig_model.h decides which thread records: RunSink::recordingThread()).
+// would (rig_recording.h decides which thread records: RunSink::recordingThread()).
 #pragma once
 
 #include <algorithm>
@@ -16,13 +16,13 @@
 #include "sim/record/recording_thread.h"
 
 namespace metrosync::direct {
-// Internal linkage on purpose: see rig_model.h (one includer, direct_engine.cpp).
+// Internal linkage on purpose: see direct_model.h (one includer, direct_engine.cpp).
 namespace {
 
 template <int N>
 class RigRecordingThread {
  public:
-  using Stepper = RigStepper<N>;
+  using Stepper = ModelStepper<N>;
   explicit RigRecordingThread(RigRecorder<N>& rec);
 
   void start(const double* y, PlatformMode mode) { state(Tag::Start, 0.0, mode, y); }
