@@ -1,0 +1,44 @@
+#!/bin/bash
+# The installed package (tools/install/package.cmake, docs/library.md) as a user meets it: the
+# core installed into a fresh prefix (`cmake --install --component dev`), examples/ configured
+# against it with find_package(metrosync) and built, and its run_rig on a shipped rig giving what
+# `metrosync run` gives on the same rig: the regime, the steps, every metronome's ticks.
+#   check_package.sh BUILD_DIR
+set -euo pipefail
+src=$(cd "$(dirname "$(readlink -f "$0")")/../.." && pwd)
+build=$(cd "${1:?the build tree}" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cmake --install "$build" --prefix "$work/prefix" --component dev >/dev/null
+test -f "$work/prefix/lib/cmake/metrosync/metrosyncConfig.cmake" ||
+  test -n "$(find "$work/prefix" -name metrosyncConfig.cmake)"
+cmake -S "$src/examples" -B "$work/examples" -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+cmake --build "$work/examples" -j2 >/dev/null
+rig=$src/yaml/rigs/experiment.yaml
+"$work/examples/run_rig" "$rig" simulation.duration=20 >"$work/example.txt"
+"$build/metrosync" run "$rig" --set simulation.duration=20 --quiet --no-plot --out "$work/run" \
+  >/dev/null
+python3 - "$work/example.txt" "$work/run/summary.json" <<'PY'
+import json, sys
+lines = dict()
+ticks = []
+for line in open(sys.argv[1]):
+    key, *rest = line.split()
+    if key == "ticks":
+        ticks.append(int(rest[1]))
+    else:
+        lines[key] = rest
+summary = json.load(open(sys.argv[2]))
+checks = [
+    ("regime", lines["regime"][0], summary["regime"]),
+    ("steps", int(lines["steps"][0]), summary["counts"]["steps"]),
+    ("ticks", ticks, summary["counts"]["escapements"]),
+]
+bad = [f"{name}: example {a!r}, metrosync run {b!r}" for name, a, b in checks if a != b]
+if len(lines["final"]) < 5:
+    bad.append(f"final: {lines['final']}")
+if bad:
+    sys.exit("the installed package's run differs from metrosync run:\n  " + "\n  ".join(bad))
+print("the example on the installed package:", lines["regime"][0], lines["steps"][0], "steps",
+      ticks, "ticks: as metrosync run")
+PY
