@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -172,6 +173,14 @@ struct MemorySink : RunSink {
                    const std::vector<PlatformMode>& modes) override {
     states.push_back({t, y, modes});
   }
+};
+
+// Thrown by a sink at the first row after a stop request (FileSink, a sweep's point). A
+// std::runtime_error, so that an engine that turns exceptions into a failed report (complete =
+// false) stops cleanly; the caller catches it too, for engines that let it through.
+struct RunInterrupted : std::runtime_error {
+  RunInterrupted(double t_, const std::string& why) : std::runtime_error(why), t(t_) {}
+  double t;  // when, in the rig's time unit
 };
 
 // Fails a run: the engine stops, reports what it has, and the command exits with code 3.

@@ -2,7 +2,8 @@
 # The installed package (tools/install/package.cmake, docs/library.md) as a user meets it: the
 # core installed into a fresh prefix (`cmake --install --component dev`), examples/ configured
 # against it with find_package(metrosync) and built, and its run_rig on a shipped rig giving what
-# `metrosync run` gives on the same rig: the regime, the steps, every metronome's ticks.
+# `metrosync run` gives on the same rig: the regime, the steps, every metronome's ticks; and its
+# sweep_mu giving every point the regime `metrosync sweep --engine direct` gives it.
 #   check_package.sh BUILD_DIR
 set -euo pipefail
 src=$(cd "$(dirname "$(readlink -f "$0")")/../.." && pwd)
@@ -41,4 +42,20 @@ if bad:
     sys.exit("the installed package's run differs from metrosync run:\n  " + "\n  ".join(bad))
 print("the example on the installed package:", lines["regime"][0], lines["steps"][0], "steps",
       ticks, "ticks: as metrosync run")
+PY
+# a range over which the regime changes (in-phase, suppression, death, ...)
+rig=$src/yaml/rigs/experiment-low-friction-inphase.yaml
+vary=platform.friction.mu=0.001:0.1:7:log
+"$work/examples/sweep_mu" "$rig" "$vary" >"$work/sweep.txt"
+"$build/metrosync" sweep "$rig" --vary "$vary" --engine direct --quiet --no-plot \
+  --out "$work/sweep" >/dev/null
+python3 - "$work/sweep.txt" "$work/sweep/regimes.csv" <<'PY'
+import csv, sys
+example = {int(i): (mu, regime) for i, mu, regime in (l.split() for l in open(sys.argv[1]))}
+sweep = {int(r["index"]): (r["platform.friction.mu"], r["regime"])
+         for r in csv.DictReader(open(sys.argv[2]))}
+if example != sweep or len(example) != 7 or len({v[1] for v in example.values()}) < 3:
+    sys.exit(f"the installed package's sweep differs from metrosync sweep:\n  {example}\n  {sweep}")
+print("the sweep example on the installed package:", [v[1] for _, v in sorted(example.items())],
+      ": as metrosync sweep")
 PY

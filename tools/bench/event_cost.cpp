@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "base/number_text.h"
+#include "base/thread_cpu_time.h"
 #include "models/network_equations.h"
 #include "sim/engines/direct/direct_integrators.h"
 #include "sim/engines/direct/start_state.h"
@@ -19,12 +20,6 @@ using network::NetworkEquations;
 // Batches of evaluations, each about this long: far above the clock's resolution.
 constexpr double kBatchS = 2e-3;
 constexpr int kBatches = 15;
-
-double threadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 // `count` evaluations at y (each result fed back into y by a vanishing amount, so that none can
 // be skipped); their CPU seconds.

@@ -41,6 +41,7 @@
 
 #include "base/constants.h"
 #include "base/number_text.h"
+#include "base/thread_cpu_time.h"
 #include "models/scaling.h"
 #include "sim/analysis/fit/data_file.h"
 #include "sim/analysis/fit/fit_observations.h"
@@ -167,13 +168,6 @@ struct Settings {
   std::string engine = "simbody";  // the engine that makes the records
   std::string dir;                 // scratch directory for rig.yaml and data.csv
 };
-
-// The CPU time of the calling thread (records run on several threads at once).
-double threadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
 
 double wallSeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();

@@ -17,12 +17,6 @@ double secondsSince(SweepClock::time_point t0) {
 
 // CPU seconds of the calling thread (a point runs on one thread): on a shared machine the measure
 // of what a point costs, where wall time also counts the other processes.
-double threadCpuSeconds() {
-  timespec ts{};
-  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
 std::string joined(const std::vector<std::string>& v, const std::string& sep) {
   std::string s;
   for (const auto& x : v) s += (s.empty() ? "" : sep) + x;

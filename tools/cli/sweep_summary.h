@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "base/thread_cpu_time.h"  // threadCpuSeconds: a point runs on one thread
 #include "sim/analysis/sweep.h"
 #include "tools/report/outputs.h"
 #include "tools/report/sweep_files.h"
@@ -16,8 +17,6 @@ namespace metrosync::cli {
 
 using SweepClock = std::chrono::steady_clock;
 double secondsSince(SweepClock::time_point t0);
-// CPU seconds of the calling thread (a point runs on one thread)
-double threadCpuSeconds();
 std::string joined(const std::vector<std::string>& v, const std::string& sep = ", ");
 const char* modelTitle(const std::string& model);  // "full model", "slow flow"
 

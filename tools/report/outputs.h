@@ -83,14 +83,6 @@ std::string trajectoryHeader(int n);
 // and _after, then t_s when `seconds` (docs/outputs.md).
 std::string eventsHeader(int n, bool seconds);
 
-// Thrown by FileSink at the first row after a stop request. A std::runtime_error, so that an
-// engine that turns exceptions into a failed report (complete = false) stops cleanly; the caller
-// catches it too, for engines that let it through.
-struct RunInterrupted : std::runtime_error {
-  RunInterrupted(double t_, const std::string& why) : std::runtime_error(why), t(t_) {}
-  double t;  // when, in the rig's time unit
-};
-
 // The one file writer, the RunSink of a command: a single rig's rows stream into trajectory.csv,
 // envelope.csv (and events.csv) in `dir`, keeping what the summary and plots need (the regime
 // window, a decimated copy of the envelope) in O(N) memory; a network's states into the network's
