@@ -19,6 +19,10 @@ if [[ ! -x $peer || $peer_src -nt $peer ]]; then
   g++ -std=c++17 -O3 -DNDEBUG -o "$peer" "$peer_src"
 fi
 
+rows=$(mktemp)
+trap 'rm -f "$rows"' EXIT
+keep() { echo "$1" | tee -a "$rows"; }  # a line of the table, kept for the ratios below
+
 ir() { valgrind --tool=callgrind --callgrind-out-file=/dev/null "$@" 2>&1 >/dev/null |
   awk '/refs/ {gsub(",", "", $NF); print $NF}'; }
 
@@ -31,7 +35,7 @@ for scene in peer-n2 peer-n8; do
   mapfile -t args < <("$probe" "$rig" --peer-args)
   ref=$("$probe" "$rig" 1 simulation.accuracy=1e-13)
   echo
-  echo "## $scene"
+  keep "## $scene"
   echo
   echo "| side | setting | err | Ir | RHS evaluations |"
   echo "|---|---|---|---|---|"
@@ -46,7 +50,7 @@ r=[float(v) for v in sys.argv[1].split('final')[1].split()]
 o=[float(v) for v in sys.argv[2].split('final')[1].split()]
 print('%.2g' % max(abs(a-b) for a,b in zip(r[2:-1],o[2:-1])))" "$ref" "$out")
     evals=$(echo "$out" | awk '{print $4}')
-    echo "| metrosync verner76 | $acc | $err | $n | $evals |"
+    keep "| metrosync verner76 | $acc | $err | $n | $evals |"
   done
   for m in "dopri5 1e-6 1e-7 1e-8 1e-9 1e-10" "rkf78 1e-7 1e-8 1e-9 1e-10 1e-11"; do
     set -- $m
@@ -63,7 +67,44 @@ d=json.loads(sys.argv[2]); s=d['state']; n=(len(s)-2)//2
 ours=r[2:-1]
 peer=[s[-1]]+[v for i in range(n) for v in (s[i], s[n+i])]
 print('%.2g %d' % (max(abs(a-b) for a,b in zip(ours,peer)), d['rhs_calls']))" "$ref" "$json")
-      echo "| peer $method | $tol | ${row% *} | $(((a - b) / 2)) | ${row#* } |"
+      keep "| peer $method | $tol | ${row% *} | $(((a - b) / 2)) | ${row#* } |"
     done
   done
 done
+
+# The ratios at equal error: at each of the engine's points, the peer's instructions at the same
+# final-state error (log-log interpolation between two points of one peer method; the fewer of
+# the two methods) over the engine's; none where the error is outside both peers' points.
+echo
+echo "## At equal final-state error"
+echo
+echo "peer's Ir at the engine's error / the engine's Ir, at each of the engine's settings:"
+echo
+python3 - "$rows" <<'PY'
+import math, re, sys
+scenes = {}
+for line in open(sys.argv[1]):
+    if line.startswith("## "):
+        scene = line[3:].strip()
+        scenes[scene] = []
+    m = re.match(r"\| (metrosync \w+|peer \w+) \| (\S+) \| (\S+) \| (\d+) \|", line)
+    if m:
+        scenes[scene].append((m.group(1), m.group(2), float(m.group(3)), int(m.group(4))))
+def peer_ir(rows, err):
+    best = None
+    for side in sorted({r[0] for r in rows if r[0].startswith("peer")}):
+        pts = sorted(((e, ir) for s, _, e, ir in rows if s == side), reverse=True)
+        for (e1, i1), (e2, i2) in zip(pts, pts[1:]):
+            if e1 >= err >= e2 and e1 > e2:
+                t = math.log(err / e1) / math.log(e2 / e1)
+                v = math.exp(math.log(i1) + t * math.log(i2 / i1))
+                best = v if best is None else min(best, v)
+    return best
+for scene, rows in scenes.items():
+    cells = []
+    for s, setting, err, ir in rows:
+        if s.startswith("metrosync"):
+            p = peer_ir(rows, err)
+            cells.append("%s (err %.2g): %s" % (setting, err, "%.2fx" % (p / ir) if p else "-"))
+    print("- %s: %s" % (scene, "; ".join(cells)))
+PY
