@@ -29,6 +29,7 @@ PlatformArrow::PlatformArrow(const Rig& rig, const PlatformFriction& friction)
     p.inertia = m.inertia_kgm2;
     p.inv_inertia = 1.0 / m.inertia_kgm2;
     p.damping = m.damping_kg_s * m.length_m * m.length_m;  // torque -nu-bar L^2 thetadot (e1.1a)
+    p.drag = m.air_drag_Nms2;
     p.theta_c = m.theta_c_rad;
     p.impulse = m.impulse_Nms;
     pend_.push_back(p);
@@ -43,6 +44,8 @@ PlatformArrow::PlatformArrow(const Rig& rig, const PlatformFriction& friction)
     mgL_.push_back(p.mgL);
     inv_inertia_.push_back(p.inv_inertia);
     damping_.push_back(p.damping);
+    drag_.push_back(p.drag);
+    drag_any_ = drag_any_ || p.drag != 0.0;
   }
   for (auto* v : {&sin_, &cos_, &c_, &r_, &g_term_, &s_term_}) v->resize(n_);
 }
@@ -57,7 +60,8 @@ double PlatformArrow::tableHoldingForce(double x, const double* th, const double
   for (int j = 0; j < n_; ++j) {
     const PendulumConstants& p = pend_[j];
     const double s = sin_[j], co = cos_[j];
-    const double r = -p.mgL * s - p.damping * w[j];
+    const double r = drag_any_ ? detail::pendulumTorque<true>(p.mgL, s, p.damping, w[j], p.drag)
+                               : detail::pendulumTorque<false>(p.mgL, s, p.damping, w[j], 0.0);
     G += p.mL * s * w[j] * w[j] - p.mL * co / p.inertia * r;
   }
   return -G;
@@ -71,9 +75,13 @@ double PlatformArrow::tableHoldingForceRate(const double* th, const double* w) c
   for (int j = 0; j < n_; ++j) {
     const PendulumConstants& p = pend_[j];
     const double s = sin_[j], co = cos_[j];
-    const double r = -p.mgL * s - p.damping * w[j];
+    const double r = drag_any_ ? detail::pendulumTorque<true>(p.mgL, s, p.damping, w[j], p.drag)
+                               : detail::pendulumTorque<false>(p.mgL, s, p.damping, w[j], 0.0);
     const double dw = r / p.inertia;
-    const double dr = -p.mgL * co * w[j] - p.damping * dw;
+    // (d/dt of -d w |w| is -2 d |w| w')
+    const double dr = drag_any_
+                          ? -p.mgL * co * w[j] - p.damping * dw - 2 * p.drag * std::abs(w[j]) * dw
+                          : -p.mgL * co * w[j] - p.damping * dw;
     dG += p.mL * (co * w[j] * w[j] * w[j] + 2 * s * w[j] * dw) -
           p.mL / p.inertia * (-s * w[j] * r + co * dr);
   }
@@ -132,9 +140,15 @@ double PlatformArrow::energy(double x, double v_in, const double* th, const doub
 void PlatformArrow::schurPass(const double* th, const double* w, double x, double& meff,
                               double& G) const {
   angleTrig(th);
-  const detail::SchurSums sums = detail::schurSums(
-      n_, mL_.data(), mgL_.data(), inv_inertia_.data(), damping_.data(), spring_, w, &x,
-      sin_.data(), cos_.data(), c_.data(), r_.data(), g_term_.data(), s_term_.data());
+  const detail::SchurSums sums =
+      drag_any_ ? detail::schurSums<true>(n_, mL_.data(), mgL_.data(), inv_inertia_.data(),
+                                          damping_.data(), drag_.data(), spring_, w, &x,
+                                          sin_.data(), cos_.data(), c_.data(), r_.data(),
+                                          g_term_.data(), s_term_.data())
+                : detail::schurSums<false>(n_, mL_.data(), mgL_.data(), inv_inertia_.data(),
+                                           damping_.data(), nullptr, spring_, w, &x, sin_.data(),
+                                           cos_.data(), c_.data(), r_.data(), g_term_.data(),
+                                           s_term_.data());
   G = sums.G;
   meff = mass_ - sums.schur;
 }
@@ -146,6 +160,8 @@ void PlatformArrow::pendulumAccelerations(double a, double* dw) const {
 double PlatformArrow::dampingPower(const double* w) const {
   double power = 0.0;
   for (int j = 0; j < n_; ++j) power += damping_[j] * w[j] * w[j];
+  if (drag_any_)
+    for (int j = 0; j < n_; ++j) power += drag_[j] * std::abs(w[j]) * w[j] * w[j];
   return power;
 }
 

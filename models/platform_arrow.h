@@ -10,6 +10,7 @@
 //   M xddot + sum_j c_j thetaddot_j - sum_j m_j L_j sin theta_j thetadot_j^2 = F - k x   (e1.1c)
 //   I_j thetaddot_j + c_j xddot = r_j,  r_j = -m_j g L_j sin theta_j - nu-bar_j L_j^2 thetadot_j
 //                                                                                  (e1.1a, b)
+//   (- d_j thetadot_j |thetadot_j| with air drag, pendulum.air_drag: issue 41)
 // Eliminating thetaddot_j (the Schur complement of diag(I)) gives the platform first, in O(N):
 //   Meff xddot = G + F,  Meff = M - sum_j c_j^2 / I_j,
 //   G = sum_j m_j L_j sin theta_j thetadot_j^2 - sum_j c_j r_j / I_j - k x   (F: the law's force)
@@ -44,6 +45,7 @@ struct PendulumConstants {
   double inertia = 0.0;  // I_j about the pivot (kg m^2)
   double inv_inertia = 0.0;
   double damping = 0.0;  // nu-bar_j L_j^2 (N m s)
+  double drag = 0.0;     // d_j: air drag, torque -d_j thetadot |thetadot| (N m s^2)
   double theta_c = 0.0;  // escapement angle (rad)
   double impulse = 0.0;  // J-bar_j (N m s); 0 = no escapement
 };
@@ -63,11 +65,13 @@ class PlatformArrow {
   bool moves() const { return moves_; }
   const PlatformFriction& friction() const { return friction_; }
   double mass() const { return mass_; }
+  bool hasDrag() const { return drag_any_; }  // a pendulum with air drag
 
   // The platform's rates alone on the table (no damper, no coupling): x' and xdot' into dxv[0..1],
   // theta' into dth, thetadot' into dw, in the contact's mode (Stuck holds xdot = 0, a slip feels
   // the law's slip force), from its x and xdot at xv[0..1]. N == numSwinging() (1 ..
-  // kMaxFixedN) or kAnyN: the same operations in the same order, so the same bits.
+  // kMaxFixedN) or kAnyN: the same operations in the same order, so the same bits. Air drag
+  // (hasDrag()) only with kAnyN.
   static constexpr int kAnyN = -1, kMaxFixedN = 8;
   template <int N>
   ArrowPower tableRates(const double* xv, const double* th, const double* w, PlatformMode mode,
@@ -83,7 +87,7 @@ class PlatformArrow {
   // thetaddot_j = (r_j - c_j a) / I_j with the platform's acceleration a, after schurPass() on
   // the same state (a = 0 for a platform that does not move).
   void pendulumAccelerations(double a, double* dw) const;
-  // sum_j nu-bar_j L_j^2 thetadot_j^2: the pivot dampers' power (W)
+  // sum_j (nu-bar_j L_j^2 thetadot_j^2 + d_j |thetadot_j|^3): the pendulums' damping power (W)
   double dampingPower(const double* w) const;
   // One combined generalized impulse: pin_impulse[j] on each pendulum's pin (N m s, (n x 1)) and
   // platform_impulse on x (N s), through [[M, c^T], [c, diag(I)]] with the platform free to move
@@ -105,12 +109,16 @@ class PlatformArrow {
   double mass_ = 0.0;    // M (kg)
   double spring_ = 0.0;  // k (N/m)
   // the pendulums' constants again as arrays (n x 1), for the vectorized loops
-  std::vector<double> mL_, mgL_, inv_inertia_, damping_;
+  std::vector<double> mL_, mgL_, inv_inertia_, damping_, drag_;
+  bool drag_any_ = false;  // a pendulum with air drag (its terms are computed only then)
   // scratch (n x 1): sin and cos of the angles, c_j, r_j and the terms of the platform's sums G
   // and sum c_j^2 / I_j
   mutable std::vector<double> sin_, cos_, c_, r_, g_term_, s_term_;
   void angleTrig(const double* th) const;  // sin_ and cos_ (models/vector_trig.h)
   template <int N>
+  ArrowPower tableDragRates(const double* xv, const double* th, const double* w, PlatformMode mode,
+                            double* dxv, double* dth, double* dw) const;
+  template <int N, bool Drag>
   ArrowPower tableBody(const double* xv, const double* th, const double* w, PlatformMode mode,
                        double* dxv, double* dth, double* dw, double* sn, double* cs, double* c,
                        double* r, double* g_term, double* s_term) const;

@@ -18,4 +18,11 @@ int Rig::numSwinging() const {
   return n;
 }
 
+std::string Rig::fullModelOnlyKey() const {
+  for (std::size_t i = 0; i < metronomes.size(); ++i)
+    if (!metronomes[i].locked && metronomes[i].air_drag_Nms2 != 0.0)
+      return "metronomes." + std::to_string(i) + ".pendulum.air_drag";
+  return "";
+}
+
 }  // namespace metrosync

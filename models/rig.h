@@ -22,9 +22,10 @@ struct MetronomeSpec {
   double length_m = 0.0;          // L_i, pivot to centre of mass
   double inertia_kgm2 = 0.0;      // I_i about the pivot (>= m_i L_i^2)
   double damping_kg_s = 0.0;      // nu-bar_i: pivot torque -nu-bar_i L_i^2 thetadot (e1.1a)
-  double theta_c_rad = 0.0;       // critical angle of the escapement (both sides)
-  double impulse_Nms = 0.0;       // J-bar_i, angular impulse per tick; 0 = no escapement
-  bool locked = false;            // pendulum held in its box (paper section 3A): no pin at all
+  double air_drag_Nms2 = 0.0;  // d_i: air drag, pivot torque -d_i thetadot |thetadot| (full model)
+  double theta_c_rad = 0.0;    // critical angle of the escapement (both sides)
+  double impulse_Nms = 0.0;    // J-bar_i, angular impulse per tick; 0 = no escapement
+  bool locked = false;         // pendulum held in its box (paper section 3A): no pin at all
   double start_angle_rad = 0.0;   // theta-bar_i(0)
   double start_rate_rad_s = 0.0;  // theta-bar_i'(0)
 };
@@ -56,6 +57,10 @@ struct Rig {
   double totalMass() const;
   // Number of metronomes whose pendulum swings (not locked).
   int numSwinging() const;
+  // What only the full model's engines take, as the key that sets it
+  // ("metronomes.0.pendulum.air_drag"), or "" when nothing: the slow flow and the derivatives of
+  // `continue --model full` and `fit` refuse a rig with it.
+  std::string fullModelOnlyKey() const;
 };
 
 }  // namespace metrosync

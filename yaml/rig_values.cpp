@@ -61,7 +61,7 @@ const Node& readMetronomeList(const Reader& holder, const std::string& list_path
   return list;
 }
 
-// pendulum: mass, length, inertia (>= m L^2), damping or decay_rate (e1.1a)
+// pendulum: mass, length, inertia (>= m L^2), damping or decay_rate (e1.1a), air_drag (>= 0)
 void readPhysicalPendulum(const Reader& m, MetronomeSpec& mt) {
   const Reader p = m.map("pendulum", "mass, length and damping or decay_rate");
   mt.pendulum_mass_kg = positive(p, "mass", "kg");
@@ -86,6 +86,8 @@ void readPhysicalPendulum(const Reader& m, MetronomeSpec& mt) {
     const double rate = nonNegative(p, "decay_rate", *p.optNumber("decay_rate"));
     mt.damping_kg_s = 2.0 * rate * mt.inertia_kgm2 / (mt.length_m * mt.length_m);
   }
+  // the air's drag on the swinging pendulum: torque -air_drag thetadot |thetadot| (N m s^2)
+  if (auto d = p.optNumber("air_drag")) mt.air_drag_Nms2 = nonNegative(p, "air_drag", *d);
 }
 
 // escapement: critical angle and impulse, or a steady amplitude that sets the impulse later
@@ -118,7 +120,22 @@ void readPhysicalEscapement(const Reader& m, MetronomeSpec& mt, std::optional<Re
 }
 
 // steady_amplitude -> J by eq. J_estimate with the metronome's own scaled nu_i, theta_c,i,
-// then J-bar_i = eps J_i I_i sqrt(eps) omega0
+// then J-bar_i = eps J_i I_i sqrt(eps) omega0. With air drag the loss at the steady amplitude A
+// is the linear damping's and the drag's: over a swing of the pendulum (thetadot^2 = 2 w^2 (cos
+// theta - cos A), w its own small-swing frequency) the drag takes d oint |thetadot|^3 dt =
+// 8 d w^2 (sin A - A cos A), what a linear damper b' takes of a harmonic swing (pi b' w A^2) when
+// b' = 8 d w (sin A - A cos A) / (pi A^2): a decay rate beta_d = b' / (2 I), so nu_i gets
+// 2 beta_d / (eps omega0) added (nu = 2 beta / (eps omega0); for small A, beta_d = 4 d w A /
+// (3 pi I), the free decay's rate at A).
+double dragNu(const MetronomeSpec& mt, double A_rad, double gravity, const ScaledParams& sp) {
+  if (!(mt.air_drag_Nms2 > 0)) return 0.0;
+  const double I = mt.inertia_kgm2;
+  const double w = std::sqrt(mt.pendulum_mass_kg * gravity * mt.length_m / I);
+  const double swing = std::sin(A_rad) - A_rad * std::cos(A_rad);
+  const double beta_d = 4.0 * mt.air_drag_Nms2 * w * swing / (kPi * I * A_rad * A_rad);
+  return 2.0 * beta_d * sp.time_scale_s / sp.epsilon;
+}
+
 void impulsesFromSteadyAmplitudes(Rig& rig,
                                   const std::vector<std::optional<Reader>>& amplitude_of) {
   const ScaledParams sp = computeScaled(rig);
@@ -128,7 +145,9 @@ void impulsesFromSteadyAmplitudes(Rig& rig,
     const double A = *e.optNumber("steady_amplitude") / sp.angle_scale;
     double J = 0.0;
     try {
-      J = impulseForAmplitude(sp.nu[i], A, sp.theta_c[i]);
+      const double nu = sp.nu[i] + dragNu(rig.metronomes[i], *e.optNumber("steady_amplitude"),
+                                          rig.gravity_m_s2, sp);
+      J = impulseForAmplitude(nu, A, sp.theta_c[i]);
     } catch (const std::invalid_argument& err) {
       e.bad("steady_amplitude", err.what());
     }

@@ -28,6 +28,7 @@ const std::vector<SensibleRange>& sensibleRanges() {
       {S::Metronome, "pendulum.inertia", 2.5e-8, 0.25, "kg m^2", "1.144e-5"},
       {S::Metronome, "pendulum.damping", 0.0, 1.0, "kg/s", "0.0226"},
       {S::Metronome, "pendulum.decay_rate", 0.0, 10.0, "1/s", "0.5"},
+      {S::Metronome, "pendulum.air_drag", 0.0, 1.0e-4, "N m s^2", "(not measured)"},
       {S::Metronome, "escapement.angle", 0.0, 1.0, "rad", "0.244"},
       {S::Metronome, "escapement.impulse", 0.0, 0.01, "N m s", "1.49e-5"},
       {S::Metronome, "escapement.steady_amplitude", 0.05, 1.5, "rad", "0.785"},

@@ -1,5 +1,6 @@
 #include "models/simbody/platform_system.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "contact/simbody/smooth_friction_element.h"
@@ -57,6 +58,23 @@ class NetworkSprings : public Force::Custom::Implementation {
 // Integrates, as continuous state variables z, the power taken out by the pivot dampers, by the
 // contacts' friction, and (a third z, only when the network has any) by the ground and coupling
 // dampers (joules): no z that stays 0, so that a single rig integrates the state it always did.
+// A pendulum's air drag (pendulum.air_drag, issue 41): the pivot torque -d u |u| on its pin's
+// rate u.
+class AirDrag : public Force::Custom::Implementation {
+ public:
+  AirDrag(const MobilizedBody& pin, double drag) : pin_(pin), drag_(drag) {}
+  void calcForce(const State& s, Vector_<SpatialVec>&, Vector_<Vec3>&,
+                 Vector& mobility_forces) const override {
+    const double u = pin_.getOneU(s, MobilizerUIndex(0));
+    pin_.applyOneMobilityForce(s, MobilizerUIndex(0), -drag_ * u * std::abs(u), mobility_forces);
+  }
+  Real calcPotentialEnergy(const State&) const override { return 0; }
+
+ private:
+  const MobilizedBody pin_;
+  double drag_;
+};
+
 class NetworkMeter : public Force::Custom::Implementation {
  public:
   NetworkMeter(const GeneralForceSubsystem& forces, const PlatformSystem& ns, ZIndex& z,
@@ -72,7 +90,8 @@ class NetworkMeter : public Force::Custom::Implementation {
     double damping = 0.0, friction = 0.0, dampers = 0.0;
     for (int j = 0; j < ns_.numPendulums(); ++j) {
       const double w = ns_.thetadot(s, j);
-      damping += eq.pendulum(j).damping * w * w;  // nu-bar L^2 thetadot^2
+      damping += eq.pendulum(j).damping * w * w;             // nu-bar L^2 thetadot^2
+      damping += eq.pendulum(j).drag * std::abs(w) * w * w;  // d |thetadot|^3 (air drag)
     }
     for (int p = 0; p < ns_.numPlatforms(); ++p) {
       const network::Block& b = eq.block(p);
@@ -174,6 +193,7 @@ void PlatformSystem::addPendulums(int p) {
     pins_[j] = MobilizedBody::Pin(parent, Transform(pivot), bob, Transform());
     if (q.damping > 0)
       Force::MobilityLinearDamper(forces_, pins_[j], MobilizerUIndex(0), q.damping);
+    if (q.drag > 0) Force::Custom(forces_, new AirDrag(pins_[j], q.drag));
   }
 }
 

@@ -70,6 +70,8 @@ class SlowFlowEngine final : public Engine {
     if (!net.isSingleRig())
       throw std::logic_error("the slowflow engine runs single-platform rigs only");
     const Rig rig = net.toSingleRig();
+    if (const std::string key = rig.fullModelOnlyKey(); !key.empty())
+      throw std::invalid_argument(key + ": the air's drag has no averaged form in the slow flow");
     const ScaledParams sp = computeScaled(rig);
     SlowFlowOptions so;
     so.tau_end = sp.tau_end;

@@ -53,8 +53,9 @@ bool sameDynamics(const Rig& a, const Rig& b) {
 
 // (the full model's: epsilon is a key it depends on; continue.cpp's startValue refuses it)
 double fullStartValue(const ContinueOptions& opt) {
-  loadContinueRig(opt, {});  // the rig itself must load
   const std::string display = opt.rig_path.empty() ? "<default rig>" : opt.rig_path;
+  // the rig itself must load, and take the derivatives
+  requireDerivatives(loadContinueRig(opt, {}), display, "continue --model full");
   const std::string text = opt.rig_path.empty() ? defaultRigYaml() : readRigFile(opt.rig_path);
   // the one key resolver (docs/keys.md); a key with '*': the rig's value at its first element
   const RigKey key = resolveOptionKey({text, display, opt.sets}, "--param", opt.param, false).key;

@@ -47,6 +47,17 @@ LoadOptions engineLoadOptions(double max_output_bytes) {
 void requireSlowFlow(const Rig& rig, const std::string& rig_name) {
   const SlowResponse r = rig.platform.friction.slowResponse();
   if (!r.available()) throw RigError(rig_name + ": the slow flow: " + r.why());
+  if (const std::string key = rig.fullModelOnlyKey(); !key.empty())
+    throw RigError(rig_name + ": the slow flow: " + key +
+                   ": the air's drag has no averaged form in the slow flow; run the full model "
+                   "(--model full)");
+}
+
+void requireDerivatives(const Rig& rig, const std::string& rig_name, const std::string& command) {
+  if (const std::string key = rig.fullModelOnlyKey(); !key.empty())
+    throw RigError(rig_name + ": " + key + ": " + command +
+                   " has no air drag yet (its derivatives do not have it); `run`, `compare`, "
+                   "`sweep`, `basin` and `animate` take it");
 }
 
 std::string fullEngineHelp() {

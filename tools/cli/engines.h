@@ -37,6 +37,9 @@ LoadOptions engineLoadOptions(double max_output_bytes);
 // throws RigError (exit 2), prefixed by `rig_name`, for a law that has none (static friction above
 // kinetic).
 void requireSlowFlow(const Rig& rig, const std::string& rig_name);
+// RigError (exit 2) for a rig the full model's derivatives cannot take (Rig::fullModelOnlyKey:
+// air drag): `continue --model full` and `fit`.
+void requireDerivatives(const Rig& rig, const std::string& rig_name, const std::string& command);
 
 // The --engine help of the commands that run the full model only (compare, validate, sweep's
 // full model, bench) and of those that run either (run, sweep).

@@ -168,6 +168,7 @@ std::string fittedRig(const FitOptions& opt, const std::string& text, const FitR
 FitReport runFit(const FitOptions& opt) {
   const std::string text = readRigFile(opt.rig_path);
   const Rig rig = loadPhysicalRig(text, opt.rig_path, opt.sets);
+  requireDerivatives(rig, opt.rig_path, "fit");
   checkSensibleRanges(text, opt.rig_path, opt.sets, opt.strict);
   const MeasuredData data = loadData(opt.data_path, rig);
   const Engine& engine = chooseEngine("", opt.model, rig, opt.rig_path);

@@ -1,6 +1,8 @@
 #include "sim/analysis/periodic_orbit/physical_model.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace metrosync::orbit {
 
@@ -11,6 +13,11 @@ PhysicalModel::PhysicalModel(const Rig& rig)
       n_(eq_.numSwinging()),
       d_(2 * eq_.numSwinging() + 2),
       k_spring_(eq_.hasPlatform() ? rig.platform.spring_N_m : 0.0) {
+  // the derivatives below have no air drag (issue 41): refused, not silently wrong
+  if (const std::string key = rig.fullModelOnlyKey(); !key.empty())
+    throw std::invalid_argument(key +
+                                ": the periodic orbits' and the fit's derivatives have no air drag "
+                                "(only `run`, `compare`, `sweep`, `basin` and `animate` take it)");
   pl_.n = n_;
   pl_.law_values = static_cast<int>(law_.values().size());
   p_ = Vec::Zero(pl_.size());

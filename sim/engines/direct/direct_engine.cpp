@@ -40,7 +40,11 @@ RunReport runKind(const Network& net, const Rig& rig, RunSink& sink, const Direc
 // above: the same bits.
 RunReport runSingleBoard(const Network& net, const Rig& rig, RunSink& sink,
                          const DirectOptions& options) {
-  switch (network::NetworkEquations(net).numSwinging()) {
+  const network::NetworkEquations eq(net);
+  // air drag only where N is not known (its rates out of the hot path: models/platform_arrow.h)
+  if (eq.arrow().hasDrag())
+    return runKind<network::NetworkEquations::kAnyN>(net, rig, sink, options);
+  switch (eq.numSwinging()) {
     case 1:
       return runKind<1>(net, rig, sink, options);
     case 2:
