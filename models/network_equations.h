@@ -90,6 +90,7 @@ class NetworkEquations {
   static constexpr int kAnyN = PlatformArrow::kAnyN, kMaxFixedN = PlatformArrow::kMaxFixedN;
   template <int N>
   void rhsN(const double* y, PlatformMode mode, double* dy) const;
+  // (beside rhs(y, modes, dy): a braced {mode} argument picks this one)
   void rhs(const double* y, PlatformMode mode, double* dy) const { rhsN<kAnyN>(y, mode, dy); }
   // H = -G: the force friction must supply to keep the platform still (xdot = 0 in y), and dH/dt
   // along the motion with the platform held still (xddot = 0).

@@ -79,7 +79,8 @@ void expectSameRates(const std::string& friction, PlatformMode mode) {
     }
     std::vector<double> ds(sl.dim()), dn(lay.dim());
     sq.rhs(ys.data(), mode, ds.data());
-    nq.rhs(yn.data(), {mode}, dn.data());
+    // the general equations (a braced {mode} would pick the single-board overload)
+    nq.rhs(yn.data(), std::vector<PlatformMode>{mode}, dn.data());
     const double a_size =
         std::max(std::abs(ds[sl.v(0)]), size(ds, sl.omega(0), sl.omega(0) + sl.n) * 1e-3);
     EXPECT_EQ(dn[lay.x(0)], ds[sl.x(0)]);
